@@ -1,0 +1,121 @@
+//! The pinhole camera of the lecture: the eye, the axes `u, v, n`, the near distance `N` and the
+//! view angle `θ`, and the eye ray through each pixel.
+
+use glam::Vec3;
+
+use crate::ray::Ray;
+
+/// The camera as a scene file describes it: where the eye is, what it looks at, which way is up.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraSpec {
+    pub eye: Vec3,
+    pub look_at: Vec3,
+    pub up: Vec3,
+    /// Vertical view angle `θ` in degrees.
+    pub view_angle: f32,
+    /// Distance `N` from the eye to the image plane.
+    pub near: f32,
+}
+
+impl Default for CameraSpec {
+    fn default() -> Self {
+        CameraSpec {
+            eye: Vec3::new(0.0, 0.0, 5.0),
+            look_at: Vec3::ZERO,
+            up: Vec3::Y,
+            view_angle: 45.0,
+            near: 1.0,
+        }
+    }
+}
+
+/// Why a camera cannot be built.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CameraError {
+    EyeAtLookAt,
+    /// The up vector is parallel to the view direction, so `u = up × n` is undefined.
+    UpParallelToView,
+    ViewAngle(f32),
+    Near(f32),
+}
+
+impl std::fmt::Display for CameraError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CameraError::EyeAtLookAt => write!(f, "the eye and the look-at point coincide"),
+            CameraError::UpParallelToView => {
+                write!(
+                    f,
+                    "the up vector is parallel to the view direction (or zero)"
+                )
+            }
+            CameraError::ViewAngle(a) => {
+                write!(f, "view angle must be between 0 and 180 degrees, got {a}")
+            }
+            CameraError::Near(n) => write!(f, "near distance must be positive, got {n}"),
+        }
+    }
+}
+
+impl std::error::Error for CameraError {}
+
+/// A camera ready to shoot rays: the eye and the orthonormal axes `u` (right), `v` (up) and `n`
+/// (from the look-at point back towards the eye), with the image plane's half sizes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    pub spec: CameraSpec,
+    pub eye: Vec3,
+    pub u: Vec3,
+    pub v: Vec3,
+    pub n: Vec3,
+    /// Near distance `N`.
+    pub near: f32,
+    /// `H = N·tan(θ/2)`: half the image plane's height.
+    pub half_height: f32,
+}
+
+impl Camera {
+    pub fn new(spec: CameraSpec) -> Result<Camera, CameraError> {
+        if !(spec.view_angle > 0.0 && spec.view_angle < 180.0) {
+            return Err(CameraError::ViewAngle(spec.view_angle));
+        }
+        if !(spec.near > 0.0 && spec.near.is_finite()) {
+            return Err(CameraError::Near(spec.near));
+        }
+        let n = (spec.eye - spec.look_at)
+            .try_normalize()
+            .ok_or(CameraError::EyeAtLookAt)?;
+        let u = spec
+            .up
+            .cross(n)
+            .try_normalize()
+            .filter(|_| spec.up.cross(n).length() > 1e-6 * spec.up.length())
+            .ok_or(CameraError::UpParallelToView)?;
+        let v = n.cross(u);
+        Ok(Camera {
+            spec,
+            eye: spec.eye,
+            u,
+            v,
+            n,
+            near: spec.near,
+            half_height: spec.near * (spec.view_angle.to_radians() * 0.5).tan(),
+        })
+    }
+
+    /// `dir_rc = −N·n + W(2c/nCols − 1)·u + H(2r/nRows − 1)·v`, with `W = H·aspect` and
+    /// `aspect = nCols / nRows`. `r` and `c` are continuous: the centre of pixel (r, c) is
+    /// (r + ½, c + ½), and row r = 0 is at the bottom of the image plane.
+    pub fn dir_rc(&self, r: f32, c: f32, n_rows: u32, n_cols: u32) -> Vec3 {
+        let h = self.half_height;
+        let w = h * n_cols as f32 / n_rows as f32;
+        -self.near * self.n
+            + w * (2.0 * c / n_cols as f32 - 1.0) * self.u
+            + h * (2.0 * r / n_rows as f32 - 1.0) * self.v
+    }
+
+    /// The eye ray `eye + dir_rc·t` through the point (r, c) of the image plane, reached at t = 1.
+    pub fn ray(&self, r: f32, c: f32, n_rows: u32, n_cols: u32) -> Ray {
+        Ray::new(self.eye, self.dir_rc(r, c, n_rows, n_cols))
+    }
+}

@@ -1,0 +1,16 @@
+//! raylab: a Whitted ray tracer after Hill & Kelley's lecture (ch. 12). The data flows one way:
+//! scene file → [`scene::Scene`] → [`bvh::Bvh`] → [`whitted`] tracer → [`film::Film`] → image.
+//! Nothing here knows about windows or GPUs.
+
+pub mod aabb;
+pub mod camera;
+pub mod light;
+pub mod material;
+pub mod mesh;
+pub mod primitive;
+pub mod ray;
+pub mod scene;
+pub mod settings;
+pub mod shapes;
+pub mod texture;
+pub mod transform;

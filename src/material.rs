@@ -1,0 +1,60 @@
+//! Materials: how a surface answers light, in the terms of the lecture's shading model
+//! (ambient, Lambert diffuse, Phong specular) plus mirror reflection and transparency.
+
+use glam::Vec3;
+
+/// Linear RGB.
+pub type Color = Vec3;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    /// The surface's colour; a texture, if given, replaces it.
+    pub color: Color,
+    /// Index into the scene's textures that drives `color`.
+    pub texture: Option<u32>,
+    /// Ambient coefficient `ka`: the share of the global ambient light reflected.
+    pub ambient: f32,
+    /// Diffuse (Lambert) coefficient `kd`.
+    pub diffuse: f32,
+    /// Specular (Phong) coefficient `ks` and the colour of the highlight.
+    pub specular: f32,
+    pub specular_color: Color,
+    /// Phong exponent `f` of `(r·v)^f`.
+    pub shininess: f32,
+    /// Weight `kr` of the mirror-reflected ray.
+    pub reflectivity: f32,
+    /// Weight `kt` of the transmitted ray; transmitted light is tinted by the surface colour.
+    pub transparency: f32,
+    /// Index of refraction of the material inside the surface (outside is 1, vacuum).
+    pub ior: f32,
+    /// Use Schlick's approximation of the Fresnel equations to trade reflection for
+    /// transmission with the angle of incidence.
+    pub fresnel: bool,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Material {
+            color: Color::splat(0.8),
+            texture: None,
+            ambient: 0.1,
+            diffuse: 0.8,
+            specular: 0.0,
+            specular_color: Color::ONE,
+            shininess: 32.0,
+            reflectivity: 0.0,
+            transparency: 0.0,
+            ior: 1.0,
+            fresnel: false,
+        }
+    }
+}
+
+impl Material {
+    /// Schlick's reflectance for a ray meeting the surface with `cos_i = |d·n|`, going from index
+    /// `n1` into `n2`.
+    pub fn schlick(cos_i: f32, n1: f32, n2: f32) -> f32 {
+        let r0 = ((n1 - n2) / (n1 + n2)).powi(2);
+        r0 + (1.0 - r0) * (1.0 - cos_i).clamp(0.0, 1.0).powi(5)
+    }
+}

@@ -1,0 +1,191 @@
+//! Primitives: what the BVH stores and the tracer hits. An object is an analytic shape placed in
+//! the world by a transform, with a material; a triangle belongs to a mesh. [`Geometry`] holds
+//! them all and answers, for a hit, the world-space surface point the shading needs.
+
+use glam::{Vec2, Vec3};
+
+use crate::aabb::Aabb;
+use crate::mesh::Mesh;
+use crate::ray::Ray;
+use crate::shapes::{Shape, Triangle};
+use crate::transform::Transform;
+
+/// An analytic shape in the world.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Object {
+    pub shape: Shape,
+    /// `None` when the shape is given directly in world coordinates.
+    pub transform: Option<Transform>,
+    pub material: u32,
+}
+
+/// A reference to one primitive: an object or a mesh triangle, told apart by the top bit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct PrimId(pub u32);
+
+impl PrimId {
+    const OBJECT_BIT: u32 = 1 << 31;
+
+    pub fn object(index: usize) -> Self {
+        PrimId(index as u32 | Self::OBJECT_BIT)
+    }
+
+    pub fn triangle(index: usize) -> Self {
+        PrimId(index as u32)
+    }
+
+    /// `Ok(object index)` or `Err(triangle index)`.
+    #[inline(always)]
+    pub fn kind(self) -> Result<usize, usize> {
+        if self.0 & Self::OBJECT_BIT != 0 {
+            Ok((self.0 & !Self::OBJECT_BIT) as usize)
+        } else {
+            Err(self.0 as usize)
+        }
+    }
+}
+
+/// The closest hit found so far along a ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    pub t: f32,
+    pub prim: PrimId,
+    /// Which part of an object was hit (see [`crate::shapes::ShapeHit`]).
+    pub part: u32,
+    /// Barycentric coordinates of a triangle hit.
+    pub bary: Vec2,
+}
+
+/// Everything the shading needs to know about the surface at a hit, in world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfacePoint {
+    pub point: Vec3,
+    /// The hit point in the object's own space (solid textures follow the object).
+    pub object_point: Vec3,
+    /// Unit shading normal, pointing out of the surface's front (not necessarily towards the ray).
+    pub normal: Vec3,
+    /// Unit geometric normal, on the same side as `normal`.
+    pub geometric_normal: Vec3,
+    pub uv: Vec2,
+    pub material: u32,
+}
+
+/// All primitives of a scene.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Geometry {
+    pub objects: Vec<Object>,
+    pub meshes: Vec<Mesh>,
+    pub triangles: Vec<Triangle>,
+}
+
+impl Geometry {
+    /// Adds a mesh (already in world space) and its triangles.
+    pub fn add_mesh(&mut self, mesh: Mesh) {
+        let index = self.meshes.len() as u32;
+        self.triangles.extend(mesh.triangles(index));
+        self.meshes.push(mesh);
+    }
+
+    /// Every primitive's id.
+    pub fn prim_ids(&self) -> impl Iterator<Item = PrimId> + '_ {
+        (0..self.objects.len())
+            .map(PrimId::object)
+            .chain((0..self.triangles.len()).map(PrimId::triangle))
+    }
+
+    /// World-space bounds, `None` for unbounded primitives.
+    pub fn bounds(&self, id: PrimId) -> Option<Aabb> {
+        match id.kind() {
+            Ok(o) => {
+                let object = &self.objects[o];
+                let b = object.shape.bounds()?;
+                Some(match &object.transform {
+                    Some(t) => t.bounds_to_world(&b),
+                    None => b,
+                })
+            }
+            Err(t) => Some(self.triangles[t].bounds()),
+        }
+    }
+
+    /// The hit of `ray` with primitive `id` in `(t_min, t_max)`, if any.
+    #[inline(always)]
+    pub fn intersect(&self, id: PrimId, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
+        match id.kind() {
+            Err(t) => self.triangles[t].intersect(ray, t_min, t_max).map(|h| Hit {
+                t: h.t,
+                prim: id,
+                part: 0,
+                bary: h.bary,
+            }),
+            Ok(o) => {
+                let object = &self.objects[o];
+                let h = match &object.transform {
+                    Some(tr) => object.shape.intersect(&tr.ray_to_object(ray), t_min, t_max),
+                    None => object.shape.intersect(ray, t_min, t_max),
+                }?;
+                Some(Hit {
+                    t: h.t,
+                    prim: id,
+                    part: h.part,
+                    bary: Vec2::ZERO,
+                })
+            }
+        }
+    }
+
+    /// The material of primitive `id`.
+    pub fn material(&self, id: PrimId) -> u32 {
+        match id.kind() {
+            Ok(o) => self.objects[o].material,
+            Err(t) => self.meshes[self.triangles[t].mesh as usize].material,
+        }
+    }
+
+    /// The surface at `hit` along `ray`.
+    pub fn surface(&self, ray: &Ray, hit: &Hit) -> SurfacePoint {
+        let point = ray.at(hit.t);
+        match hit.prim.kind() {
+            Ok(o) => {
+                let object = &self.objects[o];
+                let object_point = match &object.transform {
+                    Some(tr) => tr.ray_to_object(ray).at(hit.t),
+                    None => point,
+                };
+                let local = object.shape.surface(object_point, hit.part);
+                let normal = match &object.transform {
+                    Some(tr) => tr.normal_to_world(local.normal),
+                    None => local.normal.normalize(),
+                };
+                SurfacePoint {
+                    point,
+                    object_point,
+                    normal,
+                    geometric_normal: normal,
+                    uv: local.uv,
+                    material: object.material,
+                }
+            }
+            Err(t) => {
+                let tri = &self.triangles[t];
+                let mesh = &self.meshes[tri.mesh as usize];
+                let geometric = tri.normal();
+                let (normal, uv) = mesh.shading(tri.face, hit.bary, geometric);
+                // Vertex normals say which side is out; the winding may disagree.
+                let geometric_normal = if geometric.dot(normal) < 0.0 {
+                    -geometric
+                } else {
+                    geometric
+                };
+                SurfacePoint {
+                    point,
+                    object_point: point,
+                    normal,
+                    geometric_normal,
+                    uv,
+                    material: mesh.material,
+                }
+            }
+        }
+    }
+}

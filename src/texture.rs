@@ -1,0 +1,202 @@
+//! Textures: colours that vary over a surface. Solid 3D checkerboards (carved out of space, so
+//! they follow the object), checkerboards in texture coordinates, and images (PNG/JPEG) sampled
+//! with bilinear filtering.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use glam::{Vec2, Vec3};
+
+use crate::material::Color;
+
+/// What happens to texture coordinates outside [0, 1].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Wrap {
+    Repeat,
+    Clamp,
+}
+
+/// An image in linear RGB, row 0 at the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureImage {
+    pub width: u32,
+    pub height: u32,
+    pub texels: Vec<Color>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Texture {
+    /// Cubes of side `size` in object space, alternating `a` and `b`.
+    Checker3d { a: Color, b: Color, size: f32 },
+    /// `u_count × v_count` squares over the unit square of texture space.
+    CheckerUv {
+        a: Color,
+        b: Color,
+        u_count: f32,
+        v_count: f32,
+    },
+    /// An image, repeated `scale` times over the unit square of texture space.
+    Image {
+        image: Arc<TextureImage>,
+        wrap: Wrap,
+        scale: Vec2,
+    },
+}
+
+impl Texture {
+    /// The colour at texture coordinates `uv`, or at `object_point` for solid textures.
+    pub fn color(&self, uv: Vec2, object_point: Vec3) -> Color {
+        match self {
+            Texture::Checker3d { a, b, size } => {
+                // The small bias keeps a surface lying on a cell boundary (a floor at y = 0)
+                // from flickering between two cells with rounding noise.
+                let cell = (object_point / *size + 1e-4).floor();
+                let parity = (cell.x + cell.y + cell.z) as i64;
+                if parity.rem_euclid(2) == 0 { *a } else { *b }
+            }
+            Texture::CheckerUv {
+                a,
+                b,
+                u_count,
+                v_count,
+            } => {
+                let parity = (uv.x * u_count).floor() as i64 + (uv.y * v_count).floor() as i64;
+                if parity.rem_euclid(2) == 0 { *a } else { *b }
+            }
+            Texture::Image { image, wrap, scale } => image.sample(uv * *scale, *wrap),
+        }
+    }
+}
+
+impl TextureImage {
+    /// Loads a PNG or JPEG file, converting its sRGB values to linear.
+    pub fn load(path: &Path) -> Result<TextureImage, image::ImageError> {
+        Ok(Self::from_dynamic(image::open(path)?))
+    }
+
+    /// Decodes an image held in memory (the built-in scene's textures).
+    pub fn from_bytes(bytes: &[u8]) -> Result<TextureImage, image::ImageError> {
+        Ok(Self::from_dynamic(image::load_from_memory(bytes)?))
+    }
+
+    fn from_dynamic(img: image::DynamicImage) -> TextureImage {
+        let rgb = img.to_rgb8();
+        let texels = rgb
+            .pixels()
+            .map(|p| Color::from_array(p.0.map(|c| srgb_to_linear(c as f32 / 255.0))))
+            .collect();
+        TextureImage {
+            width: rgb.width(),
+            height: rgb.height(),
+            texels,
+        }
+    }
+
+    fn texel(&self, x: i64, y: i64, wrap: Wrap) -> Color {
+        let (w, h) = (self.width as i64, self.height as i64);
+        let (x, y) = match wrap {
+            Wrap::Repeat => (x.rem_euclid(w), y.rem_euclid(h)),
+            Wrap::Clamp => (x.clamp(0, w - 1), y.clamp(0, h - 1)),
+        };
+        self.texels[(y * w + x) as usize]
+    }
+
+    /// Bilinear sample at `uv`; `v = 0` is the bottom of the image.
+    pub fn sample(&self, uv: Vec2, wrap: Wrap) -> Color {
+        let x = uv.x * self.width as f32 - 0.5;
+        let y = (1.0 - uv.y) * self.height as f32 - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        let top = self
+            .texel(x0, y0, wrap)
+            .lerp(self.texel(x0 + 1, y0, wrap), fx);
+        let bottom = self
+            .texel(x0, y0 + 1, wrap)
+            .lerp(self.texel(x0 + 1, y0 + 1, wrap), fx);
+        top.lerp(bottom, fy)
+    }
+}
+
+/// The sRGB transfer function, inverted.
+pub fn srgb_to_linear(c: f32) -> f32 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// The sRGB transfer function, for writing 8-bit images.
+pub fn linear_to_srgb(c: f32) -> f32 {
+    let c = c.clamp(0.0, 1.0);
+    if c <= 0.0031308 {
+        c * 12.92
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn two_by_two() -> TextureImage {
+        TextureImage {
+            width: 2,
+            height: 2,
+            texels: vec![Color::X, Color::Y, Color::Z, Color::ONE],
+        }
+    }
+
+    #[test]
+    fn texel_centres_sample_exactly() {
+        let img = two_by_two();
+        // Top-left texel centre is (0.25, 0.75) in uv (v up).
+        assert_eq!(img.sample(Vec2::new(0.25, 0.75), Wrap::Clamp), Color::X);
+        assert_eq!(img.sample(Vec2::new(0.75, 0.25), Wrap::Clamp), Color::ONE);
+    }
+
+    #[test]
+    fn bilinear_blends_between_texels() {
+        let img = two_by_two();
+        let mid = img.sample(Vec2::new(0.5, 0.75), Wrap::Clamp);
+        assert!((mid - Color::new(0.5, 0.5, 0.0)).length() < 1e-6, "{mid}");
+    }
+
+    #[test]
+    fn repeat_and_clamp_differ_outside_the_unit_square() {
+        let img = two_by_two();
+        let uv = Vec2::new(1.25, 0.75);
+        assert_eq!(img.sample(uv, Wrap::Repeat), Color::X);
+        assert_eq!(img.sample(uv, Wrap::Clamp), Color::Y);
+    }
+
+    #[test]
+    fn checkerboards_alternate() {
+        let t = Texture::Checker3d {
+            a: Color::ZERO,
+            b: Color::ONE,
+            size: 1.0,
+        };
+        assert_eq!(t.color(Vec2::ZERO, Vec3::new(0.5, 0.5, 0.5)), Color::ZERO);
+        assert_eq!(t.color(Vec2::ZERO, Vec3::new(1.5, 0.5, 0.5)), Color::ONE);
+        assert_eq!(t.color(Vec2::ZERO, Vec3::new(-0.5, 0.5, 0.5)), Color::ONE);
+        let t = Texture::CheckerUv {
+            a: Color::ZERO,
+            b: Color::ONE,
+            u_count: 4.0,
+            v_count: 4.0,
+        };
+        assert_eq!(t.color(Vec2::new(0.1, 0.1), Vec3::ZERO), Color::ZERO);
+        assert_eq!(t.color(Vec2::new(0.3, 0.1), Vec3::ZERO), Color::ONE);
+    }
+
+    #[test]
+    fn srgb_round_trip() {
+        for i in 0..=20 {
+            let c = i as f32 / 20.0;
+            assert!((linear_to_srgb(srgb_to_linear(c)) - c).abs() < 1e-5);
+        }
+    }
+}

@@ -1,0 +1,118 @@
+//! Affine transforms of objects: translate, rotate about any axis and scale, composed in file
+//! order, with the inverse and the inverse transpose (for normals) kept alongside.
+
+use glam::{Affine3A, Mat3A, Vec3};
+
+use crate::aabb::Aabb;
+use crate::ray::Ray;
+
+/// One step of an object's transform, as written in a scene file.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TransformStep {
+    Translate(Vec3),
+    /// Rotation by `degrees` about `axis` (right-handed).
+    Rotate {
+        axis: Vec3,
+        degrees: f32,
+    },
+    Scale(Vec3),
+}
+
+/// The map from an object's own space to the world, with its inverse and normal matrix.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Transform {
+    pub world_from_object: Affine3A,
+    pub object_from_world: Affine3A,
+    /// Inverse transpose of the linear part: maps object-space normals to world space.
+    pub normal_to_world: Mat3A,
+}
+
+/// Why a transform cannot be used.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TransformError {
+    ZeroRotationAxis,
+    /// A scale factor of zero (or not finite) squashes the object flat.
+    DegenerateScale(Vec3),
+}
+
+impl std::fmt::Display for TransformError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            TransformError::ZeroRotationAxis => write!(f, "rotation axis must not be zero"),
+            TransformError::DegenerateScale(s) => {
+                write!(f, "scale factors must be finite and non-zero, got {s}")
+            }
+        }
+    }
+}
+
+impl Transform {
+    pub fn identity() -> Self {
+        Transform::from_affine(Affine3A::IDENTITY)
+    }
+
+    fn from_affine(world_from_object: Affine3A) -> Self {
+        let object_from_world = world_from_object.inverse();
+        Transform {
+            world_from_object,
+            object_from_world,
+            normal_to_world: object_from_world.matrix3.transpose(),
+        }
+    }
+
+    /// Composes the steps in file order: the first step is applied to the object first.
+    pub fn from_steps(steps: &[TransformStep]) -> Result<Self, TransformError> {
+        let mut m = Affine3A::IDENTITY;
+        for step in steps {
+            let s = match *step {
+                TransformStep::Translate(t) => Affine3A::from_translation(t),
+                TransformStep::Rotate { axis, degrees } => {
+                    let axis = axis
+                        .try_normalize()
+                        .ok_or(TransformError::ZeroRotationAxis)?;
+                    Affine3A::from_axis_angle(axis, degrees.to_radians())
+                }
+                TransformStep::Scale(s) => {
+                    if !s.is_finite() || s.cmpeq(Vec3::ZERO).any() {
+                        return Err(TransformError::DegenerateScale(s));
+                    }
+                    Affine3A::from_scale(s)
+                }
+            };
+            m = s * m;
+        }
+        Ok(Transform::from_affine(m))
+    }
+
+    pub fn is_identity(&self) -> bool {
+        self.world_from_object == Affine3A::IDENTITY
+    }
+
+    /// The ray in object space. The direction is not renormalised, so `t` means the same point in
+    /// both spaces.
+    #[inline]
+    pub fn ray_to_object(&self, ray: &Ray) -> Ray {
+        Ray::new(
+            self.object_from_world.transform_point3(ray.origin),
+            self.object_from_world.transform_vector3(ray.dir),
+        )
+    }
+
+    pub fn point_to_world(&self, p: Vec3) -> Vec3 {
+        self.world_from_object.transform_point3(p)
+    }
+
+    pub fn point_to_object(&self, p: Vec3) -> Vec3 {
+        self.object_from_world.transform_point3(p)
+    }
+
+    /// An object-space normal in world space, unit length.
+    pub fn normal_to_world(&self, n: Vec3) -> Vec3 {
+        (self.normal_to_world * n).normalize()
+    }
+
+    /// World-space bounds of an object-space box.
+    pub fn bounds_to_world(&self, b: &Aabb) -> Aabb {
+        Aabb::from_points(b.corners().map(|c| self.point_to_world(c)))
+    }
+}
