@@ -14,3 +14,8 @@ pub mod settings;
 pub mod shapes;
 pub mod texture;
 pub mod transform;
+pub mod bvh;
+pub mod stats;
+pub mod whitted;
+pub mod film;
+pub mod progressive;

@@ -4,7 +4,9 @@
 use crate::camera::Camera;
 use crate::light::Light;
 use crate::material::Material;
-use crate::primitive::Geometry;
+use crate::primitive::{Geometry, Object};
+use crate::shapes::Shape;
+use crate::transform::Transform;
 use crate::settings::RenderSettings;
 use crate::texture::Texture;
 
@@ -16,4 +18,39 @@ pub struct Scene {
     pub materials: Vec<Material>,
     pub textures: Vec<Texture>,
     pub geometry: Geometry,
+}
+
+impl Scene {
+    /// An empty scene (no lights, no objects) seen by `camera`.
+    pub fn new(settings: RenderSettings, camera: Camera) -> Scene {
+        Scene {
+            settings,
+            camera,
+            lights: Vec::new(),
+            materials: Vec::new(),
+            textures: Vec::new(),
+            geometry: Geometry::default(),
+        }
+    }
+
+    /// Adds a material and returns its index.
+    pub fn add_material(&mut self, material: Material) -> u32 {
+        self.materials.push(material);
+        self.materials.len() as u32 - 1
+    }
+
+    /// Adds an analytic shape, with an optional transform, and returns its object index.
+    pub fn add_object(
+        &mut self,
+        shape: Shape,
+        transform: Option<Transform>,
+        material: u32,
+    ) -> usize {
+        self.geometry.objects.push(Object {
+            shape,
+            transform,
+            material,
+        });
+        self.geometry.objects.len() - 1
+    }
 }

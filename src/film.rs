@@ -1,0 +1,97 @@
+//! The film: the image being rendered, in linear RGB floats, written by the tracer's threads and
+//! readable by anyone (the viewer, a progress display) while a pass is running.
+
+use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
+
+use crate::material::Color;
+use crate::texture::linear_to_srgb;
+
+/// A `width × height` image, row 0 at the top. Each channel is an `f32` stored in an atomic, so
+/// threads can write pixels while others read without locks; a reader may see a pixel from
+/// before and its neighbour from after a write, never a torn channel.
+#[derive(Debug)]
+pub struct Film {
+    width: u32,
+    height: u32,
+    channels: Vec<AtomicU32>,
+    /// Bumped whenever pixels change, so a viewer uploads only when there is something new.
+    version: AtomicU64,
+}
+
+impl Film {
+    pub fn new(width: u32, height: u32) -> Film {
+        let n = width as usize * height as usize * 3;
+        Film {
+            width,
+            height,
+            channels: (0..n).map(|_| AtomicU32::new(0)).collect(),
+            version: AtomicU64::new(0),
+        }
+    }
+
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    fn index(&self, x: u32, y: u32) -> usize {
+        (y as usize * self.width as usize + x as usize) * 3
+    }
+
+    pub fn get(&self, x: u32, y: u32) -> Color {
+        let i = self.index(x, y);
+        Color::new(
+            f32::from_bits(self.channels[i].load(Ordering::Relaxed)),
+            f32::from_bits(self.channels[i + 1].load(Ordering::Relaxed)),
+            f32::from_bits(self.channels[i + 2].load(Ordering::Relaxed)),
+        )
+    }
+
+    pub fn set(&self, x: u32, y: u32, c: Color) {
+        let i = self.index(x, y);
+        self.channels[i].store(c.x.to_bits(), Ordering::Relaxed);
+        self.channels[i + 1].store(c.y.to_bits(), Ordering::Relaxed);
+        self.channels[i + 2].store(c.z.to_bits(), Ordering::Relaxed);
+    }
+
+    /// Paints the block of `size × size` pixels whose top-left corner is (x, y), clipped at the
+    /// image's edges.
+    pub fn fill_block(&self, x: u32, y: u32, size: u32, c: Color) {
+        for by in y..(y + size).min(self.height) {
+            for bx in x..(x + size).min(self.width) {
+                self.set(bx, by, c);
+            }
+        }
+    }
+
+    /// Marks the image as changed (once per row or pass, not per pixel).
+    pub fn touch(&self) {
+        self.version.fetch_add(1, Ordering::Release);
+    }
+
+    pub fn version(&self) -> u64 {
+        self.version.load(Ordering::Acquire)
+    }
+
+    /// A copy of the pixels, row by row.
+    pub fn pixels(&self) -> Vec<Color> {
+        (0..self.height)
+            .flat_map(|y| (0..self.width).map(move |x| (x, y)))
+            .map(|(x, y)| self.get(x, y))
+            .collect()
+    }
+
+    /// The image as 8-bit sRGB with opaque alpha, row by row (for PNG files and textures).
+    pub fn to_srgba8(&self) -> Vec<u8> {
+        self.pixels()
+            .into_iter()
+            .flat_map(|c| {
+                let [r, g, b] = c.to_array().map(|v| (linear_to_srgb(v) * 255.0).round() as u8);
+                [r, g, b, 255]
+            })
+            .collect()
+    }
+}

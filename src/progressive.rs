@@ -1,0 +1,211 @@
+//! Progressive rendering by block size, as in the lecture: trace only the top-left pixel of each
+//! `b × b` block and paint the whole block, starting with a coarse `b` and halving it down to 1.
+//! Pass `b` traces exactly the pixels whose row and column are multiples of `b` and that no
+//! coarser pass traced, so all passes together trace every pixel once. After block size 1,
+//! optional passes add one jittered sample per pixel each (anti-aliasing).
+//!
+//! Passes run on all of rayon's threads, report their progress as they go, and stop within a row
+//! when cancelled from another thread.
+
+use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use crate::film::Film;
+use crate::material::Color;
+use crate::stats::{PassStats, RayCounts, RenderStats, SharedRayCounts};
+use crate::whitted::Tracer;
+
+/// One pass of refinement.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pass {
+    /// Trace one pixel per `b × b` block and paint the block.
+    Block(u32),
+    /// Add jittered sample number `k` (k ≥ 1; sample 0 is the pixel centre) to every pixel.
+    Sample(u32),
+}
+
+/// The passes of a render starting at `block_size` (a power of two) with `samples` per pixel.
+pub fn passes(block_size: u32, samples: u32) -> Vec<Pass> {
+    let blocks = std::iter::successors(Some(block_size.max(1)), |&b| (b > 1).then_some(b / 2));
+    blocks
+        .map(Pass::Block)
+        .chain((1..samples).map(Pass::Sample))
+        .collect()
+}
+
+/// Whether block pass `b` of a render that started at `start` traces pixel (x, y).
+pub fn traces_pixel(b: u32, start: u32, x: u32, y: u32) -> bool {
+    let on_grid = |s: u32| x.is_multiple_of(s) && y.is_multiple_of(s);
+    on_grid(b) && (b >= start || !on_grid(2 * b))
+}
+
+/// The render was cancelled before it finished.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Cancelled;
+
+/// Where a render is, readable from any thread.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Progress {
+    /// Index of the running pass, and how many there are.
+    pub pass: u32,
+    pub passes: u32,
+    /// Block size of the running pass (1 for sample passes).
+    pub block_size: u32,
+    /// Rows of blocks done in the running pass, and how many it has.
+    pub rows_done: u32,
+    pub rows: u32,
+    pub finished: bool,
+}
+
+/// Lets other threads cancel a render and watch its progress.
+#[derive(Debug, Default)]
+pub struct RenderControl {
+    cancelled: AtomicBool,
+    pass: AtomicU32,
+    passes: AtomicU32,
+    block_size: AtomicU32,
+    rows_done: AtomicU32,
+    rows: AtomicU32,
+    finished: AtomicBool,
+    rays: SharedRayCounts,
+    pixels: AtomicU64,
+}
+
+impl RenderControl {
+    pub fn cancel(&self) {
+        self.cancelled.store(true, Ordering::Relaxed);
+    }
+
+    pub fn is_cancelled(&self) -> bool {
+        self.cancelled.load(Ordering::Relaxed)
+    }
+
+    pub fn progress(&self) -> Progress {
+        Progress {
+            pass: self.pass.load(Ordering::Relaxed),
+            passes: self.passes.load(Ordering::Relaxed),
+            block_size: self.block_size.load(Ordering::Relaxed),
+            rows_done: self.rows_done.load(Ordering::Relaxed),
+            rows: self.rows.load(Ordering::Relaxed),
+            finished: self.finished.load(Ordering::Relaxed),
+        }
+    }
+
+    /// Rays traced so far in this render.
+    pub fn rays(&self) -> RayCounts {
+        self.rays.get()
+    }
+}
+
+/// Renders `tracer`'s scene into `film` (which must have the settings' size), pass after pass,
+/// calling `on_pass` after each. Runs on the current rayon thread pool.
+pub fn render(
+    tracer: &Tracer,
+    film: &Film,
+    control: &RenderControl,
+    mut on_pass: impl FnMut(&PassStats),
+) -> Result<RenderStats, Cancelled> {
+    let settings = &tracer.scene.settings;
+    let plan = passes(settings.block_size, settings.samples);
+    control.passes.store(plan.len() as u32, Ordering::Relaxed);
+    let start = Instant::now();
+    let mut stats = RenderStats::default();
+    for (i, &pass) in plan.iter().enumerate() {
+        control.pass.store(i as u32, Ordering::Relaxed);
+        let pass_stats = render_pass(tracer, film, control, pass, settings.block_size)?;
+        stats.rays += pass_stats.rays;
+        stats.passes.push(pass_stats);
+        on_pass(&pass_stats);
+    }
+    stats.time = start.elapsed();
+    control.finished.store(true, Ordering::Relaxed);
+    Ok(stats)
+}
+
+/// Runs one pass over the whole image.
+pub fn render_pass(
+    tracer: &Tracer,
+    film: &Film,
+    control: &RenderControl,
+    pass: Pass,
+    start_block: u32,
+) -> Result<PassStats, Cancelled> {
+    let started = Instant::now();
+    let (width, height) = (film.width(), film.height());
+    let step = match pass {
+        Pass::Block(b) => b,
+        Pass::Sample(_) => 1,
+    };
+    let rows = height.div_ceil(step);
+    control.block_size.store(step, Ordering::Relaxed);
+    control.rows.store(rows, Ordering::Relaxed);
+    control.rows_done.store(0, Ordering::Relaxed);
+    let rays_before = control.rays.get();
+    let pixels_before = control.pixels.load(Ordering::Relaxed);
+    let camera = &tracer.scene.camera;
+    (0..rows).into_par_iter().try_for_each(|row| {
+        if control.is_cancelled() {
+            return Err(Cancelled);
+        }
+        let y = row * step;
+        let mut counts = RayCounts::default();
+        let mut pixels = 0;
+        for x in (0..width).step_by(step as usize) {
+            let (offset, sample) = match pass {
+                Pass::Block(b) if traces_pixel(b, start_block, x, y) => ((0.5, 0.5), 0),
+                Pass::Block(_) => continue,
+                Pass::Sample(k) => (jitter(x, y, k), k),
+            };
+            let r = (height - y) as f32 - offset.1;
+            let c = x as f32 + offset.0;
+            let color = tracer.trace_eye(&camera.ray(r, c, height, width), &mut counts);
+            pixels += 1;
+            if sample == 0 {
+                film.fill_block(x, y, step, color);
+            } else {
+                let mean = film.get(x, y);
+                film.set(x, y, mean + (color - mean) / (sample + 1) as f32);
+            }
+        }
+        control.rays.add(&counts);
+        control.pixels.fetch_add(pixels, Ordering::Relaxed);
+        control.rows_done.fetch_add(1, Ordering::Relaxed);
+        film.touch();
+        Ok(())
+    })?;
+    let rays = control.rays.get() - rays_before;
+    Ok(PassStats {
+        pass,
+        pixels: control.pixels.load(Ordering::Relaxed) - pixels_before,
+        rays,
+        time: started.elapsed(),
+    })
+}
+
+/// A deterministic sub-pixel offset in [0, 1)² for sample `k` of pixel (x, y), so a render is
+/// reproducible whatever the thread count.
+pub fn jitter(x: u32, y: u32, k: u32) -> (f32, f32) {
+    let h = hash(x ^ hash(y ^ hash(k)));
+    let to_unit = |v: u32| (v >> 8) as f32 / (1u32 << 24) as f32;
+    (to_unit(h), to_unit(hash(h)))
+}
+
+/// A 32-bit integer hash (PCG output permutation).
+fn hash(v: u32) -> u32 {
+    let state = v.wrapping_mul(747796405).wrapping_add(2891336453);
+    let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277803737);
+    (word >> 22) ^ word
+}
+
+/// Renders the whole image in one go (no progressive display), returning its pixels.
+pub fn render_image(tracer: &Tracer) -> (Vec<Color>, RenderStats) {
+    let settings = &tracer.scene.settings;
+    let film = Film::new(settings.width, settings.height);
+    let control = RenderControl::default();
+    let stats = render(tracer, &film, &control, |_| {}).unwrap_or_else(|Cancelled| {
+        unreachable!("nobody else holds this render's control, so it cannot be cancelled")
+    });
+    (film.pixels(), stats)
+}

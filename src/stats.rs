@@ -1,0 +1,101 @@
+//! Render statistics: rays traced by kind, and the time each pass took.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Duration;
+
+/// Rays traced, by kind. Each worker counts into its own and adds it to the shared total once
+/// per row, so counting costs nothing per ray.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RayCounts {
+    /// Eye rays, one per pixel sample.
+    pub primary: u64,
+    /// Eye rays that hit something.
+    pub primary_hits: u64,
+    pub shadow: u64,
+    pub reflected: u64,
+    pub transmitted: u64,
+}
+
+impl RayCounts {
+    pub fn total(&self) -> u64 {
+        self.primary + self.shadow + self.reflected + self.transmitted
+    }
+}
+
+impl std::ops::AddAssign for RayCounts {
+    fn add_assign(&mut self, o: RayCounts) {
+        self.primary += o.primary;
+        self.primary_hits += o.primary_hits;
+        self.shadow += o.shadow;
+        self.reflected += o.reflected;
+        self.transmitted += o.transmitted;
+    }
+}
+
+impl std::ops::Sub for RayCounts {
+    type Output = RayCounts;
+    fn sub(self, o: RayCounts) -> RayCounts {
+        RayCounts {
+            primary: self.primary - o.primary,
+            primary_hits: self.primary_hits - o.primary_hits,
+            shadow: self.shadow - o.shadow,
+            reflected: self.reflected - o.reflected,
+            transmitted: self.transmitted - o.transmitted,
+        }
+    }
+}
+
+/// [`RayCounts`] that threads add to.
+#[derive(Debug, Default)]
+pub struct SharedRayCounts {
+    primary: AtomicU64,
+    primary_hits: AtomicU64,
+    shadow: AtomicU64,
+    reflected: AtomicU64,
+    transmitted: AtomicU64,
+}
+
+impl SharedRayCounts {
+    pub fn add(&self, c: &RayCounts) {
+        self.primary.fetch_add(c.primary, Ordering::Relaxed);
+        self.primary_hits.fetch_add(c.primary_hits, Ordering::Relaxed);
+        self.shadow.fetch_add(c.shadow, Ordering::Relaxed);
+        self.reflected.fetch_add(c.reflected, Ordering::Relaxed);
+        self.transmitted.fetch_add(c.transmitted, Ordering::Relaxed);
+    }
+
+    pub fn get(&self) -> RayCounts {
+        RayCounts {
+            primary: self.primary.load(Ordering::Relaxed),
+            primary_hits: self.primary_hits.load(Ordering::Relaxed),
+            shadow: self.shadow.load(Ordering::Relaxed),
+            reflected: self.reflected.load(Ordering::Relaxed),
+            transmitted: self.transmitted.load(Ordering::Relaxed),
+        }
+    }
+}
+
+/// What one pass of progressive rendering did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PassStats {
+    pub pass: crate::progressive::Pass,
+    /// Pixels traced (not painted) in this pass.
+    pub pixels: u64,
+    pub rays: RayCounts,
+    pub time: Duration,
+}
+
+/// A whole render.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RenderStats {
+    pub passes: Vec<PassStats>,
+    pub rays: RayCounts,
+    pub time: Duration,
+}
+
+impl RenderStats {
+    /// Millions of rays per second over the whole render.
+    pub fn mrays_per_second(&self) -> f64 {
+        self.rays.total() as f64 / self.time.as_secs_f64().max(1e-9) / 1e6
+    }
+}

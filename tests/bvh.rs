@@ -1,0 +1,209 @@
+//! The BVH must return exactly what testing every primitive returns.
+
+use std::collections::BTreeSet;
+use std::ops::ControlFlow;
+
+use glam::Vec3;
+use proptest::prelude::*;
+use raylab::bvh::Bvh;
+use raylab::mesh::Mesh;
+use raylab::primitive::{Geometry, Hit, Object, PrimId};
+use raylab::ray::Ray;
+use raylab::shapes::{Plane, Shape, Sphere};
+use raylab::transform::{Transform, TransformStep};
+
+/// A small deterministic generator, so a failure reproduces.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f32 {
+        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (self.0 >> 40) as f32 / (1u64 << 24) as f32
+    }
+    fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.next()
+    }
+    fn vec(&mut self, lo: f32, hi: f32) -> Vec3 {
+        Vec3::new(self.range(lo, hi), self.range(lo, hi), self.range(lo, hi))
+    }
+}
+
+fn random_scene(seed: u64, spheres: usize, triangles: usize, planes: usize) -> Geometry {
+    let mut rng = Rng(seed);
+    let mut g = Geometry::default();
+    for i in 0..spheres {
+        let sphere = Shape::Sphere(Sphere {
+            center: rng.vec(-10.0, 10.0),
+            radius: rng.range(0.05, 1.5),
+        });
+        // Every third sphere is squashed and turned, to exercise transformed bounds.
+        let transform = (i % 3 == 0).then(|| {
+            Transform::from_steps(&[
+                TransformStep::Scale(rng.vec(0.3, 2.0)),
+                TransformStep::Rotate {
+                    axis: rng.vec(-1.0, 1.0) + Vec3::splat(0.01),
+                    degrees: rng.range(0.0, 360.0),
+                },
+            ])
+            .unwrap()
+        });
+        g.objects.push(Object {
+            shape: sphere,
+            transform,
+            material: 0,
+        });
+    }
+    for _ in 0..planes {
+        g.objects.push(Object {
+            shape: Shape::Plane(Plane {
+                point: rng.vec(-12.0, 12.0),
+                normal: (rng.vec(-1.0, 1.0) + Vec3::splat(1e-3)).normalize(),
+            }),
+            transform: None,
+            material: 0,
+        });
+    }
+    let mut mesh = Mesh::default();
+    for i in 0..triangles as u32 {
+        let c = rng.vec(-10.0, 10.0);
+        mesh.positions.extend([c, c + rng.vec(-2.0, 2.0), c + rng.vec(-2.0, 2.0)]);
+        mesh.faces.push([3 * i, 3 * i + 1, 3 * i + 2]);
+    }
+    g.add_mesh(mesh);
+    g
+}
+
+fn brute_force(g: &Geometry, ray: &Ray) -> Option<Hit> {
+    let mut best: Option<Hit> = None;
+    for id in g.prim_ids() {
+        let t_max = best.map_or(f32::INFINITY, |h| h.t);
+        if let Some(hit) = g.intersect(id, ray, 0.0, t_max) {
+            best = Some(hit);
+        }
+    }
+    best
+}
+
+fn random_ray(rng: &mut Rng) -> Ray {
+    let origin = rng.vec(-15.0, 15.0);
+    let target = rng.vec(-10.0, 10.0);
+    Ray::new(origin, (target - origin) * rng.range(0.2, 3.0))
+}
+
+fn assert_same_closest(g: &Geometry, bvh: &Bvh, ray: &Ray) {
+    let expected = brute_force(g, ray);
+    let got = bvh.closest_hit(g, ray, 0.0, f32::INFINITY);
+    match (expected, got) {
+        (None, None) => {}
+        (Some(e), Some(h)) => {
+            assert_eq!(e.t, h.t, "ray {ray:?}");
+            if e.prim != h.prim {
+                // A tie: both primitives must really be hit at that t.
+                assert_eq!(g.intersect(e.prim, ray, 0.0, f32::INFINITY).unwrap().t, h.t);
+            }
+        }
+        _ => panic!("brute force {expected:?} but BVH {got:?} for {ray:?}"),
+    }
+}
+
+#[test]
+fn closest_hit_equals_brute_force_on_random_scenes() {
+    for seed in 0..12 {
+        let g = random_scene(seed, 40 + 30 * seed as usize, 200, (seed % 3) as usize);
+        let bvh = Bvh::build(&g);
+        let mut rng = Rng(seed + 1000);
+        for _ in 0..1000 {
+            assert_same_closest(&g, &bvh, &random_ray(&mut rng));
+        }
+    }
+}
+
+#[test]
+fn any_hit_visits_exactly_the_primitives_on_the_segment() {
+    let g = random_scene(7, 150, 300, 2);
+    let bvh = Bvh::build(&g);
+    let mut rng = Rng(99);
+    for _ in 0..2000 {
+        let ray = random_ray(&mut rng);
+        let t_max = rng.range(0.1, 2.0);
+        let expected: BTreeSet<PrimId> = g
+            .prim_ids()
+            .filter(|&id| g.intersect(id, &ray, 0.0, t_max).is_some())
+            .collect();
+        let mut got = BTreeSet::new();
+        bvh.any_hit(&g, &ray, 0.0, t_max, |hit| {
+            assert!(got.insert(hit.prim), "primitive visited twice");
+            ControlFlow::Continue(())
+        });
+        assert_eq!(got, expected);
+    }
+}
+
+#[test]
+fn any_hit_stops_when_asked() {
+    let g = random_scene(3, 300, 0, 0);
+    let bvh = Bvh::build(&g);
+    let ray = Ray::new(Vec3::new(-20.0, 0.0, 0.0), Vec3::X);
+    let mut calls = 0;
+    bvh.any_hit(&g, &ray, 0.0, f32::INFINITY, |_| {
+        calls += 1;
+        ControlFlow::Break(())
+    });
+    assert!(calls <= 1);
+}
+
+#[test]
+fn tree_is_shallow_and_covers_every_primitive_once() {
+    let g = random_scene(5, 2000, 8000, 1);
+    let bvh = Bvh::build(&g);
+    assert_eq!(bvh.unbounded.len(), 1, "the plane stays out of the tree");
+    let mut seen: Vec<PrimId> = bvh.prims.clone();
+    seen.sort();
+    seen.dedup();
+    assert_eq!(seen.len(), g.prim_ids().count() - 1);
+    assert!(bvh.depth() < 40, "depth {}", bvh.depth());
+    // Each leaf's box holds its primitives' boxes; each interior box holds its children's.
+    for node in &bvh.nodes {
+        let (min, max) = (Vec3::from(node.min), Vec3::from(node.max));
+        let inside = |b: raylab::aabb::Aabb| b.min.cmpge(min).all() && b.max.cmple(max).all();
+        if node.is_leaf() {
+            let first = node.first as usize;
+            for &id in &bvh.prims[first..first + node.count as usize] {
+                assert!(inside(g.bounds(id).unwrap()));
+            }
+        } else {
+            for child in &bvh.nodes[node.first as usize..node.first as usize + 2] {
+                assert!(inside(raylab::aabb::Aabb::new(child.min.into(), child.max.into())));
+            }
+        }
+    }
+}
+
+#[test]
+fn empty_and_single_primitive_scenes() {
+    let empty = Geometry::default();
+    let bvh = Bvh::build(&empty);
+    let ray = Ray::new(Vec3::ZERO, Vec3::X);
+    assert!(bvh.closest_hit(&empty, &ray, 0.0, f32::INFINITY).is_none());
+    let one = random_scene(1, 1, 0, 0);
+    let bvh = Bvh::build(&one);
+    let Shape::Sphere(s) = one.objects[0].shape.clone() else {
+        unreachable!()
+    };
+    let at = one.objects[0].transform.map_or(s.center, |t| t.point_to_world(s.center));
+    let ray = Ray::new(at + Vec3::new(0.0, 0.0, 50.0), -Vec3::Z);
+    assert!(bvh.closest_hit(&one, &ray, 0.0, f32::INFINITY).is_some());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+    #[test]
+    fn closest_hit_equals_brute_force_for_any_scene(seed in 0u64..1_000_000, n in 1usize..120) {
+        let g = random_scene(seed, n, n * 2, (seed % 2) as usize);
+        let bvh = Bvh::build(&g);
+        let mut rng = Rng(seed ^ 0xdead_beef);
+        for _ in 0..64 {
+            assert_same_closest(&g, &bvh, &random_ray(&mut rng));
+        }
+    }
+}

@@ -1,0 +1,114 @@
+//! The camera against the lecture's formulas: `u, v, n`, `H = N·tan(θ/2)`, `W = H·aspect` and
+//! `dir_rc = −N·n + W(2c/nCols − 1)·u + H(2r/nRows − 1)·v`.
+
+use glam::Vec3;
+use raylab::camera::{Camera, CameraError, CameraSpec};
+
+fn close(a: Vec3, b: Vec3) -> bool {
+    (a - b).length() < 1e-5
+}
+
+fn camera(eye: Vec3, look_at: Vec3, up: Vec3, view_angle: f32, near: f32) -> Camera {
+    Camera::new(CameraSpec {
+        eye,
+        look_at,
+        up,
+        view_angle,
+        near,
+    })
+    .unwrap()
+}
+
+#[test]
+fn axes_are_orthonormal_and_n_points_back_to_the_eye() {
+    let cam = camera(Vec3::new(1.0, 2.0, 3.0), Vec3::new(-2.0, 0.5, -1.0), Vec3::Y, 60.0, 1.0);
+    let back = (cam.eye - cam.spec.look_at).normalize();
+    assert!(close(cam.n, back));
+    for a in [cam.u, cam.v, cam.n] {
+        assert!((a.length() - 1.0).abs() < 1e-6);
+    }
+    assert!(cam.u.dot(cam.v).abs() < 1e-6 && cam.u.dot(cam.n).abs() < 1e-6);
+    assert!(close(cam.u.cross(cam.v), cam.n), "right-handed u, v, n");
+    assert!(cam.v.dot(Vec3::Y) > 0.0, "v leans towards up");
+}
+
+#[test]
+fn centre_ray_points_along_minus_n_with_length_n() {
+    let cam = camera(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::Y, 90.0, 2.0);
+    // Continuous (r, c) = (nRows/2, nCols/2) is the image centre.
+    let d = cam.dir_rc(50.0, 100.0, 100, 200);
+    assert!(close(d, Vec3::new(0.0, 0.0, -2.0)), "{d}");
+}
+
+#[test]
+fn corner_rays_match_the_formula() {
+    let (theta, near) = (90.0f32, 2.0);
+    let cam = camera(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), Vec3::Y, theta, near);
+    let h = near * (theta.to_radians() / 2.0).tan();
+    let (rows, cols) = (100, 200);
+    let w = h * cols as f32 / rows as f32;
+    let corners = [
+        ((0.0, 0.0), Vec3::new(-w, -h, -near)),              // bottom left
+        ((0.0, cols as f32), Vec3::new(w, -h, -near)),       // bottom right
+        ((rows as f32, 0.0), Vec3::new(-w, h, -near)),       // top left
+        ((rows as f32, cols as f32), Vec3::new(w, h, -near)), // top right
+    ];
+    for ((r, c), expected) in corners {
+        let d = cam.dir_rc(r, c, rows, cols);
+        assert!(close(d, expected), "({r}, {c}): {d} != {expected}");
+    }
+}
+
+#[test]
+fn pixel_centres_are_half_a_pixel_in() {
+    let cam = camera(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), Vec3::Y, 90.0, 1.0);
+    // 2×2 image, H = W = 1: pixel (0, 0)'s centre is at (−0.5, −0.5) on the plane z = −1.
+    let d = cam.dir_rc(0.5, 0.5, 2, 2);
+    assert!(close(d, Vec3::new(-0.5, -0.5, -1.0)), "{d}");
+}
+
+#[test]
+fn the_image_plane_is_reached_at_t_equal_one() {
+    let cam = camera(Vec3::new(3.0, 1.0, 2.0), Vec3::new(0.0, 0.5, -4.0), Vec3::Y, 50.0, 0.7);
+    for (r, c) in [(0.0, 0.0), (12.5, 33.0), (48.0, 64.0)] {
+        let ray = cam.ray(r, c, 48, 64);
+        let p = ray.at(1.0);
+        // On the plane at distance N in front of the eye, perpendicular to n.
+        assert!(((p - cam.eye).dot(-cam.n) - cam.near).abs() < 1e-5);
+    }
+}
+
+#[test]
+fn aspect_stretches_the_width_not_the_height() {
+    let cam = camera(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), Vec3::Y, 60.0, 1.0);
+    let h = (30.0f32).to_radians().tan();
+    let wide = cam.dir_rc(100.0, 400.0, 100, 400); // top right, aspect 4
+    let square = cam.dir_rc(100.0, 100.0, 100, 100);
+    assert!((wide.y - h).abs() < 1e-6 && (square.y - h).abs() < 1e-6);
+    assert!((wide.x - 4.0 * h).abs() < 1e-5 && (square.x - h).abs() < 1e-6);
+}
+
+#[test]
+fn degenerate_cameras_are_errors_not_nans() {
+    let spec = CameraSpec::default();
+    let up_along_view = CameraSpec {
+        up: spec.look_at - spec.eye,
+        ..spec
+    };
+    assert_eq!(Camera::new(up_along_view), Err(CameraError::UpParallelToView));
+    let zero_up = CameraSpec { up: Vec3::ZERO, ..spec };
+    assert_eq!(Camera::new(zero_up), Err(CameraError::UpParallelToView));
+    let same = CameraSpec {
+        look_at: spec.eye,
+        ..spec
+    };
+    assert_eq!(Camera::new(same), Err(CameraError::EyeAtLookAt));
+    assert!(matches!(
+        Camera::new(CameraSpec { view_angle: 180.0, ..spec }),
+        Err(CameraError::ViewAngle(_))
+    ));
+    assert!(matches!(
+        Camera::new(CameraSpec { near: 0.0, ..spec }),
+        Err(CameraError::Near(_))
+    ));
+}

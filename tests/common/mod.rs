@@ -1,0 +1,77 @@
+//! Scenes built in code for the tests.
+
+#![allow(dead_code)] // each test binary uses a different part
+
+use glam::Vec3;
+use raylab::camera::{Camera, CameraSpec};
+use raylab::light::Light;
+use raylab::material::{Color, Material};
+use raylab::scene::Scene;
+use raylab::settings::RenderSettings;
+use raylab::shapes::{Plane, Shape, Sphere};
+
+/// A camera at `eye` looking at `look_at` with +Y up.
+pub fn camera(eye: Vec3, look_at: Vec3, view_angle: f32) -> Camera {
+    Camera::new(CameraSpec {
+        eye,
+        look_at,
+        up: Vec3::Y,
+        view_angle,
+        near: 1.0,
+    })
+    .unwrap()
+}
+
+/// Three spheres (one mirror, one glass) on a floor, one light: every kind of ray.
+pub fn spheres_on_a_floor(width: u32, height: u32) -> Scene {
+    let settings = RenderSettings {
+        width,
+        height,
+        ..RenderSettings::default()
+    };
+    let mut scene = Scene::new(
+        settings,
+        camera(Vec3::new(0.0, 2.0, 7.0), Vec3::new(0.0, 0.8, 0.0), 45.0),
+    );
+    let matte = scene.add_material(Material {
+        color: Color::new(0.8, 0.3, 0.2),
+        specular: 0.5,
+        ..Material::default()
+    });
+    let mirror = scene.add_material(Material {
+        color: Color::splat(0.2),
+        reflectivity: 0.8,
+        ..Material::default()
+    });
+    let glass = scene.add_material(Material {
+        color: Color::ONE,
+        diffuse: 0.0,
+        transparency: 0.9,
+        ior: 1.5,
+        ..Material::default()
+    });
+    let floor = scene.add_material(Material::default());
+    for (x, material) in [(-2.0, matte), (0.0, mirror), (2.0, glass)] {
+        scene.add_object(
+            Shape::Sphere(Sphere {
+                center: Vec3::new(x, 1.0, 0.0),
+                radius: 0.9,
+            }),
+            None,
+            material,
+        );
+    }
+    scene.add_object(
+        Shape::Plane(Plane {
+            point: Vec3::ZERO,
+            normal: Vec3::Y,
+        }),
+        None,
+        floor,
+    );
+    scene.lights.push(Light::Point {
+        position: Vec3::new(4.0, 6.0, 4.0),
+        color: Color::ONE,
+    });
+    scene
+}
