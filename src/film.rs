@@ -89,7 +89,9 @@ impl Film {
         self.pixels()
             .into_iter()
             .flat_map(|c| {
-                let [r, g, b] = c.to_array().map(|v| (linear_to_srgb(v) * 255.0).round() as u8);
+                let [r, g, b] = c
+                    .to_array()
+                    .map(|v| (linear_to_srgb(v) * 255.0).round() as u8);
                 [r, g, b, 255]
             })
             .collect()

@@ -3,19 +3,19 @@
 //! Nothing here knows about windows or GPUs.
 
 pub mod aabb;
+pub mod bvh;
 pub mod camera;
+pub mod film;
 pub mod light;
 pub mod material;
 pub mod mesh;
 pub mod primitive;
+pub mod progressive;
 pub mod ray;
 pub mod scene;
 pub mod settings;
 pub mod shapes;
+pub mod stats;
 pub mod texture;
 pub mod transform;
-pub mod bvh;
-pub mod stats;
 pub mod whitted;
-pub mod film;
-pub mod progressive;

@@ -58,7 +58,8 @@ pub struct SharedRayCounts {
 impl SharedRayCounts {
     pub fn add(&self, c: &RayCounts) {
         self.primary.fetch_add(c.primary, Ordering::Relaxed);
-        self.primary_hits.fetch_add(c.primary_hits, Ordering::Relaxed);
+        self.primary_hits
+            .fetch_add(c.primary_hits, Ordering::Relaxed);
         self.shadow.fetch_add(c.shadow, Ordering::Relaxed);
         self.reflected.fetch_add(c.reflected, Ordering::Relaxed);
         self.transmitted.fetch_add(c.transmitted, Ordering::Relaxed);

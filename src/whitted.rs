@@ -76,7 +76,14 @@ impl<'a> Tracer<'a> {
     }
 
     /// The colour at a hit: the local (Phong) colour plus the reflected and transmitted rays.
-    fn shade(&self, ray: &Ray, hit: &Hit, depth: u32, weight: f32, counts: &mut RayCounts) -> Color {
+    fn shade(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        depth: u32,
+        weight: f32,
+        counts: &mut RayCounts,
+    ) -> Color {
         let settings = &self.scene.settings;
         let surface = self.scene.geometry.surface(ray, hit);
         let material = &self.scene.materials[surface.material as usize];
@@ -88,14 +95,23 @@ impl<'a> Tracer<'a> {
         let normal = surface.normal * side;
         let geometric_normal = surface.geometric_normal * side;
 
-        let mut color = self.local_color(material, base, &surface, normal, geometric_normal, dir, counts);
+        let mut color = self.local_color(
+            material,
+            base,
+            &surface,
+            normal,
+            geometric_normal,
+            dir,
+            counts,
+        );
 
         if depth >= settings.max_depth {
             return color;
         }
         let scattering = scattering(material, dir, normal, entering);
         let reflect_weight = weight * scattering.reflect;
-        if settings.reflections && scattering.reflect > 0.0 && reflect_weight >= settings.min_weight {
+        if settings.reflections && scattering.reflect > 0.0 && reflect_weight >= settings.min_weight
+        {
             counts.reflected += 1;
             let reflected = Ray::new(
                 offset_origin(surface.point, geometric_normal),
@@ -227,7 +243,11 @@ pub fn scattering(material: &Material, dir: Vec3, normal: Vec3, entering: bool) 
         }
         Some(t) if material.fresnel => {
             // Schlick's formula wants the angle on the optically thinner side.
-            let cos = if n1 <= n2 { -dir.dot(normal) } else { -t.dot(normal) };
+            let cos = if n1 <= n2 {
+                -dir.dot(normal)
+            } else {
+                -t.dot(normal)
+            };
             let fresnel = Material::schlick(cos, n1, n2);
             reflect += transmit * fresnel;
             transmit *= 1.0 - fresnel;

@@ -17,7 +17,10 @@ struct Rng(u64);
 
 impl Rng {
     fn next(&mut self) -> f32 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (self.0 >> 40) as f32 / (1u64 << 24) as f32
     }
     fn range(&mut self, lo: f32, hi: f32) -> f32 {
@@ -66,7 +69,8 @@ fn random_scene(seed: u64, spheres: usize, triangles: usize, planes: usize) -> G
     let mut mesh = Mesh::default();
     for i in 0..triangles as u32 {
         let c = rng.vec(-10.0, 10.0);
-        mesh.positions.extend([c, c + rng.vec(-2.0, 2.0), c + rng.vec(-2.0, 2.0)]);
+        mesh.positions
+            .extend([c, c + rng.vec(-2.0, 2.0), c + rng.vec(-2.0, 2.0)]);
         mesh.faces.push([3 * i, 3 * i + 1, 3 * i + 2]);
     }
     g.add_mesh(mesh);
@@ -173,7 +177,10 @@ fn tree_is_shallow_and_covers_every_primitive_once() {
             }
         } else {
             for child in &bvh.nodes[node.first as usize..node.first as usize + 2] {
-                assert!(inside(raylab::aabb::Aabb::new(child.min.into(), child.max.into())));
+                assert!(inside(raylab::aabb::Aabb::new(
+                    child.min.into(),
+                    child.max.into()
+                )));
             }
         }
     }
@@ -190,7 +197,9 @@ fn empty_and_single_primitive_scenes() {
     let Shape::Sphere(s) = one.objects[0].shape.clone() else {
         unreachable!()
     };
-    let at = one.objects[0].transform.map_or(s.center, |t| t.point_to_world(s.center));
+    let at = one.objects[0]
+        .transform
+        .map_or(s.center, |t| t.point_to_world(s.center));
     let ray = Ray::new(at + Vec3::new(0.0, 0.0, 50.0), -Vec3::Z);
     assert!(bvh.closest_hit(&one, &ray, 0.0, f32::INFINITY).is_some());
 }

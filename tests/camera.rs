@@ -21,7 +21,13 @@ fn camera(eye: Vec3, look_at: Vec3, up: Vec3, view_angle: f32, near: f32) -> Cam
 
 #[test]
 fn axes_are_orthonormal_and_n_points_back_to_the_eye() {
-    let cam = camera(Vec3::new(1.0, 2.0, 3.0), Vec3::new(-2.0, 0.5, -1.0), Vec3::Y, 60.0, 1.0);
+    let cam = camera(
+        Vec3::new(1.0, 2.0, 3.0),
+        Vec3::new(-2.0, 0.5, -1.0),
+        Vec3::Y,
+        60.0,
+        1.0,
+    );
     let back = (cam.eye - cam.spec.look_at).normalize();
     assert!(close(cam.n, back));
     for a in [cam.u, cam.v, cam.n] {
@@ -48,9 +54,9 @@ fn corner_rays_match_the_formula() {
     let (rows, cols) = (100, 200);
     let w = h * cols as f32 / rows as f32;
     let corners = [
-        ((0.0, 0.0), Vec3::new(-w, -h, -near)),              // bottom left
-        ((0.0, cols as f32), Vec3::new(w, -h, -near)),       // bottom right
-        ((rows as f32, 0.0), Vec3::new(-w, h, -near)),       // top left
+        ((0.0, 0.0), Vec3::new(-w, -h, -near)),        // bottom left
+        ((0.0, cols as f32), Vec3::new(w, -h, -near)), // bottom right
+        ((rows as f32, 0.0), Vec3::new(-w, h, -near)), // top left
         ((rows as f32, cols as f32), Vec3::new(w, h, -near)), // top right
     ];
     for ((r, c), expected) in corners {
@@ -69,7 +75,13 @@ fn pixel_centres_are_half_a_pixel_in() {
 
 #[test]
 fn the_image_plane_is_reached_at_t_equal_one() {
-    let cam = camera(Vec3::new(3.0, 1.0, 2.0), Vec3::new(0.0, 0.5, -4.0), Vec3::Y, 50.0, 0.7);
+    let cam = camera(
+        Vec3::new(3.0, 1.0, 2.0),
+        Vec3::new(0.0, 0.5, -4.0),
+        Vec3::Y,
+        50.0,
+        0.7,
+    );
     for (r, c) in [(0.0, 0.0), (12.5, 33.0), (48.0, 64.0)] {
         let ray = cam.ray(r, c, 48, 64);
         let p = ray.at(1.0);
@@ -95,8 +107,14 @@ fn degenerate_cameras_are_errors_not_nans() {
         up: spec.look_at - spec.eye,
         ..spec
     };
-    assert_eq!(Camera::new(up_along_view), Err(CameraError::UpParallelToView));
-    let zero_up = CameraSpec { up: Vec3::ZERO, ..spec };
+    assert_eq!(
+        Camera::new(up_along_view),
+        Err(CameraError::UpParallelToView)
+    );
+    let zero_up = CameraSpec {
+        up: Vec3::ZERO,
+        ..spec
+    };
     assert_eq!(Camera::new(zero_up), Err(CameraError::UpParallelToView));
     let same = CameraSpec {
         look_at: spec.eye,
@@ -104,7 +122,10 @@ fn degenerate_cameras_are_errors_not_nans() {
     };
     assert_eq!(Camera::new(same), Err(CameraError::EyeAtLookAt));
     assert!(matches!(
-        Camera::new(CameraSpec { view_angle: 180.0, ..spec }),
+        Camera::new(CameraSpec {
+            view_angle: 180.0,
+            ..spec
+        }),
         Err(CameraError::ViewAngle(_))
     ));
     assert!(matches!(

@@ -72,7 +72,10 @@ fn finished_image_is_the_same_from_any_starting_block_size() {
         let mut scene = scene.clone();
         scene.settings.block_size = start;
         let (image, _) = progressive::render_image(&Tracer::new(&scene, &bvh));
-        assert!(image == reference, "start {start} differs from block size 1");
+        assert!(
+            image == reference,
+            "start {start} differs from block size 1"
+        );
     }
 }
 

@@ -71,7 +71,13 @@ fn leaf(prims: &[BuildPrim], first: usize) -> Node {
 }
 
 /// Splits node `index`, which covers `all[first..first + count]`, while the SAH says it pays.
-fn subdivide(nodes: &mut Vec<Node>, all: &mut [BuildPrim], index: usize, first: usize, depth: usize) {
+fn subdivide(
+    nodes: &mut Vec<Node>,
+    all: &mut [BuildPrim],
+    index: usize,
+    first: usize,
+    depth: usize,
+) {
     let count = nodes[index].count as usize;
     let prims = &mut all[first..first + count];
     if count <= 1 || depth >= MAX_DEPTH {

@@ -5,10 +5,10 @@ use crate::camera::Camera;
 use crate::light::Light;
 use crate::material::Material;
 use crate::primitive::{Geometry, Object};
-use crate::shapes::Shape;
-use crate::transform::Transform;
 use crate::settings::RenderSettings;
+use crate::shapes::Shape;
 use crate::texture::Texture;
+use crate::transform::Transform;
 
 #[derive(Clone, Debug)]
 pub struct Scene {
