@@ -19,3 +19,4 @@ pub mod stats;
 pub mod texture;
 pub mod transform;
 pub mod whitted;
+pub mod output;

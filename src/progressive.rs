@@ -93,6 +93,11 @@ impl RenderControl {
         }
     }
 
+    /// Pixel samples traced so far in this render (each pixel once per sample).
+    pub fn pixels_traced(&self) -> u64 {
+        self.pixels.load(Ordering::Relaxed)
+    }
+
     /// Rays traced so far in this render.
     pub fn rays(&self) -> RayCounts {
         self.rays.get()

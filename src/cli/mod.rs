@@ -1,0 +1,37 @@
+//! The command line: its arguments (clap) and the subcommands.
+
+mod render;
+
+use std::path::{Path, PathBuf};
+
+use clap::{Parser, Subcommand};
+use raylab::scene::{self, Scene};
+
+#[derive(Parser, Debug)]
+#[command(name = "raylab", version, about = "An interactive Whitted ray tracer")]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Render a scene file (or the built-in default scene) to an image.
+    Render(render::RenderArgs),
+}
+
+/// Runs the command; the error is the message to print.
+pub fn run(cli: Cli) -> Result<(), String> {
+    match cli.command {
+        Command::Render(args) => render::run(args),
+    }
+}
+
+/// Loads the scene at `path`, or the built-in default scene when there is none.
+fn load_scene(path: Option<&Path>) -> Result<Scene, String> {
+    match path {
+        Some(path) => scene::load_scene(path).map_err(|e| e.to_string()),
+        None => scene::default_scene().map_err(|e| e.to_string()),
+    }
+}
+

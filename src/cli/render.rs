@@ -1,0 +1,143 @@
+//! `raylab render`: a scene to an image file, with a progress bar and a one-line summary.
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use raylab::bvh::Bvh;
+use raylab::film::Film;
+use raylab::output::save_image;
+use raylab::progressive::{self, RenderControl};
+use raylab::settings::RenderSettings;
+use raylab::stats::RenderStats;
+use raylab::whitted::Tracer;
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Scene file (.toml); the built-in default scene when left out.
+    scene: Option<PathBuf>,
+    /// Output image: .png or .ppm (8-bit sRGB), .exr or .hdr (linear floats).
+    #[arg(short, long, default_value = "out.png")]
+    output: PathBuf,
+    /// Overrides of the scene's render settings.
+    #[command(flatten)]
+    overrides: SettingsOverrides,
+    /// Worker threads (default: one per core).
+    #[arg(long)]
+    threads: Option<usize>,
+}
+
+/// Render settings that the command line can override.
+#[derive(Args, Debug, Default)]
+pub struct SettingsOverrides {
+    /// Image width in pixels.
+    #[arg(long)]
+    width: Option<u32>,
+    /// Image height in pixels.
+    #[arg(long)]
+    height: Option<u32>,
+    /// Deepest level of the ray tree (the eye ray is depth 1).
+    #[arg(long)]
+    max_depth: Option<u32>,
+    /// Adaptive depth control: skip branches whose weight is below this (0 = off).
+    #[arg(long)]
+    min_weight: Option<f32>,
+    /// Starting block size of progressive refinement (power of two, 1 to 64).
+    #[arg(long)]
+    block_size: Option<u32>,
+    /// Samples per pixel (more than 1 anti-aliases).
+    #[arg(long)]
+    samples: Option<u32>,
+}
+
+impl SettingsOverrides {
+    /// Applies the overrides and checks the result.
+    pub fn apply(&self, settings: &mut RenderSettings) -> Result<(), String> {
+        let s = settings;
+        s.width = self.width.unwrap_or(s.width);
+        s.height = self.height.unwrap_or(s.height);
+        s.max_depth = self.max_depth.unwrap_or(s.max_depth);
+        s.min_weight = self.min_weight.unwrap_or(s.min_weight);
+        s.block_size = self.block_size.unwrap_or(s.block_size);
+        s.samples = self.samples.unwrap_or(s.samples);
+        s.validate()
+    }
+}
+
+pub fn run(args: RenderArgs) -> Result<(), String> {
+    let mut scene = super::load_scene(args.scene.as_deref())?;
+    args.overrides.apply(&mut scene.settings)?;
+    let pool = thread_pool(args.threads)?;
+
+    let build_start = Instant::now();
+    let bvh = Bvh::build(&scene.geometry);
+    let build_time = build_start.elapsed();
+
+    let settings = &scene.settings;
+    let (width, height) = (settings.width, settings.height);
+    let film = Film::new(width, height);
+    let control = RenderControl::default();
+    let tracer = Tracer::new(&scene, &bvh);
+    let total = u64::from(width) * u64::from(height) * u64::from(settings.samples);
+    let bar = progress_bar(total);
+    let stats = std::thread::scope(|s| {
+        let render = s.spawn(|| pool.install(|| progressive::render(&tracer, &film, &control, |_| {})));
+        while !render.is_finished() {
+            bar.set_position(control.pixels_traced());
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        render.join()
+    })
+    .map_err(|_| "the renderer crashed".to_string())?
+    .map_err(|_| "the render was cancelled".to_string())?;
+    bar.finish_and_clear();
+
+    save_image(&args.output, width, height, &film.pixels()).map_err(|e| e.to_string())?;
+    println!("{}", summary(&scene.settings, &stats, build_time, &args.output));
+    Ok(())
+}
+
+fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, String> {
+    if threads == Some(0) {
+        return Err("--threads must be at least 1".into());
+    }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|e| format!("cannot start worker threads: {e}"))
+}
+
+/// A bar on the terminal (hidden when stderr is not one).
+fn progress_bar(total: u64) -> ProgressBar {
+    let bar = ProgressBar::new(total);
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} [{elapsed_precise}] {wide_bar} {percent:>3}%")
+            .expect("the template is valid"),
+    );
+    bar
+}
+
+/// One line: resolution, time, rays by kind, speed, output.
+fn summary(
+    settings: &RenderSettings,
+    stats: &RenderStats,
+    build_time: Duration,
+    output: &std::path::Path,
+) -> String {
+    let r = &stats.rays;
+    format!(
+        "{}×{}: {:.3} s (BVH {:.1} ms), rays: {} eye ({} hit), {} shadow, {} reflected, {} transmitted; {:.2} Mrays/s → {}",
+        settings.width,
+        settings.height,
+        stats.time.as_secs_f64(),
+        build_time.as_secs_f64() * 1e3,
+        r.primary,
+        r.primary_hits,
+        r.shadow,
+        r.reflected,
+        r.transmitted,
+        stats.mrays_per_second(),
+        output.display()
+    )
+}
