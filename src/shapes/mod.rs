@@ -2,14 +2,26 @@
 //! first meets it, what the surface looks like there (normal and texture coordinates), and what
 //! box bounds it. Placing a shape in the world is the job of [`crate::primitive`].
 
+mod cuboid;
+mod ellipsoid;
+mod paraboloid;
 mod plane;
+mod polygon;
 pub(crate) mod quadratic;
 mod sphere;
+mod tapered_cylinder;
+#[cfg(test)]
+mod test_support;
 mod triangle;
 
+pub use cuboid::Cuboid;
+pub use ellipsoid::Ellipsoid;
+pub use paraboloid::Paraboloid;
 pub use plane::Plane;
+pub use polygon::Polygon;
 pub use quadratic::solve_quadratic;
 pub use sphere::Sphere;
+pub use tapered_cylinder::TaperedCylinder;
 pub use triangle::{Triangle, TriangleHit};
 
 use glam::{Vec2, Vec3};
@@ -40,6 +52,11 @@ pub struct LocalSurface {
 pub enum Shape {
     Sphere(Sphere),
     Plane(Plane),
+    Polygon(Polygon),
+    Cuboid(Cuboid),
+    TaperedCylinder(TaperedCylinder),
+    Ellipsoid(Ellipsoid),
+    Paraboloid(Paraboloid),
 }
 
 impl Shape {
@@ -49,6 +66,11 @@ impl Shape {
         match self {
             Shape::Sphere(s) => s.intersect(ray, t_min, t_max),
             Shape::Plane(s) => s.intersect(ray, t_min, t_max),
+            Shape::Polygon(s) => s.intersect(ray, t_min, t_max),
+            Shape::Cuboid(s) => s.intersect(ray, t_min, t_max),
+            Shape::TaperedCylinder(s) => s.intersect(ray, t_min, t_max),
+            Shape::Ellipsoid(s) => s.intersect(ray, t_min, t_max),
+            Shape::Paraboloid(s) => s.intersect(ray, t_min, t_max),
         }
     }
 
@@ -57,6 +79,11 @@ impl Shape {
         match self {
             Shape::Sphere(s) => s.surface(p, part),
             Shape::Plane(s) => s.surface(p, part),
+            Shape::Polygon(s) => s.surface(p, part),
+            Shape::Cuboid(s) => s.surface(p, part),
+            Shape::TaperedCylinder(s) => s.surface(p, part),
+            Shape::Ellipsoid(s) => s.surface(p, part),
+            Shape::Paraboloid(s) => s.surface(p, part),
         }
     }
 
@@ -65,6 +92,11 @@ impl Shape {
         match self {
             Shape::Sphere(s) => Some(s.bounds()),
             Shape::Plane(_) => None,
+            Shape::Polygon(s) => Some(s.bounds()),
+            Shape::Cuboid(s) => Some(s.bounds()),
+            Shape::TaperedCylinder(s) => Some(s.bounds()),
+            Shape::Ellipsoid(s) => Some(s.bounds()),
+            Shape::Paraboloid(s) => Some(s.bounds()),
         }
     }
 
@@ -72,8 +104,10 @@ impl Shape {
     /// know which side is in).
     pub fn is_closed(&self) -> bool {
         match self {
-            Shape::Sphere(_) => true,
-            Shape::Plane(_) => false,
+            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Ellipsoid(_) => true,
+            Shape::Plane(_) | Shape::Polygon(_) => false,
+            Shape::TaperedCylinder(s) => s.is_capped(),
+            Shape::Paraboloid(s) => s.is_capped(),
         }
     }
 }

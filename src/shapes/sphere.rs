@@ -65,3 +65,94 @@ pub fn sphere_uv(d: Vec3) -> Vec2 {
     let v = 0.5 + d.y.clamp(-1.0, 1.0).asin() / PI;
     Vec2::new(u, v)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes::Shape;
+    use crate::shapes::test_support::{assert_near, hit_in_world};
+    use crate::transform::TransformStep;
+
+    const CENTER: Vec3 = Vec3::new(1.0, 2.0, 3.0);
+
+    fn sphere() -> Sphere {
+        Sphere {
+            center: CENTER,
+            radius: 2.0,
+        }
+    }
+
+    fn hit(ray: &Ray) -> Option<ShapeHit> {
+        sphere().intersect(ray, 1e-4, f32::INFINITY)
+    }
+
+    #[test]
+    fn hit_from_outside() {
+        let ray = Ray::new(Vec3::new(1.0, 2.0, 10.0), Vec3::new(0.0, 0.0, -2.0));
+        let h = hit(&ray).unwrap();
+        assert_eq!(h, ShapeHit { t: 2.5, part: 0 });
+        assert_eq!(ray.at(h.t), Vec3::new(1.0, 2.0, 5.0));
+        let s = sphere().surface(ray.at(h.t), h.part);
+        assert_eq!(s.normal, Vec3::Z);
+        assert_eq!(s.uv, Vec2::new(0.5, 0.5));
+    }
+
+    #[test]
+    fn oblique_hit_lies_on_the_sphere() {
+        let ray = Ray::new(Vec3::new(-4.0, 5.0, 1.0), Vec3::new(1.0, -0.5, 0.4));
+        let h = hit(&ray).unwrap();
+        let p = ray.at(h.t);
+        assert!(((p - CENTER).length() - 2.0).abs() < 1e-5, "{p}");
+        let n = sphere().surface(p, h.part).normal;
+        assert!((n.length() - 1.0).abs() < 1e-5);
+        assert!(n.dot(p - CENTER) > 0.0);
+    }
+
+    #[test]
+    fn ray_from_inside_hits_the_exit() {
+        let ray = Ray::new(CENTER, Vec3::new(0.0, 4.0, 0.0));
+        assert_eq!(hit(&ray), Some(ShapeHit { t: 0.5, part: 0 }));
+        let from_surface = Ray::new(CENTER + Vec3::Y * 2.0, Vec3::new(0.3, 1.0, 0.0));
+        assert_eq!(hit(&from_surface), None);
+    }
+
+    #[test]
+    fn tangent_and_missing_rays() {
+        let tangent = Ray::new(Vec3::new(-5.0, 4.0, 3.0), Vec3::X);
+        let h = hit(&tangent).unwrap();
+        assert!((h.t - 6.0).abs() < 1e-3, "{h:?}");
+        assert!(sphere().surface(tangent.at(h.t), 0).normal.is_finite());
+        assert_eq!(hit(&Ray::new(Vec3::new(-5.0, 4.01, 3.0), Vec3::X)), None);
+        assert_eq!(hit(&Ray::new(Vec3::new(-5.0, 2.0, 3.0), -Vec3::X)), None);
+    }
+
+    #[test]
+    fn respects_the_t_range() {
+        let ray = Ray::new(Vec3::new(-5.0, 2.0, 3.0), Vec3::X);
+        assert_eq!(sphere().intersect(&ray, 0.0, 4.0), None);
+        assert_eq!(
+            sphere().intersect(&ray, 4.0, 10.0),
+            Some(ShapeHit { t: 8.0, part: 0 })
+        );
+        assert_eq!(sphere().intersect(&ray, 8.0, 10.0), None);
+    }
+
+    #[test]
+    fn stretched_sphere_in_the_world() {
+        // The unit sphere stretched to 2 along y and moved to (0, 0, 5).
+        let unit = Sphere {
+            center: Vec3::ZERO,
+            radius: 1.0,
+        };
+        let steps = [
+            TransformStep::Scale(Vec3::new(1.0, 2.0, 1.0)),
+            TransformStep::Translate(Vec3::new(0.0, 0.0, 5.0)),
+        ];
+        let ray = Ray::new(Vec3::new(0.0, 10.0, 5.0), -Vec3::Y);
+        let (h, s) = hit_in_world(Shape::Sphere(unit), &steps, &ray).unwrap();
+        assert!((h.t - 8.0).abs() < 1e-5);
+        assert_near(s.point, Vec3::new(0.0, 2.0, 5.0), 1e-5);
+        assert_near(s.object_point, Vec3::Y, 1e-5);
+        assert_near(s.normal, Vec3::Y, 1e-5);
+    }
+}

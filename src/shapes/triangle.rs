@@ -75,3 +75,75 @@ impl Triangle {
         self.e1.cross(self.e2).length()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn triangle() -> Triangle {
+        Triangle::new([Vec3::ZERO, Vec3::X, Vec3::Y], 0, 0)
+    }
+
+    fn down_at(x: f32, y: f32) -> Ray {
+        Ray::new(Vec3::new(x, y, 2.0), Vec3::new(0.0, 0.0, -4.0))
+    }
+
+    #[test]
+    fn hit_inside() {
+        let h = triangle()
+            .intersect(&down_at(0.25, 0.5), 0.0, f32::INFINITY)
+            .unwrap();
+        assert_eq!(
+            h,
+            TriangleHit {
+                t: 0.5,
+                bary: Vec2::new(0.25, 0.5)
+            }
+        );
+        assert_eq!(triangle().normal(), Vec3::Z);
+        let from_below = Ray::new(Vec3::new(0.1, 0.1, -1.0), Vec3::Z);
+        assert_eq!(triangle().intersect(&from_below, 0.0, 5.0).unwrap().t, 1.0);
+    }
+
+    #[test]
+    fn edges_are_inclusive() {
+        for (x, y) in [(0.5, 0.5), (0.5, 0.0), (0.0, 0.5), (0.0, 0.0)] {
+            assert!(
+                triangle()
+                    .intersect(&down_at(x, y), 0.0, f32::INFINITY)
+                    .is_some(),
+                "({x}, {y})"
+            );
+        }
+    }
+
+    #[test]
+    fn misses() {
+        for (x, y) in [(0.6, 0.6), (-0.01, 0.5), (0.5, -0.01)] {
+            assert_eq!(
+                triangle().intersect(&down_at(x, y), 0.0, f32::INFINITY),
+                None
+            );
+        }
+        let parallel = Ray::new(Vec3::new(0.2, 0.2, 0.0), Vec3::X);
+        assert_eq!(triangle().intersect(&parallel, 0.0, f32::INFINITY), None);
+    }
+
+    #[test]
+    fn respects_the_t_range() {
+        let ray = down_at(0.2, 0.2);
+        assert_eq!(triangle().intersect(&ray, 0.0, 0.5), None);
+        assert_eq!(triangle().intersect(&ray, 0.5, 1.0), None);
+        assert!(triangle().intersect(&ray, 0.4, 0.6).is_some());
+    }
+
+    #[test]
+    fn bounds_and_area() {
+        let t = Triangle::new([Vec3::ZERO, Vec3::new(2.0, 0.0, 1.0), Vec3::Y], 3, 7);
+        assert_eq!(t.bounds(), Aabb::new(Vec3::ZERO, Vec3::new(2.0, 1.0, 1.0)));
+        assert!((t.double_area() - 5f32.sqrt()).abs() < 1e-6);
+        let degenerate = Triangle::new([Vec3::ZERO, Vec3::X, Vec3::X * 2.0], 0, 0);
+        assert_eq!(degenerate.double_area(), 0.0);
+        assert_eq!(degenerate.normal(), Vec3::ZERO);
+    }
+}
