@@ -129,7 +129,8 @@ fn build_settings(render: RenderFile, source: Source) -> Result<RenderSettings, 
         }
         Ok(())
     }
-    let s = &mut RenderSettings::default();
+    let mut settings = RenderSettings::default();
+    let s = &mut settings;
     apply(s, render.width, |s, v| s.width = v, source)?;
     apply(s, render.height, |s, v| s.height = v, source)?;
     apply(s, render.max_depth, |s, v| s.max_depth = v, source)?;
@@ -142,7 +143,7 @@ fn build_settings(render: RenderFile, source: Source) -> Result<RenderSettings, 
     apply(s, render.reflections, |s, v| s.reflections = v, source)?;
     apply(s, render.refractions, |s, v| s.refractions = v, source)?;
     apply(s, render.textures, |s, v| s.textures = v, source)?;
-    Ok(s.clone())
+    Ok(settings)
 }
 
 /// The camera; an error points at the key it is about, or at `[camera]` when that key was
@@ -370,6 +371,10 @@ struct GeometryBuilder<'a> {
 }
 
 impl GeometryBuilder<'_> {
+    /// Adds one object. A shape's arm hands the result of the shape's constructor, a
+    /// `Result<Shape, String>`, to [`Self::add_shape`] with the position to blame, e.g.
+    /// `ShapeFile::Cuboid { min, max } => self.add_shape(Cuboid::new(min.0, max.0)
+    /// .map(Shape::Cuboid), span, material, transform)`.
     fn add_object(&mut self, object: ObjectFile) -> Result<(), SceneError> {
         let source = self.source;
         let material = object

@@ -1,10 +1,10 @@
 //! The scene: everything a render needs, as plain data. It is read from a TOML scene file
-//! ([`load_scene`], [`parse_scene`]; the format is described by [`file`]) or made by code, and
-//! read by the BVH builder and the tracer.
+//! ([`load_scene`], [`parse_scene`]) or made by code, and read by the BVH builder and the
+//! tracer.
 
 mod build;
 mod error;
-pub mod file;
+mod file;
 mod load;
 mod obj;
 mod retag;
