@@ -1,5 +1,18 @@
-//! The scene: everything a render needs, as plain data. It is made from a scene file
-//! ([`file`]) or by code, and read by the BVH builder and the tracer.
+//! The scene: everything a render needs, as plain data. It is read from a TOML scene file
+//! ([`load_scene`], [`parse_scene`]) or made by code, and read by the BVH builder and the
+//! tracer.
+
+mod build;
+mod error;
+mod file;
+mod load;
+mod obj;
+mod retag;
+mod values;
+
+pub use build::DEFAULT_MATERIAL;
+pub use error::SceneError;
+pub use load::{load_scene, parse_scene};
 
 use crate::camera::Camera;
 use crate::light::Light;
