@@ -43,7 +43,10 @@ pub enum OutputError {
     Io(PathBuf, std::io::Error),
     Encode(PathBuf, image::ImageError),
     /// The pixel buffer does not hold `width × height` pixels.
-    PixelCount { expected: usize, got: usize },
+    PixelCount {
+        expected: usize,
+        got: usize,
+    },
 }
 
 impl std::fmt::Display for OutputError {
@@ -70,13 +73,22 @@ impl std::error::Error for OutputError {}
 pub fn to_srgb8(pixels: &[Color]) -> Vec<u8> {
     pixels
         .iter()
-        .flat_map(|c| c.to_array().map(|v| (linear_to_srgb(v) * 255.0).round() as u8))
+        .flat_map(|c| {
+            c.to_array()
+                .map(|v| (linear_to_srgb(v) * 255.0).round() as u8)
+        })
         .collect()
 }
 
 /// Writes `pixels` (linear RGB, row 0 at the top) to `path` in the format its extension names.
-pub fn save_image(path: &Path, width: u32, height: u32, pixels: &[Color]) -> Result<(), OutputError> {
-    let format = OutputFormat::from_path(path).ok_or_else(|| OutputError::UnknownFormat(path.into()))?;
+pub fn save_image(
+    path: &Path,
+    width: u32,
+    height: u32,
+    pixels: &[Color],
+) -> Result<(), OutputError> {
+    let format =
+        OutputFormat::from_path(path).ok_or_else(|| OutputError::UnknownFormat(path.into()))?;
     let expected = width as usize * height as usize;
     if pixels.len() != expected {
         return Err(OutputError::PixelCount {
@@ -99,8 +111,12 @@ pub fn save_image(path: &Path, width: u32, height: u32, pixels: &[Color]) -> Res
         let mut out = BufWriter::new(temp.as_file_mut());
         match format {
             OutputFormat::Png | OutputFormat::Ppm => {
-                let srgb = RgbImage::from_raw(width, height, to_srgb8(pixels))
-                    .ok_or(OutputError::PixelCount { expected, got: pixels.len() })?;
+                let srgb = RgbImage::from_raw(width, height, to_srgb8(pixels)).ok_or(
+                    OutputError::PixelCount {
+                        expected,
+                        got: pixels.len(),
+                    },
+                )?;
                 if format == OutputFormat::Png {
                     srgb.write_to(&mut out, ImageFormat::Png).map_err(encode)?;
                 } else {
@@ -111,8 +127,12 @@ pub fn save_image(path: &Path, width: u32, height: u32, pixels: &[Color]) -> Res
             }
             OutputFormat::Exr | OutputFormat::Hdr => {
                 let floats: Vec<f32> = pixels.iter().flat_map(|c| c.to_array()).collect();
-                let linear = Rgb32FImage::from_raw(width, height, floats)
-                    .ok_or(OutputError::PixelCount { expected, got: pixels.len() })?;
+                let linear = Rgb32FImage::from_raw(width, height, floats).ok_or(
+                    OutputError::PixelCount {
+                        expected,
+                        got: pixels.len(),
+                    },
+                )?;
                 let image_format = if format == OutputFormat::Exr {
                     ImageFormat::OpenExr
                 } else {
@@ -154,13 +174,22 @@ mod tests {
                 for ch in 0..3 {
                     let expected = if linear { c[ch] } else { linear_to_srgb(c[ch]) };
                     let got = back[i * 3 + ch];
-                    assert!((got - expected).abs() < 0.02, "{ext} pixel {i}: {got} vs {expected}");
+                    assert!(
+                        (got - expected).abs() < 0.02,
+                        "{ext} pixel {i}: {got} vs {expected}"
+                    );
                 }
             }
         }
         let leftovers = std::fs::read_dir(dir.path())
             .unwrap()
-            .filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().ends_with(".tmp"))
+            .filter(|e| {
+                e.as_ref()
+                    .unwrap()
+                    .file_name()
+                    .to_string_lossy()
+                    .ends_with(".tmp")
+            })
             .count();
         assert_eq!(leftovers, 0, "no temporary files left behind");
     }
@@ -190,7 +219,13 @@ mod tests {
         std::fs::write(&path, b"old").unwrap();
         // Too few pixels cannot be encoded; the old file must survive.
         let err = save_image(&path, 4, 4, &[Color::ONE]).unwrap_err();
-        assert!(matches!(err, OutputError::PixelCount { expected: 16, got: 1 }));
+        assert!(matches!(
+            err,
+            OutputError::PixelCount {
+                expected: 16,
+                got: 1
+            }
+        ));
         assert_eq!(std::fs::read(&path).unwrap(), b"old");
     }
 }

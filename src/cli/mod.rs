@@ -2,7 +2,7 @@
 
 mod render;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use clap::{Parser, Subcommand};
 use raylab::scene::{self, Scene};
@@ -34,4 +34,3 @@ fn load_scene(path: Option<&Path>) -> Result<Scene, String> {
         None => scene::default_scene().map_err(|e| e.to_string()),
     }
 }
-

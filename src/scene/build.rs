@@ -4,7 +4,6 @@
 
 use std::collections::BTreeMap;
 use std::ops::Range;
-use std::path::Path;
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
@@ -16,6 +15,7 @@ use super::file::{
     CameraFile, LightFile, MaterialFile, ObjectFile, RenderFile, SceneFile, ShapeFile, TextureFile,
     TransformStepFile, WrapFile,
 };
+use super::files::SceneFiles;
 use super::obj::load_obj;
 use super::values::{ColorValue, Direction, NonNegative, TexCoord, Vector};
 use crate::camera::{Camera, CameraError, CameraSpec};
@@ -24,7 +24,9 @@ use crate::material::{Color, Material};
 use crate::mesh::{Mesh, MeshError};
 use crate::primitive::{Geometry, Object};
 use crate::settings::RenderSettings;
-use crate::shapes::{Plane, Shape, Sphere, Triangle};
+use crate::shapes::{
+    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder, Triangle,
+};
 use crate::texture::{Texture, TextureImage, Wrap};
 use crate::transform::{Transform, TransformStep};
 
@@ -38,11 +40,11 @@ const CHECKER_B: Color = Color::splat(0.1);
 const CHECKER_SIZE: f32 = 1.0;
 const CHECKER_UV_COUNT: f32 = 8.0;
 
-/// Builds the scene. Relative file names resolve against `base_dir`.
+/// Builds the scene. File names are looked up in `files`.
 pub(crate) fn build_scene(
     file: SceneFile,
     source: Source,
-    base_dir: &Path,
+    files: SceneFiles,
 ) -> Result<Scene, SceneError> {
     let settings = build_settings(file.render, source)?;
     let camera = build_camera(file.camera, source)?;
@@ -52,7 +54,7 @@ pub(crate) fn build_scene(
     let textures = file
         .textures
         .into_values()
-        .map(|texture| build_texture(texture, source, base_dir))
+        .map(|texture| build_texture(texture, source, files))
         .collect::<Result<_, _>>()?;
 
     let material_names = Names::new("material", file.materials.keys(), DEFAULT_MATERIAL + 1);
@@ -63,7 +65,7 @@ pub(crate) fn build_scene(
 
     let mut builder = GeometryBuilder {
         source,
-        base_dir,
+        files,
         material_names,
         materials,
         geometry: Geometry::default(),
@@ -202,7 +204,7 @@ fn build_light(light: LightFile) -> Light {
 fn build_texture(
     texture: TextureFile,
     source: Source,
-    base_dir: &Path,
+    files: SceneFiles,
 ) -> Result<Texture, SceneError> {
     let color = |c: Option<ColorValue>, default| c.map_or(default, |c| c.0);
     Ok(match texture {
@@ -223,7 +225,7 @@ fn build_texture(
             v_count: v_count.map_or(CHECKER_UV_COUNT, |n| n.0),
         },
         TextureFile::Image { file, wrap, scale } => {
-            let path = base_dir.join(file.get_ref());
+            let path = files.path(file.get_ref());
             let fail = |message: String| {
                 let path = path.display();
                 source.error(
@@ -231,7 +233,8 @@ fn build_texture(
                     format!("cannot load texture image `{path}`: {message}"),
                 )
             };
-            let image = TextureImage::load(&path).map_err(|e| fail(e.to_string()))?;
+            let bytes = files.read(&path).map_err(fail)?;
+            let image = TextureImage::from_bytes(&bytes).map_err(|e| fail(e.to_string()))?;
             if image.width == 0 || image.height == 0 {
                 return Err(fail("the image has no pixels".into()));
             }
@@ -364,7 +367,7 @@ impl MeshSpans {
 /// Collects the objects' geometry, and the materials OBJ files bring along.
 struct GeometryBuilder<'a> {
     source: Source<'a>,
-    base_dir: &'a Path,
+    files: SceneFiles<'a>,
     material_names: Names,
     materials: Vec<Material>,
     geometry: Geometry,
@@ -438,6 +441,65 @@ impl GeometryBuilder<'_> {
                 self.add_mesh(mesh, material, transform, &spans)
             }
             ShapeFile::Obj { file } => self.add_obj(file, material, transform),
+            ShapeFile::Polygon { vertices } => {
+                let vertices = vertices.iter().map(|v| v.0).collect();
+                let shape = Polygon::new(vertices).map(Shape::Polygon);
+                self.add_shape(shape, span, material, transform)
+            }
+            ShapeFile::Box { min, max } => {
+                let shape = Cuboid::new(min.0, max.0).map(Shape::Cuboid);
+                self.add_shape(shape, span, material, transform)
+            }
+            ShapeFile::Cylinder {
+                base,
+                top,
+                radius,
+                capped,
+            } => {
+                let radius = radius.unwrap_or(1.0);
+                let shape = TaperedCylinder::new(
+                    base.map_or(Vec3::ZERO, |v| v.0),
+                    top.map_or(Vec3::Y, |v| v.0),
+                    radius,
+                    radius,
+                    capped.unwrap_or(true),
+                );
+                self.add_shape(shape.map(Shape::TaperedCylinder), span, material, transform)
+            }
+            ShapeFile::Cone {
+                base,
+                top,
+                base_radius,
+                top_radius,
+                capped,
+            } => {
+                let shape = TaperedCylinder::new(
+                    base.map_or(Vec3::ZERO, |v| v.0),
+                    top.map_or(Vec3::Y, |v| v.0),
+                    base_radius.unwrap_or(1.0),
+                    top_radius.unwrap_or(0.0),
+                    capped.unwrap_or(true),
+                );
+                self.add_shape(shape.map(Shape::TaperedCylinder), span, material, transform)
+            }
+            ShapeFile::Ellipsoid { center, radii } => {
+                let shape = Ellipsoid::new(center.map_or(Vec3::ZERO, |v| v.0), radii.0);
+                self.add_shape(shape.map(Shape::Ellipsoid), span, material, transform)
+            }
+            ShapeFile::Paraboloid {
+                vertex,
+                radius,
+                height,
+                capped,
+            } => {
+                let shape = Paraboloid::new(
+                    vertex.map_or(Vec3::ZERO, |v| v.0),
+                    radius.unwrap_or(1.0),
+                    height.unwrap_or(1.0),
+                    capped.unwrap_or(false),
+                );
+                self.add_shape(shape.map(Shape::Paraboloid), span, material, transform)
+            }
         }
     }
 
@@ -485,7 +547,7 @@ impl GeometryBuilder<'_> {
         material: Option<u32>,
         transform: Option<Transform>,
     ) -> Result<(), SceneError> {
-        let path = self.base_dir.join(file.get_ref());
+        let path = self.files.path(file.get_ref());
         let source = self.source;
         let fail = |message: String| {
             let path = path.display();
@@ -494,7 +556,7 @@ impl GeometryBuilder<'_> {
                 format!("cannot load OBJ file `{path}`: {message}"),
             )
         };
-        let contents = load_obj(&path).map_err(fail)?;
+        let contents = load_obj(&path, self.files).map_err(fail)?;
         let first_mtl = self.materials.len();
         let mut mtl_count = 0;
         if material.is_none() && contents.parts.iter().any(|p| p.mtl_material.is_some()) {

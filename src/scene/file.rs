@@ -184,4 +184,34 @@ pub enum ShapeFile {
     },
     /// A Wavefront OBJ file, relative to the scene file's folder.
     Obj { file: Spanned<String> },
+    /// A planar polygon, convex or concave, counter-clockwise seen from its front.
+    Polygon { vertices: Vec<Vector> },
+    /// An axis-aligned box (turn it with a transform).
+    Box { min: Vector, max: Vector },
+    /// A cylinder from `base` to `top`.
+    Cylinder {
+        base: Option<Vector>,
+        top: Option<Vector>,
+        radius: Option<f32>,
+        capped: Option<bool>,
+    },
+    /// A cone, or a truncated cone when both radii are positive.
+    Cone {
+        base: Option<Vector>,
+        top: Option<Vector>,
+        base_radius: Option<f32>,
+        top_radius: Option<f32>,
+        capped: Option<bool>,
+    },
+    Ellipsoid {
+        center: Option<Vector>,
+        radii: Vector,
+    },
+    /// A paraboloid opening towards +y from `vertex`, `radius` wide at `height`.
+    Paraboloid {
+        vertex: Option<Vector>,
+        radius: Option<f32>,
+        height: Option<f32>,
+        capped: Option<bool>,
+    },
 }

@@ -11,6 +11,7 @@ use super::Scene;
 use super::build::build_scene;
 use super::error::{SceneError, Source};
 use super::file::{OBJECT_KEYS, SceneFile};
+use super::files::SceneFiles;
 use super::retag::retag_document;
 
 /// Reads the scene file at `path`. Texture and OBJ file names are relative to its folder.
@@ -23,6 +24,11 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
 /// Reads a scene from `text`. `origin` names it in error messages; texture and OBJ file names
 /// are relative to `base_dir`.
 pub fn parse_scene(text: &str, origin: &Path, base_dir: &Path) -> Result<Scene, SceneError> {
+    parse_scene_with(text, origin, SceneFiles::Folder(base_dir))
+}
+
+/// Reads a scene from `text`, taking the files it names from `files`.
+pub fn parse_scene_with(text: &str, origin: &Path, files: SceneFiles) -> Result<Scene, SceneError> {
     let source = Source { origin, text };
     let mut document = DeTable::parse(text).map_err(|e| source.toml_error(&e))?;
     let shape_keys = retag_document(document.get_mut(), source)?;
@@ -36,5 +42,5 @@ pub fn parse_scene(text: &str, origin: &Path, base_dir: &Path) -> Result<Scene, 
         }
         error
     })?;
-    build_scene(file, source, base_dir)
+    build_scene(file, source, files)
 }

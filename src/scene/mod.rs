@@ -3,16 +3,20 @@
 //! tracer.
 
 mod build;
+mod builtin;
 mod error;
 mod file;
+mod files;
 mod load;
 mod obj;
 mod retag;
 mod values;
 
 pub use build::DEFAULT_MATERIAL;
+pub use builtin::{DEFAULT_SCENE_TEXT, default_scene};
 pub use error::SceneError;
-pub use load::{load_scene, parse_scene};
+pub use files::SceneFiles;
+pub use load::{load_scene, parse_scene, parse_scene_with};
 
 use crate::camera::Camera;
 use crate::light::Light;

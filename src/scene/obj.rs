@@ -5,6 +5,7 @@ use std::path::Path;
 
 use glam::{Vec2, Vec3};
 
+use super::files::SceneFiles;
 use crate::material::{Color, Material};
 use crate::mesh::Mesh;
 
@@ -28,8 +29,8 @@ pub struct ObjPart {
 
 /// Reads an OBJ file, triangulated, with one index per vertex for position, normal and texture
 /// coordinates. MTL files are looked up next to the OBJ file.
-pub fn load_obj(path: &Path) -> Result<ObjContents, String> {
-    let bytes = std::fs::read(path).map_err(|e| e.to_string())?;
+pub fn load_obj(path: &Path, files: SceneFiles) -> Result<ObjContents, String> {
+    let bytes = files.read(path)?;
     let options = tobj::LoadOptions {
         single_index: true,
         triangulate: true,
@@ -37,9 +38,11 @@ pub fn load_obj(path: &Path) -> Result<ObjContents, String> {
         ignore_lines: true,
     };
     let folder = path.parent().unwrap_or(Path::new(""));
-    let (models, materials) = tobj::load_obj_buf(&mut bytes.as_slice(), &options, |mtl| {
-        let bytes = std::fs::read(folder.join(mtl)).map_err(|_| tobj::LoadError::OpenFileFailed)?;
-        tobj::load_mtl_buf(&mut bytes.as_slice())
+    let (models, materials) = tobj::load_obj_buf(&mut &bytes[..], &options, |mtl| {
+        let bytes = files
+            .read(&folder.join(mtl))
+            .map_err(|_| tobj::LoadError::OpenFileFailed)?;
+        tobj::load_mtl_buf(&mut &bytes[..])
     })
     .map_err(|e| e.to_string())?;
     let parts = models
