@@ -133,6 +133,53 @@ impl Model {
         }
     }
 
+    /// The direction of the surface's outward normal at `p` on part `part`: the gradient of
+    /// the part's implicit function, worked out here independently of the shapes' code.
+    fn gradient(&self, p: Vec3, part: u32) -> Vec3 {
+        match *self {
+            Model::Sphere { center, .. } => p - center,
+            Model::Ellipsoid { center, radii } => (p - center) / (radii * radii),
+            Model::Cuboid { .. } => {
+                let mut n = Vec3::ZERO;
+                n[(part / 2) as usize] = if part % 2 == 0 { -1.0 } else { 1.0 };
+                n
+            }
+            Model::TaperedCylinder {
+                base,
+                top,
+                base_radius,
+                top_radius,
+                ..
+            } => {
+                let axis = (top - base).normalize();
+                match part {
+                    // |p − axis point| − r(z): the radial direction, tilted by the taper.
+                    0 => {
+                        let rel = p - base;
+                        let radial = (rel - axis * rel.dot(axis)).normalize_or_zero();
+                        let slope = (top_radius - base_radius) / (top - base).length();
+                        radial - axis * slope
+                    }
+                    1 => -axis,
+                    _ => axis,
+                }
+            }
+            Model::Paraboloid {
+                vertex,
+                radius,
+                height,
+                ..
+            } => match part {
+                0 => {
+                    let q = p - vertex;
+                    let k = height / (radius * radius);
+                    Vec3::new(2.0 * k * q.x, -1.0, 2.0 * k * q.z)
+                }
+                _ => Vec3::Y,
+            },
+        }
+    }
+
     /// A point well inside the solid (or inside its convex hull, for open shapes). Each shape is
     /// convex, so an outward normal at `p` points away from it.
     fn centre(&self) -> Vec3 {
@@ -245,12 +292,25 @@ fn ball_point(s: Vec3) -> Vec3 {
     sphere_point(s) * s.z
 }
 
+/// Numbers in `[low, high]`, drawn as integers: proptest's own `f32` range sampler trips a debug
+/// assertion on rare seeds.
+fn float_in(low: f32, high: f32) -> impl Strategy<Value = f32> {
+    const STEPS: u32 = 1 << 24;
+    (0..=STEPS).prop_map(move |i| low + (high - low) * (i as f32 / STEPS as f32))
+}
+
 fn vec3_in(range: f32) -> impl Strategy<Value = Vec3> {
-    (-range..range, -range..range, -range..range).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+    (
+        float_in(-range, range),
+        float_in(-range, range),
+        float_in(-range, range),
+    )
+        .prop_map(|(x, y, z)| Vec3::new(x, y, z))
 }
 
 fn unit_cube() -> impl Strategy<Value = Vec3> {
-    (0.0f32..=1.0, 0.0f32..=1.0, 0.0f32..=1.0).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+    (float_in(0.0, 1.0), float_in(0.0, 1.0), float_in(0.0, 1.0))
+        .prop_map(|(x, y, z)| Vec3::new(x, y, z))
 }
 
 fn unit_vector() -> impl Strategy<Value = Vec3> {
@@ -258,22 +318,22 @@ fn unit_vector() -> impl Strategy<Value = Vec3> {
 }
 
 fn rotation() -> impl Strategy<Value = Quat> {
-    (unit_vector(), 0.0f32..TAU).prop_map(|(axis, angle)| Quat::from_axis_angle(axis, angle))
+    (unit_vector(), float_in(0.0, TAU)).prop_map(|(axis, angle)| Quat::from_axis_angle(axis, angle))
 }
 
 /// Scale factors for ray directions, which need not be unit length.
 fn dir_scale() -> impl Strategy<Value = f32> {
-    prop_oneof![Just(1.0f32), 0.05f32..20.0]
+    prop_oneof![Just(1.0f32), float_in(0.05, 20.0)]
 }
 
 fn t_range() -> impl Strategy<Value = (f32, f32)> {
-    let t_min = prop_oneof![Just(0.0f32), Just(1e-4f32), 0.0f32..3.0];
-    let span = prop_oneof![Just(f32::INFINITY), 0.1f32..30.0];
+    let t_min = prop_oneof![Just(0.0f32), Just(1e-4f32), float_in(0.0, 3.0)];
+    let span = prop_oneof![Just(f32::INFINITY), float_in(0.1, 30.0)];
     (t_min, span).prop_map(|(t_min, span)| (t_min, t_min + span))
 }
 
 fn radius() -> impl Strategy<Value = f32> {
-    0.2f32..3.0
+    float_in(0.2, 3.0)
 }
 
 fn any_model() -> impl Strategy<Value = Model> {
@@ -292,7 +352,7 @@ fn any_model() -> impl Strategy<Value = Model> {
         (
             vec3_in(3.0),
             unit_vector(),
-            0.3f32..4.0,
+            float_in(0.3, 4.0),
             prop_oneof![Just(0.0f32), radius()],
             radius(),
             any::<bool>(),
@@ -351,6 +411,8 @@ proptest! {
             let n = surface.normal.normalize();
             prop_assert!((n.length() - 1.0).abs() < 1e-5, "normal {}", surface.normal);
             prop_assert!(n.dot(p - model.centre()) > 0.0, "normal {n} at {p} points in");
+            let expected = model.gradient(p, hit.part).normalize();
+            prop_assert!(n.dot(expected) > 0.999, "normal {n} at {p}, expected {expected}");
             let uv = surface.uv;
             prop_assert!(uv.cmpge(Vec2::ZERO).all() && uv.cmple(Vec2::ONE).all(), "uv {uv}");
         }
@@ -473,7 +535,7 @@ proptest! {
     fn concave_l_shape_agrees_with_its_triangulation(
         turn in rotation(),
         shift in vec3_in(3.0),
-        target in (-0.5f32..2.5, -0.5f32..2.5).prop_map(|(x, y)| Vec2::new(x, y)),
+        target in (float_in(-0.5, 2.5), float_in(-0.5, 2.5)).prop_map(|(x, y)| Vec2::new(x, y)),
         offset in offset_from_plane(),
         scale in dir_scale(),
     ) {
@@ -497,7 +559,7 @@ proptest! {
     fn gear_agrees_with_a_star_shaped_test(
         turn in rotation(),
         shift in vec3_in(3.0),
-        target in (-1.1f32..1.1, -1.1f32..1.1).prop_map(|(x, y)| Vec2::new(x, y)),
+        target in (float_in(-1.1, 1.1), float_in(-1.1, 1.1)).prop_map(|(x, y)| Vec2::new(x, y)),
         offset in offset_from_plane(),
         scale in dir_scale(),
     ) {
@@ -516,7 +578,12 @@ proptest! {
 /// Where a ray starts, relative to the point it aims at in a polygon's plane (the local `xy`
 /// plane): at least 0.5 off the plane, so that it does not graze it.
 fn offset_from_plane() -> impl Strategy<Value = Vec3> {
-    (-5.0f32..5.0, -5.0f32..5.0, 0.5f32..5.0, any::<bool>())
+    (
+        float_in(-5.0, 5.0),
+        float_in(-5.0, 5.0),
+        float_in(0.5, 5.0),
+        any::<bool>(),
+    )
         .prop_map(|(x, y, z, below)| Vec3::new(x, y, if below { -z } else { z }))
 }
 
@@ -580,4 +647,110 @@ fn star_shaped_inside(outline: &[Vec2], q: Vec2) -> Option<bool> {
     }
     let (a, b) = edge(sector);
     Some((b - a).perp_dot(q - a) > 0.0)
+}
+
+/// Finite numbers of any size from 1e-30 to 1e30, either sign, and zero.
+fn wild_f32() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        1 => Just(0.0f32),
+        8 => (any::<bool>(), float_in(1.0, 10.0), -30i32..30)
+            .prop_map(|(negative, mantissa, exponent)| {
+                let x = mantissa * 10f32.powi(exponent);
+                if negative { -x } else { x }
+            }),
+    ]
+}
+
+fn wild_vec3() -> impl Strategy<Value = Vec3> {
+    (wild_f32(), wild_f32(), wild_f32()).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+}
+
+/// Any shape the constructors accept from wild parameters (and the errors they give).
+fn wild_shape() -> impl Strategy<Value = Result<Shape, String>> {
+    prop_oneof![
+        (wild_vec3(), wild_vec3())
+            .prop_map(|(center, radii)| Ellipsoid::new(center, radii).map(Shape::Ellipsoid)),
+        (wild_vec3(), wild_vec3()).prop_map(|(min, max)| Cuboid::new(min, max).map(Shape::Cuboid)),
+        (
+            wild_vec3(),
+            wild_vec3(),
+            wild_f32(),
+            wild_f32(),
+            any::<bool>()
+        )
+            .prop_map(|(base, top, r0, r1, capped)| {
+                TaperedCylinder::new(base, top, r0, r1, capped).map(Shape::TaperedCylinder)
+            }),
+        (wild_vec3(), wild_f32(), wild_f32(), any::<bool>()).prop_map(
+            |(vertex, radius, height, capped)| {
+                Paraboloid::new(vertex, radius, height, capped).map(Shape::Paraboloid)
+            }
+        ),
+        prop::collection::vec(wild_vec3(), 0..7).prop_map(|v| Polygon::new(v).map(Shape::Polygon)),
+        // Planar polygons, so that some get past the constructor.
+        (
+            prop::collection::vec((wild_f32(), wild_f32()), 3..7),
+            wild_f32()
+        )
+            .prop_map(|(points, z)| {
+                let vertices = points.iter().map(|&(x, y)| Vec3::new(x, y, z)).collect();
+                Polygon::new(vertices).map(Shape::Polygon)
+            }),
+    ]
+}
+
+proptest! {
+    #[test]
+    fn wild_finite_input_never_panics_and_hits_stay_in_range(
+        shape in wild_shape(),
+        origin in wild_vec3(),
+        dir in wild_vec3(),
+        t_min in prop_oneof![Just(0.0f32), wild_f32().prop_map(f32::abs)],
+        t_max in prop_oneof![Just(f32::INFINITY), wild_f32().prop_map(f32::abs)],
+        part in any::<u32>(),
+    ) {
+        match shape {
+            Err(message) => prop_assert!(!message.is_empty()),
+            Ok(shape) => {
+                let bounds = shape.bounds().unwrap();
+                prop_assert!(!bounds.is_empty());
+                let ray = Ray::new(origin, dir);
+                if let Some(hit) = shape.intersect(&ray, t_min, t_max) {
+                    prop_assert!(hit.t > t_min && hit.t < t_max, "{hit:?}");
+                    shape.surface(ray.at(hit.t), hit.part);
+                }
+                shape.surface(origin, part);
+            }
+        }
+    }
+}
+
+proptest! {
+    #[test]
+    fn rays_starting_on_the_surface_leave_it_or_cross_to_the_far_side(
+        model in any_model(),
+        pick in unit_cube(),
+        from in unit_vector(),
+        scale in dir_scale(),
+    ) {
+        let shape = model.shape();
+        let (start, part) = model.surface_point(pick);
+        let normal = model.gradient(start, part).normalize();
+        let outward = (from + normal * 0.2f32.copysign(from.dot(normal))).normalize();
+        let outward = outward * outward.dot(normal).signum();
+        // Every shape is convex, so a ray leaving it does not come back.
+        let leaving = Ray::new(start, outward * scale);
+        let again = shape.intersect(&leaving, 1e-4, f32::INFINITY);
+        prop_assert!(again.is_none(), "{leaving:?} hit again: {again:?}");
+        if model.is_closed() {
+            let entering = Ray::new(start, -outward * scale);
+            let far_side = shape.intersect(&entering, 1e-4, f32::INFINITY);
+            prop_assert!(far_side.is_some(), "{entering:?} did not come out");
+            let hit = far_side.unwrap();
+            let p = entering.at(hit.t);
+            let tolerance = SURFACE_TOLERANCE * (1.0 + start.abs().max_element());
+            prop_assert!(model.off_surface(p, hit.part) < tolerance, "{p}");
+            prop_assert!(shape.surface(p, hit.part).normal.normalize().is_finite());
+        }
+    }
 }
