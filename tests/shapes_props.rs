@@ -89,7 +89,11 @@ impl Model {
             }
             Model::Cuboid { min, max } => {
                 let axis = (part / 2) as usize;
-                let face = if part % 2 == 0 { min[axis] } else { max[axis] };
+                let face = if part.is_multiple_of(2) {
+                    min[axis]
+                } else {
+                    max[axis]
+                };
                 let outside = (min - p).max(p - max).max(Vec3::ZERO).length();
                 (p[axis] - face).abs() + outside
             }
@@ -141,7 +145,7 @@ impl Model {
             Model::Ellipsoid { center, radii } => (p - center) / (radii * radii),
             Model::Cuboid { .. } => {
                 let mut n = Vec3::ZERO;
-                n[(part / 2) as usize] = if part % 2 == 0 { -1.0 } else { 1.0 };
+                n[(part / 2) as usize] = if part.is_multiple_of(2) { -1.0 } else { 1.0 };
                 n
             }
             Model::TaperedCylinder {

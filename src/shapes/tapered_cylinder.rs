@@ -90,7 +90,7 @@ impl TaperedCylinder {
 
     /// `p` in the local frame.
     #[inline]
-    fn to_local(&self, p: Vec3) -> Vec3 {
+    fn local_point(&self, p: Vec3) -> Vec3 {
         let rel = p - self.base;
         Vec3::new(
             rel.dot(self.frame_x),
@@ -111,7 +111,7 @@ impl TaperedCylinder {
         // Work from the point `o` of the ray nearest the middle of the axis, with `s = t − shift`
         // along the ray from there: the quadratic's coefficients then stay as small as the
         // cylinder, and so do their rounding errors (the sphere's trick, made general).
-        let origin = self.to_local(ray.origin);
+        let origin = self.local_point(ray.origin);
         let shift = (Vec3::new(0.0, 0.0, 0.5 * self.height) - origin).dot(d) / d.length_squared();
         if !shift.is_finite() {
             return None; // no direction
@@ -165,7 +165,7 @@ impl TaperedCylinder {
     /// The side maps cylindrically (`u` the angle around the axis over 2π, `v` the fraction of
     /// the height); each cap maps its disk onto `[0, 1]²`, the right way round seen from outside.
     pub fn surface(&self, p: Vec3, part: u32) -> LocalSurface {
-        let local = self.to_local(p);
+        let local = self.local_point(p);
         match part {
             BASE_CAP => LocalSurface {
                 normal: -self.axis,
