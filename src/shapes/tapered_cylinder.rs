@@ -360,6 +360,24 @@ mod tests {
     }
 
     #[test]
+    fn ray_through_a_thin_cone_tip_from_afar_lands_on_the_surface() {
+        // Where the cone is thin, the ray's two roots nearly coincide; solving from an origin 3
+        // units away once put the hit 1e-4 off the surface and past the point aimed at.
+        let top = Vec3::new(-1.327_029_3, 0.385_335_27, 1.114_284_3);
+        let cone = TaperedCylinder::new(Vec3::ZERO, top, 0.255_472_78, 0.0, false).unwrap();
+        let target = Vec3::new(-1.284_730_6, 0.365_441_86, 1.081_611);
+        let from = Vec3::new(0.771_524_4, -0.046_773_9, 0.634_432_4);
+        let ray = Ray::new(target + from * 3.2, -from * 3.2);
+        let h = hit(&cone, &ray).unwrap();
+        assert!(h.t <= 1.0 + 1e-5, "{h:?}");
+        let p = ray.at(h.t);
+        let axis = top.normalize();
+        let z = p.dot(axis);
+        let radius = 0.255_472_78 * (1.0 - z / top.length());
+        assert!(((p - axis * z).length() - radius).abs() < 1e-5, "{p}");
+    }
+
+    #[test]
     fn respects_the_t_range() {
         let c = cylinder(true);
         let ray = Ray::new(Vec3::new(5.0, 1.0, 0.0), -Vec3::X);
