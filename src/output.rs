@@ -102,9 +102,12 @@ pub fn save_image(
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
-    let mut temp = tempfile::Builder::new()
-        .prefix(".raylab-")
-        .suffix(".tmp")
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".raylab-").suffix(".tmp");
+    // A temporary file is private (0600); the image should be as readable as any new file.
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
+    let mut temp = builder
         .tempfile_in(dir)
         .map_err(io)?;
     {
@@ -192,6 +195,17 @@ mod tests {
             })
             .count();
         assert_eq!(leftovers, 0, "no temporary files left behind");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn images_are_readable_by_others_like_any_new_file() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("shared.png");
+        save_image(&path, 1, 1, &[Color::ONE]).unwrap();
+        let mode = std::fs::metadata(&path).unwrap().permissions().mode();
+        assert_eq!(mode & 0o044, 0o044, "mode {mode:o}");
     }
 
     #[test]

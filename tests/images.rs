@@ -46,7 +46,7 @@ fn check(name: &str, scene: Scene) {
     if std::env::var_os("RAYLAB_BLESS").is_some() {
         let linear: Vec<_> = image
             .chunks(3)
-            .map(|c| glam::Vec3::from_array([c[0], c[1], c[2]].map(|v| srgb_decode(v))))
+            .map(|c| glam::Vec3::from_array([c[0], c[1], c[2]].map(srgb_decode)))
             .collect();
         save_image(&path, WIDTH, HEIGHT, &linear).unwrap();
     }
