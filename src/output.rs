@@ -107,9 +107,7 @@ pub fn save_image(
     // A temporary file is private (0600); the image should be as readable as any new file.
     #[cfg(unix)]
     builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
-    let mut temp = builder
-        .tempfile_in(dir)
-        .map_err(io)?;
+    let mut temp = builder.tempfile_in(dir).map_err(io)?;
     {
         let mut out = BufWriter::new(temp.as_file_mut());
         match format {

@@ -26,8 +26,14 @@ fn renders_the_default_scene_from_any_directory() {
     let image = image::open(dir.path().join("out.png")).unwrap();
     assert_eq!((image.width(), image.height()), (64, 48));
     let summary = String::from_utf8_lossy(&out.stdout);
-    assert!(summary.contains("64×48") && summary.contains("Mrays/s"), "{summary}");
-    assert!(summary.contains("3072 eye"), "one eye ray per pixel: {summary}");
+    assert!(
+        summary.contains("64×48") && summary.contains("Mrays/s"),
+        "{summary}"
+    );
+    assert!(
+        summary.contains("3072 eye"),
+        "one eye ray per pixel: {summary}"
+    );
 }
 
 #[test]
@@ -37,11 +43,27 @@ fn renders_a_scene_file_to_every_format() {
     for ext in ["png", "ppm", "exr", "hdr"] {
         let name = format!("glass.{ext}");
         let out = raylab(
-            &["render", scene.to_str().unwrap(), "-o", &name, "--width", "32", "--height", "24", "--samples", "2", "--threads", "1"],
+            &[
+                "render",
+                scene.to_str().unwrap(),
+                "-o",
+                &name,
+                "--width",
+                "32",
+                "--height",
+                "24",
+                "--samples",
+                "2",
+                "--threads",
+                "1",
+            ],
             dir.path(),
         );
         assert!(out.status.success(), "{ext}: {}", stderr(&out));
-        assert!(image::open(dir.path().join(&name)).is_ok(), "{ext} reads back");
+        assert!(
+            image::open(dir.path().join(&name)).is_ok(),
+            "{ext} reads back"
+        );
     }
 }
 
@@ -65,9 +87,15 @@ fn a_broken_scene_file_reports_file_line_and_column() {
 fn bad_settings_and_paths_are_errors_not_panics() {
     let dir = tempfile::tempdir().unwrap();
     let cases: [(&[&str], &str); 5] = [
-        (&["render", "--block-size", "3", "-o", "a.png"], "block_size"),
+        (
+            &["render", "--block-size", "3", "-o", "a.png"],
+            "block_size",
+        ),
         (&["render", "--width", "0", "-o", "a.png"], "image size"),
-        (&["render", "-o", "a.gif", "--width", "8", "--height", "8"], "unknown image format"),
+        (
+            &["render", "-o", "a.gif", "--width", "8", "--height", "8"],
+            "unknown image format",
+        ),
         (&["render", "missing.toml"], "missing.toml"),
         (&["render", "--threads", "0"], "--threads"),
     ];
@@ -75,6 +103,9 @@ fn bad_settings_and_paths_are_errors_not_panics() {
         let out = raylab(args, dir.path());
         assert_eq!(out.status.code(), Some(1), "{args:?}");
         let err = stderr(&out);
-        assert!(err.contains(expected) && !err.contains("panicked"), "{args:?}: {err}");
+        assert!(
+            err.contains(expected) && !err.contains("panicked"),
+            "{args:?}: {err}"
+        );
     }
 }

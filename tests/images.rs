@@ -31,7 +31,12 @@ fn render_small(mut scene: Scene) -> Vec<u8> {
 /// How far two 8-bit images are apart: the mean absolute difference per channel, and the share
 /// of pixels where some channel differs by more than 24 levels.
 fn difference(a: &[u8], b: &[u8]) -> (f64, f64) {
-    let mean = a.iter().zip(b).map(|(x, y)| x.abs_diff(*y) as f64).sum::<f64>() / a.len() as f64;
+    let mean = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| x.abs_diff(*y) as f64)
+        .sum::<f64>()
+        / a.len() as f64;
     let far = a
         .chunks(3)
         .zip(b.chunks(3))
@@ -79,7 +84,9 @@ fn default_scene_matches_its_reference() {
 
 #[test]
 fn teaching_scenes_match_their_references() {
-    for name in ["shadows", "mirrors", "glass", "textures", "meshes", "quadrics"] {
+    for name in [
+        "shadows", "mirrors", "glass", "textures", "meshes", "quadrics",
+    ] {
         check(name, shipped(name));
     }
 }
@@ -91,5 +98,8 @@ fn the_comparison_notices_a_changed_picture() {
     darker.lights.truncate(1);
     let (a, b) = (render_small(scene), render_small(darker));
     let (mean, far) = difference(&a, &b);
-    assert!(mean >= 1.0 || far >= 0.005, "losing a light must fail the check");
+    assert!(
+        mean >= 1.0 || far >= 0.005,
+        "losing a light must fail the check"
+    );
 }

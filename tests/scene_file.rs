@@ -60,20 +60,25 @@ fn shadows_scene_has_a_sphere_over_a_plane_and_one_light() {
 }
 
 #[test]
-fn mirrors_scene_has_two_reflective_quads() {
+fn mirrors_scene_has_two_facing_mirrors() {
     let scene = shipped_scene("mirrors.toml");
-    assert_eq!(scene.geometry.meshes.len(), 2);
-    assert_eq!(scene.geometry.triangles.len(), 4);
-    for mesh in &scene.geometry.meshes {
-        assert_eq!(scene.materials[mesh.material as usize].reflectivity, 0.9);
-    }
-    let xs: Vec<f32> = scene
+    let mirrors: Vec<_> = scene
         .geometry
-        .meshes
+        .objects
         .iter()
-        .map(|m| m.positions[0].x)
+        .filter_map(|o| match &o.shape {
+            Shape::Polygon(p) => Some((p.normal(), o.material)),
+            _ => None,
+        })
         .collect();
-    assert_eq!(xs, [-3.0, 3.0]);
+    assert_eq!(mirrors.len(), 2);
+    for (_, material) in &mirrors {
+        assert_eq!(scene.materials[*material as usize].reflectivity, 0.9);
+    }
+    assert!(
+        (mirrors[0].0 + mirrors[1].0).length() < 1e-6,
+        "they face each other"
+    );
     assert_eq!(scene.settings.max_depth, 8);
 }
 
@@ -809,5 +814,86 @@ fn mutated_scene_files_never_panic() {
     assert!(
         parsed > 1000 && rejected > 1000,
         "{parsed} parsed, {rejected} rejected"
+    );
+}
+
+#[test]
+fn every_analytic_shape_type_is_read() {
+    let scene = parse(
+        r#"
+[[objects]]
+type = "polygon"
+vertices = [[0, 0, 0], [2, 0, 0], [2, 1, 0], [1, 0.5, 0], [0, 1, 0]]
+[[objects]]
+type = "box"
+min = [-1, -1, -1]
+max = [1, 2, 3]
+[[objects]]
+type = "cylinder"
+base = [0, 0, 0]
+top = [0, 2, 0]
+radius = 0.5
+capped = false
+[[objects]]
+type = "cone"
+base_radius = 1
+top_radius = 0.5
+[[objects]]
+type = "ellipsoid"
+radii = [1, 2, 3]
+[[objects]]
+type = "paraboloid"
+radius = 1
+height = 2
+capped = true
+"#,
+    )
+    .unwrap();
+    let kinds: Vec<&str> = scene
+        .geometry
+        .objects
+        .iter()
+        .map(|o| match &o.shape {
+            Shape::Polygon(_) => "polygon",
+            Shape::Cuboid(_) => "box",
+            Shape::TaperedCylinder(c) if c.is_capped() => "capped",
+            Shape::TaperedCylinder(_) => "open",
+            Shape::Ellipsoid(_) => "ellipsoid",
+            Shape::Paraboloid(_) => "paraboloid",
+            _ => "other",
+        })
+        .collect();
+    assert_eq!(
+        kinds,
+        [
+            "polygon",
+            "box",
+            "open",
+            "capped",
+            "ellipsoid",
+            "paraboloid"
+        ]
+    );
+}
+
+#[test]
+fn degenerate_shapes_are_errors_at_the_object() {
+    assert_error(
+        "[[objects]]\ntype = \"cylinder\"\nbase = [0, 1, 0]\ntop = [0, 1, 0]\n",
+        1,
+        1,
+        "axis",
+    );
+    assert_error(
+        "[[objects]]\ntype = \"polygon\"\nvertices = [[0, 0, 0], [1, 0, 0]]\n",
+        1,
+        1,
+        "3 vertices",
+    );
+    assert_error(
+        "[[objects]]\ntype = \"box\"\nmin = [1, 0, 0]\nmax = [0, 1, 1]\n",
+        1,
+        1,
+        "min",
     );
 }
