@@ -7,7 +7,7 @@ use glam::{Vec2, Vec3};
 use crate::aabb::Aabb;
 use crate::mesh::Mesh;
 use crate::ray::Ray;
-use crate::shapes::{Shape, Triangle};
+use crate::shapes::{Shape, ShearedRay, Triangle};
 use crate::transform::Transform;
 
 /// An analytic shape in the world.
@@ -109,15 +109,29 @@ impl Geometry {
     }
 
     /// The hit of `ray` with primitive `id` in `(t_min, t_max)`, if any.
-    #[inline(always)]
     pub fn intersect(&self, id: PrimId, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
+        self.intersect_prepared(id, ray, &ShearedRay::new(ray), t_min, t_max)
+    }
+
+    /// [`Self::intersect`] with the ray's preparation for triangle tests done once, outside.
+    #[inline(always)]
+    pub fn intersect_prepared(
+        &self,
+        id: PrimId,
+        ray: &Ray,
+        sheared: &ShearedRay,
+        t_min: f32,
+        t_max: f32,
+    ) -> Option<Hit> {
         match id.kind() {
-            Err(t) => self.triangles[t].intersect(ray, t_min, t_max).map(|h| Hit {
-                t: h.t,
-                prim: id,
-                part: 0,
-                bary: h.bary,
-            }),
+            Err(t) => self.triangles[t]
+                .intersect_sheared(sheared, t_min, t_max)
+                .map(|h| Hit {
+                    t: h.t,
+                    prim: id,
+                    part: 0,
+                    bary: h.bary,
+                }),
             Ok(o) => {
                 let object = &self.objects[o];
                 let h = match &object.transform {
