@@ -86,6 +86,33 @@ impl Geometry {
         self.meshes.push(mesh);
     }
 
+    /// Number of primitives (objects and triangles).
+    pub fn len(&self) -> usize {
+        self.objects.len() + self.triangles.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Bytes held by the primitives and meshes (not counting textures).
+    pub fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        let meshes: usize = self
+            .meshes
+            .iter()
+            .map(|m| {
+                m.positions.capacity() * size_of::<Vec3>()
+                    + m.normals.capacity() * size_of::<Vec3>()
+                    + m.uvs.capacity() * size_of::<Vec2>()
+                    + m.faces.capacity() * size_of::<[u32; 3]>()
+            })
+            .sum();
+        self.objects.capacity() * size_of::<Object>()
+            + self.triangles.capacity() * size_of::<Triangle>()
+            + meshes
+    }
+
     /// Every primitive's id.
     pub fn prim_ids(&self) -> impl Iterator<Item = PrimId> + '_ {
         (0..self.objects.len())
