@@ -82,6 +82,9 @@ impl Geometry {
     /// Adds a mesh (already in world space) and its triangles.
     pub fn add_mesh(&mut self, mesh: Mesh) {
         let index = self.meshes.len() as u32;
+        // Reserve first: the iterator skips degenerate faces, so it cannot tell `extend` its
+        // length, and growing by doubling would leave up to half the array unused.
+        self.triangles.reserve_exact(mesh.faces.len());
         self.triangles.extend(mesh.triangles(index));
         self.meshes.push(mesh);
     }

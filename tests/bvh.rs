@@ -187,6 +187,23 @@ fn tree_is_shallow_and_covers_every_primitive_once() {
 }
 
 #[test]
+fn the_tree_does_not_depend_on_the_thread_count() {
+    // Enough primitives for the builder to split the top nodes' halves between threads.
+    let g = random_scene(11, 3000, 30_000, 1);
+    let build_on = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| Bvh::build(&g))
+    };
+    let one = build_on(1);
+    let four = build_on(4);
+    assert_eq!(one.nodes, four.nodes);
+    assert_eq!(one.prims, four.prims);
+}
+
+#[test]
 fn empty_and_single_primitive_scenes() {
     let empty = Geometry::default();
     let bvh = Bvh::build(&empty);
