@@ -152,9 +152,7 @@ impl Bvh {
             Vec::new()
         } else {
             let extent = Extent::of(&prims);
-            let mut nodes = subtree(&mut prims, 0, extent, 0);
-            nodes.shrink_to_fit();
-            nodes
+            super::widen::widen(&subtree(&mut prims, 0, extent, 0))
         };
         Bvh {
             nodes,
@@ -222,7 +220,7 @@ impl SubtreeBuilder {
             prims.len() - split.mid,
         ));
         nodes[index].first = left as u32;
-        nodes[index].count = 0;
+        nodes[index].count = Node::INTERIOR;
         let parallel = prims.len() >= PARALLEL_MIN_PRIMS;
         let (left_prims, right_prims) = prims.split_at_mut(split.mid);
         let right_first = first + split.mid;

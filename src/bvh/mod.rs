@@ -1,28 +1,43 @@
-//! The bounding volume hierarchy: a binary tree of boxes over all bounded primitives, built with
-//! the surface area heuristic and flattened into an array of 32-byte nodes. Unbounded primitives
-//! (planes) are kept in a list beside the tree and tested against every ray.
+//! The bounding volume hierarchy: a tree of boxes over all bounded primitives, built with the
+//! surface area heuristic as a binary tree ([`build`]), widened to four children per node
+//! ([`widen`]) and flattened into an array of 32-byte nodes. Traversal ([`traverse`]) tests a
+//! node's four children against a ray at once. Unbounded primitives (planes) are kept in a list
+//! beside the tree and tested against every ray.
 
 mod build;
 mod traverse;
+mod widen;
 
 use crate::primitive::PrimId;
 
-/// A node of the flattened tree. An interior node's children are `first` and `first + 1`; a
-/// leaf holds primitives `first .. first + count` of [`Bvh::prims`]. 32 bytes: two nodes per
-/// 64-byte cache line.
+/// Children per interior node of the finished tree.
+pub const WIDTH: usize = 4;
+
+/// A node of the flattened tree. An interior node's children are the [`WIDTH`] nodes from
+/// `first` (unused ones are empty leaves with an empty box); a leaf holds primitives
+/// `first .. first + count` of [`Bvh::prims`]. 32 bytes: a node's four children fill two
+/// 64-byte cache lines.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C)]
 pub struct Node {
     pub min: [f32; 3],
     pub first: u32,
     pub max: [f32; 3],
-    /// Number of primitives; 0 for an interior node.
+    /// Number of primitives; [`Node::INTERIOR`] for an interior node.
     pub count: u32,
 }
 
 impl Node {
+    /// The `count` that marks an interior node.
+    pub const INTERIOR: u32 = u32::MAX;
+
     pub fn is_leaf(&self) -> bool {
-        self.count > 0
+        self.count != Node::INTERIOR
+    }
+
+    /// The indices of an interior node's children.
+    pub fn children(&self) -> std::ops::Range<usize> {
+        self.first as usize..self.first as usize + WIDTH
     }
 }
 
@@ -50,8 +65,11 @@ impl Bvh {
             if node.is_leaf() {
                 1
             } else {
-                let first = node.first as usize;
-                1 + depth_of(nodes, first).max(depth_of(nodes, first + 1))
+                1 + node
+                    .children()
+                    .map(|c| depth_of(nodes, c))
+                    .max()
+                    .unwrap_or(0)
             }
         }
         if self.nodes.is_empty() {

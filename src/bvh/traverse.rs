@@ -1,31 +1,43 @@
 //! Walking the BVH: the closest hit along a ray (front-to-back, nearest child first, pruning
-//! by the best `t` so far) and every hit on a segment with early exit (shadow rays).
+//! by the best `t` so far) and every hit on a segment with early exit (shadow rays). At each
+//! interior node the ray is tested against all four children's boxes at once.
 
 use std::ops::ControlFlow;
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 use super::build::MAX_DEPTH;
-use super::{Bvh, Node};
+use super::{Bvh, Node, WIDTH};
 use crate::primitive::{Geometry, Hit, PrimId};
 use crate::ray::Ray;
 use crate::shapes::ShearedRay;
 
-/// A ray prepared for box tests.
+/// Most entries the traversal stack can need: each level of the tree leaves at most
+/// `WIDTH − 1` siblings waiting.
+const STACK_SIZE: usize = (WIDTH - 1) * (MAX_DEPTH + 1) + 1;
+
+/// A ray prepared for box tests: its origin and inverse direction, also each component copied
+/// into four lanes for testing four boxes at once.
 struct RayBoxTest {
     origin: Vec3,
     inv_dir: Vec3,
+    origin_lanes: [Vec4; 3],
+    inv_dir_lanes: [Vec4; 3],
 }
 
 impl RayBoxTest {
     fn new(ray: &Ray) -> Self {
+        let inv_dir = ray.dir.recip();
         RayBoxTest {
             origin: ray.origin,
-            inv_dir: ray.dir.recip(),
+            inv_dir,
+            origin_lanes: ray.origin.to_array().map(Vec4::splat),
+            inv_dir_lanes: inv_dir.to_array().map(Vec4::splat),
         }
     }
 
-    /// Entry distance into the node's box within `[t_min, t_max]`, or +∞ for a miss.
+    /// Entry distance into the node's box within `[t_min, t_max]`, or +∞ for a miss (the slab
+    /// test: the ray is inside the box where it is inside all three slabs).
     #[inline(always)]
     fn enter(&self, node: &Node, t_min: f32, t_max: f32) -> f32 {
         let t0 = (Vec3::from(node.min) - self.origin) * self.inv_dir;
@@ -33,6 +45,35 @@ impl RayBoxTest {
         let near = t0.min(t1).max_element().max(t_min);
         let far = t0.max(t1).min_element().min(t_max);
         if near <= far { near } else { f32::INFINITY }
+    }
+
+    /// [`Self::enter`] for four boxes at once, one per SIMD lane, with the same arithmetic in
+    /// the same order, so each lane's answer is exactly the one-box answer: the entry
+    /// distances, and a bit mask of the boxes entered (bit k for box k).
+    #[inline(always)]
+    fn enter4(&self, nodes: &[Node], t_min: f32, t_max: f32) -> (Vec4, u32) {
+        let n = [&nodes[0], &nodes[1], &nodes[2], &nodes[3]];
+        let slab = |axis: usize| {
+            let lo = Vec4::new(
+                n[0].min[axis],
+                n[1].min[axis],
+                n[2].min[axis],
+                n[3].min[axis],
+            );
+            let hi = Vec4::new(
+                n[0].max[axis],
+                n[1].max[axis],
+                n[2].max[axis],
+                n[3].max[axis],
+            );
+            let t0 = (lo - self.origin_lanes[axis]) * self.inv_dir_lanes[axis];
+            let t1 = (hi - self.origin_lanes[axis]) * self.inv_dir_lanes[axis];
+            (t0.min(t1), t0.max(t1))
+        };
+        let ((near_x, far_x), (near_y, far_y), (near_z, far_z)) = (slab(0), slab(1), slab(2));
+        let near = near_x.max(near_y).max(near_z).max(Vec4::splat(t_min));
+        let far = far_x.min(far_y).min(far_z).min(Vec4::splat(t_max));
+        (near, near.cmple(far).bitmask())
     }
 }
 
@@ -108,7 +149,8 @@ impl Bvh {
         if test.enter(root, t_min, t_max) == f32::INFINITY {
             return;
         }
-        let mut stack = [(0u32, 0.0f32); MAX_DEPTH + 4];
+        // Nodes still to visit, with the distance at which the ray enters them.
+        let mut stack = [(0u32, 0.0f32); STACK_SIZE];
         let mut top = 0;
         let mut node = root;
         loop {
@@ -119,20 +161,31 @@ impl Bvh {
                     return;
                 }
             } else {
-                let first = node.first as usize;
-                let (a, b) = (&self.nodes[first], &self.nodes[first + 1]);
-                let (mut ta, mut tb) = (test.enter(a, t_min, t_max), test.enter(b, t_min, t_max));
-                let (mut near, mut far) = (first as u32, first as u32 + 1);
-                if tb < ta {
-                    std::mem::swap(&mut ta, &mut tb);
-                    std::mem::swap(&mut near, &mut far);
+                let (t, entered) = test.enter4(&self.nodes[node.children()], t_min, t_max);
+                let t = t.to_array();
+                let first = node.first;
+                if entered.count_ones() == 1 {
+                    node = &self.nodes[(first + entered.trailing_zeros()) as usize];
+                    continue;
                 }
-                if ta != f32::INFINITY {
-                    if tb != f32::INFINITY {
-                        stack[top] = (far, tb);
+                if entered != 0 {
+                    // The children the ray enters, farthest first (insertion sort of at most
+                    // four), go on the stack; the nearest comes off again at once.
+                    let base = top;
+                    let mut left = entered;
+                    while left != 0 {
+                        let k = left.trailing_zeros();
+                        left &= left - 1;
+                        let mut i = top;
+                        while i > base && stack[i - 1].1 < t[k as usize] {
+                            stack[i] = stack[i - 1];
+                            i -= 1;
+                        }
+                        stack[i] = (first + k, t[k as usize]);
                         top += 1;
                     }
-                    node = &self.nodes[near as usize];
+                    top -= 1;
+                    node = &self.nodes[stack[top].0 as usize];
                     continue;
                 }
             }
