@@ -116,6 +116,14 @@ impl Geometry {
             + meshes
     }
 
+    /// Whether `id` names a primitive of this geometry.
+    pub fn contains(&self, id: PrimId) -> bool {
+        match id.kind() {
+            Ok(o) => o < self.objects.len(),
+            Err(t) => t < self.triangles.len(),
+        }
+    }
+
     /// Every primitive's id.
     pub fn prim_ids(&self) -> impl Iterator<Item = PrimId> + '_ {
         (0..self.objects.len())

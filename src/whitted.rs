@@ -10,9 +10,10 @@ use glam::Vec3;
 
 use crate::bvh::Bvh;
 use crate::material::{Color, Material};
-use crate::primitive::{Hit, SurfacePoint};
+use crate::primitive::{Hit, PrimId, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
 use crate::scene::Scene;
+use crate::shadow_cache;
 use crate::stats::RayCounts;
 
 /// Eye rays start at the eye but only see what lies beyond the image plane, at `t = 1`.
@@ -149,7 +150,7 @@ impl<'a> Tracer<'a> {
         let settings = &self.scene.settings;
         let mut color = material.ambient * base * settings.ambient;
         let shadow_origin = offset_origin(surface.point, geometric_normal);
-        for light in &self.scene.lights {
+        for (light_index, light) in self.scene.lights.iter().enumerate() {
             let sample = light.sample(surface.point);
             // A light behind the surface (as seen from the ray's side) adds nothing and needs
             // no shadow ray.
@@ -159,7 +160,8 @@ impl<'a> Tracer<'a> {
             }
             let light_color = if settings.shadows {
                 counts.shadow += 1;
-                sample.color * self.transmittance(shadow_origin, sample.dir, sample.distance)
+                let shadow_ray = Ray::new(shadow_origin, sample.dir);
+                sample.color * self.light_transmittance(light_index, &shadow_ray, sample.distance)
             } else {
                 sample.color
             };
@@ -183,19 +185,49 @@ impl<'a> Tracer<'a> {
     /// an opaque object is in between, otherwise the product of the transparent blockers'
     /// tints (`transparency × colour`, once per object).
     pub fn transmittance(&self, origin: Vec3, dir: Vec3, distance: f32) -> Color {
-        let ray = Ray::new(origin, dir);
+        self.transmittance_and_blocker(&Ray::new(origin, dir), distance)
+            .0
+    }
+
+    /// [`Self::transmittance`] along the shadow ray `ray` towards light `light`, trying the
+    /// light's last blocker on this thread first (see [`crate::shadow_cache`]).
+    fn light_transmittance(&self, light: usize, ray: &Ray, distance: f32) -> Color {
         let geometry = &self.scene.geometry;
-        let mut passed = Color::ONE;
-        self.bvh.any_hit(geometry, &ray, 0.0, distance, |hit| {
-            let material = &self.scene.materials[geometry.material(hit.prim) as usize];
-            passed *= material.transparency * material.color;
-            if passed == Color::ZERO {
-                ControlFlow::Break(())
-            } else {
-                ControlFlow::Continue(())
-            }
-        });
+        if let Some(id) = shadow_cache::last_blocker(light)
+            && geometry.contains(id)
+            && self.tint(id) == Color::ZERO
+            && geometry.intersect(id, ray, 0.0, distance).is_some()
+        {
+            return Color::ZERO;
+        }
+        let (passed, blocker) = self.transmittance_and_blocker(ray, distance);
+        shadow_cache::remember(light, blocker);
         passed
+    }
+
+    /// The transmittance along `ray` up to `distance`, and the opaque primitive that ended the
+    /// search, if one did.
+    fn transmittance_and_blocker(&self, ray: &Ray, distance: f32) -> (Color, Option<PrimId>) {
+        let mut passed = Color::ONE;
+        let mut blocker = None;
+        self.bvh
+            .any_hit(&self.scene.geometry, ray, 0.0, distance, |hit| {
+                let tint = self.tint(hit.prim);
+                passed *= tint;
+                if passed == Color::ZERO {
+                    blocker = (tint == Color::ZERO).then_some(hit.prim);
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            });
+        (passed, blocker)
+    }
+
+    /// What a primitive lets through of the light behind it: `transparency × colour`.
+    fn tint(&self, id: PrimId) -> Color {
+        let material = &self.scene.materials[self.scene.geometry.material(id) as usize];
+        material.transparency * material.color
     }
 }
 

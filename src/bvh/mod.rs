@@ -15,10 +15,10 @@ pub const WIDTH: usize = 4;
 
 /// A node of the flattened tree. An interior node's children are the [`WIDTH`] nodes from
 /// `first` (unused ones are empty leaves with an empty box); a leaf holds primitives
-/// `first .. first + count` of [`Bvh::prims`]. 32 bytes: a node's four children fill two
-/// 64-byte cache lines.
+/// `first .. first + count` of [`Bvh::prims`]. 32 bytes, aligned to 32 so that no node
+/// straddles two 64-byte cache lines.
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[repr(C)]
+#[repr(C, align(32))]
 pub struct Node {
     pub min: [f32; 3],
     pub first: u32,

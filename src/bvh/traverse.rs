@@ -52,20 +52,9 @@ impl RayBoxTest {
     /// distances, and a bit mask of the boxes entered (bit k for box k).
     #[inline(always)]
     fn enter4(&self, nodes: &[Node], t_min: f32, t_max: f32) -> (Vec4, u32) {
-        let n = [&nodes[0], &nodes[1], &nodes[2], &nodes[3]];
+        let (mins, maxs) = boxes_by_axis(nodes);
         let slab = |axis: usize| {
-            let lo = Vec4::new(
-                n[0].min[axis],
-                n[1].min[axis],
-                n[2].min[axis],
-                n[3].min[axis],
-            );
-            let hi = Vec4::new(
-                n[0].max[axis],
-                n[1].max[axis],
-                n[2].max[axis],
-                n[3].max[axis],
-            );
+            let (lo, hi) = (mins[axis], maxs[axis]);
             let t0 = (lo - self.origin_lanes[axis]) * self.inv_dir_lanes[axis];
             let t1 = (hi - self.origin_lanes[axis]) * self.inv_dir_lanes[axis];
             (t0.min(t1), t0.max(t1))
@@ -75,6 +64,65 @@ impl RayBoxTest {
         let far = far_x.min(far_y).min(far_z).min(Vec4::splat(t_max));
         (near, near.cmple(far).bitmask())
     }
+}
+
+/// The boxes of four nodes rearranged for [`RayBoxTest::enter4`]: their min and max x in one
+/// vector, y in another, z in a third. Each node's `min, first` and `max, count` are 16 bytes
+/// each, loaded whole; two 4×4 transposes (the fourth row, `first` and `count`, is dropped) put
+/// the components in place.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn boxes_by_axis(nodes: &[Node]) -> ([Vec4; 3], [Vec4; 3]) {
+    use std::arch::x86_64::{
+        __m128, _mm_movehl_ps, _mm_movelh_ps, _mm_unpackhi_ps, _mm_unpacklo_ps,
+    };
+    let transpose = |rows: [__m128; 4]| {
+        // SAFETY: these shuffles need SSE, which every x86_64 processor has.
+        unsafe {
+            let xy01 = _mm_unpacklo_ps(rows[0], rows[1]);
+            let xy23 = _mm_unpacklo_ps(rows[2], rows[3]);
+            let zw01 = _mm_unpackhi_ps(rows[0], rows[1]);
+            let zw23 = _mm_unpackhi_ps(rows[2], rows[3]);
+            [
+                Vec4::from(_mm_movelh_ps(xy01, xy23)),
+                Vec4::from(_mm_movehl_ps(xy23, xy01)),
+                Vec4::from(_mm_movelh_ps(zw01, zw23)),
+            ]
+        }
+    };
+    let low = |n: &Node| {
+        __m128::from(Vec4::new(
+            n.min[0],
+            n.min[1],
+            n.min[2],
+            f32::from_bits(n.first),
+        ))
+    };
+    let high = |n: &Node| {
+        __m128::from(Vec4::new(
+            n.max[0],
+            n.max[1],
+            n.max[2],
+            f32::from_bits(n.count),
+        ))
+    };
+    let n = [&nodes[0], &nodes[1], &nodes[2], &nodes[3]];
+    (transpose(n.map(low)), transpose(n.map(high)))
+}
+
+/// The boxes of four nodes rearranged for [`RayBoxTest::enter4`], gathered component by
+/// component where there is no x86 shuffle to do it.
+#[cfg(not(target_arch = "x86_64"))]
+#[inline(always)]
+fn boxes_by_axis(nodes: &[Node]) -> ([Vec4; 3], [Vec4; 3]) {
+    let n = [&nodes[0], &nodes[1], &nodes[2], &nodes[3]];
+    let lanes = |axis: usize, corner: fn(&Node) -> [f32; 3]| {
+        Vec4::from_array(n.map(|node| corner(node)[axis]))
+    };
+    (
+        [0, 1, 2].map(|axis| lanes(axis, |node| node.min)),
+        [0, 1, 2].map(|axis| lanes(axis, |node| node.max)),
+    )
 }
 
 impl Bvh {

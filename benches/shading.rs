@@ -1,0 +1,35 @@
+//! Shading: the whole ray tree of one pixel (eye ray, shadow rays, reflections, refraction),
+//! and a whole small render of the default scene.
+
+use std::hint::black_box;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use raylab::bvh::Bvh;
+use raylab::progressive;
+use raylab::scene::default_scene;
+use raylab::stats::RayCounts;
+use raylab::whitted::Tracer;
+
+fn shading(c: &mut Criterion) {
+    let mut scene = default_scene().expect("the built-in scene loads");
+    scene.settings.width = 128;
+    scene.settings.height = 128;
+    let bvh = Bvh::build(&scene.geometry);
+    let tracer = Tracer::new(&scene, &bvh);
+    // A pixel on the glass sphere: reflected, refracted and shadow rays several levels deep.
+    let glass = scene.camera.ray(40.5, 66.5, 128, 128);
+    c.bench_function("shade one pixel (glass sphere, default scene)", |b| {
+        b.iter(|| tracer.trace_eye(black_box(&glass), &mut RayCounts::default()))
+    });
+    // A pixel on the floor: one eye ray, two shadow rays, one reflected ray.
+    let floor = scene.camera.ray(6.5, 20.5, 128, 128);
+    c.bench_function("shade one pixel (floor, default scene)", |b| {
+        b.iter(|| tracer.trace_eye(black_box(&floor), &mut RayCounts::default()))
+    });
+    c.bench_function("render the default scene, 128×128", |b| {
+        b.iter(|| progressive::render_image(black_box(&tracer)))
+    });
+}
+
+criterion_group!(benches, shading);
+criterion_main!(benches);
