@@ -1,21 +1,36 @@
 //! The command line: its arguments (clap) and the subcommands.
 
 mod render;
+mod view;
 
 use std::path::{Path, PathBuf};
 
 use clap::{Parser, Subcommand};
-use raylab::scene::{self, Scene};
+use raylab::scene::Scene;
+
+use crate::scene_shim as scene;
 
 #[derive(Parser, Debug)]
-#[command(name = "raylab", version, about = "An interactive Whitted ray tracer")]
+#[command(
+    name = "raylab",
+    version,
+    about = "An interactive Whitted ray tracer",
+    long_about = "An interactive Whitted ray tracer. With no subcommand, opens the viewer (the \
+                  options below are the viewer's; see also `raylab view --help`).",
+    args_conflicts_with_subcommands = true
+)]
 pub struct Cli {
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
+    #[command(flatten)]
+    view: view::ViewArgs,
 }
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Open the viewer on a scene file (or the built-in default scene): the image refines live
+    /// from coarse blocks to single pixels while you move the camera and change the settings.
+    View(view::ViewArgs),
     /// Render a scene file (or the built-in default scene) to an image.
     Render(render::RenderArgs),
 }
@@ -23,7 +38,9 @@ enum Command {
 /// Runs the command; the error is the message to print.
 pub fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
-        Command::Render(args) => render::run(args),
+        Some(Command::Render(args)) => render::run(args),
+        Some(Command::View(args)) => view::run(args),
+        None => view::run(cli.view),
     }
 }
 
