@@ -3,7 +3,7 @@
 mod render;
 mod view;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use clap::{Parser, Subcommand};
 use raylab::scene::Scene;

@@ -2,14 +2,13 @@
 //! renaming it over the old one, which a watch on the file itself would lose), and every change to
 //! the file calls back, so the viewer re-renders when the scene is saved.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use notify::{EventKind, RecursiveMode, Watcher};
 
 /// Watches one file while it lives.
 pub struct SceneWatcher {
     _watcher: notify::RecommendedWatcher,
-    pub path: PathBuf,
 }
 
 impl SceneWatcher {
@@ -33,10 +32,7 @@ impl SceneWatcher {
         watcher
             .watch(&folder, RecursiveMode::NonRecursive)
             .map_err(|e| format!("cannot watch {}: {e}", folder.display()))?;
-        Ok(SceneWatcher {
-            _watcher: watcher,
-            path: path.to_path_buf(),
-        })
+        Ok(SceneWatcher { _watcher: watcher })
     }
 }
 

@@ -1,0 +1,282 @@
+//! The viewer as a person sees it: the real app in a real window under a virtual X display
+//! (Xvfb) with Mesa's software Vulkan, told to exit once refinement is over and to save a
+//! screenshot of its window; the image area is compared with a CPU render of the same scene and
+//! camera. The tests skip (saying why) only where no display can be had at all: no `DISPLAY` and
+//! no `xvfb-run` (`scripts/test` installs it on Debian).
+
+use std::io::Read;
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+use glam::Vec3;
+use raylab::bvh::Bvh;
+use raylab::camera::{Camera, CameraSpec};
+use raylab::output::to_srgb8;
+use raylab::progressive;
+use raylab::scene::{Scene, default_scene};
+use raylab::whitted::Tracer;
+
+/// One viewer at a time: they share two cores, and parallel `xvfb-run -a` can race for a display.
+static DISPLAY_LOCK: Mutex<()> = Mutex::new(());
+const TIMEOUT: Duration = Duration::from_secs(240);
+
+struct Run {
+    success: bool,
+    stdout: String,
+    stderr: String,
+}
+
+/// How to get a display: an existing one, or a virtual one through xvfb-run; `None` if neither.
+fn display_wrapper() -> Option<Vec<String>> {
+    let has = |program: &str| {
+        Command::new("sh")
+            .args(["-c", &format!("command -v {program}")])
+            .stdout(Stdio::null())
+            .status()
+            .is_ok_and(|s| s.success())
+    };
+    if has("xvfb-run") {
+        Some(
+            ["xvfb-run", "-a", "-s", "-screen 0 1280x800x24"]
+                .map(String::from)
+                .to_vec(),
+        )
+    } else if std::env::var_os("DISPLAY").is_some() {
+        Some(Vec::new())
+    } else {
+        None
+    }
+}
+
+/// Runs the viewer with `args` in a window; `None` (after saying why) if no display can be had.
+fn run_viewer(args: &[&str]) -> Option<Run> {
+    let Some(wrapper) = display_wrapper() else {
+        eprintln!(
+            "SKIPPED: no display and no xvfb-run; install it (Debian: apt-get install xvfb xauth \
+             mesa-vulkan-drivers libvulkan1 libxkbcommon-x11-0) or run scripts/test"
+        );
+        return None;
+    };
+    let _one_at_a_time = DISPLAY_LOCK.lock().unwrap_or_else(|e| e.into_inner());
+    let runtime_dir = tempfile::tempdir().unwrap();
+    let bin = env!("CARGO_BIN_EXE_raylab");
+    let mut command = match wrapper.split_first() {
+        Some((program, rest)) => {
+            let mut c = Command::new(program);
+            c.args(rest).arg(bin);
+            c
+        }
+        None => Command::new(bin),
+    };
+    let mut child = command
+        .args(args)
+        .env("XDG_RUNTIME_DIR", runtime_dir.path())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("start the viewer");
+    let mut stdout = child.stdout.take().unwrap();
+    let mut stderr = child.stderr.take().unwrap();
+    let out = std::thread::spawn(move || {
+        let mut s = String::new();
+        let _ = stdout.read_to_string(&mut s);
+        s
+    });
+    let err = std::thread::spawn(move || {
+        let mut s = String::new();
+        let _ = stderr.read_to_string(&mut s);
+        s
+    });
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if start.elapsed() > TIMEOUT {
+            let _ = child.kill();
+            panic!("the viewer did not exit within {TIMEOUT:?}");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    let run = Run {
+        success: status.success(),
+        stdout: out.join().unwrap(),
+        stderr: err.join().unwrap(),
+    };
+    assert!(!run.stderr.contains("panicked"), "{}", run.stderr);
+    Some(run)
+}
+
+/// Where the screenshot put the image: `(x, y, width, height)` from the viewer's report.
+fn image_rect(stdout: &str) -> (f32, f32, f32, f32) {
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("screenshot "))
+        .unwrap_or_else(|| panic!("no screenshot line in {stdout}"));
+    let words: Vec<&str> = line.split_whitespace().collect();
+    let after = |key: &str| {
+        let i = words.iter().position(|w| *w == key).unwrap();
+        words[i + 1]
+    };
+    let size = after("size");
+    let (w, h) = size.split_once('×').unwrap();
+    (
+        after("x").parse().unwrap(),
+        after("y").parse().unwrap(),
+        w.parse().unwrap(),
+        h.parse().unwrap(),
+    )
+}
+
+/// The `[camera]` snippet printed by the viewer, as a camera spec.
+fn printed_camera(stdout: &str) -> CameraSpec {
+    let start = stdout.find("[camera]").expect("a printed camera");
+    let table: toml::Table = stdout[start..]
+        .lines()
+        .take(6)
+        .collect::<Vec<_>>()
+        .join("\n")
+        .parse()
+        .unwrap();
+    let c = table["camera"].as_table().unwrap();
+    let number = |v: &toml::Value| v.as_float().unwrap() as f32;
+    let vector = |key: &str| {
+        let a = c[key].as_array().unwrap();
+        Vec3::new(number(&a[0]), number(&a[1]), number(&a[2]))
+    };
+    CameraSpec {
+        eye: vector("eye"),
+        look_at: vector("look_at"),
+        up: vector("up"),
+        view_angle: number(&c["view_angle"]),
+        near: number(&c["near"]),
+    }
+}
+
+/// The scene rendered on the CPU at `size × size` with `camera`, as sRGB bytes.
+fn cpu_render(scene: &Scene, size: u32, camera: CameraSpec) -> Vec<u8> {
+    let mut scene = scene.clone();
+    scene.settings.width = size;
+    scene.settings.height = size;
+    scene.camera = Camera::new(camera).unwrap();
+    let bvh = Bvh::build(&scene.geometry);
+    let (pixels, _) = progressive::render_image(&Tracer::new(&scene, &bvh));
+    to_srgb8(&pixels)
+}
+
+/// Compares the screenshot's image area, sampled at the centre of each image pixel, with the
+/// CPU's image; returns the number of pixels that differ by more than 2 levels.
+fn mismatches(screenshot: &Path, rect: (f32, f32, f32, f32), size: u32, expected: &[u8]) -> usize {
+    let shot = image::open(screenshot).unwrap().to_rgb8();
+    let (x0, y0, w, h) = rect;
+    assert!(w >= size as f32 && h >= size as f32, "the image is shown at least 1:1");
+    let mut bad = 0;
+    for j in 0..size {
+        for i in 0..size {
+            let sx = (x0 + (i as f32 + 0.5) * w / size as f32) as u32;
+            let sy = (y0 + (j as f32 + 0.5) * h / size as f32) as u32;
+            let got = shot.get_pixel(sx, sy).0;
+            let k = ((j * size + i) * 3) as usize;
+            if (0..3).any(|c| got[c].abs_diff(expected[k + c]) > 2) {
+                bad += 1;
+            }
+        }
+    }
+    bad
+}
+
+#[test]
+fn the_window_shows_the_default_scene_as_the_cpu_renders_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("window.png");
+    let size = 96;
+    let Some(run) = run_viewer(&[
+        "view",
+        "--size",
+        &size.to_string(),
+        "--window",
+        "700x500",
+        "--exit-when-done",
+        "--stats",
+        "--screenshot",
+        shot.to_str().unwrap(),
+    ]) else {
+        return;
+    };
+    assert!(run.success, "stdout: {}\nstderr: {}", run.stdout, run.stderr);
+    assert!(run.stderr.contains("block size 1 at 96×96"), "{}", run.stderr);
+    let scene = default_scene().unwrap();
+    let expected = cpu_render(&scene, size, scene.camera.spec);
+    let rect = image_rect(&run.stdout);
+    assert_eq!(mismatches(&shot, rect, size, &expected), 0);
+    // Outside the image: the letterbox bars and the panels, not the image.
+    let shot_image = image::open(&shot).unwrap().to_rgb8();
+    assert_eq!(shot_image.dimensions(), (700, 500));
+}
+
+#[test]
+fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("orbited.png");
+    let size = 80;
+    let Some(run) = run_viewer(&[
+        "--size",
+        &size.to_string(),
+        "--block-size",
+        "8",
+        "--exit-when-done",
+        "--stats",
+        "--script",
+        "wait; orbit 40 15 4; dolly 1; wait; print-camera",
+        "--screenshot",
+        shot.to_str().unwrap(),
+    ]) else {
+        return;
+    };
+    assert!(run.success, "stdout: {}\nstderr: {}", run.stdout, run.stderr);
+    let scene = default_scene().unwrap();
+    let camera = printed_camera(&run.stdout);
+    assert!((camera.eye - scene.camera.spec.eye).length() > 0.5, "the camera moved");
+    assert_eq!(camera.look_at, scene.camera.spec.look_at, "orbit keeps the centre");
+    // Refinement ran to block size 1 once for the first view and again after the change.
+    let block_ones = run.stderr.matches("block size 1 at").count();
+    assert!(block_ones >= 2, "{}", run.stderr);
+    let rect = image_rect(&run.stdout);
+    let new_view = cpu_render(&scene, size, camera);
+    assert_eq!(mismatches(&shot, rect, size, &new_view), 0, "the window shows the new view");
+    let old_view = cpu_render(&scene, size, scene.camera.spec);
+    assert!(mismatches(&shot, rect, size, &old_view) > (size * size / 10) as usize);
+}
+
+#[test]
+fn without_a_display_the_viewer_says_so_and_fails() {
+    let output = Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .args(["view", "--exit-when-done"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success());
+    assert!(stderr.contains("display"), "{stderr}");
+    assert!(stderr.contains("raylab render"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+#[test]
+fn help_documents_the_viewer() {
+    for args in [&["--help"][..], &["view", "--help"][..]] {
+        let output = Command::new(env!("CARGO_BIN_EXE_raylab"))
+            .args(args)
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&output.stdout);
+        assert!(output.status.success());
+        for option in ["--size", "--block-size", "--screenshot", "--exit-when-done", "--script"] {
+            assert!(text.contains(option), "{args:?} lacks {option}: {text}");
+        }
+    }
+}
