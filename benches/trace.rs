@@ -45,7 +45,15 @@ fn intersection(c: &mut Criterion) {
     c.bench_function("sphere hit", |b| {
         b.iter(|| black_box(&sphere).intersect(black_box(&ray), 0.0, f32::INFINITY))
     });
-    let tri = Triangle::new([Vec3::new(-1.0, -1.0, 0.0), Vec3::new(1.0, -1.0, 0.0), Vec3::Y], 0, 0);
+    let tri = Triangle::new(
+        [
+            Vec3::new(-1.0, -1.0, 0.0),
+            Vec3::new(1.0, -1.0, 0.0),
+            Vec3::Y,
+        ],
+        0,
+        0,
+    );
     c.bench_function("triangle hit", |b| {
         b.iter(|| black_box(&tri).intersect(black_box(&ray), 0.0, f32::INFINITY))
     });
@@ -53,12 +61,17 @@ fn intersection(c: &mut Criterion) {
 
 fn bvh(c: &mut Criterion) {
     let soup = triangle_soup(100_000);
-    c.bench_function("bvh build 100k triangles", |b| b.iter(|| Bvh::build(black_box(&soup))));
+    c.bench_function("bvh build 100k triangles", |b| {
+        b.iter(|| Bvh::build(black_box(&soup)))
+    });
     let bvh = Bvh::build(&soup);
     let rays: Vec<Ray> = (0..1024)
         .map(|i| {
             let (x, y) = ((i % 32) as f32 / 16.0 - 1.0, (i / 32) as f32 / 16.0 - 1.0);
-            Ray::new(Vec3::new(0.0, 0.0, 30.0), Vec3::new(x * 0.35, y * 0.35, -1.0))
+            Ray::new(
+                Vec3::new(0.0, 0.0, 30.0),
+                Vec3::new(x * 0.35, y * 0.35, -1.0),
+            )
         })
         .collect();
     c.bench_function("closest hit, 1024 coherent rays, 100k triangles", |b| {

@@ -43,7 +43,10 @@ pub enum OutputError {
     Io(PathBuf, std::io::Error),
     Encode(PathBuf, image::ImageError),
     /// The pixel buffer does not hold `width × height` pixels.
-    PixelCount { expected: usize, got: usize },
+    PixelCount {
+        expected: usize,
+        got: usize,
+    },
 }
 
 impl std::fmt::Display for OutputError {
@@ -70,13 +73,22 @@ impl std::error::Error for OutputError {}
 pub fn to_srgb8(pixels: &[Color]) -> Vec<u8> {
     pixels
         .iter()
-        .flat_map(|c| c.to_array().map(|v| (linear_to_srgb(v) * 255.0).round() as u8))
+        .flat_map(|c| {
+            c.to_array()
+                .map(|v| (linear_to_srgb(v) * 255.0).round() as u8)
+        })
         .collect()
 }
 
 /// Writes `pixels` (linear RGB, row 0 at the top) to `path` in the format its extension names.
-pub fn save_image(path: &Path, width: u32, height: u32, pixels: &[Color]) -> Result<(), OutputError> {
-    let format = OutputFormat::from_path(path).ok_or_else(|| OutputError::UnknownFormat(path.into()))?;
+pub fn save_image(
+    path: &Path,
+    width: u32,
+    height: u32,
+    pixels: &[Color],
+) -> Result<(), OutputError> {
+    let format =
+        OutputFormat::from_path(path).ok_or_else(|| OutputError::UnknownFormat(path.into()))?;
     let expected = width as usize * height as usize;
     if pixels.len() != expected {
         return Err(OutputError::PixelCount {
@@ -90,17 +102,22 @@ pub fn save_image(path: &Path, width: u32, height: u32, pixels: &[Color]) -> Res
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
-    let mut temp = tempfile::Builder::new()
-        .prefix(".raylab-")
-        .suffix(".tmp")
-        .tempfile_in(dir)
-        .map_err(io)?;
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".raylab-").suffix(".tmp");
+    // A temporary file is private (0600); the image should be as readable as any new file.
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
+    let mut temp = builder.tempfile_in(dir).map_err(io)?;
     {
         let mut out = BufWriter::new(temp.as_file_mut());
         match format {
             OutputFormat::Png | OutputFormat::Ppm => {
-                let srgb = RgbImage::from_raw(width, height, to_srgb8(pixels))
-                    .ok_or(OutputError::PixelCount { expected, got: pixels.len() })?;
+                let srgb = RgbImage::from_raw(width, height, to_srgb8(pixels)).ok_or(
+                    OutputError::PixelCount {
+                        expected,
+                        got: pixels.len(),
+                    },
+                )?;
                 if format == OutputFormat::Png {
                     srgb.write_to(&mut out, ImageFormat::Png).map_err(encode)?;
                 } else {
@@ -111,8 +128,12 @@ pub fn save_image(path: &Path, width: u32, height: u32, pixels: &[Color]) -> Res
             }
             OutputFormat::Exr | OutputFormat::Hdr => {
                 let floats: Vec<f32> = pixels.iter().flat_map(|c| c.to_array()).collect();
-                let linear = Rgb32FImage::from_raw(width, height, floats)
-                    .ok_or(OutputError::PixelCount { expected, got: pixels.len() })?;
+                let linear = Rgb32FImage::from_raw(width, height, floats).ok_or(
+                    OutputError::PixelCount {
+                        expected,
+                        got: pixels.len(),
+                    },
+                )?;
                 let image_format = if format == OutputFormat::Exr {
                     ImageFormat::OpenExr
                 } else {
@@ -154,15 +175,35 @@ mod tests {
                 for ch in 0..3 {
                     let expected = if linear { c[ch] } else { linear_to_srgb(c[ch]) };
                     let got = back[i * 3 + ch];
-                    assert!((got - expected).abs() < 0.02, "{ext} pixel {i}: {got} vs {expected}");
+                    assert!(
+                        (got - expected).abs() < 0.02,
+                        "{ext} pixel {i}: {got} vs {expected}"
+                    );
                 }
             }
         }
         let leftovers = std::fs::read_dir(dir.path())
             .unwrap()
-            .filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().ends_with(".tmp"))
+            .filter(|e| {
+                e.as_ref()
+                    .unwrap()
+                    .file_name()
+                    .to_string_lossy()
+                    .ends_with(".tmp")
+            })
             .count();
         assert_eq!(leftovers, 0, "no temporary files left behind");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn images_are_readable_by_others_like_any_new_file() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("shared.png");
+        save_image(&path, 1, 1, &[Color::ONE]).unwrap();
+        let mode = std::fs::metadata(&path).unwrap().permissions().mode();
+        assert_eq!(mode & 0o044, 0o044, "mode {mode:o}");
     }
 
     #[test]
@@ -190,7 +231,13 @@ mod tests {
         std::fs::write(&path, b"old").unwrap();
         // Too few pixels cannot be encoded; the old file must survive.
         let err = save_image(&path, 4, 4, &[Color::ONE]).unwrap_err();
-        assert!(matches!(err, OutputError::PixelCount { expected: 16, got: 1 }));
+        assert!(matches!(
+            err,
+            OutputError::PixelCount {
+                expected: 16,
+                got: 1
+            }
+        ));
         assert_eq!(std::fs::read(&path).unwrap(), b"old");
     }
 }

@@ -51,4 +51,3 @@ fn load_scene(path: Option<&Path>) -> Result<Scene, String> {
         None => scene::default_scene().map_err(|e| e.to_string()),
     }
 }
-

@@ -82,7 +82,8 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     let total = u64::from(width) * u64::from(height) * u64::from(settings.samples);
     let bar = progress_bar(total);
     let stats = std::thread::scope(|s| {
-        let render = s.spawn(|| pool.install(|| progressive::render(&tracer, &film, &control, |_| {})));
+        let render =
+            s.spawn(|| pool.install(|| progressive::render(&tracer, &film, &control, |_| {})));
         while !render.is_finished() {
             bar.set_position(control.pixels_traced());
             std::thread::sleep(Duration::from_millis(50));
@@ -94,7 +95,10 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     bar.finish_and_clear();
 
     save_image(&args.output, width, height, &film.pixels()).map_err(|e| e.to_string())?;
-    println!("{}", summary(&scene.settings, &stats, build_time, &args.output));
+    println!(
+        "{}",
+        summary(&scene.settings, &stats, build_time, &args.output)
+    );
     Ok(())
 }
 

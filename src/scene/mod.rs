@@ -1,5 +1,22 @@
-//! The scene: everything a render needs, as plain data. It is made from a scene file
-//! ([`file`]) or by code, and read by the BVH builder and the tracer.
+//! The scene: everything a render needs, as plain data. It is read from a TOML scene file
+//! ([`load_scene`], [`parse_scene`]) or made by code, and read by the BVH builder and the
+//! tracer.
+
+mod build;
+mod builtin;
+mod error;
+mod file;
+mod files;
+mod load;
+mod obj;
+mod retag;
+mod values;
+
+pub use build::DEFAULT_MATERIAL;
+pub use builtin::{DEFAULT_SCENE_TEXT, default_scene};
+pub use error::SceneError;
+pub use files::SceneFiles;
+pub use load::{load_scene, parse_scene, parse_scene_with};
 
 use crate::camera::Camera;
 use crate::light::Light;

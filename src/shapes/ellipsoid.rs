@@ -38,13 +38,20 @@ impl Ellipsoid {
     }
 
     /// Scales the ray by `1 / radii` about the centre, which turns the ellipsoid into the unit
-    /// sphere and keeps `t`, and solves `|o + d·t|² = 1` there.
+    /// sphere and keeps `t`, and solves `|o + d·s|² = 1` there, from the point `o` of the ray
+    /// nearest the centre (`s = t − shift`): the coefficients then stay small, and so do their
+    /// rounding errors, however far away the ray starts.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
-        let o = (ray.origin - self.center) * self.inv_radii;
+        let origin = (ray.origin - self.center) * self.inv_radii;
         let d = ray.dir * self.inv_radii;
-        let roots = solve_quadratic(d.length_squared(), o.dot(d), o.length_squared() - 1.0)?;
-        let t = first_root_in(roots, t_min, t_max)?;
+        let shift = -origin.dot(d) / d.length_squared();
+        if !shift.is_finite() {
+            return None; // no direction
+        }
+        let o = origin + d * shift;
+        let (s0, s1) = solve_quadratic(d.length_squared(), o.dot(d), o.length_squared() - 1.0)?;
+        let t = first_root_in((s0 + shift, s1 + shift), t_min, t_max)?;
         Some(ShapeHit { t, part: 0 })
     }
 

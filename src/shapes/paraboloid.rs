@@ -62,8 +62,16 @@ impl Paraboloid {
     /// the disk at `y = height`.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
-        let o = ray.origin - self.vertex;
         let d = ray.dir;
+        // Work from the point `o` of the ray nearest the middle of the axis, with `s = t − shift`
+        // along the ray from there, which keeps the quadratic's coefficients (and their rounding
+        // errors) as small as the paraboloid.
+        let origin = ray.origin - self.vertex;
+        let shift = (Vec3::new(0.0, 0.5 * self.height, 0.0) - origin).dot(d) / d.length_squared();
+        if !shift.is_finite() {
+            return None; // no direction
+        }
+        let o = origin + d * shift;
         let k = self.curvature;
         let mut nearest = None;
         let mut t_far = t_max;
@@ -71,22 +79,26 @@ impl Paraboloid {
         let a = k * (d.x * d.x + d.z * d.z);
         let half_b = k * (o.x * d.x + o.z * d.z) - 0.5 * d.y;
         let c = k * (o.x * o.x + o.z * o.z) - o.y;
-        if let Some((t0, t1)) = solve_quadratic(a, half_b, c) {
-            let on_bowl = |t: f32| {
-                let y = o.y + d.y * t;
+        if let Some((s0, s1)) = solve_quadratic(a, half_b, c) {
+            let on_bowl = |s: f32| {
+                let (t, y) = (s + shift, o.y + d.y * s);
                 t > t_min && t < t_far && (0.0..=self.height).contains(&y)
             };
-            if let Some(t) = [t0, t1].into_iter().find(|&t| on_bowl(t)) {
-                nearest = Some(ShapeHit { t, part: BOWL });
-                t_far = t;
+            if let Some(s) = [s0, s1].into_iter().find(|&s| on_bowl(s)) {
+                nearest = Some(ShapeHit {
+                    t: s + shift,
+                    part: BOWL,
+                });
+                t_far = s + shift;
             }
         }
 
         if self.capped && d.y != 0.0 {
-            let t = (self.height - o.y) / d.y;
+            let s = (self.height - o.y) / d.y;
+            let t = s + shift;
             if t > t_min && t < t_far {
-                let x = o.x + d.x * t;
-                let z = o.z + d.z * t;
+                let x = o.x + d.x * s;
+                let z = o.z + d.z * s;
                 if x * x + z * z <= self.radius * self.radius {
                     nearest = Some(ShapeHit { t, part: CAP });
                 }

@@ -160,11 +160,10 @@ impl Polygon {
         }
         let mut inside = false;
         for edge in &self.edges {
-            if (edge.start.y > q.y) != (edge.end_y > q.y)
-                && q.x < edge.start.x + (q.y - edge.start.y) * edge.dx_dy
-            {
-                inside = !inside;
-            }
+            // Both tests always run (no early exit), which keeps the loop free of branches.
+            let straddles = (edge.start.y > q.y) != (edge.end_y > q.y);
+            let crossing_is_right_of_q = q.x < edge.start.x + (q.y - edge.start.y) * edge.dx_dy;
+            inside ^= straddles & crossing_is_right_of_q;
         }
         inside
     }

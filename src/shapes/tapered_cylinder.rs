@@ -90,7 +90,7 @@ impl TaperedCylinder {
 
     /// `p` in the local frame.
     #[inline]
-    fn to_local(&self, p: Vec3) -> Vec3 {
+    fn local_point(&self, p: Vec3) -> Vec3 {
         let rel = p - self.base;
         Vec3::new(
             rel.dot(self.frame_x),
@@ -103,27 +103,38 @@ impl TaperedCylinder {
     /// capped, the end disks.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
-        let o = self.to_local(ray.origin);
         let d = Vec3::new(
             ray.dir.dot(self.frame_x),
             ray.dir.dot(self.frame_y),
             ray.dir.dot(self.axis),
         );
+        // Work from the point `o` of the ray nearest the middle of the axis, with `s = t − shift`
+        // along the ray from there: the quadratic's coefficients then stay as small as the
+        // cylinder, and so do their rounding errors (the sphere's trick, made general).
+        let origin = self.local_point(ray.origin);
+        let shift = (Vec3::new(0.0, 0.0, 0.5 * self.height) - origin).dot(d) / d.length_squared();
+        if !shift.is_finite() {
+            return None; // no direction
+        }
+        let o = origin + d * shift;
         let mut nearest = None;
         let mut t_far = t_max;
 
-        let radius_at_origin = self.base_radius + self.slope * o.z;
+        let radius_at_o = self.base_radius + self.slope * o.z;
         let a = d.x * d.x + d.y * d.y - self.slope * self.slope * d.z * d.z;
-        let half_b = o.x * d.x + o.y * d.y - self.slope * radius_at_origin * d.z;
-        let c = o.x * o.x + o.y * o.y - radius_at_origin * radius_at_origin;
-        if let Some((t0, t1)) = solve_quadratic(a, half_b, c) {
-            let on_side = |t: f32| {
-                let z = o.z + d.z * t;
+        let half_b = o.x * d.x + o.y * d.y - self.slope * radius_at_o * d.z;
+        let c = o.x * o.x + o.y * o.y - radius_at_o * radius_at_o;
+        if let Some((s0, s1)) = solve_quadratic(a, half_b, c) {
+            let on_side = |s: f32| {
+                let (t, z) = (s + shift, o.z + d.z * s);
                 t > t_min && t < t_far && (0.0..=self.height).contains(&z)
             };
-            if let Some(t) = [t0, t1].into_iter().find(|&t| on_side(t)) {
-                nearest = Some(ShapeHit { t, part: SIDE });
-                t_far = t;
+            if let Some(s) = [s0, s1].into_iter().find(|&s| on_side(s)) {
+                nearest = Some(ShapeHit {
+                    t: s + shift,
+                    part: SIDE,
+                });
+                t_far = s + shift;
             }
         }
 
@@ -136,10 +147,11 @@ impl TaperedCylinder {
                 if radius == 0.0 {
                     continue; // a cone's apex
                 }
-                let t = (z - o.z) / d.z;
+                let s = (z - o.z) / d.z;
+                let t = s + shift;
                 if t > t_min && t < t_far {
-                    let x = o.x + d.x * t;
-                    let y = o.y + d.y * t;
+                    let x = o.x + d.x * s;
+                    let y = o.y + d.y * s;
                     if x * x + y * y <= radius * radius {
                         nearest = Some(ShapeHit { t, part });
                         t_far = t;
@@ -153,7 +165,7 @@ impl TaperedCylinder {
     /// The side maps cylindrically (`u` the angle around the axis over 2π, `v` the fraction of
     /// the height); each cap maps its disk onto `[0, 1]²`, the right way round seen from outside.
     pub fn surface(&self, p: Vec3, part: u32) -> LocalSurface {
-        let local = self.to_local(p);
+        let local = self.local_point(p);
         match part {
             BASE_CAP => LocalSurface {
                 normal: -self.axis,
@@ -345,6 +357,24 @@ mod tests {
         let h = hit(&cone(false), &along_slope).unwrap();
         assert!((h.t - 2.0).abs() < 1e-5, "{h:?}");
         assert_near(along_slope.at(h.t), Vec3::new(0.5, 0.5, 0.0), 1e-5);
+    }
+
+    #[test]
+    fn ray_through_a_thin_cone_tip_from_afar_lands_on_the_surface() {
+        // Where the cone is thin, the ray's two roots nearly coincide; solving from an origin 3
+        // units away once put the hit 1e-4 off the surface and past the point aimed at.
+        let top = Vec3::new(-1.327_029_3, 0.385_335_27, 1.114_284_3);
+        let cone = TaperedCylinder::new(Vec3::ZERO, top, 0.255_472_78, 0.0, false).unwrap();
+        let target = Vec3::new(-1.284_730_6, 0.365_441_86, 1.081_611);
+        let from = Vec3::new(0.771_524_4, -0.046_773_9, 0.634_432_4);
+        let ray = Ray::new(target + from * 3.2, -from * 3.2);
+        let h = hit(&cone, &ray).unwrap();
+        assert!(h.t <= 1.0 + 1e-5, "{h:?}");
+        let p = ray.at(h.t);
+        let axis = top.normalize();
+        let z = p.dot(axis);
+        let radius = 0.255_472_78 * (1.0 - z / top.length());
+        assert!(((p - axis * z).length() - radius).abs() < 1e-5, "{p}");
     }
 
     #[test]

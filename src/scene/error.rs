@@ -1,0 +1,158 @@
+//! [`SceneError`]: what is wrong with a scene file and where, printed the way a compiler prints
+//! its messages (`file:line:column: message`, then the offending line with a caret under it).
+
+use std::fmt;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+/// An error in a scene file, located at the offending value.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SceneError {
+    /// The scene file, or the name a built-in scene goes by.
+    pub file: PathBuf,
+    /// 1-based line of the offending value (1 when the file could not be read at all).
+    pub line: usize,
+    /// 1-based column of the offending value, counted in characters.
+    pub column: usize,
+    /// What is wrong, and what was expected instead.
+    pub message: String,
+    /// The offending line, shown under the message; `None` when there is no text to show.
+    pub source_line: Option<String>,
+    /// How many characters from `column` on the caret underlines (at least 1).
+    pub underline: usize,
+}
+
+impl SceneError {
+    /// An error about the file as a whole (it cannot be read), placed at its start.
+    pub fn whole_file(file: &Path, message: impl Into<String>) -> SceneError {
+        SceneError {
+            file: file.to_path_buf(),
+            line: 1,
+            column: 1,
+            message: message.into(),
+            source_line: None,
+            underline: 1,
+        }
+    }
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{}:{}:{}: {}",
+            self.file.display(),
+            self.line,
+            self.column,
+            self.message
+        )?;
+        if let Some(source_line) = &self.source_line {
+            let number = self.line.to_string();
+            let gutter = " ".repeat(number.len());
+            // Tabs stay tabs under the line so that the caret lines up in any terminal.
+            let indent: String = source_line
+                .chars()
+                .take(self.column - 1)
+                .map(|c| if c == '\t' { '\t' } else { ' ' })
+                .collect();
+            write!(
+                f,
+                "\n{gutter} |\n{number} | {source_line}\n{gutter} | {indent}{}",
+                "^".repeat(self.underline)
+            )?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+/// A scene file's text and the name it goes by: what byte spans are turned into lines and
+/// columns against.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Source<'a> {
+    pub origin: &'a Path,
+    pub text: &'a str,
+}
+
+impl Source<'_> {
+    /// An error at the byte span `span` of the text.
+    pub fn error(&self, span: Range<usize>, message: impl Into<String>) -> SceneError {
+        let text = self.text;
+        let start = text.floor_char_boundary(span.start.min(text.len()));
+        let end = text.floor_char_boundary(span.end.clamp(start, text.len()));
+        let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
+        let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
+        let source_line = text[line_start..line_end].trim_end_matches('\r');
+        let column = text[line_start..start].chars().count() + 1;
+        let underline = text[start..end.min(line_end)]
+            .trim_end_matches('\r')
+            .chars()
+            .count()
+            .max(1);
+        SceneError {
+            file: self.origin.to_path_buf(),
+            line: text[..start].matches('\n').count() + 1,
+            column,
+            message: message.into(),
+            source_line: Some(source_line.to_string()),
+            underline,
+        }
+    }
+
+    /// A TOML syntax error, or an error serde raised while reading the schema.
+    pub fn toml_error(&self, error: &toml::de::Error) -> SceneError {
+        self.error(error.span().unwrap_or(0..0), error.message().trim())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn source(text: &str) -> Source<'_> {
+        Source {
+            origin: Path::new("demo.toml"),
+            text,
+        }
+    }
+
+    #[test]
+    fn spans_become_one_based_lines_and_columns() {
+        let text = "a = 1\nradius = -1\n";
+        let error = source(text).error(15..17, "radius must be positive");
+        assert_eq!((error.line, error.column, error.underline), (2, 10, 2));
+        assert_eq!(error.source_line.as_deref(), Some("radius = -1"));
+    }
+
+    #[test]
+    fn columns_count_characters_not_bytes() {
+        let text = "name = \"é\" x";
+        let error = source(text).error(12..13, "stray");
+        assert_eq!(error.column, 12);
+    }
+
+    #[test]
+    fn display_shows_the_line_and_a_caret() {
+        let error = source("a = 1\nradius = -1\n").error(15..17, "radius must be positive");
+        assert_eq!(
+            error.to_string(),
+            "demo.toml:2:10: radius must be positive\n  |\n2 | radius = -1\n  |          ^^"
+        );
+    }
+
+    #[test]
+    fn spans_past_the_end_or_inside_a_character_are_clamped() {
+        let text = "é";
+        let error = source(text).error(1..99, "odd span");
+        assert_eq!((error.line, error.column), (1, 1));
+        let error = source(text).error(50..60, "past the end");
+        assert_eq!((error.line, error.column), (1, 2));
+    }
+
+    #[test]
+    fn whole_file_errors_have_no_source_line() {
+        let error = SceneError::whole_file(Path::new("gone.toml"), "cannot read it");
+        assert_eq!(error.to_string(), "gone.toml:1:1: cannot read it");
+    }
+}

@@ -1,0 +1,105 @@
+//! Small renders of the shipped scenes against reference images checked into
+//! `tests/reference/` (each looked at by a person before it was committed), within a tolerance
+//! that absorbs floating-point differences between machines but not a changed picture.
+//!
+//! To update the references after an intended change of the pictures:
+//! `RAYLAB_BLESS=1 cargo test --test images`, then look at every file before committing.
+
+use std::path::{Path, PathBuf};
+
+use raylab::bvh::Bvh;
+use raylab::output::{save_image, to_srgb8};
+use raylab::progressive;
+use raylab::scene::{Scene, default_scene, load_scene};
+use raylab::whitted::Tracer;
+
+const WIDTH: u32 = 160;
+const HEIGHT: u32 = 120;
+
+fn reference_path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/reference/{name}.png"))
+}
+
+fn render_small(mut scene: Scene) -> Vec<u8> {
+    scene.settings.width = WIDTH;
+    scene.settings.height = HEIGHT;
+    let bvh = Bvh::build(&scene.geometry);
+    let (pixels, _) = progressive::render_image(&Tracer::new(&scene, &bvh));
+    to_srgb8(&pixels)
+}
+
+/// How far two 8-bit images are apart: the mean absolute difference per channel, and the share
+/// of pixels where some channel differs by more than 24 levels.
+fn difference(a: &[u8], b: &[u8]) -> (f64, f64) {
+    let mean = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| x.abs_diff(*y) as f64)
+        .sum::<f64>()
+        / a.len() as f64;
+    let far = a
+        .chunks(3)
+        .zip(b.chunks(3))
+        .filter(|(p, q)| p.iter().zip(*q).any(|(x, y)| x.abs_diff(*y) > 24))
+        .count();
+    (mean, far as f64 / (a.len() / 3) as f64)
+}
+
+fn check(name: &str, scene: Scene) {
+    let image = render_small(scene);
+    let path = reference_path(name);
+    if std::env::var_os("RAYLAB_BLESS").is_some() {
+        let linear: Vec<_> = image
+            .chunks(3)
+            .map(|c| glam::Vec3::from_array([c[0], c[1], c[2]].map(srgb_decode)))
+            .collect();
+        save_image(&path, WIDTH, HEIGHT, &linear).unwrap();
+    }
+    let reference = image::open(&path)
+        .unwrap_or_else(|e| panic!("{}: {e} (RAYLAB_BLESS=1 makes it)", path.display()))
+        .to_rgb8();
+    assert_eq!(reference.dimensions(), (WIDTH, HEIGHT), "{name}");
+    let (mean, far) = difference(&image, reference.as_raw());
+    assert!(
+        mean < 1.0 && far < 0.005,
+        "{name}: mean difference {mean:.3} levels, {:.2}% of pixels far off",
+        far * 100.0
+    );
+}
+
+/// Inverse of the 8-bit sRGB encoding, so that blessing writes exactly the rendered bytes.
+fn srgb_decode(v: u8) -> f32 {
+    raylab::texture::srgb_to_linear(v as f32 / 255.0)
+}
+
+fn shipped(name: &str) -> Scene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("assets/scenes/{name}.toml"));
+    load_scene(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn default_scene_matches_its_reference() {
+    check("default", default_scene().unwrap());
+}
+
+#[test]
+fn teaching_scenes_match_their_references() {
+    for name in [
+        "shadows", "mirrors", "glass", "textures", "meshes", "quadrics",
+    ] {
+        check(name, shipped(name));
+    }
+}
+
+#[test]
+fn the_comparison_notices_a_changed_picture() {
+    let scene = default_scene().unwrap();
+    let mut darker = scene.clone();
+    darker.lights.truncate(1);
+    let (a, b) = (render_small(scene), render_small(darker));
+    let (mean, far) = difference(&a, &b);
+    assert!(
+        mean >= 1.0 || far >= 0.005,
+        "losing a light must fail the check"
+    );
+}

@@ -1,0 +1,899 @@
+//! The TOML scene format end to end: the shipped scenes load, a full-feature file becomes the
+//! expected `Scene`, OBJ and image files are found relative to the scene file, every kind of
+//! mistake is reported at its line and column, and no input makes the reader panic.
+
+use std::path::{Path, PathBuf};
+
+use glam::{Vec2, Vec3};
+use raylab::light::Light;
+use raylab::material::{Color, Material};
+use raylab::scene::{DEFAULT_MATERIAL, Scene, SceneError, load_scene, parse_scene};
+use raylab::settings::RenderSettings;
+use raylab::shapes::Shape;
+use raylab::texture::{Texture, Wrap};
+
+fn assets() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("assets")
+}
+
+fn scenes_dir() -> PathBuf {
+    assets().join("scenes")
+}
+
+fn parse(text: &str) -> Result<Scene, SceneError> {
+    parse_scene(text, Path::new("test.toml"), &scenes_dir())
+}
+
+/// Parses `text`, which must fail, and checks where and why.
+fn assert_error(text: &str, line: usize, column: usize, message_part: &str) -> SceneError {
+    let error = match parse(text) {
+        Ok(_) => panic!("expected an error for:\n{text}"),
+        Err(error) => error,
+    };
+    assert_eq!(error.file, Path::new("test.toml"), "{error}");
+    assert_eq!((error.line, error.column), (line, column), "{error}");
+    assert!(
+        error.message.contains(message_part),
+        "expected the message to contain {message_part:?}:\n{error}"
+    );
+    error
+}
+
+fn close(a: Vec3, b: Vec3) -> bool {
+    (a - b).length() < 1e-5
+}
+
+// ---- the shipped scenes ----------------------------------------------------------------------
+
+fn shipped_scene(name: &str) -> Scene {
+    let path = scenes_dir().join(name);
+    load_scene(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn shadows_scene_has_a_sphere_over_a_plane_and_one_light() {
+    let scene = shipped_scene("shadows.toml");
+    let shapes: Vec<&Shape> = scene.geometry.objects.iter().map(|o| &o.shape).collect();
+    assert!(matches!(shapes[..], [Shape::Plane(_), Shape::Sphere(_)]));
+    assert_eq!(scene.lights.len(), 1);
+    assert!(scene.settings.shadows);
+}
+
+#[test]
+fn mirrors_scene_has_two_facing_mirrors() {
+    let scene = shipped_scene("mirrors.toml");
+    let mirrors: Vec<_> = scene
+        .geometry
+        .objects
+        .iter()
+        .filter_map(|o| match &o.shape {
+            Shape::Polygon(p) => Some((p.normal(), o.material)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(mirrors.len(), 2);
+    for (_, material) in &mirrors {
+        assert_eq!(scene.materials[*material as usize].reflectivity, 0.9);
+    }
+    assert!(
+        (mirrors[0].0 + mirrors[1].0).length() < 1e-6,
+        "they face each other"
+    );
+    assert_eq!(scene.settings.max_depth, 8);
+}
+
+#[test]
+fn glass_scene_has_a_refracting_sphere_over_a_checkerboard() {
+    let scene = shipped_scene("glass.toml");
+    let sphere = &scene.geometry.objects[1];
+    let glass = &scene.materials[sphere.material as usize];
+    assert_eq!(
+        (glass.ior, glass.transparency, glass.fresnel),
+        (1.5, 0.9, true)
+    );
+    let floor = &scene.materials[scene.geometry.objects[0].material as usize];
+    let texture = &scene.textures[floor.texture.expect("the floor is textured") as usize];
+    assert!(matches!(texture, Texture::Checker3d { size: 1.0, .. }));
+}
+
+#[test]
+fn textures_scene_loads_the_image_relative_to_the_scene_file() {
+    let scene = shipped_scene("textures.toml");
+    // Textures are numbered in name order: grid, squares.
+    match &scene.textures[0] {
+        Texture::Image { image, wrap, scale } => {
+            assert_eq!((image.width, image.height), (64, 64));
+            assert_eq!(*wrap, Wrap::Repeat);
+            assert_eq!(*scale, Vec2::new(2.0, 1.0));
+        }
+        other => panic!("expected the grid image, got {other:?}"),
+    }
+    assert!(matches!(
+        scene.textures[1],
+        Texture::CheckerUv {
+            u_count: 16.0,
+            v_count: 8.0,
+            ..
+        }
+    ));
+    let right = &scene.geometry.objects[2];
+    assert!(right.transform.is_some());
+    assert_eq!(scene.materials[right.material as usize].texture, Some(1));
+}
+
+#[test]
+fn meshes_scene_reads_the_obj_file_and_its_materials() {
+    let scene = shipped_scene("meshes.toml");
+    // Triangle, pyramid, then the OBJ's two groups.
+    let triangles: Vec<usize> = scene
+        .geometry
+        .meshes
+        .iter()
+        .map(|m| m.faces.len())
+        .collect();
+    assert_eq!(triangles, [1, 4, 3, 1]);
+    assert_eq!(scene.geometry.triangles.len(), 9);
+    let copper = &scene.materials[scene.geometry.meshes[2].material as usize];
+    assert_eq!(copper.color, Color::new(0.72, 0.45, 0.2));
+    assert_eq!(copper.shininess, 64.0);
+    let slate = &scene.materials[scene.geometry.meshes[3].material as usize];
+    assert_eq!(slate.color, Color::new(0.25, 0.27, 0.3));
+    assert!(
+        scene.geometry.meshes[2..]
+            .iter()
+            .all(|m| !m.normals.is_empty())
+    );
+}
+
+// ---- a full-feature file ---------------------------------------------------------------------
+
+const FULL: &str = r#"
+[render]
+width = 320
+height = 200
+max_depth = 7
+min_weight = 0.05
+block_size = 8
+samples = 4
+background = [0.1, 0.2, 0.3]
+ambient = [0.3, 0.3, 0.3]
+shadows = false
+reflections = false
+refractions = false
+textures = false
+
+[camera]
+eye = [0, 2, 8]
+look_at = [0, 1, 0]
+up = [0, 1, 0]
+view_angle = 30
+near = 0.5
+
+[[lights]]
+type = "point"
+position = [5, 8, 5]
+color = [1, 0.5, 0.25]
+intensity = 2
+
+[[lights]]
+type = "directional"
+direction = [0, 3, 4]
+
+[textures.checks]
+type = "checker3d"
+a = [1, 0, 0]
+b = [0, 0, 1]
+size = 0.5
+
+[textures.stripes]
+type = "checker_uv"
+u_count = 4
+v_count = 1
+
+[textures.tiles]
+type = "image"
+file = "../textures/grid.png"
+wrap = "clamp"
+scale = [3, 2]
+
+[materials.red]
+color = [0.8, 0.1, 0.1]
+texture = "checks"
+ambient = 0.2
+diffuse = 0.7
+specular = 0.5
+specular_color = [1, 1, 0]
+shininess = 10
+reflectivity = 0.25
+transparency = 0.5
+ior = 1.33
+fresnel = true
+
+[materials.blue]
+color = [0, 0, 1]
+
+[[objects]]
+type = "sphere"
+center = [0, 1, 0]
+radius = 2
+material = "red"
+transform = [ { translate = [0, 1, 0] }, { rotate = { axis = [0, 1, 0], degrees = 90 } }, { scale = [1, 2, 1] } ]
+
+[[objects]]
+type = "plane"
+point = [0, -1, 0]
+normal = [0, 2, 0]
+
+[[objects]]
+type = "triangle"
+vertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]
+normals = [[0, 0, 1], [0, 0, 1], [0, 0, 1]]
+uvs = [[0, 0], [1, 0], [0, 1]]
+material = "blue"
+
+[[objects]]
+type = "mesh"
+positions = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
+faces = [[0, 1, 2], [0, 2, 3]]
+uvs = [[0, 0], [1, 0], [1, 1], [0, 1]]
+transform = [ { scale = [2, 2, 2] } ]
+
+[[objects]]
+type = "obj"
+file = "../models/tetra.obj"
+material = "blue"
+"#;
+
+#[test]
+fn full_feature_file_sets_every_setting() {
+    let scene = parse(FULL).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        scene.settings,
+        RenderSettings {
+            width: 320,
+            height: 200,
+            max_depth: 7,
+            min_weight: 0.05,
+            block_size: 8,
+            samples: 4,
+            background: Color::new(0.1, 0.2, 0.3),
+            ambient: Color::splat(0.3),
+            shadows: false,
+            reflections: false,
+            refractions: false,
+            textures: false,
+        }
+    );
+    let spec = scene.camera.spec;
+    assert_eq!(
+        (spec.eye, spec.look_at),
+        (Vec3::new(0.0, 2.0, 8.0), Vec3::Y)
+    );
+    assert_eq!((spec.view_angle, spec.near), (30.0, 0.5));
+}
+
+#[test]
+fn full_feature_file_scales_light_colours_and_normalises_directions() {
+    let scene = parse(FULL).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        scene.lights,
+        [
+            Light::Point {
+                position: Vec3::new(5.0, 8.0, 5.0),
+                color: Color::new(2.0, 1.0, 0.5),
+            },
+            Light::Directional {
+                direction: Vec3::new(0.0, 0.6, 0.8),
+                color: Color::ONE,
+            },
+        ]
+    );
+}
+
+#[test]
+fn full_feature_file_numbers_materials_and_textures_by_name() {
+    let scene = parse(FULL).unwrap_or_else(|e| panic!("{e}"));
+    // Default material first, then by name: blue, red. Textures by name: checks, stripes, tiles.
+    assert_eq!(scene.materials.len(), 3);
+    assert_eq!(
+        scene.materials[DEFAULT_MATERIAL as usize],
+        Material::default()
+    );
+    assert_eq!(scene.materials[1].color, Color::new(0.0, 0.0, 1.0));
+    assert_eq!(
+        scene.materials[2],
+        Material {
+            color: Color::new(0.8, 0.1, 0.1),
+            texture: Some(0),
+            ambient: 0.2,
+            diffuse: 0.7,
+            specular: 0.5,
+            specular_color: Color::new(1.0, 1.0, 0.0),
+            shininess: 10.0,
+            reflectivity: 0.25,
+            transparency: 0.5,
+            ior: 1.33,
+            fresnel: true,
+        }
+    );
+    assert!(matches!(
+        scene.textures[0],
+        Texture::Checker3d { size: 0.5, .. }
+    ));
+    assert!(matches!(
+        scene.textures[1],
+        Texture::CheckerUv {
+            u_count: 4.0,
+            v_count: 1.0,
+            ..
+        }
+    ));
+    assert!(matches!(
+        &scene.textures[2],
+        Texture::Image { wrap: Wrap::Clamp, scale, .. } if *scale == Vec2::new(3.0, 2.0)
+    ));
+    let objects = &scene.geometry.objects;
+    assert_eq!(
+        (objects[0].material, objects[1].material),
+        (2, DEFAULT_MATERIAL)
+    );
+}
+
+#[test]
+fn full_feature_file_composes_transforms_in_file_order() {
+    let scene = parse(FULL).unwrap_or_else(|e| panic!("{e}"));
+    let sphere = &scene.geometry.objects[0];
+    assert_eq!(
+        sphere.shape,
+        Shape::Sphere(raylab::shapes::Sphere {
+            center: Vec3::Y,
+            radius: 2.0,
+        })
+    );
+    let transform = sphere.transform.expect("the sphere has a transform");
+    // Translate by +y, then rotate 90° about y, then scale y by 2: (1, 0, 0) → (1, 1, 0) →
+    // (0, 1, -1) → (0, 2, -1).
+    let p = transform.point_to_world(Vec3::X);
+    assert!(close(p, Vec3::new(0.0, 2.0, -1.0)), "{p}");
+    // No transform key: no transform.
+    assert_eq!(scene.geometry.objects[1].transform, None);
+    match &scene.geometry.objects[1].shape {
+        Shape::Plane(plane) => assert_eq!((plane.point, plane.normal), (-Vec3::Y, Vec3::Y)),
+        other => panic!("expected the plane, got {other:?}"),
+    }
+}
+
+#[test]
+fn full_feature_file_turns_triangles_meshes_and_obj_files_into_meshes() {
+    let scene = parse(FULL).unwrap_or_else(|e| panic!("{e}"));
+    let meshes = &scene.geometry.meshes;
+    assert_eq!(meshes.len(), 4, "triangle, quad and the OBJ's two groups");
+    assert_eq!(scene.geometry.triangles.len(), 1 + 2 + 4);
+    assert_eq!(meshes[0].normals, [Vec3::Z; 3]);
+    assert_eq!(meshes[0].material, 1);
+    // The quad was scaled by 2 into the world and took the default material.
+    assert_eq!(meshes[1].positions[2], Vec3::new(2.0, 2.0, 0.0));
+    assert_eq!(meshes[1].uvs.len(), 4);
+    assert_eq!(meshes[1].material, DEFAULT_MATERIAL);
+    // A `material` key overrides the OBJ's MTL materials, which are then not added.
+    assert!(meshes[2..].iter().all(|m| m.material == 1));
+    assert_eq!(scene.materials.len(), 3);
+}
+
+#[test]
+fn an_empty_file_is_a_scene_with_every_default() {
+    let scene = parse("").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.settings, RenderSettings::default());
+    assert!(scene.lights.is_empty() && scene.geometry.objects.is_empty());
+    assert_eq!(scene.materials, [Material::default()]);
+}
+
+#[test]
+fn objects_may_be_written_as_inline_tables() {
+    let scene =
+        parse("objects = [ { type = \"sphere\", radius = 3 } ]").unwrap_or_else(|e| panic!("{e}"));
+    assert!(matches!(
+        scene.geometry.objects[0].shape,
+        Shape::Sphere(s) if s.radius == 3.0 && s.center == Vec3::ZERO
+    ));
+}
+
+// ---- OBJ files and relative paths ------------------------------------------------------------
+
+#[test]
+fn obj_files_keep_their_normals_and_texture_coordinates() {
+    let text = "[[objects]]\ntype = \"obj\"\nfile = \"../models/tetra.obj\"\n";
+    let scene = parse(text).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.geometry.triangles.len(), 4);
+    for mesh in &scene.geometry.meshes {
+        assert_eq!(mesh.normals.len(), mesh.positions.len());
+        assert_eq!(mesh.uvs.len(), mesh.positions.len());
+        assert!(mesh.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-4));
+    }
+    // Without a `material` key, the two MTL materials join the scene after the default one.
+    assert_eq!(scene.materials.len(), 3);
+    let used: Vec<u32> = scene.geometry.meshes.iter().map(|m| m.material).collect();
+    assert_eq!(used, [1, 2]);
+}
+
+#[test]
+fn obj_files_without_normals_or_materials_load_flat_with_the_default_material() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("quad.obj"),
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n",
+    )
+    .unwrap();
+    let text = "[[objects]]\ntype = \"obj\"\nfile = \"quad.obj\"\n";
+    let scene = parse_scene(text, Path::new("test.toml"), dir.path()).unwrap();
+    assert_eq!(
+        scene.geometry.triangles.len(),
+        2,
+        "the quad is triangulated"
+    );
+    assert!(scene.geometry.meshes[0].normals.is_empty());
+    assert_eq!(scene.geometry.meshes[0].material, DEFAULT_MATERIAL);
+}
+
+#[test]
+fn obj_files_with_bad_face_indices_are_errors_at_the_file_name() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("bad.obj"), "v 0 0 0\nf 1 2 3\n").unwrap();
+    let text = "[[objects]]\ntype = \"obj\"\nfile = \"bad.obj\"\n";
+    let error = parse_scene(text, Path::new("test.toml"), dir.path()).unwrap_err();
+    assert_eq!((error.line, error.column), (3, 8), "{error}");
+    assert!(error.message.contains("bad.obj"), "{error}");
+}
+
+#[test]
+fn relative_paths_resolve_against_the_scene_files_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenes = dir.path().join("scenes");
+    std::fs::create_dir(&scenes).unwrap();
+    std::fs::copy(
+        assets().join("textures/grid.png"),
+        dir.path().join("grid.png"),
+    )
+    .unwrap();
+    let text = "[textures.grid]\ntype = \"image\"\nfile = \"../grid.png\"\n";
+    let scene_path = scenes.join("scene.toml");
+    std::fs::write(&scene_path, text).unwrap();
+    let scene = load_scene(&scene_path).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.textures.len(), 1);
+    // The same text read against another folder does not find the image.
+    let error = parse_scene(text, Path::new("elsewhere.toml"), &assets()).unwrap_err();
+    assert_eq!((error.line, error.column), (3, 8), "{error}");
+}
+
+#[test]
+fn a_missing_scene_file_is_an_error_naming_it() {
+    let path = scenes_dir().join("no-such-scene.toml");
+    let error = load_scene(&path).unwrap_err();
+    assert_eq!(error.file, path);
+    assert!(error.message.contains("cannot read"), "{error}");
+}
+
+// ---- errors ----------------------------------------------------------------------------------
+
+#[test]
+fn syntax_errors_point_at_the_unexpected_character() {
+    assert_error(
+        "[render]\nwidth = 640\nheight = [1, 2\n",
+        3,
+        15,
+        "expected `]`",
+    );
+    assert_error("[render\n", 1, 8, "expected `]`");
+}
+
+#[test]
+fn display_reads_like_a_compiler_message() {
+    let error = assert_error("[[objects]]\ntype = \"sphere\"\nradius = -1\n", 3, 10, "");
+    assert_eq!(
+        error.to_string(),
+        "test.toml:3:10: sphere radius must be a positive number, got -1\n  |\n3 | radius = -1\n  |          ^^"
+    );
+}
+
+#[test]
+fn unknown_keys_are_errors_listing_the_known_ones() {
+    assert_error("[render]\nwidht = 3\n", 2, 1, "`width`");
+    let error = assert_error(
+        "[[objects]]\ntype = \"sphere\"\nradiuss = 1\n",
+        3,
+        1,
+        "radius",
+    );
+    assert!(
+        error.message.contains("`material` and `transform`"),
+        "{error}"
+    );
+    assert_error("colour = [1, 1, 1]\n", 1, 1, "`materials`");
+    assert_error("[materials.red]\ncolour = [1, 0, 0]\n", 2, 1, "`color`");
+}
+
+#[test]
+fn missing_fields_point_at_their_table() {
+    assert_error(
+        "[[lights]]\ntype = \"point\"\n",
+        1,
+        1,
+        "missing field `position`",
+    );
+    assert_error(
+        "[render]\nwidth = 10\n\n[[objects]]\ntype = \"triangle\"\n",
+        4,
+        1,
+        "missing field `vertices`",
+    );
+    assert_error(
+        "[textures.wood]\ntype = \"image\"\n",
+        1,
+        1,
+        "missing field `file`",
+    );
+}
+
+#[test]
+fn a_missing_or_unknown_type_says_which_kinds_exist() {
+    assert_error("[[objects]]\nradius = 1\n", 1, 1, "missing field `type`");
+    assert_error(
+        "[[objects]]\ntype = \"cube\"\n",
+        2,
+        8,
+        "expected one of `sphere`",
+    );
+    assert_error(
+        "[[lights]]\ntype = \"spot\"\n",
+        2,
+        8,
+        "`point` or `directional`",
+    );
+    assert_error("[textures.t]\ntype = 3\n", 2, 8, "expected a string");
+}
+
+#[test]
+fn wrong_types_say_what_was_expected() {
+    assert_error("[render]\nwidth = \"wide\"\n", 2, 9, "expected u32");
+    assert_error("[render]\nshadows = 1\n", 2, 11, "expected a boolean");
+    assert_error(
+        "[[objects]]\ntype = \"sphere\"\ncenter = [0, \"up\", 0]\n",
+        3,
+        14,
+        "expected f32",
+    );
+    assert_error(
+        "[[objects]]\ntype = \"sphere\"\ncenter = [0, 1]\n",
+        3,
+        10,
+        "expected an array of length 3",
+    );
+}
+
+#[test]
+fn out_of_range_numbers_point_at_the_value() {
+    assert_error(
+        "[[objects]]\ntype = \"sphere\"\nradius = -2.5\n",
+        3,
+        10,
+        "positive",
+    );
+    assert_error("[materials.m]\nreflectivity = 1.5\n", 2, 16, "from 0 to 1");
+    assert_error("[materials.m]\ncolor = [1, -1, 0]\n", 2, 9, "non-negative");
+    assert_error(
+        "[textures.t]\ntype = \"checker3d\"\nsize = 0\n",
+        3,
+        8,
+        "positive",
+    );
+    assert_error(
+        "[[lights]]\ntype = \"directional\"\ndirection = [0, 0, 0]\n",
+        3,
+        13,
+        "not all zero",
+    );
+    // An element of an array is pointed at on its own.
+    assert_error(
+        "[[objects]]\ntype = \"mesh\"\npositions = [[0, 0, 0], [0, nan, 0]]\nfaces = []\n",
+        3,
+        25,
+        "finite",
+    );
+}
+
+#[test]
+fn transform_steps_are_checked_where_they_are_written() {
+    assert_error(
+        "[[objects]]\ntype = \"sphere\"\ntransform = [{ translate = [1, 0, 0] }, { scale = [1, 0, 1] }]\n",
+        3,
+        51,
+        "non-zero",
+    );
+    assert_error(
+        "[[objects]]\ntype = \"sphere\"\ntransform = [{ rotate = { axis = [0, 0, 0], degrees = 5 } }]\n",
+        3,
+        34,
+        "not all zero",
+    );
+    assert_error(
+        "[[objects]]\ntype = \"plane\"\ntransform = [{ shear = [1, 0, 0] }]\n",
+        3,
+        16,
+        "`translate`, `rotate`, `scale`",
+    );
+}
+
+#[test]
+fn unknown_names_list_the_names_defined() {
+    assert_error(
+        "[materials.red]\n[materials.blue]\n[[objects]]\ntype = \"sphere\"\nmaterial = \"green\"\n",
+        5,
+        12,
+        "unknown material `green`; expected one of `blue`, `red`",
+    );
+    assert_error(
+        "[materials.red]\ntexture = \"wood\"\n",
+        2,
+        11,
+        "unknown texture `wood`; the scene defines no textures",
+    );
+}
+
+#[test]
+fn missing_files_point_at_the_file_name() {
+    assert_error(
+        "[textures.t]\ntype = \"image\"\nfile = \"no-such.png\"\n",
+        3,
+        8,
+        "cannot load texture image",
+    );
+    assert_error(
+        "[[objects]]\ntype = \"obj\"\nfile = \"no-such.obj\"\n",
+        3,
+        8,
+        "cannot load OBJ file",
+    );
+    // A file that is there but is not an image.
+    assert_error(
+        "[textures.t]\ntype = \"image\"\nfile = \"../models/tetra.obj\"\n",
+        3,
+        8,
+        "cannot load texture image",
+    );
+}
+
+#[test]
+fn camera_errors_point_at_the_key_or_the_camera_table() {
+    assert_error(
+        "[camera]\neye = [1, 2, 3]\nlook_at = [1, 2, 3]\n",
+        3,
+        11,
+        "coincide",
+    );
+    assert_error(
+        "[camera]\neye = [0, 5, 0]\nup = [0, 2, 0]\n",
+        3,
+        6,
+        "parallel",
+    );
+    // The default up vector is parallel: only the table can be blamed.
+    assert_error("\n[camera]\neye = [0, 5, 0]\n", 2, 1, "parallel");
+    assert_error("[camera]\nview_angle = 180\n", 2, 14, "view angle");
+    assert_error("[camera]\nnear = 0\n", 2, 8, "near distance");
+}
+
+#[test]
+fn render_settings_errors_point_at_the_key() {
+    assert_error("[render]\nwidth = 0\n", 2, 9, "at least 1×1");
+    assert_error("[render]\nheight = 100000\n", 2, 10, "at most");
+    assert_error("[render]\nmax_depth = 0\n", 2, 13, "max_depth");
+    assert_error("[render]\nmin_weight = 2\n", 2, 14, "min_weight");
+    assert_error("[render]\nsamples = 0\n", 2, 11, "samples");
+}
+
+#[test]
+fn block_size_must_be_a_power_of_two() {
+    assert_error(
+        "[render]\nblock_size = 12\n",
+        2,
+        14,
+        "block_size must be a power of two",
+    );
+    assert_error("[render]\nblock_size = 128\n", 2, 14, "from 1 to 64");
+}
+
+#[test]
+fn mesh_errors_point_at_the_part_at_fault() {
+    let quad = "[[objects]]\ntype = \"mesh\"\npositions = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\n";
+    assert_error(
+        &format!("{quad}faces = [[0, 1, 3]]\n"),
+        4,
+        9,
+        "vertex 3, which does not exist",
+    );
+    assert_error(
+        &format!("{quad}faces = [[0, 1, 2]]\nnormals = [[0, 0, 1]]\n"),
+        5,
+        11,
+        "1 normals for 3 vertices",
+    );
+    assert_error(
+        "[[objects]]\ntype = \"triangle\"\nvertices = [[0, 0, 0], [1, 1, 1], [2, 2, 2]]\n",
+        3,
+        12,
+        "no area",
+    );
+}
+
+// ---- robustness ------------------------------------------------------------------------------
+
+/// xorshift64*: a small deterministic generator, so that a failure can be replayed.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+}
+
+/// Characters that mean something to TOML or to the schema, and a few that do not.
+const ALPHABET: &[char] = &[
+    '[', ']', '{', '}', '=', '"', '\'', ',', '.', '#', '\n', ' ', '-', '+', '0', '1', '9', 'e',
+    'a', 'z', '_', 'é', '\t', '\\',
+];
+
+fn mutate(text: &str, rng: &mut Rng) -> String {
+    let mut chars: Vec<char> = text.chars().collect();
+    for _ in 0..1 + rng.below(4) {
+        let at = rng.below(chars.len() + 1);
+        match rng.below(6) {
+            0 if at < chars.len() => {
+                chars.remove(at);
+            }
+            1 => chars.insert(at, ALPHABET[rng.below(ALPHABET.len())]),
+            2 if at < chars.len() => chars[at] = ALPHABET[rng.below(ALPHABET.len())],
+            3 => {
+                let text: String = chars.iter().collect();
+                let mut lines: Vec<&str> = text.lines().collect();
+                if lines.len() > 1 {
+                    let (a, b) = (rng.below(lines.len()), rng.below(lines.len()));
+                    lines.swap(a, b);
+                }
+                chars = lines.join("\n").chars().collect();
+            }
+            4 => chars.truncate(at),
+            _ => {
+                // Copy a stretch of the text elsewhere: duplicated keys and tables.
+                let from = rng.below(chars.len());
+                let len = rng.below(40).min(chars.len() - from);
+                let piece: Vec<char> = chars[from..from + len].to_vec();
+                let at = at.min(chars.len());
+                chars.splice(at..at, piece);
+            }
+        }
+    }
+    chars.into_iter().collect()
+}
+
+#[test]
+fn mutated_scene_files_never_panic() {
+    let mut rng = Rng(0x5EED_CAFE_F00D_1234);
+    let mut originals: Vec<String> = std::fs::read_dir(scenes_dir())
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.extension().is_some_and(|e| e == "toml"))
+        .map(|path| std::fs::read_to_string(path).unwrap())
+        .collect();
+    originals.sort();
+    assert!(originals.len() >= 5);
+    originals.push(FULL.to_string());
+    let (mut parsed, mut rejected) = (0, 0);
+    for _ in 0..20_000 {
+        let original = &originals[rng.below(originals.len())];
+        let text = mutate(original, &mut rng);
+        let outcome = std::panic::catch_unwind(|| {
+            parse_scene(&text, Path::new("fuzz.toml"), &scenes_dir()).map(|_| ())
+        });
+        match outcome {
+            Ok(Ok(())) => parsed += 1,
+            Ok(Err(error)) => {
+                assert!(error.line >= 1 && error.column >= 1, "{error}");
+                rejected += 1;
+            }
+            Err(_) => panic!("parse_scene panicked on:\n{text}"),
+        }
+    }
+    // Both outcomes must be common, or the mutations are too mild or too wild to test much.
+    assert!(
+        parsed > 1000 && rejected > 1000,
+        "{parsed} parsed, {rejected} rejected"
+    );
+}
+
+#[test]
+fn every_analytic_shape_type_is_read() {
+    let scene = parse(
+        r#"
+[[objects]]
+type = "polygon"
+vertices = [[0, 0, 0], [2, 0, 0], [2, 1, 0], [1, 0.5, 0], [0, 1, 0]]
+[[objects]]
+type = "box"
+min = [-1, -1, -1]
+max = [1, 2, 3]
+[[objects]]
+type = "cylinder"
+base = [0, 0, 0]
+top = [0, 2, 0]
+radius = 0.5
+capped = false
+[[objects]]
+type = "cone"
+base_radius = 1
+top_radius = 0.5
+[[objects]]
+type = "ellipsoid"
+radii = [1, 2, 3]
+[[objects]]
+type = "paraboloid"
+radius = 1
+height = 2
+capped = true
+"#,
+    )
+    .unwrap();
+    let kinds: Vec<&str> = scene
+        .geometry
+        .objects
+        .iter()
+        .map(|o| match &o.shape {
+            Shape::Polygon(_) => "polygon",
+            Shape::Cuboid(_) => "box",
+            Shape::TaperedCylinder(c) if c.is_capped() => "capped",
+            Shape::TaperedCylinder(_) => "open",
+            Shape::Ellipsoid(_) => "ellipsoid",
+            Shape::Paraboloid(_) => "paraboloid",
+            _ => "other",
+        })
+        .collect();
+    assert_eq!(
+        kinds,
+        [
+            "polygon",
+            "box",
+            "open",
+            "capped",
+            "ellipsoid",
+            "paraboloid"
+        ]
+    );
+}
+
+#[test]
+fn degenerate_shapes_are_errors_at_the_object() {
+    assert_error(
+        "[[objects]]\ntype = \"cylinder\"\nbase = [0, 1, 0]\ntop = [0, 1, 0]\n",
+        1,
+        1,
+        "axis",
+    );
+    assert_error(
+        "[[objects]]\ntype = \"polygon\"\nvertices = [[0, 0, 0], [1, 0, 0]]\n",
+        1,
+        1,
+        "3 vertices",
+    );
+    assert_error(
+        "[[objects]]\ntype = \"box\"\nmin = [1, 0, 0]\nmax = [0, 1, 1]\n",
+        1,
+        1,
+        "min",
+    );
+}
