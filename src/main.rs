@@ -2,7 +2,6 @@
 //! images from the command line.
 
 mod cli;
-mod scene_shim;
 mod viewer;
 
 use std::process::ExitCode;

@@ -171,7 +171,10 @@ fn cpu_render(scene: &Scene, size: u32, camera: CameraSpec) -> Vec<u8> {
 fn mismatches(screenshot: &Path, rect: (f32, f32, f32, f32), size: u32, expected: &[u8]) -> usize {
     let shot = image::open(screenshot).unwrap().to_rgb8();
     let (x0, y0, w, h) = rect;
-    assert!(w >= size as f32 && h >= size as f32, "the image is shown at least 1:1");
+    assert!(
+        w >= size as f32 && h >= size as f32,
+        "the image is shown at least 1:1"
+    );
     let mut bad = 0;
     for j in 0..size {
         for i in 0..size {
@@ -205,8 +208,16 @@ fn the_window_shows_the_default_scene_as_the_cpu_renders_it() {
     ]) else {
         return;
     };
-    assert!(run.success, "stdout: {}\nstderr: {}", run.stdout, run.stderr);
-    assert!(run.stderr.contains("block size 1 at 96×96"), "{}", run.stderr);
+    assert!(
+        run.success,
+        "stdout: {}\nstderr: {}",
+        run.stdout, run.stderr
+    );
+    assert!(
+        run.stderr.contains("block size 1 at 96×96"),
+        "{}",
+        run.stderr
+    );
     let scene = default_scene().unwrap();
     let expected = cpu_render(&scene, size, scene.camera.spec);
     let rect = image_rect(&run.stdout);
@@ -235,17 +246,31 @@ fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
     ]) else {
         return;
     };
-    assert!(run.success, "stdout: {}\nstderr: {}", run.stdout, run.stderr);
+    assert!(
+        run.success,
+        "stdout: {}\nstderr: {}",
+        run.stdout, run.stderr
+    );
     let scene = default_scene().unwrap();
     let camera = printed_camera(&run.stdout);
-    assert!((camera.eye - scene.camera.spec.eye).length() > 0.5, "the camera moved");
-    assert_eq!(camera.look_at, scene.camera.spec.look_at, "orbit keeps the centre");
+    assert!(
+        (camera.eye - scene.camera.spec.eye).length() > 0.5,
+        "the camera moved"
+    );
+    assert_eq!(
+        camera.look_at, scene.camera.spec.look_at,
+        "orbit keeps the centre"
+    );
     // Refinement ran to block size 1 once for the first view and again after the change.
     let block_ones = run.stderr.matches("block size 1 at").count();
     assert!(block_ones >= 2, "{}", run.stderr);
     let rect = image_rect(&run.stdout);
     let new_view = cpu_render(&scene, size, camera);
-    assert_eq!(mismatches(&shot, rect, size, &new_view), 0, "the window shows the new view");
+    assert_eq!(
+        mismatches(&shot, rect, size, &new_view),
+        0,
+        "the window shows the new view"
+    );
     let old_view = cpu_render(&scene, size, scene.camera.spec);
     assert!(mismatches(&shot, rect, size, &old_view) > (size * size / 10) as usize);
 }
@@ -275,7 +300,13 @@ fn help_documents_the_viewer() {
             .unwrap();
         let text = String::from_utf8_lossy(&output.stdout);
         assert!(output.status.success());
-        for option in ["--size", "--block-size", "--screenshot", "--exit-when-done", "--script"] {
+        for option in [
+            "--size",
+            "--block-size",
+            "--screenshot",
+            "--exit-when-done",
+            "--script",
+        ] {
             assert!(text.contains(option), "{args:?} lacks {option}: {text}");
         }
     }

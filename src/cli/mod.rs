@@ -6,9 +6,7 @@ mod view;
 use std::path::Path;
 
 use clap::{Parser, Subcommand};
-use raylab::scene::Scene;
-
-use crate::scene_shim as scene;
+use raylab::scene::{self, Scene};
 
 #[derive(Parser, Debug)]
 #[command(

@@ -54,7 +54,9 @@ pub struct ViewArgs {
 fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let side = |s: &str| match s.trim().parse::<u32>() {
         Ok(n) if n >= 1 => Ok(n),
-        _ => Err(format!("`{s}` is not a size (use N or WIDTHxHEIGHT, e.g. 512 or 640x480)")),
+        _ => Err(format!(
+            "`{s}` is not a size (use N or WIDTHxHEIGHT, e.g. 512 or 640x480)"
+        )),
     };
     match text.split_once(['x', 'X', '×']) {
         Some((w, h)) => Ok((side(w)?, side(h)?)),

@@ -378,7 +378,12 @@ impl App {
 
     fn status(&self) -> String {
         let Some(r) = &self.rendering else {
-            return if self.loading { "loading…" } else { "no scene" }.to_string();
+            return if self.loading {
+                "loading…"
+            } else {
+                "no scene"
+            }
+            .to_string();
         };
         let outcome = r.report.outcome();
         if let Some(Outcome::Failed(e)) = &outcome {
@@ -425,7 +430,11 @@ impl App {
                 let new = match other {
                     Action::Orbit { yaw, pitch } => Some(navigation::orbit(spec, yaw, pitch)),
                     Action::Pan { dx, dy } => {
-                        let height = if shown.is_empty() { size.1 as f32 } else { shown.height };
+                        let height = if shown.is_empty() {
+                            size.1 as f32
+                        } else {
+                            shown.height
+                        };
                         Some(navigation::pan(spec, dx, dy, height))
                     }
                     Action::Dolly(steps) => Some(navigation::dolly(spec, steps)),
@@ -505,7 +514,11 @@ impl App {
             };
             shown = letterbox(area, image_size.0, image_size.1);
             if self.rendering.is_none() {
-                let text = self.panel.load_error.as_deref().unwrap_or("loading the scene…");
+                let text = self
+                    .panel
+                    .load_error
+                    .as_deref()
+                    .unwrap_or("loading the scene…");
                 ui.put(rect, egui::Label::new(text));
             }
             let area = ImageArea {
@@ -549,8 +562,10 @@ impl App {
         let Some(gfx) = &mut self.gfx else { return };
         gfx.egui_state
             .handle_platform_output(&gfx.window, output.platform_output);
-        let primitives = ctx.tessellate(std::mem::take(&mut output.shapes), output.pixels_per_point);
-        gfx.painter.set_textures(&gfx.gpu, &mut output.textures_delta);
+        let primitives =
+            ctx.tessellate(std::mem::take(&mut output.shapes), output.pixels_per_point);
+        gfx.painter
+            .set_textures(&gfx.gpu, &mut output.textures_delta);
 
         // Upload the film if it changed; remember how far the render was when it was read.
         let mut uploaded = None;
@@ -634,7 +649,8 @@ impl App {
         }
 
         // The next frame: soon while something moves, else when egui or an event asks.
-        let animating = tracing || self.loading || input::flying(&ctx) || !self.options.script.is_done();
+        let animating =
+            tracing || self.loading || input::flying(&ctx) || !self.options.script.is_done();
         let egui_delay = output
             .viewport_output
             .get(&egui::ViewportId::ROOT)
@@ -694,7 +710,15 @@ impl ApplicationHandler<UserEvent> for App {
                 gfx.window.request_redraw();
             }
             WindowEvent::DroppedFile(path) => {
-                self.apply(Action::Open(Some(path)), PixelRect { x: 0.0, y: 0.0, width: 0.0, height: 0.0 });
+                self.apply(
+                    Action::Open(Some(path)),
+                    PixelRect {
+                        x: 0.0,
+                        y: 0.0,
+                        width: 0.0,
+                        height: 0.0,
+                    },
+                );
                 self.request_redraw();
             }
             WindowEvent::RedrawRequested => self.redraw(event_loop),

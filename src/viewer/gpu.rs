@@ -19,9 +19,10 @@ impl Gpu {
         event_loop: &ActiveEventLoop,
         window: Arc<Window>,
     ) -> Result<(Gpu, wgpu::Surface<'static>), String> {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_with_display_handle_from_env(
-            Box::new(event_loop.owned_display_handle()),
-        ));
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_with_display_handle_from_env(
+                Box::new(event_loop.owned_display_handle()),
+            ));
         let surface = instance
             .create_surface(window)
             .map_err(|e| format!("cannot draw into the window: {e}"))?;

@@ -168,7 +168,11 @@ mod tests {
         let s = orbit(&spec(), 90.0, 0.0);
         assert!(close(s.eye, Vec3::new(10.0, 0.0, 0.0)), "{:?}", s.eye);
         let s = orbit(&spec(), 0.0, 30.0);
-        let expected = Vec3::new(0.0, 10.0 * 30f32.to_radians().sin(), 10.0 * 30f32.to_radians().cos());
+        let expected = Vec3::new(
+            0.0,
+            10.0 * 30f32.to_radians().sin(),
+            10.0 * 30f32.to_radians().cos(),
+        );
         assert!(close(s.eye, expected), "{:?}", s.eye);
     }
 

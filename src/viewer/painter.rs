@@ -60,7 +60,9 @@ impl Painter {
         };
         let mut encoder = gpu
             .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") });
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("frame"),
+            });
         let egui_commands = self.egui.update_buffers(
             &gpu.device,
             &gpu.queue,

@@ -34,7 +34,11 @@ pub struct PanelState {
 }
 
 /// Shows the side panel; returns what its buttons asked for.
-pub fn side_panel(ui: &mut egui::Ui, controls: &mut Controls, state: &mut PanelState) -> Vec<Action> {
+pub fn side_panel(
+    ui: &mut egui::Ui,
+    controls: &mut Controls,
+    state: &mut PanelState,
+) -> Vec<Action> {
     let mut actions = Vec::new();
     egui::Panel::left("controls")
         .resizable(true)
@@ -95,8 +99,10 @@ fn scene_section(ui: &mut egui::Ui, state: &mut PanelState, actions: &mut Vec<Ac
 }
 
 fn file_name(path: &Path) -> String {
-    path.file_name()
-        .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
 }
 
 fn vector(ui: &mut egui::Ui, label: &str, v: &mut glam::Vec3) {
@@ -127,10 +133,18 @@ fn camera_section(ui: &mut egui::Ui, controls: &mut Controls, actions: &mut Vec<
                 );
             });
             ui.horizontal(|ui| {
-                if ui.button("Reset").on_hover_text("the scene's camera").clicked() {
+                if ui
+                    .button("Reset")
+                    .on_hover_text("the scene's camera")
+                    .clicked()
+                {
                     actions.push(Action::ResetCamera);
                 }
-                if ui.button("Frame (F)").on_hover_text("look at the whole scene").clicked() {
+                if ui
+                    .button("Frame (F)")
+                    .on_hover_text("look at the whole scene")
+                    .clicked()
+                {
                     actions.push(Action::Frame);
                 }
             });
@@ -159,7 +173,9 @@ fn tracing_section(ui: &mut egui::Ui, controls: &mut Controls, state: &mut Panel
             egui::ComboBox::from_label("starting block size")
                 .selected_text(s.block_size.to_string())
                 .show_ui(ui, |ui| {
-                    let sizes = std::iter::successors(Some(1), |b| (b * 2 <= MAX_BLOCK_SIZE).then_some(b * 2));
+                    let sizes = std::iter::successors(Some(1), |b| {
+                        (b * 2 <= MAX_BLOCK_SIZE).then_some(b * 2)
+                    });
                     for b in sizes {
                         ui.selectable_value(&mut s.block_size, b, b.to_string());
                     }

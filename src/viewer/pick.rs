@@ -32,7 +32,8 @@ mod tests {
         let loaded = scene_source::load(None).unwrap();
         let camera = loaded.scene.camera;
         let size = (64, 48);
-        let centre = surface_point(&loaded.scene, &loaded.bvh, &camera, size, (32.0, 24.0)).unwrap();
+        let centre =
+            surface_point(&loaded.scene, &loaded.bvh, &camera, size, (32.0, 24.0)).unwrap();
         // The point lies on the view axis, in front of the eye.
         let to_point = (centre - camera.eye).normalize();
         assert!(to_point.dot(-camera.n) > 0.999, "{centre}");

@@ -134,7 +134,10 @@ impl QuadRenderer {
             });
         }
         let image = self.image.as_ref().map(|i| &i.texture);
-        (image.unwrap_or_else(|| unreachable!("the texture was just made")), !fits)
+        (
+            image.unwrap_or_else(|| unreachable!("the texture was just made")),
+            !fits,
+        )
     }
 
     /// Draws the image into `shown` (whole pixels, inside a target of `target_size`).
@@ -172,7 +175,14 @@ mod tests {
         let format = wgpu::TextureFormat::Rgba8Unorm;
         let mut quad = QuadRenderer::new(&gpu.device, format);
         let image: Vec<u8> = (0..iw * ih)
-            .flat_map(|i| [(i * 37 % 256) as u8, (i * 11 % 256) as u8, (i % 7 * 40) as u8, 255])
+            .flat_map(|i| {
+                [
+                    (i * 37 % 256) as u8,
+                    (i * 11 % 256) as u8,
+                    (i % 7 * 40) as u8,
+                    255,
+                ]
+            })
             .collect();
         let (texture, created) = quad.image_texture(&gpu.device, iw, ih);
         assert!(created);
@@ -243,7 +253,10 @@ mod tests {
                 } else {
                     &CLEAR[..]
                 };
-                assert_eq!(got, expected, "pixel ({x}, {y}) of {tw}×{th}, shown {shown:?}");
+                assert_eq!(
+                    got, expected,
+                    "pixel ({x}, {y}) of {tw}×{th}, shown {shown:?}"
+                );
             }
         }
     }

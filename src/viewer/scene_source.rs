@@ -8,9 +8,7 @@ use std::time::{Duration, Instant};
 use glam::Vec3;
 use raylab::aabb::Aabb;
 use raylab::bvh::Bvh;
-use raylab::scene::Scene;
-
-use crate::scene_shim as scene_loader;
+use raylab::scene::{self, Scene};
 
 /// A scene ready to trace, with where it came from.
 pub struct LoadedScene {
@@ -39,8 +37,8 @@ impl LoadedScene {
 pub fn load(path: Option<&Path>) -> Result<LoadedScene, String> {
     let start = Instant::now();
     let scene = match path {
-        Some(path) => scene_loader::load_scene(path),
-        None => scene_loader::default_scene(),
+        Some(path) => scene::load_scene(path),
+        None => scene::default_scene(),
     }
     .map_err(|e| e.to_string())?;
     let bvh = Bvh::build(&scene.geometry);

@@ -19,7 +19,10 @@ use super::action::Action;
 enum Step {
     Wait,
     /// The same action on each of `frames` frames.
-    Repeat { action: Action, frames: u32 },
+    Repeat {
+        action: Action,
+        frames: u32,
+    },
 }
 
 /// A parsed script and how far it has run.
@@ -81,7 +84,14 @@ fn parse_step(step: &str) -> Result<Step, String> {
     };
     let count = |n: Vec<f32>, needed: usize, optional: usize| -> Result<Vec<f32>, String> {
         if n.len() < needed || n.len() > needed + optional {
-            Err(format!("takes {needed} numbers{}", if optional > 0 { format!(" (and {optional} optional)") } else { String::new() }))
+            Err(format!(
+                "takes {needed} numbers{}",
+                if optional > 0 {
+                    format!(" (and {optional} optional)")
+                } else {
+                    String::new()
+                }
+            ))
         } else {
             Ok(n)
         }
@@ -172,10 +182,9 @@ mod tests {
 
     #[test]
     fn every_step_parses() {
-        let script = Script::parse(
-            "pan 10 -4; dolly -2; fly 0 0 1 0.5; reset; save; open a b.toml; open",
-        )
-        .unwrap();
+        let script =
+            Script::parse("pan 10 -4; dolly -2; fly 0 0 1 0.5; reset; save; open a b.toml; open")
+                .unwrap();
         let mut script = script;
         let all: Vec<_> = std::iter::from_fn(|| script.next(true)).collect();
         assert_eq!(

@@ -36,9 +36,9 @@ pub fn status_line(s: &RenderStatus) -> String {
             p.block_size
         )
     };
-    let pass_time = s
-        .last_pass
-        .map_or("–".to_string(), |t| format!("{:.1}", t.as_secs_f64() * 1e3));
+    let pass_time = s.last_pass.map_or("–".to_string(), |t| {
+        format!("{:.1}", t.as_secs_f64() * 1e3)
+    });
     let r = &s.rays;
     let mrays = r.total() as f64 / s.elapsed.as_secs_f64().max(1e-9) / 1e6;
     format!(
@@ -77,7 +77,10 @@ mod tests {
         let line = status_line(&s);
         assert!(line.starts_with("pass 2/5 · block 8 · 25%"), "{line}");
         assert!(line.contains("12.3 ms/pass"), "{line}");
-        assert!(line.contains("1000000 eye (900000 hit), 500000 shadow"), "{line}");
+        assert!(
+            line.contains("1000000 eye (900000 hit), 500000 shadow"),
+            "{line}"
+        );
         assert!(line.contains("2.00 Mrays/s · 60 fps"), "{line}");
     }
 

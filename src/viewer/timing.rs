@@ -42,7 +42,8 @@ impl Timing {
         self.tracing += dt;
         self.window_frames += 1;
         self.window_time += dt;
-        if self.enabled && self.last_log.elapsed() >= LOG_EVERY && self.window_time > Duration::ZERO {
+        if self.enabled && self.last_log.elapsed() >= LOG_EVERY && self.window_time > Duration::ZERO
+        {
             eprintln!(
                 "stats: UI {:.1} fps while tracing",
                 fps(self.window_frames, self.window_time)
@@ -130,8 +131,14 @@ mod tests {
         t.block_one(Duration::from_millis(700), (512, 512));
         let s = t.summary();
         assert!(s.contains("UI 50.0 fps while tracing (30 frames)"), "{s}");
-        assert!(s.contains("first image median 20.0 ms over 3 restarts"), "{s}");
-        assert!(s.contains("block size 1 median 700.0 ms over 1 renders"), "{s}");
+        assert!(
+            s.contains("first image median 20.0 ms over 3 restarts"),
+            "{s}"
+        );
+        assert!(
+            s.contains("block size 1 median 700.0 ms over 1 renders"),
+            "{s}"
+        );
         assert!(Timing::new(false).summary().contains("n/a"));
     }
 }

@@ -18,17 +18,18 @@ impl SceneWatcher {
         let file = std::path::absolute(path).map_err(|e| format!("{}: {e}", path.display()))?;
         let folder = file.parent().unwrap_or(Path::new("/")).to_path_buf();
         let name = file.file_name().map(|n| n.to_os_string());
-        let mut watcher = notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
-            let Ok(event) = event else { return };
-            let relevant = matches!(
-                event.kind,
-                EventKind::Create(_) | EventKind::Modify(_) | EventKind::Remove(_)
-            );
-            if relevant && event.paths.iter().any(|p| p.file_name() == name.as_deref()) {
-                changed();
-            }
-        })
-        .map_err(|e| format!("cannot watch {}: {e}", path.display()))?;
+        let mut watcher =
+            notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
+                let Ok(event) = event else { return };
+                let relevant = matches!(
+                    event.kind,
+                    EventKind::Create(_) | EventKind::Modify(_) | EventKind::Remove(_)
+                );
+                if relevant && event.paths.iter().any(|p| p.file_name() == name.as_deref()) {
+                    changed();
+                }
+            })
+            .map_err(|e| format!("cannot watch {}: {e}", path.display()))?;
         watcher
             .watch(&folder, RecursiveMode::NonRecursive)
             .map_err(|e| format!("cannot watch {}: {e}", folder.display()))?;

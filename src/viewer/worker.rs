@@ -213,7 +213,10 @@ mod tests {
             if let Some(outcome) = report.outcome() {
                 return outcome;
             }
-            assert!(start.elapsed() < Duration::from_secs(60), "the job never ended");
+            assert!(
+                start.elapsed() < Duration::from_secs(60),
+                "the job never ended"
+            );
             std::thread::sleep(Duration::from_millis(2));
         }
     }
@@ -228,7 +231,11 @@ mod tests {
         assert_eq!(wait_for(&report), Outcome::Finished);
         assert!(control.progress().finished);
         assert_eq!(report.passes().len(), 4, "block sizes 8, 4, 2, 1");
-        assert!(film.pixels().iter().any(|c| *c != raylab::material::Color::ZERO));
+        assert!(
+            film.pixels()
+                .iter()
+                .any(|c| *c != raylab::material::Color::ZERO)
+        );
     }
 
     #[test]
