@@ -4,7 +4,7 @@
 //! camera. The tests skip (saying why) only where no display can be had at all: no `DISPLAY` and
 //! no `xvfb-run` (`scripts/test` installs it on Debian).
 
-use std::io::Read;
+use std::io::{BufRead, BufReader, Read};
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::sync::Mutex;
@@ -15,7 +15,7 @@ use raylab::bvh::Bvh;
 use raylab::camera::{Camera, CameraSpec};
 use raylab::output::to_srgb8;
 use raylab::progressive;
-use raylab::scene::{Scene, default_scene};
+use raylab::scene::{Scene, default_scene, load_scene};
 use raylab::whitted::Tracer;
 
 /// One viewer at a time: they share two cores, and parallel `xvfb-run -a` can race for a display.
@@ -52,6 +52,14 @@ fn display_wrapper() -> Option<Vec<String>> {
 
 /// Runs the viewer with `args` in a window; `None` (after saying why) if no display can be had.
 fn run_viewer(args: &[&str]) -> Option<Run> {
+    run_viewer_watching(args, |_| {})
+}
+
+/// [`run_viewer`], handing each line the viewer prints on stderr to `on_line` as it comes.
+fn run_viewer_watching(
+    args: &[&str],
+    mut on_line: impl FnMut(&str) + Send + 'static,
+) -> Option<Run> {
     let Some(wrapper) = display_wrapper() else {
         eprintln!(
             "SKIPPED: no display and no xvfb-run; install it (Debian: apt-get install xvfb xauth \
@@ -78,16 +86,20 @@ fn run_viewer(args: &[&str]) -> Option<Run> {
         .spawn()
         .expect("start the viewer");
     let mut stdout = child.stdout.take().unwrap();
-    let mut stderr = child.stderr.take().unwrap();
+    let stderr = child.stderr.take().unwrap();
     let out = std::thread::spawn(move || {
         let mut s = String::new();
         let _ = stdout.read_to_string(&mut s);
         s
     });
     let err = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = stderr.read_to_string(&mut s);
-        s
+        let mut all = String::new();
+        for line in BufReader::new(stderr).lines().map_while(Result::ok) {
+            on_line(&line);
+            all.push_str(&line);
+            all.push('\n');
+        }
+        all
     });
     let start = Instant::now();
     let status = loop {
@@ -273,6 +285,91 @@ fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
     );
     let old_view = cpu_render(&scene, size, scene.camera.spec);
     assert!(mismatches(&shot, rect, size, &old_view) > (size * size / 10) as usize);
+}
+
+/// A small scene file: a red ball on a floor, seen from `eye`.
+fn ball_scene(eye: [f32; 3]) -> String {
+    format!(
+        "[render]\nwidth = 64\nheight = 64\n\n[camera]\neye = {eye:?}\nlook_at = [0, 1, 0]\n\
+         view_angle = 45\n\n[[lights]]\ntype = \"point\"\nposition = [3, 6, 4]\n\n\
+         [materials.red]\ncolor = [0.8, 0.2, 0.1]\n\n[[objects]]\ntype = \"plane\"\n\n\
+         [[objects]]\ntype = \"sphere\"\ncenter = [0, 1, 0]\nradius = 1\nmaterial = \"red\"\n"
+    )
+}
+
+#[test]
+fn a_broken_scene_file_shows_its_error_and_keeps_the_last_good_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let good = dir.path().join("good.toml");
+    let broken = dir.path().join("broken.toml");
+    std::fs::write(&good, ball_scene([0.0, 2.0, 6.0])).unwrap();
+    std::fs::write(&broken, "[camera]\neye = [0, 1]\n").unwrap();
+    let shot = dir.path().join("shot.png");
+    let Some(run) = run_viewer(&[
+        good.to_str().unwrap(),
+        "--exit-when-done",
+        "--script",
+        &format!("wait; open {}; wait", broken.display()),
+        "--screenshot",
+        shot.to_str().unwrap(),
+    ]) else {
+        return;
+    };
+    assert!(
+        run.success,
+        "stdout: {}\nstderr: {}",
+        run.stdout, run.stderr
+    );
+    // The loader's message, located: file:line:column.
+    let located = format!("{}:2:", broken.display());
+    assert!(run.stderr.contains(&located), "{}", run.stderr);
+    let scene = load_scene(&good).unwrap();
+    let expected = cpu_render(&scene, 64, scene.camera.spec);
+    assert_eq!(mismatches(&shot, image_rect(&run.stdout), 64, &expected), 0);
+}
+
+#[test]
+fn saving_the_watched_scene_file_renders_it_again() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("ball.toml");
+    std::fs::write(&path, ball_scene([0.0, 2.0, 6.0])).unwrap();
+    let shot = dir.path().join("shot.png");
+    let moved = [3.0, 3.0, 4.0];
+    let (edit_path, temp) = (path.clone(), dir.path().join(".ball.toml.new"));
+    let mut edited = false;
+    // Once the first view is done, save the file with the camera moved, as an editor would
+    // (write a new file, rename it over the old one).
+    let on_line = move |line: &str| {
+        if !edited && line.contains("block size 1 at") {
+            edited = true;
+            std::fs::write(&temp, ball_scene(moved)).unwrap();
+            std::fs::rename(&temp, &edit_path).unwrap();
+        }
+    };
+    let Some(run) = run_viewer_watching(
+        &[
+            path.to_str().unwrap(),
+            "--stats",
+            "--exit-when-done",
+            "--script",
+            "wait; wait-load 2; wait; print-camera",
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ],
+        on_line,
+    ) else {
+        return;
+    };
+    assert!(
+        run.success,
+        "stdout: {}\nstderr: {}",
+        run.stdout, run.stderr
+    );
+    assert_eq!(printed_camera(&run.stdout).eye, Vec3::from(moved));
+    let scene = load_scene(&path).unwrap();
+    assert_eq!(scene.camera.spec.eye, Vec3::from(moved));
+    let expected = cpu_render(&scene, 64, scene.camera.spec);
+    assert_eq!(mismatches(&shot, image_rect(&run.stdout), 64, &expected), 0);
 }
 
 #[test]

@@ -41,8 +41,9 @@ pub struct ViewArgs {
     /// size 1 on screen.
     #[arg(long)]
     stats: bool,
-    /// Scripted input, steps separated by `;`: wait, orbit YAW PITCH [FRAMES], pan DX DY
-    /// [FRAMES], dolly STEPS, fly X Y Z SECONDS, frame, reset, save, print-camera, open [PATH].
+    /// Scripted input, steps separated by `;`: wait (for refinement to finish), wait-load N (for
+    /// N scene loads, the first included), orbit YAW PITCH [FRAMES], pan DX DY [FRAMES], dolly STEPS,
+    /// fly X Y Z SECONDS, frame, reset, save, print-camera, open [PATH].
     #[arg(long, value_name = "STEPS", value_parser = Script::parse)]
     script: Option<Script>,
     /// Most frames per second while refining.

@@ -112,6 +112,8 @@ pub struct App {
     watcher: Option<SceneWatcher>,
     generation: u64,
     loading: bool,
+    /// Scene loads finished (well or not), for the script's `wait-load`.
+    loads: u64,
     timing: Timing,
     last_frame: Instant,
     fps: f32,
@@ -158,6 +160,7 @@ impl App {
             watcher: None,
             generation: 0,
             loading: false,
+            loads: 0,
             timing,
             last_frame: Instant::now(),
             fps: 0.0,
@@ -259,6 +262,7 @@ impl App {
 
     fn loaded(&mut self, event_loop: &ActiveEventLoop, result: Result<LoadedScene, String>) {
         self.loading = false;
+        self.loads += 1;
         let loaded = match result {
             Ok(loaded) => loaded,
             Err(message) => {
@@ -371,9 +375,18 @@ impl App {
         });
     }
 
-    /// Refinement is over and on screen, and no scene is loading.
+    /// Refinement of the current scene and controls is over and on screen, and no scene is
+    /// loading.
     fn idle(&self) -> bool {
-        !self.loading && self.rendering.as_ref().is_some_and(|r| r.settled)
+        let settled = match (&self.rendering, &self.scene, &self.controls) {
+            (Some(r), Some(scene), Some(controls)) => {
+                let current = Arc::ptr_eq(&r.scene, scene) && r.controls == *controls;
+                // Controls that cannot be rendered leave the last render as the final one.
+                r.settled && (current || self.panel.control_error.is_some())
+            }
+            _ => false,
+        };
+        !self.loading && settled
     }
 
     fn status(&self) -> String {
@@ -551,13 +564,14 @@ impl App {
             width: 0.0,
             height: 0.0,
         });
-        if let Some(action) = self.options.script.next(self.idle()) {
+        if let Some(action) = self.options.script.next(self.idle(), self.loads) {
             actions.push(action);
         }
         for action in actions {
             self.apply(action, shown);
         }
         self.sync_render(now);
+        let idle = self.idle();
 
         let Some(gfx) = &mut self.gfx else { return };
         gfx.egui_state
@@ -605,8 +619,7 @@ impl App {
         let done = self.options.exit_when_done
             && presented
             && self.options.script.is_done()
-            && self.rendering.as_ref().is_some_and(|r| r.settled)
-            && !self.loading;
+            && idle;
         if done && let Some(path) = &self.options.screenshot {
             let size = gfx.surface.size();
             let format = gfx.surface.format();

@@ -3,6 +3,8 @@
 //! lines:
 //!
 //! - `wait`: until refinement has reached its last pass and the image is on screen;
+//! - `wait-load N`: until N scene loads (or failed loads) have finished since the start, the
+//!   first scene's included: `wait-load 2` waits for the watched file to be saved and reloaded;
 //! - `orbit YAW PITCH [FRAMES]`: degrees, spread over FRAMES frames like a drag (default 1);
 //! - `pan DX DY [FRAMES]`: pixels, likewise; `dolly STEPS`: wheel steps;
 //! - `fly X Y Z SECONDS`: as the W/A/S/D/Q/E keys; `frame`; `reset`;
@@ -18,6 +20,8 @@ use super::action::Action;
 #[derive(Clone, Debug, PartialEq)]
 enum Step {
     Wait,
+    /// Waits for this many scene loads to have finished.
+    WaitLoad(u64),
     /// The same action on each of `frames` frames.
     Repeat {
         action: Action,
@@ -47,14 +51,18 @@ impl Script {
     }
 
     /// This frame's action, if any. `idle` says whether refinement is over (and shown), which is
-    /// what `wait` waits for.
-    pub fn next(&mut self, idle: bool) -> Option<Action> {
+    /// what `wait` waits for; `loads` counts the scene loads finished so far.
+    pub fn next(&mut self, idle: bool, loads: u64) -> Option<Action> {
         loop {
             match self.steps.front_mut()? {
                 Step::Wait if idle => {
                     self.steps.pop_front();
                 }
                 Step::Wait => return None,
+                Step::WaitLoad(count) if loads >= *count => {
+                    self.steps.pop_front();
+                }
+                Step::WaitLoad(_) => return None,
                 Step::Repeat { action, frames } => {
                     let action = action.clone();
                     *frames -= 1;
@@ -85,7 +93,8 @@ fn parse_step(step: &str) -> Result<Step, String> {
     let count = |n: Vec<f32>, needed: usize, optional: usize| -> Result<Vec<f32>, String> {
         if n.len() < needed || n.len() > needed + optional {
             Err(format!(
-                "takes {needed} numbers{}",
+                "takes {needed} number{}{}",
+                if needed == 1 { "" } else { "s" },
                 if optional > 0 {
                     format!(" (and {optional} optional)")
                 } else {
@@ -107,6 +116,13 @@ fn parse_step(step: &str) -> Result<Step, String> {
     let spread = |n: f32, frames: u32| n / frames as f32;
     Ok(match command {
         "wait" if args.is_empty() => Step::Wait,
+        "wait-load" => {
+            let n = count(numbers()?, 1, 0)?[0];
+            if !(n >= 1.0 && n.fract() == 0.0) {
+                return Err(format!("takes a whole number of loads from 1, got {n}"));
+            }
+            Step::WaitLoad(n as u64)
+        }
         "frame" if args.is_empty() => once(Action::Frame),
         "reset" if args.is_empty() => once(Action::ResetCamera),
         "save" if args.is_empty() => once(Action::Save),
@@ -149,8 +165,8 @@ fn parse_step(step: &str) -> Result<Step, String> {
         }
         _ => {
             return Err(
-                "unknown step (use wait, orbit, pan, dolly, fly, frame, reset, save, \
-                 print-camera, open)"
+                "unknown step (use wait, wait-load, orbit, pan, dolly, fly, frame, reset, \
+                 save, print-camera, open)"
                     .into(),
             );
         }
@@ -164,20 +180,28 @@ mod tests {
     #[test]
     fn steps_run_in_order_and_wait_for_refinement() {
         let mut script = Script::parse("wait; orbit 30 -10 3\nframe;wait;print-camera").unwrap();
-        assert_eq!(script.next(false), None, "waits while refining");
+        assert_eq!(script.next(false, 0), None, "waits while refining");
         let orbit = Action::Orbit {
             yaw: 10.0,
             pitch: -10.0 / 3.0,
         };
         for _ in 0..3 {
-            assert_eq!(script.next(true), Some(orbit.clone()));
+            assert_eq!(script.next(true, 0), Some(orbit.clone()));
         }
-        assert_eq!(script.next(false), Some(Action::Frame));
-        assert_eq!(script.next(false), None);
+        assert_eq!(script.next(false, 0), Some(Action::Frame));
+        assert_eq!(script.next(false, 0), None);
         assert!(!script.is_done());
-        assert_eq!(script.next(true), Some(Action::PrintCamera));
+        assert_eq!(script.next(true, 0), Some(Action::PrintCamera));
         assert!(script.is_done());
-        assert_eq!(script.next(true), None);
+        assert_eq!(script.next(true, 0), None);
+    }
+
+    #[test]
+    fn wait_load_waits_for_that_many_loads() {
+        let mut script = Script::parse("wait-load 2; frame").unwrap();
+        assert_eq!(script.next(true, 0), None);
+        assert_eq!(script.next(true, 1), None);
+        assert_eq!(script.next(false, 2), Some(Action::Frame));
     }
 
     #[test]
@@ -186,7 +210,7 @@ mod tests {
             Script::parse("pan 10 -4; dolly -2; fly 0 0 1 0.5; reset; save; open a b.toml; open")
                 .unwrap();
         let mut script = script;
-        let all: Vec<_> = std::iter::from_fn(|| script.next(true)).collect();
+        let all: Vec<_> = std::iter::from_fn(|| script.next(true, 0)).collect();
         assert_eq!(
             all,
             vec![
@@ -213,6 +237,8 @@ mod tests {
             ("orbit 1 2 0", "whole number"),
             ("orbit 1 2 1.5", "whole number"),
             ("wait 3", "takes no arguments"),
+            ("wait-load", "takes 1 number"),
+            ("wait-load 0", "whole number of loads"),
             ("dolly nan", "not a number"),
         ] {
             let err = Script::parse(text).unwrap_err();
