@@ -7,7 +7,7 @@
 use std::io::{BufRead, BufReader, Read};
 use std::path::Path;
 use std::process::{Command, Stdio};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use glam::Vec3;
@@ -52,13 +52,14 @@ fn display_wrapper() -> Option<Vec<String>> {
 
 /// Runs the viewer with `args` in a window; `None` (after saying why) if no display can be had.
 fn run_viewer(args: &[&str]) -> Option<Run> {
-    run_viewer_watching(args, |_| {})
+    run_viewer_watching(args, |_, _| {})
 }
 
-/// [`run_viewer`], handing each line the viewer prints on stderr to `on_line` as it comes.
+/// [`run_viewer`], handing each line the viewer prints on stderr to `on_line` as it comes, with
+/// the process id of the command started (xvfb-run, or the viewer itself).
 fn run_viewer_watching(
     args: &[&str],
-    mut on_line: impl FnMut(&str) + Send + 'static,
+    mut on_line: impl FnMut(&str, u32) + Send + 'static,
 ) -> Option<Run> {
     let Some(wrapper) = display_wrapper() else {
         eprintln!(
@@ -87,6 +88,7 @@ fn run_viewer_watching(
         .expect("start the viewer");
     let mut stdout = child.stdout.take().unwrap();
     let stderr = child.stderr.take().unwrap();
+    let child_id = child.id();
     let out = std::thread::spawn(move || {
         let mut s = String::new();
         let _ = stdout.read_to_string(&mut s);
@@ -95,7 +97,7 @@ fn run_viewer_watching(
     let err = std::thread::spawn(move || {
         let mut all = String::new();
         for line in BufReader::new(stderr).lines().map_while(Result::ok) {
-            on_line(&line);
+            on_line(&line, child_id);
             all.push_str(&line);
             all.push('\n');
         }
@@ -339,7 +341,7 @@ fn saving_the_watched_scene_file_renders_it_again() {
     let mut edited = false;
     // Once the first view is done, save the file with the camera moved, as an editor would
     // (write a new file, rename it over the old one).
-    let on_line = move |line: &str| {
+    let on_line = move |line: &str, _| {
         if !edited && line.contains("block size 1 at") {
             edited = true;
             std::fs::write(&temp, ball_scene(moved)).unwrap();
@@ -370,6 +372,66 @@ fn saving_the_watched_scene_file_renders_it_again() {
     assert_eq!(scene.camera.spec.eye, Vec3::from(moved));
     let expected = cpu_render(&scene, 64, scene.camera.spec);
     assert_eq!(mismatches(&shot, image_rect(&run.stdout), 64, &expected), 0);
+}
+
+/// The viewer's process: `pid` itself or its child named raylab (under xvfb-run).
+fn viewer_pid(pid: u32) -> Option<u32> {
+    let comm = |p: u32| std::fs::read_to_string(format!("/proc/{p}/comm")).unwrap_or_default();
+    if comm(pid).trim() == "raylab" {
+        return Some(pid);
+    }
+    std::fs::read_dir("/proc")
+        .ok()?
+        .filter_map(|e| e.ok()?.file_name().to_str()?.parse::<u32>().ok())
+        .find(|&p| comm(p).trim() == "raylab" && stat_fields(p).get(1) == Some(&pid.to_string()))
+}
+
+/// The fields of /proc/PID/stat after the command's name: state, parent, …
+fn stat_fields(pid: u32) -> Vec<String> {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).unwrap_or_default();
+    let after_name = stat.rsplit_once(')').map_or("", |(_, rest)| rest);
+    after_name.split_whitespace().map(String::from).collect()
+}
+
+/// User and system CPU time of a process so far, in clock ticks.
+fn cpu_ticks(pid: u32) -> u64 {
+    let fields = stat_fields(pid);
+    let field = |i: usize| {
+        fields
+            .get(i)
+            .and_then(|f| f.parse::<u64>().ok())
+            .unwrap_or(0)
+    };
+    field(11) + field(12)
+}
+
+#[test]
+fn an_idle_viewer_uses_no_cpu() {
+    let measured = Arc::new(Mutex::new(None));
+    let result = measured.clone();
+    // Once refinement is done, measure the viewer's CPU time for two seconds, then close it.
+    let on_line = move |line: &str, child: u32| {
+        if line.contains("block size 1 at") && result.lock().unwrap().is_none() {
+            let pid = viewer_pid(child).expect("the viewer's process");
+            std::thread::sleep(Duration::from_millis(500));
+            let before = cpu_ticks(pid);
+            std::thread::sleep(Duration::from_secs(2));
+            let used = cpu_ticks(pid) - before;
+            *result.lock().unwrap() = Some(used);
+            let _ = Command::new("kill").arg(pid.to_string()).status();
+        }
+    };
+    let Some(run) = run_viewer_watching(&["--size", "64", "--stats"], on_line) else {
+        return;
+    };
+    let used = measured
+        .lock()
+        .unwrap()
+        .unwrap_or_else(|| panic!("{}", run.stderr));
+    assert!(
+        used <= 5,
+        "an idle viewer used {used} clock ticks of CPU in 2 s"
+    );
 }
 
 #[test]

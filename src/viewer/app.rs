@@ -616,10 +616,8 @@ impl App {
             Acquired::Retry => gfx.window.request_redraw(),
             Acquired::Skip => {}
         }
-        let done = self.options.exit_when_done
-            && presented
-            && self.options.script.is_done()
-            && idle;
+        let done =
+            self.options.exit_when_done && presented && self.options.script.is_done() && idle;
         if done && let Some(path) = &self.options.screenshot {
             let size = gfx.surface.size();
             let format = gfx.surface.format();
@@ -712,8 +710,10 @@ impl ApplicationHandler<UserEvent> for App {
             return;
         }
         let Some(gfx) = &mut self.gfx else { return };
-        let response = gfx.egui_state.on_window_event(&gfx.window, &event);
-        if response.repaint {
+        // egui asks to repaint after any event, a redraw included: that would never stop.
+        if !matches!(event, WindowEvent::RedrawRequested)
+            && gfx.egui_state.on_window_event(&gfx.window, &event).repaint
+        {
             gfx.window.request_redraw();
         }
         match event {
