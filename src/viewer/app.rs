@@ -592,8 +592,10 @@ impl App {
             if created {
                 self.uploader.invalidate();
             }
+            let start = Instant::now();
             if let Some(rgba) = self.uploader.changed_pixels(&r.film) {
                 write_texture(&gfx.gpu.queue, texture, rgba);
+                self.timing.upload(start.elapsed());
                 uploaded = Some(progress);
             } else if r.report.outcome().is_some() {
                 uploaded = Some(progress);

@@ -1,6 +1,6 @@
 //! Measurements of the viewer itself, printed with `--stats`: frames per second while the tracer
-//! runs, and for each restart the time from the change to the first coarse image on screen and
-//! to block size 1 on screen.
+//! runs, the time to upload the film, and for each restart the time from the change to the first
+//! coarse image on screen and to block size 1 on screen.
 
 use std::time::{Duration, Instant};
 
@@ -16,6 +16,9 @@ pub struct Timing {
     window_time: Duration,
     first_images: Vec<Duration>,
     block_ones: Vec<Duration>,
+    /// Film-to-texture uploads and the time they took.
+    uploads: u32,
+    upload_time: Duration,
     last_log: Instant,
 }
 
@@ -29,6 +32,8 @@ impl Timing {
             window_time: Duration::ZERO,
             first_images: Vec::new(),
             block_ones: Vec::new(),
+            uploads: 0,
+            upload_time: Duration::ZERO,
             last_log: Instant::now(),
         }
     }
@@ -45,13 +50,24 @@ impl Timing {
         if self.enabled && self.last_log.elapsed() >= LOG_EVERY && self.window_time > Duration::ZERO
         {
             eprintln!(
-                "stats: UI {:.1} fps while tracing",
-                fps(self.window_frames, self.window_time)
+                "stats: UI {:.1} fps while tracing; upload {:.2} ms on average",
+                fps(self.window_frames, self.window_time),
+                self.mean_upload_ms()
             );
             self.window_frames = 0;
             self.window_time = Duration::ZERO;
             self.last_log = Instant::now();
         }
+    }
+
+    /// The film was converted and written to the texture in `time`.
+    pub fn upload(&mut self, time: Duration) {
+        self.uploads += 1;
+        self.upload_time += time;
+    }
+
+    fn mean_upload_ms(&self) -> f64 {
+        ms(self.upload_time) / f64::from(self.uploads.max(1))
     }
 
     /// The first image of a restart reached the screen `after` the change.
@@ -81,10 +97,11 @@ impl Timing {
     /// One line over the whole session.
     pub fn summary(&self) -> String {
         format!(
-            "stats: summary: UI {:.1} fps while tracing ({} frames); first image median {} over \
-             {} restarts; block size 1 median {} over {} renders",
+            "stats: summary: UI {:.1} fps while tracing ({} frames); upload {:.2} ms on average; \
+             first image median {} over {} restarts; block size 1 median {} over {} renders",
             fps(self.frames, self.tracing),
             self.frames,
+            self.mean_upload_ms(),
             median_ms(&self.first_images),
             self.first_images.len(),
             median_ms(&self.block_ones),
@@ -129,8 +146,11 @@ mod tests {
             t.first_image(Duration::from_millis(ms), 16);
         }
         t.block_one(Duration::from_millis(700), (512, 512));
+        t.upload(Duration::from_millis(1));
+        t.upload(Duration::from_millis(3));
         let s = t.summary();
         assert!(s.contains("UI 50.0 fps while tracing (30 frames)"), "{s}");
+        assert!(s.contains("upload 2.00 ms on average"), "{s}");
         assert!(
             s.contains("first image median 20.0 ms over 3 restarts"),
             "{s}"

@@ -252,4 +252,27 @@ mod tests {
         assert_eq!(wait_for(&first_report), Outcome::Cancelled);
         assert_eq!(wait_for(&second_report), Outcome::Finished);
     }
+
+    #[test]
+    fn a_failing_tracer_is_reported_and_the_worker_goes_on() {
+        let good = Arc::new(scene_source::load(None).unwrap());
+        let mut broken = scene_source::load(None).unwrap();
+        // An object whose material does not exist makes the tracer index out of bounds.
+        for object in &mut broken.scene.geometry.objects {
+            object.material = 9999;
+        }
+        let broken = Arc::new(broken);
+        let worker = Worker::start(1).unwrap();
+        let failing = job(&broken, 16);
+        let report = failing.report.clone();
+        worker.submit(failing).unwrap();
+        match wait_for(&report) {
+            Outcome::Failed(message) => assert!(message.contains("the tracer failed"), "{message}"),
+            other => panic!("expected a failure, got {other:?}"),
+        }
+        let next = job(&good, 16);
+        let next_report = next.report.clone();
+        worker.submit(next).unwrap();
+        assert_eq!(wait_for(&next_report), Outcome::Finished);
+    }
 }
