@@ -17,6 +17,15 @@ pub enum Acquired {
     Retry,
 }
 
+/// Mailbox (no tearing, never waits) where the surface has it, else Immediate, else Fifo (which
+/// every surface has). The viewer paces its own frames, so it never needs to wait in `present`.
+fn present_mode(modes: &[wgpu::PresentMode]) -> wgpu::PresentMode {
+    [wgpu::PresentMode::Mailbox, wgpu::PresentMode::Immediate]
+        .into_iter()
+        .find(|m| modes.contains(m))
+        .unwrap_or(wgpu::PresentMode::Fifo)
+}
+
 pub struct WindowSurface {
     surface: wgpu::Surface<'static>,
     config: wgpu::SurfaceConfiguration,
@@ -40,7 +49,7 @@ impl WindowSurface {
             format,
             width: size.width,
             height: size.height,
-            present_mode: wgpu::PresentMode::AutoVsync,
+            present_mode: present_mode(&caps.present_modes),
             alpha_mode: caps
                 .alpha_modes
                 .first()

@@ -1,7 +1,7 @@
 //! Texture upload: copies the film into the GPU texture, at most once per frame and only when the
 //! film's [`version`](raylab::film::Film::version) says its pixels changed, in one write of the
-//! whole image. Linear floats become sRGB bytes through a table of the 255 thresholds between
-//! byte values, which gives exactly the library's conversion without a `powf` per channel.
+//! whole image. Linear floats become sRGB bytes through a table indexed by the float's top bits,
+//! which gives exactly the library's conversion without a `powf` per channel.
 
 use std::sync::Arc;
 
@@ -13,35 +13,52 @@ fn srgb_byte(v: f32) -> u8 {
     (linear_to_srgb(v) * 255.0).round() as u8
 }
 
-/// Linear → sRGB byte by table: `thresholds[i]` is the smallest linear value that encodes to
-/// byte `i + 1` or more.
+/// Bucket of a linear value in [0, 1): its bit pattern without the lowest bits. Each bucket is
+/// 1/128 of an octave wide, narrower than the gap between two byte thresholds, so it holds at
+/// most one of them.
+const BUCKET_SHIFT: u32 = 16;
+
+/// Linear → sRGB byte by table: for each bucket of values, the byte of its lowest value and the
+/// value (if any) from which the byte is one more.
 pub struct SrgbEncoder {
-    thresholds: Vec<f32>,
+    buckets: Vec<(u8, f32)>,
 }
 
 impl SrgbEncoder {
     pub fn new() -> SrgbEncoder {
-        let thresholds = (1..=255u8)
-            .map(|byte| {
+        let buckets = (0..1f32.to_bits() >> BUCKET_SHIFT)
+            .map(|k| {
+                let (lo, hi) = (k << BUCKET_SHIFT, ((k + 1) << BUCKET_SHIFT) - 1);
+                let base = srgb_byte(f32::from_bits(lo));
+                if srgb_byte(f32::from_bits(hi)) == base {
+                    return (base, f32::INFINITY);
+                }
                 // Bit patterns of non-negative floats are ordered like the floats.
-                let (mut lo, mut hi) = (0u32, 1f32.to_bits());
+                let (mut lo, mut hi) = (lo, hi);
                 while lo < hi {
                     let mid = lo + (hi - lo) / 2;
-                    if srgb_byte(f32::from_bits(mid)) >= byte {
+                    if srgb_byte(f32::from_bits(mid)) > base {
                         hi = mid;
                     } else {
                         lo = mid + 1;
                     }
                 }
-                f32::from_bits(lo)
+                (base, f32::from_bits(lo))
             })
             .collect();
-        SrgbEncoder { thresholds }
+        SrgbEncoder { buckets }
     }
 
     pub fn encode(&self, v: f32) -> u8 {
-        // NaN compares false, so it encodes to 0, as in the library.
-        self.thresholds.partition_point(|&t| t <= v) as u8
+        if !(v > 0.0) {
+            // Zero, negative or NaN, as the library clamps them.
+            return 0;
+        }
+        if v >= 1.0 {
+            return 255;
+        }
+        let (base, step) = self.buckets[(v.to_bits() >> BUCKET_SHIFT) as usize];
+        base + u8::from(v >= step)
     }
 }
 
@@ -84,18 +101,12 @@ impl Uploader {
         // Read the version first: pixels written later may be included, never missed.
         let version = film.version();
         let (w, h) = (film.width(), film.height());
-        self.bytes.clear();
-        self.bytes.reserve(w as usize * h as usize * 4);
-        for y in 0..h {
-            for x in 0..w {
-                let c = film.get(x, y);
-                self.bytes.extend_from_slice(&[
-                    self.encoder.encode(c.x),
-                    self.encoder.encode(c.y),
-                    self.encoder.encode(c.z),
-                    255,
-                ]);
-            }
+        self.bytes.resize(w as usize * h as usize * 4, 255);
+        for (i, rgba) in self.bytes.chunks_exact_mut(4).enumerate() {
+            let c = film.get(i as u32 % w, i as u32 / w);
+            rgba[0] = self.encoder.encode(c.x);
+            rgba[1] = self.encoder.encode(c.y);
+            rgba[2] = self.encoder.encode(c.z);
         }
         self.uploaded = Some((film.clone(), version));
         Some(&self.bytes)
@@ -131,11 +142,16 @@ mod tests {
             assert_eq!(encoder.encode(v), srgb_byte(v), "{v}");
             v *= 1.0007;
         }
-        for &t in &encoder.thresholds {
-            let below = f32::from_bits(t.to_bits() - 1);
-            assert_eq!(encoder.encode(t), srgb_byte(t));
-            assert_eq!(encoder.encode(below), srgb_byte(below));
+        for &(base, step) in &encoder.buckets {
+            if step.is_finite() {
+                let below = f32::from_bits(step.to_bits() - 1);
+                assert_eq!(encoder.encode(step), srgb_byte(step));
+                assert_eq!(encoder.encode(step), base + 1, "one step per bucket");
+                assert_eq!(encoder.encode(below), srgb_byte(below));
+            }
         }
+        let steps = encoder.buckets.iter().filter(|b| b.1.is_finite()).count();
+        assert_eq!(steps, 255, "every byte boundary is in the table once");
         for v in [-1.0, 0.0, f32::NAN, f32::INFINITY, 1.0] {
             assert_eq!(encoder.encode(v), srgb_byte(v), "{v}");
         }

@@ -96,6 +96,7 @@ impl Worker {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .thread_name(|i| format!("tracer {i}"))
+            .start_handler(|_| lower_priority())
             .build()
             .map_err(|e| format!("cannot start the tracing threads: {e}"))?;
         let (jobs, inbox) = mpsc::channel();
@@ -176,6 +177,21 @@ fn run(pool: &rayon::ThreadPool, inbox: &Receiver<Job>) {
         });
     }
 }
+
+/// Lowers the calling thread's priority, so that on a busy machine the window (and the GPU
+/// driver's threads, which draw it) go before the tracer and the UI stays fluid.
+#[cfg(target_os = "linux")]
+fn lower_priority() {
+    // SAFETY: plain system calls on the calling thread; Linux's setpriority takes a thread id
+    // for PRIO_PROCESS and changes only that thread. Failing leaves the priority as it was.
+    unsafe {
+        let thread = libc::gettid() as libc::id_t;
+        libc::setpriority(libc::PRIO_PROCESS, thread, 10);
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn lower_priority() {}
 
 fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {
     let text = panic
