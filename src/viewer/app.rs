@@ -40,7 +40,7 @@ pub enum UserEvent {
     /// A scene finished loading (or failed to); `generation` tells stale loads apart.
     Loaded {
         generation: u64,
-        result: Result<LoadedScene, String>,
+        result: Result<Box<LoadedScene>, String>,
     },
     /// The watched scene file changed on disk.
     SceneFileChanged,
@@ -243,6 +243,7 @@ impl App {
         self.panel.scene_files = scene_source::scene_files_beside(path.as_deref());
         let (proxy, generation) = (self.proxy.clone(), self.generation);
         scene_source::spawn_load(path, move |result| {
+            let result = result.map(Box::new);
             let _ = proxy.send_event(UserEvent::Loaded { generation, result });
         });
     }
@@ -260,7 +261,7 @@ impl App {
         c
     }
 
-    fn loaded(&mut self, event_loop: &ActiveEventLoop, result: Result<LoadedScene, String>) {
+    fn loaded(&mut self, event_loop: &ActiveEventLoop, result: Result<Box<LoadedScene>, String>) {
         self.loading = false;
         self.loads += 1;
         let loaded = match result {
@@ -303,7 +304,7 @@ impl App {
                 loaded.load_time.as_secs_f64() * 1e3
             );
         }
-        self.scene = Some(Arc::new(loaded));
+        self.scene = Some(Arc::from(loaded));
     }
 
     // ---- rendering ---------------------------------------------------------------------------

@@ -58,7 +58,7 @@ pub fn image_point(
     let u = (px - shown.x) / shown.width;
     let v = (py - shown.y) / shown.height;
     ((0.0..1.0).contains(&u) && (0.0..1.0).contains(&v))
-        .then(|| (u * image_width as f32, v * image_height as f32))
+        .then_some((u * image_width as f32, v * image_height as f32))
 }
 
 #[cfg(test)]

@@ -108,7 +108,7 @@ fn parse_step(step: &str) -> Result<Step, String> {
     let frames = |n: &[f32], at: usize| -> Result<u32, String> {
         match n.get(at) {
             None => Ok(1),
-            Some(&f) if f >= 1.0 && f <= 10_000.0 && f.fract() == 0.0 => Ok(f as u32),
+            Some(&f) if (1.0..=10_000.0).contains(&f) && f.fract() == 0.0 => Ok(f as u32),
             Some(f) => Err(format!("frames must be a whole number from 1, got {f}")),
         }
     };

@@ -50,7 +50,7 @@ impl SrgbEncoder {
     }
 
     pub fn encode(&self, v: f32) -> u8 {
-        if !(v > 0.0) {
+        if v.is_nan() || v <= 0.0 {
             // Zero, negative or NaN, as the library clamps them.
             return 0;
         }
