@@ -20,3 +20,4 @@ pub mod stats;
 pub mod texture;
 pub mod transform;
 pub mod whitted;
+pub mod large_mesh;

@@ -1,5 +1,6 @@
 //! The command line: its arguments (clap) and the subcommands.
 
+mod bench;
 mod render;
 mod view;
 
@@ -31,12 +32,15 @@ enum Command {
     View(view::ViewArgs),
     /// Render a scene file (or the built-in default scene) to an image.
     Render(render::RenderArgs),
+    /// Render a fixed set of scenes and report speed and memory.
+    Bench(bench::BenchArgs),
 }
 
 /// Runs the command; the error is the message to print.
 pub fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Some(Command::Render(args)) => render::run(args),
+        Some(Command::Bench(args)) => bench::run(args),
         Some(Command::View(args)) => view::run(args),
         None => view::run(cli.view),
     }
@@ -48,4 +52,15 @@ fn load_scene(path: Option<&Path>) -> Result<Scene, String> {
         Some(path) => scene::load_scene(path).map_err(|e| e.to_string()),
         None => scene::default_scene().map_err(|e| e.to_string()),
     }
+}
+
+/// A rayon pool of `threads` workers (default: one per core).
+fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, String> {
+    if threads == Some(0) {
+        return Err("--threads must be at least 1".into());
+    }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|e| format!("cannot start worker threads: {e}"))
 }
