@@ -25,6 +25,7 @@ use super::navigation;
 use super::painter::{FrameContent, Painter};
 use super::panels::{self, PanelState};
 use super::pick;
+use super::rendering::Rendering;
 use super::save;
 use super::scene_source::{self, LoadedScene};
 use super::screenshot;
@@ -36,6 +37,7 @@ use super::watch::SceneWatcher;
 use super::worker::{Job, JobReport, Outcome, Worker};
 
 /// What other threads tell the event loop.
+
 pub enum UserEvent {
     /// A scene finished loading (or failed to); `generation` tells stale loads apart.
     Loaded {
@@ -47,78 +49,42 @@ pub enum UserEvent {
 }
 
 /// The window and what draws into it.
-struct Graphics {
-    window: Arc<Window>,
-    gpu: Gpu,
-    surface: WindowSurface,
-    painter: Painter,
-    egui_state: egui_winit::State,
+
+pub(super) struct Graphics {
+    pub(super) window: Arc<Window>,
+    pub(super) gpu: Gpu,
+    pub(super) surface: WindowSurface,
+    pub(super) painter: Painter,
+    pub(super) egui_state: egui_winit::State,
 }
 
 /// The render in progress (or the last one), and what of it has reached the screen.
-struct Rendering {
-    scene: Arc<LoadedScene>,
-    controls: Controls,
-    film: Arc<Film>,
-    control: Arc<RenderControl>,
-    report: Arc<JobReport>,
-    /// When the change that started it was made.
-    changed_at: Instant,
-    first_image_shown: bool,
-    block_one_shown: bool,
-    /// The last pass is on screen (or the render failed): nothing more will come.
-    settled: bool,
-}
-
-impl Rendering {
-    /// Number of block passes (the block size 1 pass is the last of them).
-    fn block_passes(&self) -> u32 {
-        self.controls.settings.block_size.max(1).ilog2() + 1
-    }
-
-    /// Notes what a frame just put on screen: the film as it was at `progress`.
-    fn shown(&mut self, progress: Progress, timing: &mut Timing) {
-        let after = self.changed_at.elapsed();
-        if !self.first_image_shown && (progress.pass >= 1 || progress.finished) {
-            self.first_image_shown = true;
-            timing.first_image(after, self.controls.settings.block_size);
-        }
-        if !self.block_one_shown && (progress.pass >= self.block_passes() || progress.finished) {
-            self.block_one_shown = true;
-            let s = &self.controls.settings;
-            timing.block_one(after, (s.width, s.height));
-        }
-        if progress.finished {
-            self.settled = true;
-        }
-    }
-}
 
 pub struct App {
-    options: Options,
-    proxy: EventLoopProxy<UserEvent>,
-    egui_ctx: egui::Context,
-    gfx: Option<Graphics>,
-    worker: Worker,
-    scene: Option<Arc<LoadedScene>>,
+    pub(super) options: Options,
+    pub(super) proxy: EventLoopProxy<UserEvent>,
+    pub(super) egui_ctx: egui::Context,
+    pub(super) gfx: Option<Graphics>,
+    pub(super) worker: Worker,
+    pub(super) scene: Option<Arc<LoadedScene>>,
     /// The controls as the scene file gives them, to tell which a reloaded file changed.
-    file_controls: Option<Controls>,
-    controls: Option<Controls>,
-    rendering: Option<Rendering>,
-    uploader: Uploader,
-    panel: PanelState,
+    pub(super) file_controls: Option<Controls>,
+    pub(super) controls: Option<Controls>,
+    pub(super) rendering: Option<Rendering>,
+    pub(super) uploader: Uploader,
+    pub(super) panel: PanelState,
     /// The scene file asked for last (watched even while it fails to load).
-    requested: Option<PathBuf>,
-    watcher: Option<SceneWatcher>,
-    generation: u64,
-    loading: bool,
+    pub(super) requested: Option<PathBuf>,
+    pub(super) watcher: Option<SceneWatcher>,
+    pub(super) generation: u64,
+    pub(super) loading: bool,
     /// Scene loads finished (well or not), for the script's `wait-load`.
-    loads: u64,
-    timing: Timing,
-    last_frame: Instant,
-    fps: f32,
-    next_frame: Option<Instant>,
-    exiting: bool,
+    pub(super) loads: u64,
+    pub(super) timing: Timing,
+    pub(super) last_frame: Instant,
+    pub(super) fps: f32,
+    pub(super) next_frame: Option<Instant>,
+    pub(super) exiting: bool,
     /// Why the viewer had to stop.
     pub error: Option<String>,
 }
@@ -171,12 +137,12 @@ impl App {
         })
     }
 
-    fn fail(&mut self, event_loop: &ActiveEventLoop, message: String) {
+    pub(super) fn fail(&mut self, event_loop: &ActiveEventLoop, message: String) {
         self.error = Some(message);
         self.exit(event_loop);
     }
 
-    fn exit(&mut self, event_loop: &ActiveEventLoop) {
+    pub(super) fn exit(&mut self, event_loop: &ActiveEventLoop) {
         if let Some(r) = &self.rendering {
             r.control.cancel();
         }
@@ -184,7 +150,7 @@ impl App {
         event_loop.exit();
     }
 
-    fn request_redraw(&self) {
+    pub(super) fn request_redraw(&self) {
         if let Some(gfx) = &self.gfx {
             gfx.window.request_redraw();
         }
@@ -223,10 +189,8 @@ impl App {
         Ok(())
     }
 
-    // ---- scenes ------------------------------------------------------------------------------
-
     /// Starts loading `path` (the default scene for `None`) and watches it.
-    fn start_load(&mut self, path: Option<PathBuf>) {
+    pub(super) fn start_load(&mut self, path: Option<PathBuf>) {
         self.generation += 1;
         self.loading = true;
         if self.requested != path || (path.is_some() && self.watcher.is_none()) {
@@ -305,378 +269,6 @@ impl App {
             );
         }
         self.scene = Some(Arc::from(loaded));
-    }
-
-    // ---- rendering ---------------------------------------------------------------------------
-
-    /// Restarts refinement if the scene or the controls differ from what is being rendered.
-    fn sync_render(&mut self, changed_at: Instant) {
-        let (Some(scene), Some(controls)) = (&self.scene, &self.controls) else {
-            return;
-        };
-        let current = self
-            .rendering
-            .as_ref()
-            .is_some_and(|r| Arc::ptr_eq(&r.scene, scene) && r.controls == *controls);
-        if current {
-            return;
-        }
-        let camera = match controls.check(self.panel.max_side) {
-            Ok(camera) => camera,
-            Err(e) => {
-                self.panel.control_error = Some(e);
-                return;
-            }
-        };
-        self.panel.control_error = None;
-        let settings = controls.settings.clone();
-        if self.options.size.is_some()
-            || self.file_controls.as_ref().is_some_and(|f| {
-                (f.settings.width, f.settings.height) != (settings.width, settings.height)
-            })
-        {
-            // A size the user chose stays for the next scenes.
-            self.options.size = Some((settings.width, settings.height));
-        }
-        let film = match &self.rendering {
-            // The film is reused at the same size: the new render's first pass paints over
-            // every pixel, and until then the old image stays on screen.
-            Some(r) if (r.film.width(), r.film.height()) == (settings.width, settings.height) => {
-                r.film.clone()
-            }
-            _ => Arc::new(Film::new(settings.width, settings.height)),
-        };
-        if let Some(old) = &self.rendering {
-            old.control.cancel();
-        }
-        let control = Arc::new(RenderControl::default());
-        let report = Arc::new(JobReport::new());
-        let job = Job {
-            scene: scene.clone(),
-            camera,
-            settings,
-            light_scale: controls.light_scale,
-            film: film.clone(),
-            control: control.clone(),
-            report: report.clone(),
-        };
-        if let Err(e) = self.worker.submit(job) {
-            self.panel.control_error = Some(e);
-        }
-        self.rendering = Some(Rendering {
-            scene: scene.clone(),
-            controls: controls.clone(),
-            film,
-            control,
-            report,
-            changed_at,
-            first_image_shown: false,
-            block_one_shown: false,
-            settled: false,
-        });
-    }
-
-    /// Refinement of the current scene and controls is over and on screen, and no scene is
-    /// loading.
-    fn idle(&self) -> bool {
-        let settled = match (&self.rendering, &self.scene, &self.controls) {
-            (Some(r), Some(scene), Some(controls)) => {
-                let current = Arc::ptr_eq(&r.scene, scene) && r.controls == *controls;
-                // Controls that cannot be rendered leave the last render as the final one.
-                r.settled && (current || self.panel.control_error.is_some())
-            }
-            _ => false,
-        };
-        !self.loading && settled
-    }
-
-    fn status(&self) -> String {
-        let Some(r) = &self.rendering else {
-            return if self.loading {
-                "loading…"
-            } else {
-                "no scene"
-            }
-            .to_string();
-        };
-        let outcome = r.report.outcome();
-        if let Some(Outcome::Failed(e)) = &outcome {
-            return e.clone();
-        }
-        let elapsed = match (&outcome, r.report.passes().last()) {
-            (Some(_), Some(_)) => r.report.passes().iter().map(|p| p.time).sum(),
-            _ => r.report.started.elapsed(),
-        };
-        status_line(&RenderStatus {
-            progress: r.control.progress(),
-            last_pass: r.report.last_pass_time(),
-            rays: r.control.rays(),
-            elapsed,
-            fps: self.fps,
-        })
-    }
-
-    // ---- actions -----------------------------------------------------------------------------
-
-    fn apply(&mut self, action: Action, shown: PixelRect) {
-        let bounds = self.scene.as_ref().map(|s| s.bounds);
-        match action {
-            Action::Open(path) => {
-                if let Some(p) = &path {
-                    self.panel.open_field = p.display().to_string();
-                }
-                self.start_load(path);
-            }
-            Action::Save => self.save(),
-            Action::PrintCamera => {
-                if let Some(c) = &self.controls {
-                    println!("{}", save::camera_snippet(&c.camera));
-                    self.panel.message = Some("camera printed on the terminal".into());
-                }
-            }
-            Action::PickCentre { x, y } => self.pick_centre(x, y),
-            other => {
-                let (Some(controls), Some(bounds)) = (&mut self.controls, bounds) else {
-                    return;
-                };
-                let spec = &controls.camera;
-                let size = (controls.settings.width, controls.settings.height);
-                let new = match other {
-                    Action::Orbit { yaw, pitch } => Some(navigation::orbit(spec, yaw, pitch)),
-                    Action::Pan { dx, dy } => {
-                        let height = if shown.is_empty() {
-                            size.1 as f32
-                        } else {
-                            shown.height
-                        };
-                        Some(navigation::pan(spec, dx, dy, height))
-                    }
-                    Action::Dolly(steps) => Some(navigation::dolly(spec, steps)),
-                    Action::Fly { motion, seconds } => {
-                        let distance = navigation::fly_speed(spec, bounds) * seconds;
-                        Some(navigation::fly(spec, motion, distance))
-                    }
-                    Action::Frame => {
-                        navigation::frame(spec, bounds, size.0 as f32 / size.1.max(1) as f32)
-                    }
-                    Action::ResetCamera => self.scene.as_ref().map(|s| s.scene.camera.spec),
-                    _ => None,
-                };
-                if let Some(new) = new {
-                    controls.camera = new;
-                }
-            }
-        }
-    }
-
-    fn pick_centre(&mut self, x: f32, y: f32) {
-        let (Some(scene), Some(controls)) = (&self.scene, &mut self.controls) else {
-            return;
-        };
-        let Ok(camera) = Camera::new(controls.camera) else {
-            return;
-        };
-        let size = (controls.settings.width, controls.settings.height);
-        let point = pick::surface_point(&scene.scene, &scene.bvh, &camera, size, (x, y));
-        match point.and_then(|p| navigation::look_at_point(&controls.camera, p)) {
-            Some(spec) => controls.camera = spec,
-            None => self.panel.message = Some("no surface under the cursor".into()),
-        }
-    }
-
-    fn save(&mut self) {
-        let (Some(r), Some(controls)) = (&self.rendering, &self.controls) else {
-            return;
-        };
-        let path = PathBuf::from(self.panel.save_field.trim());
-        let message = save::save_view(&path, &r.film, &controls.camera)
-            .unwrap_or_else(|e| format!("cannot save: {e}"));
-        println!("{message}");
-        self.panel.message = Some(message);
-    }
-
-    // ---- frames ------------------------------------------------------------------------------
-
-    /// The panels, the status line and the image area; returns the actions and where the image
-    /// goes (physical pixels).
-    fn ui(&mut self, ui: &mut egui::Ui, seconds: f32) -> (Vec<Action>, PixelRect) {
-        let mut actions = Vec::new();
-        let status = self.status();
-        panels::status_bar(ui, &status, &self.panel);
-        if let Some(controls) = &mut self.controls {
-            actions.extend(panels::side_panel(ui, controls, &mut self.panel));
-        }
-        let ppp = ui.ctx().pixels_per_point();
-        let image_size = self
-            .rendering
-            .as_ref()
-            .map_or((0, 0), |r| (r.film.width(), r.film.height()));
-        let mut shown = PixelRect {
-            x: 0.0,
-            y: 0.0,
-            width: 0.0,
-            height: 0.0,
-        };
-        egui::CentralPanel::no_frame().show(ui, |ui| {
-            let rect = ui.available_rect_before_wrap();
-            let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
-            let area = PixelRect {
-                x: rect.min.x * ppp,
-                y: rect.min.y * ppp,
-                width: rect.width() * ppp,
-                height: rect.height() * ppp,
-            };
-            shown = letterbox(area, image_size.0, image_size.1);
-            if self.rendering.is_none() {
-                let text = self
-                    .panel
-                    .load_error
-                    .as_deref()
-                    .unwrap_or("loading the scene…");
-                ui.put(rect, egui::Label::new(text));
-            }
-            let area = ImageArea {
-                shown,
-                pixels_per_point: ppp,
-                image_size,
-            };
-            actions.extend(input::actions(ui.ctx(), &response, &area, seconds));
-        });
-        (actions, shown)
-    }
-
-    fn redraw(&mut self, event_loop: &ActiveEventLoop) {
-        let now = Instant::now();
-        let dt = now - self.last_frame;
-        self.last_frame = now;
-        let Some(gfx) = &mut self.gfx else { return };
-        let raw_input = gfx.egui_state.take_egui_input(&gfx.window);
-        let ctx = self.egui_ctx.clone();
-        let mut actions = Vec::new();
-        let mut shown = None;
-        let mut output = ctx.run_ui(raw_input, |ui| {
-            let (a, s) = self.ui(ui, dt.as_secs_f32().min(0.1));
-            actions = a;
-            shown = Some(s);
-        });
-        let shown = shown.unwrap_or(PixelRect {
-            x: 0.0,
-            y: 0.0,
-            width: 0.0,
-            height: 0.0,
-        });
-        if let Some(action) = self.options.script.next(self.idle(), self.loads) {
-            actions.push(action);
-        }
-        for action in actions {
-            self.apply(action, shown);
-        }
-        self.sync_render(now);
-        let idle = self.idle();
-
-        let Some(gfx) = &mut self.gfx else { return };
-        gfx.egui_state
-            .handle_platform_output(&gfx.window, output.platform_output);
-        let primitives =
-            ctx.tessellate(std::mem::take(&mut output.shapes), output.pixels_per_point);
-        gfx.painter
-            .set_textures(&gfx.gpu, &mut output.textures_delta);
-
-        // Upload the film if it changed; remember how far the render was when it was read.
-        let mut uploaded = None;
-        if let Some(r) = &self.rendering {
-            let progress = r.control.progress();
-            let (texture, created) =
-                gfx.painter
-                    .quad
-                    .image_texture(&gfx.gpu.device, r.film.width(), r.film.height());
-            if created {
-                self.uploader.invalidate();
-            }
-            let start = Instant::now();
-            if let Some(rgba) = self.uploader.changed_pixels(&r.film) {
-                write_texture(&gfx.gpu.queue, texture, rgba);
-                self.timing.upload(start.elapsed());
-                uploaded = Some(progress);
-            } else if r.report.outcome().is_some() {
-                uploaded = Some(progress);
-            }
-        }
-
-        let content = FrameContent {
-            primitives: &primitives,
-            pixels_per_point: output.pixels_per_point,
-            shown,
-        };
-        let mut presented = false;
-        match gfx.surface.acquire(&gfx.gpu) {
-            Acquired::Frame(frame) => {
-                gfx.painter.paint(&gfx.gpu, &frame.texture, &content);
-                gfx.window.pre_present_notify();
-                gfx.gpu.queue.present(frame);
-                presented = true;
-            }
-            Acquired::Retry => gfx.window.request_redraw(),
-            Acquired::Skip => {}
-        }
-        let done =
-            self.options.exit_when_done && presented && self.options.script.is_done() && idle;
-        if done && let Some(path) = &self.options.screenshot {
-            let size = gfx.surface.size();
-            let format = gfx.surface.format();
-            match screenshot::save(&gfx.gpu, &mut gfx.painter, format, size, &content, path) {
-                Ok(()) => {
-                    let s = shown;
-                    println!(
-                        "screenshot {}: {}×{} window, image at x {} y {} size {}×{}",
-                        path.display(),
-                        size.0,
-                        size.1,
-                        s.x,
-                        s.y,
-                        s.width,
-                        s.height
-                    );
-                }
-                Err(e) => self.error = Some(e),
-            }
-        }
-        gfx.painter.free_textures(&mut output.textures_delta);
-
-        let tracing = self.rendering.as_ref().is_some_and(|r| !r.settled);
-        if presented {
-            self.fps = 0.9 * self.fps + 0.1 / dt.as_secs_f32().max(1e-4);
-            self.timing.frame(dt, tracing);
-            if let (Some(r), Some(progress)) = (&mut self.rendering, uploaded) {
-                r.shown(progress, &mut self.timing);
-                if matches!(r.report.outcome(), Some(Outcome::Failed(_))) {
-                    r.settled = true;
-                }
-            }
-        }
-        if done {
-            if self.timing.enabled() {
-                eprintln!("{}", self.timing.summary());
-            }
-            self.exit(event_loop);
-            return;
-        }
-
-        // The next frame: soon while something moves, else when egui or an event asks.
-        let animating =
-            tracing || self.loading || input::flying(&ctx) || !self.options.script.is_done();
-        let egui_delay = output
-            .viewport_output
-            .get(&egui::ViewportId::ROOT)
-            .map_or(Duration::MAX, |v| v.repaint_delay);
-        let frame_time = Duration::from_secs_f32(1.0 / self.options.max_fps.max(1.0));
-        self.next_frame = if animating {
-            Some(now + frame_time)
-        } else if egui_delay < Duration::from_secs(3600) {
-            Some(now + egui_delay.max(frame_time))
-        } else {
-            None
-        };
     }
 }
 

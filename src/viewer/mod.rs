@@ -6,7 +6,9 @@
 
 mod action;
 mod app;
+mod apply;
 mod controls;
+mod frame;
 mod gpu;
 mod input;
 mod layout;
@@ -15,6 +17,7 @@ mod painter;
 mod panels;
 mod pick;
 mod quad;
+mod rendering;
 mod save;
 mod scene_source;
 mod screenshot;
