@@ -53,8 +53,17 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
     };
     println!(
         "{:<16} {:>9} {:>9} {:>9} {:>10} {:>10} {:>10} {:>10} {:>9} {:>8} {:>9}",
-        "scene", "prims", "setup ms", "build ms", "render ms", "eye", "shadow", "reflect", "refract",
-        "Mrays/s", "B/prim"
+        "scene",
+        "prims",
+        "setup ms",
+        "build ms",
+        "render ms",
+        "eye",
+        "shadow",
+        "reflect",
+        "refract",
+        "Mrays/s",
+        "B/prim"
     );
     let mut results = Vec::new();
     for name in &names {
@@ -77,11 +86,17 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
         results.push(r);
     }
     if let Some(peak) = results.last().and_then(|r| r.peak_rss_bytes) {
-        println!("peak resident memory of the process: {:.1} MiB", peak as f64 / 1048576.0);
+        println!(
+            "peak resident memory of the process: {:.1} MiB",
+            peak as f64 / 1048576.0
+        );
     }
     if let Some(path) = &args.json {
-        std::fs::write(path, to_json(&results, args.size, pool.current_num_threads()))
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+        std::fs::write(
+            path,
+            to_json(&results, args.size, pool.current_num_threads()),
+        )
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     }
     Ok(())
 }

@@ -1,15 +1,12 @@
-//! The viewer's window and event loop (winit): each frame runs the egui panels and the navigation,
-//! carries out the actions, restarts refinement when the controls changed, uploads the film if
-//! it changed, and draws. While the tracer works (or a key is held) frames come at a steady rate;
+//! The viewer's window and event loop (winit): the app's state, opening the window and its GPU,
+//! loading and watching scenes, and the events (window, loader, watcher). A frame is drawn in
+//! [`super::frame`]; while the tracer works (or a key is held) frames come at a steady rate,
 //! otherwise the loop sleeps until an event arrives.
 
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
-use raylab::camera::Camera;
-use raylab::film::Film;
-use raylab::progressive::{Progress, RenderControl};
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoopProxy};
@@ -19,25 +16,18 @@ use super::Options;
 use super::action::Action;
 use super::controls::Controls;
 use super::gpu::Gpu;
-use super::input::{self, ImageArea};
-use super::layout::{PixelRect, letterbox};
-use super::navigation;
-use super::painter::{FrameContent, Painter};
-use super::panels::{self, PanelState};
-use super::pick;
+use super::layout::PixelRect;
+use super::painter::Painter;
+use super::panels::PanelState;
 use super::rendering::Rendering;
-use super::save;
 use super::scene_source::{self, LoadedScene};
-use super::screenshot;
-use super::status::{RenderStatus, status_line};
-use super::surface::{Acquired, WindowSurface};
+use super::surface::WindowSurface;
 use super::timing::Timing;
-use super::upload::{Uploader, write_texture};
+use super::upload::Uploader;
 use super::watch::SceneWatcher;
-use super::worker::{Job, JobReport, Outcome, Worker};
+use super::worker::Worker;
 
 /// What other threads tell the event loop.
-
 pub enum UserEvent {
     /// A scene finished loading (or failed to); `generation` tells stale loads apart.
     Loaded {
@@ -49,7 +39,6 @@ pub enum UserEvent {
 }
 
 /// The window and what draws into it.
-
 pub(super) struct Graphics {
     pub(super) window: Arc<Window>,
     pub(super) gpu: Gpu,
@@ -58,8 +47,7 @@ pub(super) struct Graphics {
     pub(super) egui_state: egui_winit::State,
 }
 
-/// The render in progress (or the last one), and what of it has reached the screen.
-
+/// The viewer: its window, the scene, the controls, the render worker and what is on screen.
 pub struct App {
     pub(super) options: Options,
     pub(super) proxy: EventLoopProxy<UserEvent>,

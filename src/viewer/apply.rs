@@ -2,31 +2,15 @@
 //! the orbit centre, and the scene, save and print actions do what they say.
 
 use std::path::PathBuf;
-use std::sync::Arc;
-use std::time::{Duration, Instant};
 
 use raylab::camera::Camera;
-use raylab::film::Film;
-use raylab::progressive::{Progress, RenderControl};
-use winit::event_loop::ActiveEventLoop;
 
 use super::action::Action;
 use super::app::App;
-use super::controls::Controls;
-use super::input::{self, ImageArea};
-use super::layout::{PixelRect, letterbox};
+use super::layout::PixelRect;
 use super::navigation;
-use super::painter::FrameContent;
-use super::panels;
 use super::pick;
 use super::save;
-use super::scene_source::LoadedScene;
-use super::screenshot;
-use super::status::{RenderStatus, status_line};
-use super::surface::Acquired;
-use super::timing::Timing;
-use super::upload::write_texture;
-use super::worker::{Job, JobReport, Outcome};
 
 impl App {
     pub(super) fn apply(&mut self, action: Action, shown: PixelRect) {

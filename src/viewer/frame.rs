@@ -2,32 +2,20 @@
 //! uploaded if it changed, the frame drawn and presented, the screenshot and exit when the
 //! script is done, and when the next frame is due.
 
-use std::path::PathBuf;
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use raylab::camera::Camera;
-use raylab::film::Film;
-use raylab::progressive::{Progress, RenderControl};
 use winit::event_loop::ActiveEventLoop;
 
 use super::action::Action;
 use super::app::App;
-use super::controls::Controls;
 use super::input::{self, ImageArea};
 use super::layout::{PixelRect, letterbox};
-use super::navigation;
 use super::painter::FrameContent;
 use super::panels;
-use super::pick;
-use super::save;
-use super::scene_source::LoadedScene;
 use super::screenshot;
-use super::status::{RenderStatus, status_line};
 use super::surface::Acquired;
-use super::timing::Timing;
 use super::upload::write_texture;
-use super::worker::{Job, JobReport, Outcome};
+use super::worker::Outcome;
 
 impl App {
     /// The panels, the status line and the image area; returns the actions and where the image

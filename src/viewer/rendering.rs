@@ -2,33 +2,20 @@
 //! running pass is cancelled and the new job starts from the coarse block size), what of it has
 //! reached the screen, and the status line about it.
 
-use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
-use raylab::camera::Camera;
 use raylab::film::Film;
 use raylab::progressive::{Progress, RenderControl};
-use winit::event_loop::ActiveEventLoop;
 
-use super::action::Action;
 use super::app::App;
 use super::controls::Controls;
-use super::input::{self, ImageArea};
-use super::layout::{PixelRect, letterbox};
-use super::navigation;
-use super::painter::FrameContent;
-use super::panels;
-use super::pick;
-use super::save;
 use super::scene_source::LoadedScene;
-use super::screenshot;
 use super::status::{RenderStatus, status_line};
-use super::surface::Acquired;
 use super::timing::Timing;
-use super::upload::write_texture;
 use super::worker::{Job, JobReport, Outcome};
 
+/// The render in progress (or the last one), and what of it has reached the screen.
 pub(super) struct Rendering {
     pub(super) scene: Arc<LoadedScene>,
     pub(super) controls: Controls,
