@@ -130,3 +130,182 @@ pub fn flying(ctx: &egui::Context) -> bool {
     !ctx.egui_wants_keyboard_input()
         && ctx.input(|i| !i.modifiers.any() && FLY_KEYS.iter().any(|(k, _)| i.key_down(*k)))
 }
+
+#[cfg(test)]
+mod tests {
+    use egui::{Event, Pos2, TouchPhase, pos2, vec2};
+
+    use super::*;
+
+    /// Feeds egui frames of events (each frame 1/60 s after the last) over a 100×100 image area
+    /// showing a 10×10 image, and collects the actions.
+    struct Harness {
+        ctx: egui::Context,
+        time: f64,
+    }
+
+    impl Harness {
+        fn new() -> Harness {
+            Harness {
+                ctx: egui::Context::default(),
+                time: 0.0,
+            }
+        }
+
+        fn frame(&mut self, events: Vec<Event>) -> Vec<Action> {
+            self.time += 1.0 / 60.0;
+            let input = egui::RawInput {
+                screen_rect: Some(egui::Rect::from_min_size(Pos2::ZERO, vec2(100.0, 100.0))),
+                time: Some(self.time),
+                events,
+                ..Default::default()
+            };
+            let mut actions = Vec::new();
+            let mut output = self.ctx.run_ui(input, |ui| {
+                let rect = ui.available_rect_before_wrap();
+                let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
+                let area = ImageArea {
+                    shown: PixelRect {
+                        x: 0.0,
+                        y: 0.0,
+                        width: 100.0,
+                        height: 100.0,
+                    },
+                    pixels_per_point: 1.0,
+                    image_size: (10, 10),
+                };
+                actions = super::actions(ui.ctx(), &response, &area, 0.5);
+            });
+            // Nothing is painted here.
+            output.textures_delta.clear();
+            actions
+        }
+
+        fn frames(&mut self, frames: Vec<Vec<Event>>) -> Vec<Action> {
+            frames.into_iter().flat_map(|e| self.frame(e)).collect()
+        }
+    }
+
+    fn key(key: Key, pressed: bool, modifiers: Modifiers) -> Event {
+        Event::Key {
+            key,
+            physical_key: None,
+            pressed,
+            repeat: false,
+            modifiers,
+        }
+    }
+
+    fn button(button: PointerButton, pressed: bool, pos: Pos2) -> Event {
+        Event::PointerButton {
+            pos,
+            button,
+            pressed,
+            modifiers: Modifiers::NONE,
+        }
+    }
+
+    fn drag(with: PointerButton) -> Vec<Action> {
+        let mut h = Harness::new();
+        let start = pos2(50.0, 50.0);
+        let mut frames = vec![
+            vec![Event::PointerMoved(start)],
+            vec![button(with, true, start)],
+        ];
+        for i in 1..=5 {
+            frames.push(vec![Event::PointerMoved(
+                start + vec2(4.0 * i as f32, 2.0 * i as f32),
+            )]);
+        }
+        frames.push(vec![button(with, false, pos2(70.0, 60.0))]);
+        h.frames(frames)
+    }
+
+    #[test]
+    fn left_drag_orbits_with_the_cursor() {
+        let actions = drag(PointerButton::Primary);
+        let (yaw, pitch) = actions.iter().fold((0.0, 0.0), |(y, p), a| match a {
+            Action::Orbit { yaw, pitch } => (y + yaw, p + pitch),
+            other => panic!("unexpected {other:?}"),
+        });
+        // Dragged 20 right and 10 down (some of it may go to the drag threshold).
+        assert!(yaw < -3.0 && yaw >= -6.0 - 1e-3, "{yaw}");
+        assert!(pitch > 1.5 && pitch <= 3.0 + 1e-3, "{pitch}");
+    }
+
+    #[test]
+    fn right_and_middle_drag_pan() {
+        for with in [PointerButton::Secondary, PointerButton::Middle] {
+            let actions = drag(with);
+            assert!(!actions.is_empty());
+            assert!(
+                actions
+                    .iter()
+                    .all(|a| matches!(a, Action::Pan { dx, dy } if *dx > 0.0 && *dy > 0.0)),
+                "{actions:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_wheel_dollies_over_the_image() {
+        let mut h = Harness::new();
+        let wheel = Event::MouseWheel {
+            unit: MouseWheelUnit::Line,
+            delta: vec2(0.0, 2.0),
+            phase: TouchPhase::Move,
+            source: egui::MouseWheelSource::Wheel,
+            modifiers: Modifiers::NONE,
+        };
+        let actions = h.frames(vec![
+            vec![Event::PointerMoved(pos2(30.0, 30.0))],
+            vec![wheel],
+        ]);
+        assert_eq!(actions, vec![Action::Dolly(2.0)]);
+    }
+
+    #[test]
+    fn double_click_picks_the_image_point() {
+        let mut h = Harness::new();
+        let at = pos2(55.0, 25.0);
+        let actions = h.frames(vec![
+            vec![Event::PointerMoved(at)],
+            vec![button(PointerButton::Primary, true, at)],
+            vec![button(PointerButton::Primary, false, at)],
+            vec![button(PointerButton::Primary, true, at)],
+            vec![button(PointerButton::Primary, false, at)],
+        ]);
+        assert_eq!(actions, vec![Action::PickCentre { x: 5.5, y: 2.5 }]);
+    }
+
+    #[test]
+    fn keys_fly_frame_save_and_print() {
+        let mut h = Harness::new();
+        let actions = h.frame(vec![
+            key(Key::W, true, Modifiers::NONE),
+            key(Key::D, true, Modifiers::NONE),
+        ]);
+        assert_eq!(
+            actions,
+            vec![Action::Fly {
+                motion: Vec3::new(1.0, 0.0, 1.0),
+                seconds: 0.5
+            }]
+        );
+        assert!(flying(&h.ctx));
+        let actions = h.frame(vec![
+            key(Key::W, false, Modifiers::NONE),
+            key(Key::D, false, Modifiers::NONE),
+            key(Key::F, true, Modifiers::NONE),
+            key(Key::C, true, Modifiers::NONE),
+        ]);
+        assert_eq!(actions, vec![Action::Frame, Action::PrintCamera]);
+        assert!(!flying(&h.ctx));
+        // Ctrl+S saves, and the S held with Ctrl does not fly backwards.
+        let actions = h.frame(vec![
+            Event::ModifiersChanged(Modifiers::COMMAND),
+            key(Key::S, true, Modifiers::COMMAND),
+        ]);
+        assert_eq!(actions, vec![Action::Save]);
+    }
+}

@@ -149,13 +149,14 @@ impl App {
         if let Some(Outcome::Failed(e)) = &outcome {
             return e.clone();
         }
-        let elapsed = match (&outcome, r.report.passes().last()) {
-            (Some(_), Some(_)) => r.report.passes().iter().map(|p| p.time).sum(),
+        let pass_times: Vec<_> = r.report.passes().iter().map(|p| p.time).collect();
+        let elapsed = match outcome {
+            Some(_) if !pass_times.is_empty() => pass_times.iter().sum(),
             _ => r.report.started.elapsed(),
         };
         status_line(&RenderStatus {
             progress: r.control.progress(),
-            last_pass: r.report.last_pass_time(),
+            pass_times,
             rays: r.control.rays(),
             elapsed,
             fps: self.fps,

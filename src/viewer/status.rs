@@ -1,5 +1,5 @@
-//! The status line: the current pass and block size, progress within the pass, milliseconds per
-//! pass, rays traced by kind and the tracing speed, as one line of text.
+//! The status lines: the current pass and block size, progress within the pass, milliseconds per
+//! pass; then rays traced by kind, the tracing speed and the window's frame rate.
 
 use std::time::Duration;
 
@@ -10,8 +10,8 @@ use raylab::stats::RayCounts;
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct RenderStatus {
     pub progress: Progress,
-    /// Time of the last finished pass, if one has finished.
-    pub last_pass: Option<Duration>,
+    /// Times of the passes finished so far.
+    pub pass_times: Vec<Duration>,
     pub rays: RayCounts,
     /// Time since the render started (to its end, once finished).
     pub elapsed: Duration,
@@ -19,6 +19,7 @@ pub struct RenderStatus {
     pub fps: f32,
 }
 
+/// Two lines of text.
 pub fn status_line(s: &RenderStatus) -> String {
     let p = &s.progress;
     let state = if p.finished {
@@ -36,13 +37,20 @@ pub fn status_line(s: &RenderStatus) -> String {
             p.block_size
         )
     };
-    let pass_time = s.last_pass.map_or("–".to_string(), |t| {
-        format!("{:.1}", t.as_secs_f64() * 1e3)
-    });
+    let pass_times = if s.pass_times.is_empty() {
+        "–".to_string()
+    } else {
+        let ms: Vec<String> = s
+            .pass_times
+            .iter()
+            .map(|t| format!("{:.1}", t.as_secs_f64() * 1e3))
+            .collect();
+        ms.join(" / ")
+    };
     let r = &s.rays;
     let mrays = r.total() as f64 / s.elapsed.as_secs_f64().max(1e-9) / 1e6;
     format!(
-        "{state} · {pass_time} ms/pass · rays: {} eye ({} hit), {} shadow, {} reflected, {} \
+        "{state} · ms per pass: {pass_times}\nrays: {} eye ({} hit), {} shadow, {} reflected, {} \
          transmitted · {mrays:.2} Mrays/s · {:.0} fps",
         r.primary, r.primary_hits, r.shadow, r.reflected, r.transmitted, s.fps
     )
@@ -63,7 +71,7 @@ mod tests {
                 rows: 64,
                 finished: false,
             },
-            last_pass: Some(Duration::from_micros(12_340)),
+            pass_times: vec![Duration::from_micros(1_250), Duration::from_micros(12_340)],
             rays: RayCounts {
                 primary: 1_000_000,
                 primary_hits: 900_000,
@@ -76,7 +84,7 @@ mod tests {
         };
         let line = status_line(&s);
         assert!(line.starts_with("pass 2/5 · block 8 · 25%"), "{line}");
-        assert!(line.contains("12.3 ms/pass"), "{line}");
+        assert!(line.contains("ms per pass: 1.2 / 12.3\nrays:"), "{line}");
         assert!(
             line.contains("1000000 eye (900000 hit), 500000 shadow"),
             "{line}"
@@ -95,6 +103,9 @@ mod tests {
             ..RenderStatus::default()
         };
         let line = status_line(&s);
-        assert!(line.starts_with("done: 5 passes · – ms/pass"), "{line}");
+        assert!(
+            line.starts_with("done: 5 passes · ms per pass: –\n"),
+            "{line}"
+        );
     }
 }

@@ -7,7 +7,7 @@ use std::panic::AssertUnwindSafe;
 use std::sync::mpsc::{self, Receiver, Sender};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use raylab::camera::Camera;
 use raylab::film::Film;
@@ -64,11 +64,6 @@ impl JobReport {
     /// `None` while the job waits or runs.
     pub fn outcome(&self) -> Option<Outcome> {
         self.outcome.lock().ok().and_then(|o| o.clone())
-    }
-
-    /// Time the last finished pass took.
-    pub fn last_pass_time(&self) -> Option<Duration> {
-        self.passes.lock().ok()?.last().map(|p| p.time)
     }
 
     fn push_pass(&self, pass: &PassStats) {
@@ -204,6 +199,8 @@ fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {
 
 #[cfg(test)]
 mod tests {
+    use std::time::Duration;
+
     use super::*;
     use crate::viewer::scene_source;
 
