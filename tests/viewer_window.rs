@@ -289,6 +289,44 @@ fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
     assert!(mismatches(&shot, rect, size, &old_view) > (size * size / 10) as usize);
 }
 
+#[test]
+fn a_resized_window_letterboxes_the_same_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("tall.png");
+    let size = 64;
+    let Some(run) = run_viewer(&[
+        "--size",
+        &size.to_string(),
+        "--window",
+        "700x500",
+        "--exit-when-done",
+        "--script",
+        "wait; resize 480 640; wait",
+        "--screenshot",
+        shot.to_str().unwrap(),
+    ]) else {
+        return;
+    };
+    assert!(
+        run.success,
+        "stdout: {}\nstderr: {}",
+        run.stdout, run.stderr
+    );
+    let image = image::open(&shot).unwrap();
+    assert_eq!(
+        (image.width(), image.height()),
+        (480, 640),
+        "the screenshot has the new size"
+    );
+    // Narrower than tall beside the panel: bars above and below, the image square.
+    let (x, y, w, h) = image_rect(&run.stdout);
+    assert_eq!(w, h);
+    assert!(y > 0.0 && x + w <= 480.0, "{:?}", (x, y, w, h));
+    let scene = default_scene().unwrap();
+    let expected = cpu_render(&scene, size, scene.camera.spec);
+    assert_eq!(mismatches(&shot, (x, y, w, h), size, &expected), 0);
+}
+
 /// A small scene file: a red ball on a floor, seen from `eye`.
 fn ball_scene(eye: [f32; 3]) -> String {
     format!(

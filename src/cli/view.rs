@@ -43,7 +43,7 @@ pub struct ViewArgs {
     stats: bool,
     /// Scripted input, steps separated by `;`: wait (for refinement to finish), wait-load N (for
     /// N scene loads, the first included), orbit YAW PITCH [FRAMES], pan DX DY [FRAMES], dolly STEPS,
-    /// fly X Y Z SECONDS, frame, reset, save, print-camera, open [PATH].
+    /// fly X Y Z SECONDS, frame, reset, save, print-camera, open [PATH], resize W H.
     #[arg(long, value_name = "STEPS", value_parser = Script::parse)]
     script: Option<Script>,
     /// Most frames per second while refining.

@@ -28,4 +28,6 @@ pub enum Action {
     Save,
     /// Print the camera snippet on the terminal.
     PrintCamera,
+    /// Ask for a new window size, in logical pixels (scripts only).
+    ResizeWindow { width: u32, height: u32 },
 }

@@ -23,6 +23,13 @@ impl App {
                 self.start_load(path);
             }
             Action::Save => self.save(),
+            Action::ResizeWindow { width, height } => {
+                if let Some(gfx) = &self.gfx {
+                    let size = winit::dpi::LogicalSize::new(width, height);
+                    // The new size, if granted, arrives as a Resized event.
+                    let _ = gfx.window.request_inner_size(size);
+                }
+            }
             Action::PrintCamera => {
                 if let Some(c) = &self.controls {
                     println!("{}", save::camera_snippet(&c.camera));

@@ -122,9 +122,14 @@ impl App {
         });
     }
 
-    /// Refinement of the current scene and controls is over and on screen, and no scene is
-    /// loading.
+    /// Refinement of the current scene and controls is over and on screen, no scene is loading
+    /// and the window has the size it was last given.
     pub(super) fn idle(&self) -> bool {
+        // A resize the window system made but the surface has not caught up with yet.
+        let resizing = self.gfx.as_ref().is_some_and(|g| {
+            let size = g.window.inner_size();
+            g.surface.size() != (size.width, size.height)
+        });
         let settled = match (&self.rendering, &self.scene, &self.controls) {
             (Some(r), Some(scene), Some(controls)) => {
                 let current = Arc::ptr_eq(&r.scene, scene) && r.controls == *controls;
@@ -133,7 +138,7 @@ impl App {
             }
             _ => false,
         };
-        !self.loading && settled
+        !self.loading && !resizing && settled
     }
 
     pub(super) fn status(&self) -> String {

@@ -8,7 +8,8 @@
 //! - `orbit YAW PITCH [FRAMES]`: degrees, spread over FRAMES frames like a drag (default 1);
 //! - `pan DX DY [FRAMES]`: pixels, likewise; `dolly STEPS`: wheel steps;
 //! - `fly X Y Z SECONDS`: as the W/A/S/D/Q/E keys; `frame`; `reset`;
-//! - `save`: the image and camera; `print-camera`; `open PATH` (`open` alone: the default scene).
+//! - `save`: the image and camera; `print-camera`; `open PATH` (`open` alone: the default scene);
+//! - `resize WIDTH HEIGHT`: asks for a new window size (logical pixels).
 
 use std::collections::VecDeque;
 use std::path::PathBuf;
@@ -153,6 +154,18 @@ fn parse_step(step: &str) -> Result<Step, String> {
             }
         }
         "dolly" => once(Action::Dolly(count(numbers()?, 1, 0)?[0])),
+        "resize" => {
+            let n = count(numbers()?, 2, 0)?;
+            if n.iter()
+                .any(|&v| !(1.0..=16384.0).contains(&v) || v.fract() != 0.0)
+            {
+                return Err("sizes must be whole numbers from 1 to 16384".into());
+            }
+            once(Action::ResizeWindow {
+                width: n[0] as u32,
+                height: n[1] as u32,
+            })
+        }
         "fly" => {
             let n = count(numbers()?, 4, 0)?;
             once(Action::Fly {
@@ -166,7 +179,7 @@ fn parse_step(step: &str) -> Result<Step, String> {
         _ => {
             return Err(
                 "unknown step (use wait, wait-load, orbit, pan, dolly, fly, frame, reset, \
-                 save, print-camera, open)"
+                 save, print-camera, open, resize)"
                     .into(),
             );
         }
@@ -224,6 +237,10 @@ mod tests {
                 Action::Save,
                 Action::Open(Some(PathBuf::from("a b.toml"))),
                 Action::Open(None),
+                Action::ResizeWindow {
+                    width: 300,
+                    height: 200
+                },
             ]
         );
     }
@@ -240,6 +257,7 @@ mod tests {
             ("wait-load", "takes 1 number"),
             ("wait-load 0", "whole number of loads"),
             ("dolly nan", "not a number"),
+            ("resize 0 10", "whole numbers from 1"),
         ] {
             let err = Script::parse(text).unwrap_err();
             assert!(err.contains(expected), "{text}: {err}");
