@@ -219,10 +219,10 @@ mod tests {
 
     #[test]
     fn every_step_parses() {
-        let script =
-            Script::parse("pan 10 -4; dolly -2; fly 0 0 1 0.5; reset; save; open a b.toml; open")
-                .unwrap();
-        let mut script = script;
+        let mut script = Script::parse(
+            "pan 10 -4; dolly -2; fly 0 0 1 0.5; reset; save; open a b.toml; open; resize 300 200",
+        )
+        .unwrap();
         let all: Vec<_> = std::iter::from_fn(|| script.next(true, 0)).collect();
         assert_eq!(
             all,
