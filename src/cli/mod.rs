@@ -1,10 +1,10 @@
 //! The command line: its arguments (clap) and the subcommands.
 
+mod generate;
 mod render;
 
-use std::path::Path;
-
 use clap::{Parser, Subcommand};
+use raylab::nff::NffLighting;
 use raylab::scene::{self, Scene};
 
 #[derive(Parser, Debug)]
@@ -18,19 +18,23 @@ pub struct Cli {
 enum Command {
     /// Render a scene file (or the built-in default scene) to an image.
     Render(render::RenderArgs),
+    /// Write one of the Standard Procedural Databases as an NFF file.
+    Gen(generate::GenArgs),
 }
 
 /// Runs the command; the error is the message to print.
 pub fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Command::Render(args) => render::run(args),
+        Command::Gen(args) => generate::run(args),
     }
 }
 
-/// Loads the scene at `path`, or the built-in default scene when there is none.
-fn load_scene(path: Option<&Path>) -> Result<Scene, String> {
-    match path {
-        Some(path) => scene::load_scene(path).map_err(|e| e.to_string()),
+/// Loads the scene `name` names (a TOML or NFF file, or `spd:NAME[:SIZE]`), or the built-in
+/// default scene when there is none. `lighting` applies to NFF and SPD scenes.
+fn load_scene(name: Option<&str>, lighting: NffLighting) -> Result<Scene, String> {
+    match name {
+        Some(name) => scene::load_any_with(name, lighting).map_err(|e| e.to_string()),
         None => scene::default_scene().map_err(|e| e.to_string()),
     }
 }
