@@ -4,7 +4,7 @@
 
 use glam::{DMat3, DVec3};
 
-use super::conventions::{Surface, document};
+use super::conventions::{Surface, axis_rotation, document};
 use crate::nff::{Item, NffDocument};
 
 /// Each child's radius relative to its parent's.
@@ -49,11 +49,8 @@ pub(super) fn balls(size: u32) -> NffDocument {
 /// The directions from a sphere (standing on +Z) to its nine children: three around its
 /// "equator"-ish top and two rings of three below, as in SPD.
 fn child_directions() -> [DVec3; 9] {
-    let d = std::f64::consts::FRAC_1_SQRT_2;
-    let tilt = DMat3::from_axis_angle(
-        DVec3::new(1.0, -1.0, 0.0).normalize(),
-        (2.0 / 6f64.sqrt()).asin(),
-    );
+    let d = 1.0 / 2f64.sqrt();
+    let tilt = axis_rotation(DVec3::new(1.0, -1.0, 0.0), (2.0 / 6f64.sqrt()).asin());
     let trio = [
         DVec3::new(d, d, 0.0),
         DVec3::new(d, 0.0, -d),
@@ -86,7 +83,7 @@ fn flake(
     } else if up.z <= -0.9999 {
         DMat3::from_rotation_y(std::f64::consts::PI)
     } else {
-        DMat3::from_axis_angle(DVec3::Z.cross(up).normalize(), up.z.acos())
+        axis_rotation(DVec3::Z.cross(up), up.z.acos())
     };
     let distance = radius * (1.0 + CHILD_SCALE);
     for &direction in children {

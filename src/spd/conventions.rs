@@ -1,7 +1,8 @@
 //! What every SPD database has in common: the "UNC sky blue" background, a 45° view at
-//! 512×512, point lights without a colour, and materials given by their highlight's half angle.
+//! 512×512, point lights without a colour, materials given by their highlight's half angle, and
+//! rotations computed the way SPD computes them, so that generated numbers round as SPD's do.
 
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 
 use crate::nff::{Fill, Item, NffDocument, NffLight, View};
 
@@ -74,4 +75,29 @@ impl Surface {
             ior: self.ior,
         })
     }
+}
+
+/// The rotation by `angle` radians about `axis` (normalised here), its terms computed in SPD's
+/// order.
+pub(super) fn axis_rotation(axis: DVec3, angle: f64) -> DMat3 {
+    let [x, y, z] = (axis / axis.length()).to_array();
+    let (sin, cos) = angle.sin_cos();
+    let one_minus_cos = 1.0 - cos;
+    DMat3::from_cols(
+        DVec3::new(
+            x * x + (1.0 - x * x) * cos,
+            x * y * one_minus_cos + z * sin,
+            x * z * one_minus_cos - y * sin,
+        ),
+        DVec3::new(
+            x * y * one_minus_cos - z * sin,
+            y * y + (1.0 - y * y) * cos,
+            y * z * one_minus_cos + x * sin,
+        ),
+        DVec3::new(
+            x * z * one_minus_cos + y * sin,
+            y * z * one_minus_cos - x * sin,
+            z * z + (1.0 - z * z) * cos,
+        ),
+    )
 }

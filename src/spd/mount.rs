@@ -7,7 +7,7 @@ use std::f64::consts::TAU;
 
 use glam::{DMat3, DVec3};
 
-use super::conventions::{Surface, document};
+use super::conventions::{Surface, axis_rotation, document};
 use crate::nff::{Item, NffDocument};
 
 /// Fractal dimension of the surface, between 2 and 3: how rough it is.
@@ -55,10 +55,7 @@ fn spheres(items: &mut Vec<Item>, base: DVec3, radius: f64) {
         center: base + top,
         radius,
     });
-    let tilted = DMat3::from_axis_angle(
-        DVec3::new(1.0, 1.0, 0.0).normalize(),
-        (-1.0f64 / 3.0).acos(),
-    ) * top;
+    let tilted = axis_rotation(DVec3::new(1.0, 1.0, 0.0), (-1.0f64 / 3.0).acos()) * top;
     for i in 0..3 {
         let center = base + DMat3::from_rotation_z(f64::from(i) * TAU / 3.0) * tilted;
         items.push(Item::Sphere { center, radius });

@@ -65,7 +65,7 @@ fn checkerboard(items: &mut Vec<Item>, size: u32) {
 
 /// Cuts one patch into `size`×`size` quadrilaterals of two triangles each.
 fn tessellate(items: &mut Vec<Item>, patch: &[u16; 16], size: u32) {
-    let control = patch.map(|i| DVec3::from_array(CONTROL_POINTS[usize::from(i)]));
+    let coefficients = power_coefficients(patch);
     // The quadrilateral's corners in (s, t) steps, and the two triangles made of them.
     const CORNERS: [(u32, u32); 4] = [(0, 0), (0, 1), (1, 1), (1, 0)];
     const TRIANGLES: [[usize; 3]; 2] = [[0, 1, 2], [2, 3, 0]];
@@ -75,7 +75,7 @@ fn tessellate(items: &mut Vec<Item>, patch: &[u16; 16], size: u32) {
             for triangle in TRIANGLES {
                 let mut vertices = triangle.map(|corner| {
                     let (ds, dt) = CORNERS[corner];
-                    point(&control, f64::from(s + ds) / n, f64::from(t + dt) / n)
+                    point(&coefficients, f64::from(s + ds) / n, f64::from(t + dt) / n)
                 });
                 if fix_cusp(&mut vertices) {
                     items.push(Item::Patch(vertices.to_vec()));
@@ -85,40 +85,76 @@ fn tessellate(items: &mut Vec<Item>, patch: &[u16; 16], size: u32) {
     }
 }
 
-/// The point of the patch at parameters (s, t), with its unit normal.
-fn point(control: &[DVec3; 16], s: f64, t: f64) -> PatchVertex {
-    let (bs, dbs) = (bernstein(s), bernstein_derivative(s));
-    let (bt, dbt) = (bernstein(t), bernstein_derivative(t));
-    let (mut position, mut along_s, mut along_t) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
-    for row in 0..4 {
-        for column in 0..4 {
-            let p = control[row * 4 + column];
-            position += bs[row] * bt[column] * p;
-            along_s += dbs[row] * bt[column] * p;
-            along_t += bs[row] * dbt[column] * p;
-        }
-    }
+type Matrix = [[f64; 4]; 4];
+
+/// The cubic Bézier basis: a row of powers `[u³ u² u 1]` times it gives the four Bernstein
+/// weights.
+const BEZIER: Matrix = [
+    [-1.0, 3.0, -3.0, 1.0],
+    [3.0, -6.0, 3.0, 0.0],
+    [-3.0, 3.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0, 0.0],
+];
+
+/// For x, y and z, the matrix `B·G·Bᵀ` of the patch's control points `G` in the Bézier basis
+/// `B`: the coordinate at (s, t) is `[s³ s² s 1]·B·G·Bᵀ·[t³ t² t 1]ᵀ`. Evaluated this way,
+/// as SPD does, the points round to SPD's own digits.
+fn power_coefficients(patch: &[u16; 16]) -> [Matrix; 3] {
+    let transposed: Matrix = std::array::from_fn(|i| std::array::from_fn(|j| BEZIER[j][i]));
+    std::array::from_fn(|axis| {
+        let control: Matrix = std::array::from_fn(|row| {
+            std::array::from_fn(|column| CONTROL_POINTS[usize::from(patch[row * 4 + column])][axis])
+        });
+        multiply(&multiply(&BEZIER, &control), &transposed)
+    })
+}
+
+fn multiply(a: &Matrix, b: &Matrix) -> Matrix {
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j] + a[i][3] * b[3][j]
+        })
+    })
+}
+
+/// `[u³ u² u 1]` and its derivative `[3u² 2u 1 0]`.
+fn powers(u: f64) -> ([f64; 4], [f64; 4]) {
+    ([u * u * u, u * u, u, 1.0], [u * u * 3.0, u * 2.0, 1.0, 0.0])
+}
+
+/// `row · matrix · column`.
+fn sandwich(row: &[f64; 4], matrix: &Matrix, column: &[f64; 4]) -> f64 {
+    let r: [f64; 4] = std::array::from_fn(|j| {
+        row[0] * matrix[0][j]
+            + row[1] * matrix[1][j]
+            + row[2] * matrix[2][j]
+            + row[3] * matrix[3][j]
+    });
+    r[0] * column[0] + r[1] * column[1] + r[2] * column[2] + r[3] * column[3]
+}
+
+/// The point of the patch at parameters (s, t), with its unit normal (zero at a cusp, where
+/// the patch has none).
+fn point(coefficients: &[Matrix; 3], s: f64, t: f64) -> PatchVertex {
+    let (s_powers, s_slopes) = powers(s);
+    let (t_powers, t_slopes) = powers(t);
+    let axis = |row: &[f64; 4], column: &[f64; 4]| {
+        DVec3::from_array(std::array::from_fn(|i| {
+            sandwich(row, &coefficients[i], column)
+        }))
+    };
+    let along_s = axis(&s_slopes, &t_powers);
+    let along_t = axis(&s_powers, &t_slopes);
+    let normal = along_t.cross(along_s);
+    let length = normal.length();
     PatchVertex {
-        position,
-        normal: along_t.cross(along_s).normalize_or_zero(),
+        position: axis(&s_powers, &t_powers),
+        normal: if length > 0.0 {
+            normal / length
+        } else {
+            normal
+        },
     }
-}
-
-/// The cubic Bernstein polynomials at `u`.
-fn bernstein(u: f64) -> [f64; 4] {
-    let v = 1.0 - u;
-    [v * v * v, 3.0 * u * v * v, 3.0 * u * u * v, u * u * u]
-}
-
-/// Their derivatives at `u`.
-fn bernstein_derivative(u: f64) -> [f64; 4] {
-    let v = 1.0 - u;
-    [
-        -3.0 * v * v,
-        3.0 * v * v - 6.0 * u * v,
-        6.0 * u * v - 3.0 * u * u,
-        3.0 * u * u,
-    ]
 }
 
 /// At the cusps on the Z axis (the top of the lid, the middle of the bottom) the patches'
@@ -133,11 +169,7 @@ fn fix_cusp(vertices: &mut [PatchVertex; 3]) -> bool {
     if let Some(cusp) = on_axis.iter().position(|&on| on) {
         let cusp = &mut vertices[cusp];
         // The lid's cusp is above the middle of the pot, the bottom's below it.
-        cusp.normal = if cusp.position.z > 1.5 {
-            DVec3::Z
-        } else {
-            -DVec3::Z
-        };
+        cusp.normal = DVec3::new(0.0, 0.0, if cusp.position.z > 1.5 { 1.0 } else { -1.0 });
     }
     true
 }
