@@ -29,7 +29,7 @@ impl fmt::Display for G {
             .split_once('e')
             .expect("`{:e}` always writes an exponent");
         let exponent: i32 = exponent.parse().expect("the exponent is an integer");
-        if exponent < -4 || exponent >= PRECISION {
+        if !(-4..PRECISION).contains(&exponent) {
             let sign = if exponent < 0 { '-' } else { '+' };
             write!(
                 f,

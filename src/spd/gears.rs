@@ -90,7 +90,7 @@ fn gear_surface(ix: u32, iy: u32, iz: u32) -> Surface {
         channel(iz * 3 + ix * 2 + iy + 1, 2.0 / 7.0),
     );
     let color = (color / color.max_element()).to_array();
-    if (ix * 4 + iy * 2 + iz) % 5 == 0 {
+    if (ix * 4 + iy * 2 + iz).is_multiple_of(5) {
         Surface {
             color,
             kd: 0.2,
