@@ -350,6 +350,12 @@ fn bad_numbers_are_errors_at_the_number() {
         "expected a number for the centre of `s`, found `x`",
     );
     assert_error(&with_head("s 0 0 1e999 1\n"), 9, 7, "found `1e999`");
+    assert_error(
+        &with_head("s 0 0 0 1e300\n"),
+        9,
+        9,
+        "too large for single precision",
+    );
     assert_error(&with_head("s 0 0 nan 1\n"), 9, 7, "found `nan`");
     // A keyword where a number belongs: the entity before it is cut short.
     assert_error(

@@ -143,11 +143,16 @@ impl<'a> Entity<'_, 'a> {
         self.parser.source.error(token.span(), message)
     }
 
-    /// The next token as a finite number, with the token.
+    /// The next token as a finite number, with the token. raylab renders in single
+    /// precision, so larger magnitudes than it holds are errors here, where they are written.
     fn number_token(&mut self, what: &str) -> Result<(f64, Token<'a>), SceneError> {
         let token = self.token(what)?;
         match token.text.parse::<f64>() {
-            Ok(x) if x.is_finite() => Ok((x, token)),
+            Ok(x) if (x as f32).is_finite() => Ok((x, token)),
+            Ok(x) if x.is_finite() => Err(self.out_of_range(
+                token,
+                format!("{what} is too large for single precision: {x}"),
+            )),
             _ => Err(self.unexpected(token, &format!("a number for {what}"))),
         }
     }
