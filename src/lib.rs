@@ -22,3 +22,4 @@ pub mod stats;
 pub mod texture;
 pub mod transform;
 pub mod whitted;
+pub mod large_mesh;

@@ -7,7 +7,7 @@ use glam::{Vec2, Vec3};
 use crate::aabb::Aabb;
 use crate::mesh::Mesh;
 use crate::ray::Ray;
-use crate::shapes::{Shape, Triangle};
+use crate::shapes::{Shape, ShearedRay, Triangle};
 use crate::transform::Transform;
 
 /// An analytic shape in the world.
@@ -86,6 +86,33 @@ impl Geometry {
         self.meshes.push(mesh);
     }
 
+    /// Number of primitives (objects and triangles).
+    pub fn len(&self) -> usize {
+        self.objects.len() + self.triangles.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Bytes held by the primitives and meshes (not counting textures).
+    pub fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        let meshes: usize = self
+            .meshes
+            .iter()
+            .map(|m| {
+                m.positions.capacity() * size_of::<Vec3>()
+                    + m.normals.capacity() * size_of::<Vec3>()
+                    + m.uvs.capacity() * size_of::<Vec2>()
+                    + m.faces.capacity() * size_of::<[u32; 3]>()
+            })
+            .sum();
+        self.objects.capacity() * size_of::<Object>()
+            + self.triangles.capacity() * size_of::<Triangle>()
+            + meshes
+    }
+
     /// Every primitive's id.
     pub fn prim_ids(&self) -> impl Iterator<Item = PrimId> + '_ {
         (0..self.objects.len())
@@ -109,15 +136,29 @@ impl Geometry {
     }
 
     /// The hit of `ray` with primitive `id` in `(t_min, t_max)`, if any.
-    #[inline(always)]
     pub fn intersect(&self, id: PrimId, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
+        self.intersect_prepared(id, ray, &ShearedRay::new(ray), t_min, t_max)
+    }
+
+    /// [`Self::intersect`] with the ray's preparation for triangle tests done once, outside.
+    #[inline(always)]
+    pub fn intersect_prepared(
+        &self,
+        id: PrimId,
+        ray: &Ray,
+        sheared: &ShearedRay,
+        t_min: f32,
+        t_max: f32,
+    ) -> Option<Hit> {
         match id.kind() {
-            Err(t) => self.triangles[t].intersect(ray, t_min, t_max).map(|h| Hit {
-                t: h.t,
-                prim: id,
-                part: 0,
-                bary: h.bary,
-            }),
+            Err(t) => self.triangles[t]
+                .intersect_sheared(sheared, t_min, t_max)
+                .map(|h| Hit {
+                    t: h.t,
+                    prim: id,
+                    part: 0,
+                    bary: h.bary,
+                }),
             Ok(o) => {
                 let object = &self.objects[o];
                 let h = match &object.transform {

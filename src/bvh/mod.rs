@@ -37,6 +37,12 @@ pub struct Bvh {
 }
 
 impl Bvh {
+    /// Bytes held by the tree and its primitive list.
+    pub fn memory_bytes(&self) -> usize {
+        self.nodes.capacity() * std::mem::size_of::<Node>()
+            + (self.prims.capacity() + self.unbounded.capacity()) * std::mem::size_of::<PrimId>()
+    }
+
     /// Depth of the tree (0 when empty), for statistics and tests.
     pub fn depth(&self) -> usize {
         fn depth_of(nodes: &[Node], i: usize) -> usize {

@@ -9,6 +9,7 @@ use super::build::MAX_DEPTH;
 use super::{Bvh, Node};
 use crate::primitive::{Geometry, Hit, PrimId};
 use crate::ray::Ray;
+use crate::shapes::ShearedRay;
 
 /// A ray prepared for box tests.
 struct RayBoxTest {
@@ -44,16 +45,17 @@ impl Bvh {
         t_min: f32,
         mut t_max: f32,
     ) -> Option<Hit> {
+        let sheared = ShearedRay::new(ray);
         let mut best = None;
         for &id in &self.unbounded {
-            if let Some(hit) = geometry.intersect(id, ray, t_min, t_max) {
+            if let Some(hit) = geometry.intersect_prepared(id, ray, &sheared, t_min, t_max) {
                 t_max = hit.t;
                 best = Some(hit);
             }
         }
         self.walk(ray, t_min, t_max, |prims, t_max| {
             for &id in prims {
-                if let Some(hit) = geometry.intersect(id, ray, t_min, *t_max) {
+                if let Some(hit) = geometry.intersect_prepared(id, ray, &sheared, t_min, *t_max) {
                     *t_max = hit.t;
                     best = Some(hit);
                 }
@@ -74,9 +76,10 @@ impl Bvh {
         t_max: f32,
         mut on_hit: impl FnMut(&Hit) -> ControlFlow<()>,
     ) {
+        let sheared = ShearedRay::new(ray);
         let mut visit = |prims: &[PrimId]| {
             for &id in prims {
-                if let Some(hit) = geometry.intersect(id, ray, t_min, t_max) {
+                if let Some(hit) = geometry.intersect_prepared(id, ray, &sheared, t_min, t_max) {
                     on_hit(&hit)?;
                 }
             }

@@ -1,5 +1,6 @@
 //! The command line: its arguments (clap) and the subcommands.
 
+mod bench;
 mod generate;
 mod render;
 
@@ -20,6 +21,8 @@ enum Command {
     Render(render::RenderArgs),
     /// Write one of the Standard Procedural Databases as an NFF file.
     Gen(generate::GenArgs),
+    /// Render a fixed set of scenes and report speed and memory.
+    Bench(bench::BenchArgs),
 }
 
 /// Runs the command; the error is the message to print.
@@ -27,6 +30,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Command::Render(args) => render::run(args),
         Command::Gen(args) => generate::run(args),
+        Command::Bench(args) => bench::run(args),
     }
 }
 
@@ -37,4 +41,15 @@ fn load_scene(name: Option<&str>, lighting: NffLighting) -> Result<Scene, String
         Some(name) => scene::load_any_with(name, lighting).map_err(|e| e.to_string()),
         None => scene::default_scene().map_err(|e| e.to_string()),
     }
+}
+
+/// A rayon pool of `threads` workers (default: one per core).
+fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, String> {
+    if threads == Some(0) {
+        return Err("--threads must be at least 1".into());
+    }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|e| format!("cannot start worker threads: {e}"))
 }

@@ -75,7 +75,7 @@ impl SettingsOverrides {
 pub fn run(args: RenderArgs) -> Result<(), String> {
     let mut scene = super::load_scene(args.scene.as_deref(), args.nff_lights)?;
     args.overrides.apply(&mut scene.settings)?;
-    let pool = thread_pool(args.threads)?;
+    let pool = super::thread_pool(args.threads)?;
 
     let build_start = Instant::now();
     let bvh = Bvh::build(&scene.geometry);
@@ -107,16 +107,6 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         summary(&scene.settings, &stats, build_time, &args.output)
     );
     Ok(())
-}
-
-fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, String> {
-    if threads == Some(0) {
-        return Err("--threads must be at least 1".into());
-    }
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.unwrap_or(0))
-        .build()
-        .map_err(|e| format!("cannot start worker threads: {e}"))
 }
 
 /// A bar on the terminal (hidden when stderr is not one).

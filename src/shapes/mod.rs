@@ -22,7 +22,7 @@ pub use polygon::Polygon;
 pub use quadratic::solve_quadratic;
 pub use sphere::Sphere;
 pub use tapered_cylinder::TaperedCylinder;
-pub use triangle::{Triangle, TriangleHit};
+pub use triangle::{ShearedRay, Triangle, TriangleHit};
 
 use glam::{Vec2, Vec3};
 

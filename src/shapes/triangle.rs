@@ -1,17 +1,19 @@
-//! Triangles of a mesh, stored in world space in the form the Möller–Trumbore test wants.
+//! Triangles of a mesh, stored in world space, and the watertight ray–triangle test of Woop,
+//! Benthin and Wald (JCGT 2013): rays through the shared edge or vertex of two triangles never
+//! slip between them.
 
-use glam::{Vec2, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 
 use crate::aabb::Aabb;
 use crate::ray::Ray;
 
-/// One triangle `p0, p0 + e1, p0 + e2`, with the mesh and face it came from (for normals, texture
-/// coordinates and material). 44 bytes.
+/// One triangle with the mesh and face it came from (for normals, texture coordinates and
+/// material). 44 bytes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Triangle {
     pub p0: Vec3,
-    pub e1: Vec3,
-    pub e2: Vec3,
+    pub p1: Vec3,
+    pub p2: Vec3,
     pub mesh: u32,
     pub face: u32,
 }
@@ -23,56 +25,119 @@ pub struct TriangleHit {
     pub bary: Vec2,
 }
 
+/// A ray prepared once for many triangle tests: the axes permuted so that the direction's
+/// largest component is z, and the shear that turns the direction into +z. In that space the
+/// test is 2D and every edge function is computed the same way for both triangles sharing it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShearedRay {
+    origin: Vec3,
+    /// The permuted axes (x, y, z).
+    axes: [usize; 3],
+    /// `(−dx/dz, −dy/dz, 1/dz)` in permuted axes.
+    shear: Vec3,
+}
+
+impl ShearedRay {
+    pub fn new(ray: &Ray) -> Self {
+        let d = ray.dir;
+        let kz = d.abs().max_position();
+        let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
+        if d[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky); // keep the winding
+        }
+        ShearedRay {
+            origin: ray.origin,
+            axes: [kx, ky, kz],
+            shear: Vec3::new(d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]),
+        }
+    }
+
+    /// A vertex relative to the ray origin, permuted: (x, y) before the shear, and z.
+    #[inline(always)]
+    fn local(&self, p: Vec3) -> Vec3 {
+        let a = p - self.origin;
+        let [kx, ky, kz] = self.axes;
+        Vec3::new(a[kx], a[ky], a[kz])
+    }
+}
+
 impl Triangle {
     pub fn new(p: [Vec3; 3], mesh: u32, face: u32) -> Self {
         Triangle {
             p0: p[0],
-            e1: p[1] - p[0],
-            e2: p[2] - p[0],
+            p1: p[1],
+            p2: p[2],
             mesh,
             face,
         }
     }
 
-    /// Möller–Trumbore. Edges are inclusive (`b ≥ 0`, `b1 + b2 ≤ 1`), so a ray through the
-    /// shared edge of two triangles hits at least one of them: no cracks.
-    #[inline(always)]
+    /// The watertight test for a single ray.
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<TriangleHit> {
-        let pvec = ray.dir.cross(self.e2);
-        let det = self.e1.dot(pvec);
+        self.intersect_sheared(&ShearedRay::new(ray), t_min, t_max)
+    }
+
+    /// The watertight test with the ray's preparation done once outside. Edges and vertices are
+    /// inclusive: a ray through a shared edge hits at least one of the triangles.
+    #[inline(always)]
+    pub fn intersect_sheared(
+        &self,
+        ray: &ShearedRay,
+        t_min: f32,
+        t_max: f32,
+    ) -> Option<TriangleHit> {
+        let (a, b, c) = (ray.local(self.p0), ray.local(self.p1), ray.local(self.p2));
+        let s = ray.shear;
+        let (ax, ay) = (a.x - s.x * a.z, a.y - s.y * a.z);
+        let (bx, by) = (b.x - s.x * b.z, b.y - s.y * b.z);
+        let (cx, cy) = (c.x - s.x * c.z, c.y - s.y * c.z);
+        // Edge functions: each is twice the signed area seen from the ray.
+        let mut u = cx * by - cy * bx;
+        let mut v = ax * cy - ay * cx;
+        let mut w = bx * ay - by * ax;
+        if u == 0.0 || v == 0.0 || w == 0.0 {
+            // On an edge in single precision: decide in double, as both neighbours will.
+            let edge = |px: f32, py: f32, qx: f32, qy: f32| {
+                (px as f64 * qy as f64 - py as f64 * qx as f64) as f32
+            };
+            u = edge(cx, cy, bx, by);
+            v = edge(ax, ay, cx, cy);
+            w = edge(bx, by, ax, ay);
+        }
+        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+            return None;
+        }
+        let det = u + v + w;
         if det == 0.0 {
-            return None; // ray parallel to the triangle's plane, or degenerate triangle
+            return None; // seen edge-on, or a degenerate triangle
         }
-        let inv_det = 1.0 / det;
-        let tvec = ray.origin - self.p0;
-        let b1 = tvec.dot(pvec) * inv_det;
-        if !(0.0..=1.0).contains(&b1) {
+        let t_scaled = s.z * (u * a.z + v * b.z + w * c.z);
+        let t = t_scaled / det;
+        if !(t > t_min && t < t_max) {
             return None;
         }
-        let qvec = tvec.cross(self.e1);
-        let b2 = ray.dir.dot(qvec) * inv_det;
-        if b2 < 0.0 || b1 + b2 > 1.0 {
-            return None;
-        }
-        let t = self.e2.dot(qvec) * inv_det;
-        (t > t_min && t < t_max).then_some(TriangleHit {
+        Some(TriangleHit {
             t,
-            bary: Vec2::new(b1, b2),
+            bary: Vec2::new(v, w) / det,
         })
     }
 
     /// Unit geometric normal, by the right-hand rule on p0, p1, p2 (counter-clockwise = front).
     pub fn normal(&self) -> Vec3 {
-        self.e1.cross(self.e2).normalize_or_zero()
+        (self.p1 - self.p0)
+            .cross(self.p2 - self.p0)
+            .normalize_or_zero()
     }
 
     pub fn bounds(&self) -> Aabb {
-        Aabb::from_points([self.p0, self.p0 + self.e1, self.p0 + self.e2])
+        Aabb::from_points([self.p0, self.p1, self.p2])
     }
 
-    /// Twice the area; zero for a degenerate triangle.
+    /// Twice the area, computed in double precision; zero for a degenerate triangle.
     pub fn double_area(&self) -> f32 {
-        self.e1.cross(self.e2).length()
+        let (p0, p1, p2) = (self.p0.as_dvec3(), self.p1.as_dvec3(), self.p2.as_dvec3());
+        let n: DVec3 = (p1 - p0).cross(p2 - p0);
+        n.length() as f32
     }
 }
 
