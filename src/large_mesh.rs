@@ -20,18 +20,25 @@ pub fn bumpy_sphere(triangles: usize) -> Mesh {
     let rings = ((triangles as f32 / 4.0).sqrt().ceil() as u32).max(2);
     let segments = 2 * rings;
     let radius_at = |theta: f32, phi: f32| {
-        1.0 + 0.04 * (12.0 * theta).sin() * (9.0 * phi).cos() + 0.02 * (31.0 * phi + 5.0 * theta).sin()
+        1.0 + 0.04 * (12.0 * theta).sin() * (9.0 * phi).cos()
+            + 0.02 * (31.0 * phi + 5.0 * theta).sin()
     };
     let mut mesh = Mesh::default();
     for r in 0..=rings {
         let theta = PI * r as f32 / rings as f32;
         for s in 0..=segments {
             let phi = 2.0 * PI * s as f32 / segments as f32;
-            let dir = Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin());
+            let dir = Vec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                theta.sin() * phi.sin(),
+            );
             mesh.positions.push(dir * radius_at(theta, phi));
             mesh.normals.push(dir);
-            mesh.uvs
-                .push(Vec2::new(s as f32 / segments as f32, 1.0 - r as f32 / rings as f32));
+            mesh.uvs.push(Vec2::new(
+                s as f32 / segments as f32,
+                1.0 - r as f32 / rings as f32,
+            ));
         }
     }
     let index = |r: u32, s: u32| r * (segments + 1) + s;

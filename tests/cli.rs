@@ -230,3 +230,27 @@ fn spd_and_nff_mistakes_are_errors_not_panics() {
     }
     assert!(!dir.path().join("a.png").exists());
 }
+
+#[test]
+fn bench_takes_spd_scenes_by_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = raylab(
+        &[
+            "bench",
+            "--scenes",
+            "spd:tetra:2",
+            "--size",
+            "16",
+            "--threads",
+            "1",
+        ],
+        dir.path(),
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report = String::from_utf8_lossy(&out.stdout);
+    let row = report.lines().find(|l| l.starts_with("spd:tetra:2"));
+    assert!(
+        row.is_some_and(|r| r.contains(" 16 ")),
+        "16 triangles: {report}"
+    );
+}
