@@ -9,13 +9,14 @@ use clap::Args;
 use raylab::bvh::Bvh;
 use raylab::large_mesh::bumpy_sphere_scene;
 use raylab::progressive;
-use raylab::scene::{Scene, default_scene};
+use raylab::scene::{Scene, default_scene, load_any};
 use raylab::stats::RayCounts;
 use raylab::whitted::Tracer;
 
 #[derive(Args, Debug)]
 pub struct BenchArgs {
-    /// Scenes to run (default: all). `default`, or `bumpy:N` for the generated N-triangle mesh.
+    /// Scenes to run (default: all). `default`, `bumpy:N` for the generated N-triangle mesh, or
+    /// any scene `render` takes (`spd:balls`, a .nff or .toml file).
     #[arg(long, value_delimiter = ',')]
     scenes: Vec<String>,
     /// Image size (square).
@@ -110,9 +111,7 @@ fn load(name: &str, size: u32) -> Result<Scene, String> {
             .map_err(|_| format!("`{name}`: expected bumpy:N with N a number of triangles"))?;
         bumpy_sphere_scene(n, size, size)
     } else {
-        return Err(format!(
-            "unknown benchmark scene `{name}` (known: default, bumpy:N)"
-        ));
+        load_any(name).map_err(|e| e.to_string())?
     };
     scene.settings.width = size;
     scene.settings.height = size;

@@ -1,12 +1,12 @@
 //! The command line: its arguments (clap) and the subcommands.
 
 mod bench;
+mod generate;
 mod render;
 mod view;
 
-use std::path::Path;
-
 use clap::{Parser, Subcommand};
+use raylab::nff::NffLighting;
 use raylab::scene::{self, Scene};
 
 #[derive(Parser, Debug)]
@@ -32,6 +32,8 @@ enum Command {
     View(view::ViewArgs),
     /// Render a scene file (or the built-in default scene) to an image.
     Render(render::RenderArgs),
+    /// Write one of the Standard Procedural Databases as an NFF file.
+    Gen(generate::GenArgs),
     /// Render a fixed set of scenes and report speed and memory.
     Bench(bench::BenchArgs),
 }
@@ -40,16 +42,18 @@ enum Command {
 pub fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Some(Command::Render(args)) => render::run(args),
+        Some(Command::Gen(args)) => generate::run(args),
         Some(Command::Bench(args)) => bench::run(args),
         Some(Command::View(args)) => view::run(args),
         None => view::run(cli.view),
     }
 }
 
-/// Loads the scene at `path`, or the built-in default scene when there is none.
-fn load_scene(path: Option<&Path>) -> Result<Scene, String> {
-    match path {
-        Some(path) => scene::load_scene(path).map_err(|e| e.to_string()),
+/// Loads the scene `name` names (a TOML or NFF file, or `spd:NAME[:SIZE]`), or the built-in
+/// default scene when there is none. `lighting` applies to NFF and SPD scenes.
+fn load_scene(name: Option<&str>, lighting: NffLighting) -> Result<Scene, String> {
+    match name {
+        Some(name) => scene::load_any_with(name, lighting).map_err(|e| e.to_string()),
         None => scene::default_scene().map_err(|e| e.to_string()),
     }
 }

@@ -8,7 +8,8 @@ use crate::viewer::{self, Options, Script};
 
 #[derive(Args, Debug)]
 pub struct ViewArgs {
-    /// Scene file (.toml) to open; the built-in default scene when left out.
+    /// Scene to open: a .toml or .nff file, or spd:NAME[:SIZE]; the built-in default scene when
+    /// left out.
     scene: Option<PathBuf>,
     /// Image size: N for N×N, or WIDTHxHEIGHT (default: the scene's).
     #[arg(long, value_name = "N|WxH", value_parser = parse_size)]

@@ -182,7 +182,8 @@ impl App {
         self.generation += 1;
         self.loading = true;
         if self.requested != path || (path.is_some() && self.watcher.is_none()) {
-            self.watcher = path.as_deref().and_then(|p| {
+            // Only files are watched (not `spd:` names).
+            self.watcher = path.as_deref().filter(|p| p.is_file()).and_then(|p| {
                 let proxy = self.proxy.clone();
                 SceneWatcher::new(p, move || {
                     let _ = proxy.send_event(UserEvent::SceneFileChanged);

@@ -77,7 +77,7 @@ fn scene_section(ui: &mut egui::Ui, state: &mut PanelState, actions: &mut Vec<Ac
             ui.horizontal(|ui| {
                 let field = ui.add(
                     egui::TextEdit::singleline(&mut state.open_field)
-                        .hint_text("scene file (.toml), or drop one on the window")
+                        .hint_text("scene file (.toml, .nff) or spd:NAME, or drop a file here")
                         .desired_width(190.0),
                 );
                 let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));

@@ -32,12 +32,16 @@ impl LoadedScene {
     }
 }
 
-/// Reads the scene at `path` (the default scene for `None`) and builds its BVH. The error is the
-/// loader's message (`file:line:column: message`).
+/// Reads the scene at `path` (a TOML or NFF file, or an `spd:NAME[:SIZE]` name; the default
+/// scene for `None`) and builds its BVH. The error is the loader's message
+/// (`file:line:column: message`).
 pub fn load(path: Option<&Path>) -> Result<LoadedScene, String> {
     let start = Instant::now();
     let scene = match path {
-        Some(path) => scene::load_scene(path),
+        Some(path) => match path.to_str() {
+            Some(name) => scene::load_any(name),
+            None => scene::load_scene(path),
+        },
         None => scene::default_scene(),
     }
     .map_err(|e| e.to_string())?;
@@ -67,8 +71,8 @@ pub fn spawn_load(
     }
 }
 
-/// The scene files (`*.toml`, sorted by name) in the folder of `path`; for the built-in scene
-/// (`None`), those in `assets/scenes` under the current folder, if there is one.
+/// The scene files (`*.toml` and `*.nff`, sorted by name) in the folder of `path`; for the
+/// built-in scene (`None`), those in `assets/scenes` under the current folder, if there is one.
 pub fn scene_files_beside(path: Option<&Path>) -> Vec<PathBuf> {
     let folder = match path {
         Some(p) => p.parent().map(Path::to_path_buf).unwrap_or_default(),
@@ -84,7 +88,13 @@ pub fn scene_files_beside(path: Option<&Path>) -> Vec<PathBuf> {
     };
     let mut files: Vec<PathBuf> = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.is_file() && p.extension().is_some_and(|x| x == "toml"))
+        .filter(|p| {
+            let ext = p
+                .extension()
+                .and_then(|x| x.to_str())
+                .map(str::to_ascii_lowercase);
+            p.is_file() && matches!(ext.as_deref(), Some("toml" | "nff"))
+        })
         .filter(|p| p.file_name().is_some_and(|n| n != "Cargo.toml"))
         .collect();
     files.sort();
@@ -104,6 +114,12 @@ mod tests {
     }
 
     #[test]
+    fn spd_names_load_too() {
+        let loaded = load(Some(Path::new("spd:balls:1"))).unwrap();
+        assert!(!loaded.scene.geometry.objects.is_empty());
+    }
+
+    #[test]
     fn a_missing_file_is_an_error_naming_it() {
         let err = load(Some(Path::new("/no/such/scene.toml"))).err().unwrap();
         assert!(err.contains("/no/such/scene.toml"), "{err}");
@@ -112,7 +128,7 @@ mod tests {
     #[test]
     fn scene_files_are_listed_sorted_without_other_files() {
         let dir = tempfile::tempdir().unwrap();
-        for name in ["b.toml", "a.toml", "notes.txt", "Cargo.toml"] {
+        for name in ["b.toml", "a.toml", "notes.txt", "Cargo.toml", "c.NFF"] {
             std::fs::write(dir.path().join(name), "").unwrap();
         }
         let files = scene_files_beside(Some(&dir.path().join("a.toml")));
@@ -120,6 +136,6 @@ mod tests {
             .iter()
             .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
             .collect();
-        assert_eq!(names, ["a.toml", "b.toml"]);
+        assert_eq!(names, ["a.toml", "b.toml", "c.NFF"]);
     }
 }
