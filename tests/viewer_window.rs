@@ -52,13 +52,15 @@ fn display_wrapper() -> Option<Vec<String>> {
 
 /// Runs the viewer with `args` in a window; `None` (after saying why) if no display can be had.
 fn run_viewer(args: &[&str]) -> Option<Run> {
-    run_viewer_watching(args, |_, _| {})
+    run_viewer_watching(args, &[], |_, _| {})
 }
 
-/// [`run_viewer`], handing each line the viewer prints on stderr to `on_line` as it comes, with
-/// the process id of the command started (xvfb-run, or the viewer itself).
+/// [`run_viewer`] with environment variables `env`, handing each line the viewer prints on
+/// stderr to `on_line` as it comes, with the process id of the command started (xvfb-run, or
+/// the viewer itself).
 fn run_viewer_watching(
     args: &[&str],
+    env: &[(&str, &str)],
     mut on_line: impl FnMut(&str, u32) + Send + 'static,
 ) -> Option<Run> {
     let Some(wrapper) = display_wrapper() else {
@@ -82,6 +84,7 @@ fn run_viewer_watching(
     let mut child = command
         .args(args)
         .env("XDG_RUNTIME_DIR", runtime_dir.path())
+        .envs(env.iter().copied())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
@@ -327,6 +330,47 @@ fn a_resized_window_letterboxes_the_same_image() {
     assert_eq!(mismatches(&shot, (x, y, w, h), size, &expected), 0);
 }
 
+#[test]
+fn a_hidpi_window_draws_in_physical_pixels() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("hidpi.png");
+    let size = 64;
+    let Some(run) = run_viewer_watching(
+        &[
+            "--size",
+            &size.to_string(),
+            "--window",
+            "560x360",
+            "--exit-when-done",
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ],
+        &[("WINIT_X11_SCALE_FACTOR", "2")],
+        |_, _| {},
+    ) else {
+        return;
+    };
+    assert!(
+        run.success,
+        "stdout: {}\nstderr: {}",
+        run.stdout, run.stderr
+    );
+    let image = image::open(&shot).unwrap();
+    assert_eq!(
+        (image.width(), image.height()),
+        (1120, 720),
+        "twice the logical size"
+    );
+    let scene = default_scene().unwrap();
+    let expected = cpu_render(&scene, size, scene.camera.spec);
+    let rect = image_rect(&run.stdout);
+    assert!(
+        rect.2 > 2.0 * size as f32,
+        "the image fills the physical pixels: {rect:?}"
+    );
+    assert_eq!(mismatches(&shot, rect, size, &expected), 0);
+}
+
 /// A small scene file: a red ball on a floor, seen from `eye`.
 fn ball_scene(eye: [f32; 3]) -> String {
     format!(
@@ -396,6 +440,7 @@ fn saving_the_watched_scene_file_renders_it_again() {
             "--screenshot",
             shot.to_str().unwrap(),
         ],
+        &[],
         on_line,
     ) else {
         return;
@@ -459,7 +504,7 @@ fn an_idle_viewer_uses_no_cpu() {
             let _ = Command::new("kill").arg(pid.to_string()).status();
         }
     };
-    let Some(run) = run_viewer_watching(&["--size", "64", "--stats"], on_line) else {
+    let Some(run) = run_viewer_watching(&["--size", "64", "--stats"], &[], on_line) else {
         return;
     };
     let used = measured
