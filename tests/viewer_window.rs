@@ -248,6 +248,7 @@ fn the_window_shows_the_default_scene_as_the_cpu_renders_it() {
 fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
     let dir = tempfile::tempdir().unwrap();
     let shot = dir.path().join("orbited.png");
+    let saved = dir.path().join("saved.png");
     let size = 80;
     let Some(run) = run_viewer(&[
         "--size",
@@ -257,7 +258,9 @@ fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
         "--exit-when-done",
         "--stats",
         "--script",
-        "wait; orbit 40 15 4; dolly 1; wait; print-camera",
+        "wait; orbit 40 15 4; dolly 1; wait; print-camera; save",
+        "--save",
+        saved.to_str().unwrap(),
         "--screenshot",
         shot.to_str().unwrap(),
     ]) else {
@@ -290,6 +293,10 @@ fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
     );
     let old_view = cpu_render(&scene, size, scene.camera.spec);
     assert!(mismatches(&shot, rect, size, &old_view) > (size * size / 10) as usize);
+    // Save wrote the image itself and a camera snippet that reads back as the printed camera.
+    assert_eq!(image::open(&saved).unwrap().to_rgb8().into_raw(), new_view);
+    let snippet = std::fs::read_to_string(dir.path().join("saved.camera.toml")).unwrap();
+    assert_eq!(printed_camera(&snippet), camera);
 }
 
 #[test]
