@@ -55,7 +55,8 @@ pub struct App {
     pub(super) gfx: Option<Graphics>,
     pub(super) worker: Worker,
     pub(super) scene: Option<Arc<LoadedScene>>,
-    /// The controls as the scene file gives them, to tell which a reloaded file changed.
+    /// The controls as the scene file gives them (no overrides), to tell which a reloaded file
+    /// changed.
     pub(super) file_controls: Option<Controls>,
     pub(super) controls: Option<Controls>,
     pub(super) rendering: Option<Rendering>,
@@ -228,8 +229,10 @@ impl App {
                 return;
             }
         };
-        let file_controls = self.controls_for(&loaded);
+        // The file's own controls, to tell on the next reload what the file changed.
+        let file_controls = Controls::from_scene(&loaded.scene);
         let same_file = self.scene.as_ref().is_some_and(|s| s.path == loaded.path);
+        let with_overrides = self.controls_for(&loaded);
         match (&mut self.controls, &self.file_controls) {
             (Some(controls), Some(old)) if same_file => {
                 // Keep the user's view unless the file itself changed the camera or settings.
@@ -237,10 +240,10 @@ impl App {
                     controls.camera = file_controls.camera;
                 }
                 if old.settings != file_controls.settings {
-                    controls.settings = file_controls.settings.clone();
+                    controls.settings = with_overrides.settings;
                 }
             }
-            _ => self.controls = Some(file_controls.clone()),
+            _ => self.controls = Some(with_overrides),
         }
         self.file_controls = Some(file_controls);
         self.panel.load_error = None;
@@ -307,15 +310,7 @@ impl ApplicationHandler<UserEvent> for App {
                 gfx.window.request_redraw();
             }
             WindowEvent::DroppedFile(path) => {
-                self.apply(
-                    Action::Open(Some(path)),
-                    PixelRect {
-                        x: 0.0,
-                        y: 0.0,
-                        width: 0.0,
-                        height: 0.0,
-                    },
-                );
+                self.apply(Action::Open(Some(path)), PixelRect::ZERO);
                 self.request_redraw();
             }
             WindowEvent::RedrawRequested => self.redraw(event_loop),

@@ -86,12 +86,11 @@ impl App {
         }
     }
 
+    /// Saves the image and the camera it was rendered with.
     fn save(&mut self) {
-        let (Some(r), Some(controls)) = (&self.rendering, &self.controls) else {
-            return;
-        };
+        let Some(r) = &self.rendering else { return };
         let path = PathBuf::from(self.panel.save_field.trim());
-        let message = save::save_view(&path, &r.film, &controls.camera)
+        let message = save::save_view(&path, &r.film, &r.controls.camera)
             .unwrap_or_else(|e| format!("cannot save: {e}"));
         println!("{message}");
         self.panel.message = Some(message);

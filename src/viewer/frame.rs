@@ -32,12 +32,7 @@ impl App {
             .rendering
             .as_ref()
             .map_or((0, 0), |r| (r.film.width(), r.film.height()));
-        let mut shown = PixelRect {
-            x: 0.0,
-            y: 0.0,
-            width: 0.0,
-            height: 0.0,
-        };
+        let mut shown = PixelRect::ZERO;
         egui::CentralPanel::no_frame().show(ui, |ui| {
             let rect = ui.available_rect_before_wrap();
             let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
@@ -80,12 +75,7 @@ impl App {
             actions = a;
             shown = Some(s);
         });
-        let shown = shown.unwrap_or(PixelRect {
-            x: 0.0,
-            y: 0.0,
-            width: 0.0,
-            height: 0.0,
-        });
+        let shown = shown.unwrap_or(PixelRect::ZERO);
         if let Some(action) = self.options.script.next(self.idle(), self.loads) {
             actions.push(action);
         }

@@ -12,6 +12,13 @@ pub struct PixelRect {
 }
 
 impl PixelRect {
+    pub const ZERO: PixelRect = PixelRect {
+        x: 0.0,
+        y: 0.0,
+        width: 0.0,
+        height: 0.0,
+    };
+
     pub fn is_empty(&self) -> bool {
         !(self.width >= 1.0 && self.height >= 1.0)
     }
