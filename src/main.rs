@@ -1,6 +1,8 @@
-//! The `raylab` command: renders scene files to images from the command line.
+//! The `raylab` command: the interactive viewer (the default), and rendering scene files to
+//! images from the command line.
 
 mod cli;
+mod viewer;
 
 use std::process::ExitCode;
 

@@ -1,7 +1,9 @@
 //! Writing images: PNG and PPM (8-bit sRGB) and OpenEXR and Radiance HDR (linear floats), chosen
-//! by the file's extension. Files are written atomically: into a temporary file beside the
-//! target, then renamed over it, so an interrupted run never leaves half an image.
+//! by the file's extension. Files are written atomically ([`write_atomically`], also used for
+//! other files raylab writes): into a temporary file beside the target, then renamed over it, so
+//! an interrupted run never leaves half an image.
 
+use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
@@ -98,18 +100,7 @@ pub fn save_image(
     }
     let io = |e| OutputError::Io(path.into(), e);
     let encode = |e| OutputError::Encode(path.into(), e);
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".raylab-").suffix(".tmp");
-    // A temporary file is private (0600); the image should be as readable as any new file.
-    #[cfg(unix)]
-    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
-    let mut temp = builder.tempfile_in(dir).map_err(io)?;
-    {
-        let mut out = BufWriter::new(temp.as_file_mut());
+    write_atomically(path, io, |out| {
         match format {
             OutputFormat::Png | OutputFormat::Ppm => {
                 let srgb = RgbImage::from_raw(width, height, to_srgb8(pixels)).ok_or(
@@ -119,9 +110,9 @@ pub fn save_image(
                     },
                 )?;
                 if format == OutputFormat::Png {
-                    srgb.write_to(&mut out, ImageFormat::Png).map_err(encode)?;
+                    srgb.write_to(out, ImageFormat::Png).map_err(encode)?;
                 } else {
-                    let encoder = PnmEncoder::new(&mut out)
+                    let encoder = PnmEncoder::new(out)
                         .with_subtype(PnmSubtype::Pixmap(SampleEncoding::Binary));
                     srgb.write_with_encoder(encoder).map_err(encode)?;
                 }
@@ -140,11 +131,36 @@ pub fn save_image(
                     ImageFormat::Hdr
                 };
                 DynamicImage::ImageRgb32F(linear)
-                    .write_to(&mut out, image_format)
+                    .write_to(out, image_format)
                     .map_err(encode)?;
             }
         }
-        out.flush().map_err(io)?;
+        Ok(())
+    })
+}
+
+/// Writes the file at `path` atomically: `write` fills a temporary file beside it, which then
+/// replaces `path`, so a failed or interrupted write never leaves half a file (and keeps the old
+/// one). `io` turns an I/O error into the caller's error.
+pub fn write_atomically<E>(
+    path: &Path,
+    io: impl Fn(std::io::Error) -> E,
+    write: impl FnOnce(&mut BufWriter<&mut File>) -> Result<(), E>,
+) -> Result<(), E> {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".raylab-").suffix(".tmp");
+    // A temporary file is private (0600); the result should be as readable as any new file.
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
+    let mut temp = builder.tempfile_in(dir).map_err(&io)?;
+    {
+        let mut out = BufWriter::new(temp.as_file_mut());
+        write(&mut out)?;
+        out.flush().map_err(&io)?;
     }
     temp.persist(path).map_err(|e| io(e.error))?;
     Ok(())

@@ -8,21 +8,24 @@
 use std::path::{Path, PathBuf};
 
 use raylab::bvh::Bvh;
+use raylab::nff::NffLighting;
 use raylab::output::{save_image, to_srgb8};
 use raylab::progressive;
-use raylab::scene::{Scene, default_scene, load_scene};
+use raylab::scene::{Scene, default_scene, load_any, load_any_with, load_scene};
 use raylab::whitted::Tracer;
 
-const WIDTH: u32 = 160;
-const HEIGHT: u32 = 120;
+/// The size of the teaching scenes' pictures.
+const SIZE: (u32, u32) = (160, 120);
+/// The size of the SPD scenes' pictures: square, as SPD renders them.
+const SPD_SIZE: (u32, u32) = (128, 128);
 
 fn reference_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/reference/{name}.png"))
 }
 
-fn render_small(mut scene: Scene) -> Vec<u8> {
-    scene.settings.width = WIDTH;
-    scene.settings.height = HEIGHT;
+fn render_small(mut scene: Scene, (width, height): (u32, u32)) -> Vec<u8> {
+    scene.settings.width = width;
+    scene.settings.height = height;
     let bvh = Bvh::build(&scene.geometry);
     let (pixels, _) = progressive::render_image(&Tracer::new(&scene, &bvh));
     to_srgb8(&pixels)
@@ -45,20 +48,20 @@ fn difference(a: &[u8], b: &[u8]) -> (f64, f64) {
     (mean, far as f64 / (a.len() / 3) as f64)
 }
 
-fn check(name: &str, scene: Scene) {
-    let image = render_small(scene);
+fn check(name: &str, scene: Scene, size: (u32, u32)) {
+    let image = render_small(scene, size);
     let path = reference_path(name);
     if std::env::var_os("RAYLAB_BLESS").is_some() {
         let linear: Vec<_> = image
             .chunks(3)
             .map(|c| glam::Vec3::from_array([c[0], c[1], c[2]].map(srgb_decode)))
             .collect();
-        save_image(&path, WIDTH, HEIGHT, &linear).unwrap();
+        save_image(&path, size.0, size.1, &linear).unwrap();
     }
     let reference = image::open(&path)
         .unwrap_or_else(|e| panic!("{}: {e} (RAYLAB_BLESS=1 makes it)", path.display()))
         .to_rgb8();
-    assert_eq!(reference.dimensions(), (WIDTH, HEIGHT), "{name}");
+    assert_eq!(reference.dimensions(), size, "{name}");
     let (mean, far) = difference(&image, reference.as_raw());
     assert!(
         mean < 1.0 && far < 0.005,
@@ -79,7 +82,7 @@ fn shipped(name: &str) -> Scene {
 
 #[test]
 fn default_scene_matches_its_reference() {
-    check("default", default_scene().unwrap());
+    check("default", default_scene().unwrap(), SIZE);
 }
 
 #[test]
@@ -87,7 +90,7 @@ fn teaching_scenes_match_their_references() {
     for name in [
         "shadows", "mirrors", "glass", "textures", "meshes", "quadrics",
     ] {
-        check(name, shipped(name));
+        check(name, shipped(name), SIZE);
     }
 }
 
@@ -96,10 +99,48 @@ fn the_comparison_notices_a_changed_picture() {
     let scene = default_scene().unwrap();
     let mut darker = scene.clone();
     darker.lights.truncate(1);
-    let (a, b) = (render_small(scene), render_small(darker));
+    let (a, b) = (render_small(scene, SIZE), render_small(darker, SIZE));
     let (mean, far) = difference(&a, &b);
     assert!(
         mean >= 1.0 || far >= 0.005,
         "losing a light must fail the check"
+    );
+}
+
+#[test]
+fn spd_scenes_match_their_references() {
+    for name in [
+        "spd:balls:3",
+        "spd:gears:3",
+        "spd:mount:5",
+        "spd:rings:3",
+        "spd:teapot:6",
+        "spd:tetra:5",
+        "spd:tree:8",
+    ] {
+        let scene = load_any(name).unwrap_or_else(|e| panic!("{e}"));
+        check(&name.replace(':', "-"), scene, SPD_SIZE);
+    }
+}
+
+#[test]
+fn povray_lighting_matches_its_reference() {
+    let scene = load_any_with("spd:mount:5", NffLighting::Povray).unwrap();
+    check("spd-mount-5-povray", scene, SPD_SIZE);
+}
+
+#[test]
+fn an_spd_file_looks_like_the_generated_scene() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/nff/tree-6.nff");
+    let from_file = load_any(path.to_str().unwrap()).unwrap();
+    let generated = load_any("spd:tree:6").unwrap();
+    // The file holds six significant digits, so a few edges may fall differently.
+    let (mean, far) = difference(
+        &render_small(from_file, SPD_SIZE),
+        &render_small(generated, SPD_SIZE),
+    );
+    assert!(
+        mean < 1.0 && far < 0.005,
+        "{mean:.3} levels, {far:.4} far off"
     );
 }

@@ -2,8 +2,11 @@
 //! expected `Scene`, OBJ and image files are found relative to the scene file, every kind of
 //! mistake is reported at its line and column, and no input makes the reader panic.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
+use common::fuzz::{Rng, mutate};
 use glam::{Vec2, Vec3};
 use raylab::light::Light;
 use raylab::material::{Color, Material};
@@ -727,60 +730,11 @@ fn mesh_errors_point_at_the_part_at_fault() {
 
 // ---- robustness ------------------------------------------------------------------------------
 
-/// xorshift64*: a small deterministic generator, so that a failure can be replayed.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
-
 /// Characters that mean something to TOML or to the schema, and a few that do not.
 const ALPHABET: &[char] = &[
     '[', ']', '{', '}', '=', '"', '\'', ',', '.', '#', '\n', ' ', '-', '+', '0', '1', '9', 'e',
     'a', 'z', '_', 'é', '\t', '\\',
 ];
-
-fn mutate(text: &str, rng: &mut Rng) -> String {
-    let mut chars: Vec<char> = text.chars().collect();
-    for _ in 0..1 + rng.below(4) {
-        let at = rng.below(chars.len() + 1);
-        match rng.below(6) {
-            0 if at < chars.len() => {
-                chars.remove(at);
-            }
-            1 => chars.insert(at, ALPHABET[rng.below(ALPHABET.len())]),
-            2 if at < chars.len() => chars[at] = ALPHABET[rng.below(ALPHABET.len())],
-            3 => {
-                let text: String = chars.iter().collect();
-                let mut lines: Vec<&str> = text.lines().collect();
-                if lines.len() > 1 {
-                    let (a, b) = (rng.below(lines.len()), rng.below(lines.len()));
-                    lines.swap(a, b);
-                }
-                chars = lines.join("\n").chars().collect();
-            }
-            4 => chars.truncate(at),
-            _ => {
-                // Copy a stretch of the text elsewhere: duplicated keys and tables.
-                let from = rng.below(chars.len());
-                let len = rng.below(40).min(chars.len() - from);
-                let piece: Vec<char> = chars[from..from + len].to_vec();
-                let at = at.min(chars.len());
-                chars.splice(at..at, piece);
-            }
-        }
-    }
-    chars.into_iter().collect()
-}
 
 #[test]
 fn mutated_scene_files_never_panic() {
@@ -797,7 +751,7 @@ fn mutated_scene_files_never_panic() {
     let (mut parsed, mut rejected) = (0, 0);
     for _ in 0..20_000 {
         let original = &originals[rng.below(originals.len())];
-        let text = mutate(original, &mut rng);
+        let text = mutate(original, &mut rng, ALPHABET);
         let outcome = std::panic::catch_unwind(|| {
             parse_scene(&text, Path::new("fuzz.toml"), &scenes_dir()).map(|_| ())
         });

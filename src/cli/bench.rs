@@ -9,13 +9,14 @@ use clap::Args;
 use raylab::bvh::Bvh;
 use raylab::large_mesh::bumpy_sphere_scene;
 use raylab::progressive;
-use raylab::scene::{Scene, default_scene};
+use raylab::scene::{Scene, default_scene, load_any};
 use raylab::stats::RayCounts;
 use raylab::whitted::Tracer;
 
 #[derive(Args, Debug)]
 pub struct BenchArgs {
-    /// Scenes to run (default: all). `default`, or `bumpy:N` for the generated N-triangle mesh.
+    /// Scenes to run (default: all). `default`, `bumpy:N` for the generated N-triangle mesh, or
+    /// any scene `render` takes (`spd:balls`, a .nff or .toml file).
     #[arg(long, value_delimiter = ',')]
     scenes: Vec<String>,
     /// Image size (square).
@@ -53,8 +54,17 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
     };
     println!(
         "{:<16} {:>9} {:>9} {:>9} {:>10} {:>10} {:>10} {:>10} {:>9} {:>8} {:>9}",
-        "scene", "prims", "setup ms", "build ms", "render ms", "eye", "shadow", "reflect", "refract",
-        "Mrays/s", "B/prim"
+        "scene",
+        "prims",
+        "setup ms",
+        "build ms",
+        "render ms",
+        "eye",
+        "shadow",
+        "reflect",
+        "refract",
+        "Mrays/s",
+        "B/prim"
     );
     let mut results = Vec::new();
     for name in &names {
@@ -77,11 +87,17 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
         results.push(r);
     }
     if let Some(peak) = results.last().and_then(|r| r.peak_rss_bytes) {
-        println!("peak resident memory of the process: {:.1} MiB", peak as f64 / 1048576.0);
+        println!(
+            "peak resident memory of the process: {:.1} MiB",
+            peak as f64 / 1048576.0
+        );
     }
     if let Some(path) = &args.json {
-        std::fs::write(path, to_json(&results, args.size, pool.current_num_threads()))
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+        std::fs::write(
+            path,
+            to_json(&results, args.size, pool.current_num_threads()),
+        )
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     }
     Ok(())
 }
@@ -95,9 +111,7 @@ fn load(name: &str, size: u32) -> Result<Scene, String> {
             .map_err(|_| format!("`{name}`: expected bumpy:N with N a number of triangles"))?;
         bumpy_sphere_scene(n, size, size)
     } else {
-        return Err(format!(
-            "unknown benchmark scene `{name}` (known: default, bumpy:N)"
-        ));
+        load_any(name).map_err(|e| e.to_string())?
     };
     scene.settings.width = size;
     scene.settings.height = size;

@@ -1,24 +1,39 @@
 //! The command line: its arguments (clap) and the subcommands.
 
 mod bench;
+mod generate;
 mod render;
-
-use std::path::Path;
+mod view;
 
 use clap::{Parser, Subcommand};
+use raylab::nff::NffLighting;
 use raylab::scene::{self, Scene};
 
 #[derive(Parser, Debug)]
-#[command(name = "raylab", version, about = "An interactive Whitted ray tracer")]
+#[command(
+    name = "raylab",
+    version,
+    about = "An interactive Whitted ray tracer",
+    long_about = "An interactive Whitted ray tracer. With no subcommand, opens the viewer (the \
+                  options below are the viewer's; see also `raylab view --help`).",
+    args_conflicts_with_subcommands = true
+)]
 pub struct Cli {
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
+    #[command(flatten)]
+    view: view::ViewArgs,
 }
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Open the viewer on a scene file (or the built-in default scene): the image refines live
+    /// from coarse blocks to single pixels while you move the camera and change the settings.
+    View(view::ViewArgs),
     /// Render a scene file (or the built-in default scene) to an image.
     Render(render::RenderArgs),
+    /// Write one of the Standard Procedural Databases as an NFF file.
+    Gen(generate::GenArgs),
     /// Render a fixed set of scenes and report speed and memory.
     Bench(bench::BenchArgs),
 }
@@ -26,15 +41,19 @@ enum Command {
 /// Runs the command; the error is the message to print.
 pub fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
-        Command::Render(args) => render::run(args),
-        Command::Bench(args) => bench::run(args),
+        Some(Command::Render(args)) => render::run(args),
+        Some(Command::Gen(args)) => generate::run(args),
+        Some(Command::Bench(args)) => bench::run(args),
+        Some(Command::View(args)) => view::run(args),
+        None => view::run(cli.view),
     }
 }
 
-/// Loads the scene at `path`, or the built-in default scene when there is none.
-fn load_scene(path: Option<&Path>) -> Result<Scene, String> {
-    match path {
-        Some(path) => scene::load_scene(path).map_err(|e| e.to_string()),
+/// Loads the scene `name` names (a TOML or NFF file, or `spd:NAME[:SIZE]`), or the built-in
+/// default scene when there is none. `lighting` applies to NFF and SPD scenes.
+fn load_scene(name: Option<&str>, lighting: NffLighting) -> Result<Scene, String> {
+    match name {
+        Some(name) => scene::load_any_with(name, lighting).map_err(|e| e.to_string()),
         None => scene::default_scene().map_err(|e| e.to_string()),
     }
 }

@@ -7,6 +7,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use raylab::bvh::Bvh;
 use raylab::film::Film;
+use raylab::nff::NffLighting;
 use raylab::output::save_image;
 use raylab::progressive::{self, RenderControl};
 use raylab::settings::RenderSettings;
@@ -15,8 +16,9 @@ use raylab::whitted::Tracer;
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// Scene file (.toml); the built-in default scene when left out.
-    scene: Option<PathBuf>,
+    /// Scene: a .toml or .nff file, or a built-in SPD scene `spd:NAME[:SIZE]` (balls, gears,
+    /// mount, rings, teapot, tetra, tree); the built-in default scene when left out.
+    scene: Option<String>,
     /// Output image: .png or .ppm (8-bit sRGB), .exr or .hdr (linear floats).
     #[arg(short, long, default_value = "out.png")]
     output: PathBuf,
@@ -26,6 +28,11 @@ pub struct RenderArgs {
     /// Worker threads (default: one per core).
     #[arg(long)]
     threads: Option<usize>,
+    /// Brightness of NFF and SPD scenes' lights: `readme` (each light and the ambient light
+    /// √N/2N for N lights, the SPD readme's suggestion) or `povray` (each light 1/√N, no
+    /// ambient light, as SPD's POV-Ray exporter writes them).
+    #[arg(long, default_value_t = NffLighting::default())]
+    nff_lights: NffLighting,
 }
 
 /// Render settings that the command line can override.
@@ -66,7 +73,7 @@ impl SettingsOverrides {
 }
 
 pub fn run(args: RenderArgs) -> Result<(), String> {
-    let mut scene = super::load_scene(args.scene.as_deref())?;
+    let mut scene = super::load_scene(args.scene.as_deref(), args.nff_lights)?;
     args.overrides.apply(&mut scene.settings)?;
     let pool = super::thread_pool(args.threads)?;
 

@@ -306,17 +306,6 @@ fn build_transform(
     Ok(Some(transform))
 }
 
-/// A sphere, checked as the shapes' own constructors check theirs.
-fn sphere(center: Vec3, radius: f32) -> Result<Sphere, String> {
-    if radius.is_finite() && radius > 0.0 {
-        Ok(Sphere { center, radius })
-    } else {
-        Err(format!(
-            "sphere radius must be a positive number, got {radius}"
-        ))
-    }
-}
-
 /// A mesh of one triangle.
 fn triangle_mesh(
     vertices: [Vector; 3],
@@ -394,7 +383,7 @@ impl GeometryBuilder<'_> {
                 let radius_span = radius.as_ref().map_or(span, |r| r.span());
                 let center = center.map_or(Vec3::ZERO, |c| c.0);
                 let radius = radius.map_or(1.0, |r| *r.get_ref());
-                let shape = sphere(center, radius).map(Shape::Sphere);
+                let shape = Sphere::new(center, radius).map(Shape::Sphere);
                 self.add_shape(shape, radius_span, material, transform)
             }
             ShapeFile::Plane { point, normal } => {

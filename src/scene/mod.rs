@@ -1,6 +1,6 @@
 //! The scene: everything a render needs, as plain data. It is read from a TOML scene file
-//! ([`load_scene`], [`parse_scene`]) or made by code, and read by the BVH builder and the
-//! tracer.
+//! ([`load_scene`], [`parse_scene`]), from any scene raylab knows ([`load_any`]: TOML, NFF or a
+//! built-in SPD scene) or made by code, and read by the BVH builder and the tracer.
 
 mod build;
 mod builtin;
@@ -8,6 +8,7 @@ mod error;
 mod file;
 mod files;
 mod load;
+mod load_any;
 mod obj;
 mod retag;
 mod values;
@@ -15,8 +16,10 @@ mod values;
 pub use build::DEFAULT_MATERIAL;
 pub use builtin::{DEFAULT_SCENE_TEXT, default_scene};
 pub use error::SceneError;
+pub(crate) use error::Source;
 pub use files::SceneFiles;
 pub use load::{load_scene, parse_scene, parse_scene_with};
+pub use load_any::{load_any, load_any_with};
 
 use crate::camera::Camera;
 use crate::light::Light;

@@ -16,6 +16,20 @@ pub struct Sphere {
 }
 
 impl Sphere {
+    /// A sphere; the radius must be a positive number.
+    pub fn new(center: Vec3, radius: f32) -> Result<Sphere, String> {
+        if !center.is_finite() {
+            return Err(format!("sphere centre must be finite, got {center}"));
+        }
+        if radius.is_finite() && radius > 0.0 {
+            Ok(Sphere { center, radius })
+        } else {
+            Err(format!(
+                "sphere radius must be a positive number, got {radius}"
+            ))
+        }
+    }
+
     /// Solves `|o + d·t − c|² = r²`. The discriminant is computed as `r² − |f|²` with
     /// `f = oc − (oc·d / d·d)·d` (Ray Tracing Gems, ch. 7), which stays accurate for spheres far
     /// from the ray origin.

@@ -1,6 +1,8 @@
-//! Scenes built in code for the tests.
+//! What several test binaries share: scenes built in code, and seeded mutations of texts.
 
 #![allow(dead_code)] // each test binary uses a different part
+
+pub mod fuzz;
 
 use glam::Vec3;
 use raylab::camera::{Camera, CameraSpec};

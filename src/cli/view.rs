@@ -1,0 +1,105 @@
+//! `raylab view` (and `raylab` with no subcommand): the viewer's command-line options.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use crate::viewer::{self, Options, Script};
+
+#[derive(Args, Debug)]
+pub struct ViewArgs {
+    /// Scene to open: a .toml or .nff file, or spd:NAME[:SIZE]; the built-in default scene when
+    /// left out.
+    scene: Option<PathBuf>,
+    /// Image size: N for N×N, or WIDTHxHEIGHT (default: the scene's).
+    #[arg(long, value_name = "N|WxH", value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// Starting block size of progressive refinement (power of two, 1 to 64).
+    #[arg(long)]
+    block_size: Option<u32>,
+    /// Deepest level of the ray tree (the eye ray is depth 1).
+    #[arg(long)]
+    max_depth: Option<u32>,
+    /// Samples per pixel (more than 1 anti-aliases after block size 1).
+    #[arg(long)]
+    samples: Option<u32>,
+    /// Tracing threads (default: one per core).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Window size in logical pixels.
+    #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "1100x720")]
+    window: Option<(u32, u32)>,
+    /// Where "Save image" (Ctrl+S) writes; the camera snippet goes beside it as NAME.camera.toml.
+    #[arg(long, value_name = "PATH", default_value = "raylab.png")]
+    save: PathBuf,
+    /// Before exiting (see --exit-when-done), save a screenshot of the window, as drawn, here.
+    #[arg(long, value_name = "PATH")]
+    screenshot: Option<PathBuf>,
+    /// Exit once the script has run and refinement has reached its last pass (for tests).
+    #[arg(long)]
+    exit_when_done: bool,
+    /// Print the UI's frame rate and the time from each change to the first image and to block
+    /// size 1 on screen.
+    #[arg(long)]
+    stats: bool,
+    /// Scripted input, steps separated by `;`: wait (for refinement to finish), wait-load N (for
+    /// N scene loads, the first included), orbit YAW PITCH [FRAMES], pan DX DY [FRAMES], dolly STEPS,
+    /// fly X Y Z SECONDS, frame, reset, save, print-camera, open [PATH], resize W H.
+    #[arg(long, value_name = "STEPS", value_parser = Script::parse)]
+    script: Option<Script>,
+    /// Most frames per second while refining.
+    #[arg(long, default_value_t = 60.0)]
+    max_fps: f32,
+}
+
+/// `N` or `WxH` (also `W×H`), each side at least 1.
+fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let side = |s: &str| match s.trim().parse::<u32>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err(format!(
+            "`{s}` is not a size (use N or WIDTHxHEIGHT, e.g. 512 or 640x480)"
+        )),
+    };
+    match text.split_once(['x', 'X', '×']) {
+        Some((w, h)) => Ok((side(w)?, side(h)?)),
+        None => side(text).map(|n| (n, n)),
+    }
+}
+
+pub fn run(args: ViewArgs) -> Result<(), String> {
+    if args.threads == Some(0) {
+        return Err("--threads must be at least 1".into());
+    }
+    if args.screenshot.is_some() && !args.exit_when_done {
+        return Err("--screenshot is taken when the viewer exits: add --exit-when-done".into());
+    }
+    viewer::run(Options {
+        scene: args.scene,
+        size: args.size,
+        block_size: args.block_size,
+        max_depth: args.max_depth,
+        samples: args.samples,
+        threads: args.threads.unwrap_or(0),
+        window: args.window.unwrap_or((1100, 720)),
+        save_path: args.save,
+        screenshot: args.screenshot,
+        exit_when_done: args.exit_when_done,
+        stats: args.stats,
+        script: args.script.unwrap_or_default(),
+        max_fps: args.max_fps,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_are_n_or_w_by_h() {
+        assert_eq!(parse_size("512"), Ok((512, 512)));
+        assert_eq!(parse_size("640x480"), Ok((640, 480)));
+        assert_eq!(parse_size("640×480"), Ok((640, 480)));
+        assert!(parse_size("0").is_err());
+        assert!(parse_size("12xq").unwrap_err().contains("`q`"));
+    }
+}

@@ -1,0 +1,93 @@
+//! How bright an NFF scene's lights are. NFF leaves it open: a light written without a colour
+//! is "non-zero, of no particular value", and there is no ambient light in the file. raylab
+//! follows the SPD readme by default and can follow SPD's POV-Ray exporter instead.
+
+use std::fmt;
+use std::str::FromStr;
+
+/// A rule for the intensity of `l` lights without a colour and of the ambient light, given the
+/// number `N` of lights.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum NffLighting {
+    /// The SPD readme's suggestion: every light and the ambient light have intensity
+    /// √N / (2N) (so N lights together give √N / 2).
+    #[default]
+    Readme,
+    /// SPD's POV-Ray exporter: every light 1 / √N, no ambient light.
+    Povray,
+}
+
+impl NffLighting {
+    /// The names the command line accepts.
+    pub const NAMES: &'static str = "readme, povray";
+
+    /// Intensity of each of `lights` lights without a colour.
+    pub fn light_intensity(self, lights: usize) -> f64 {
+        let n = lights.max(1) as f64;
+        match self {
+            NffLighting::Readme => n.sqrt() / (2.0 * n),
+            NffLighting::Povray => 1.0 / n.sqrt(),
+        }
+    }
+
+    /// Intensity of the ambient light in a scene with `lights` lights.
+    pub fn ambient(self, lights: usize) -> f64 {
+        match self {
+            NffLighting::Readme => self.light_intensity(lights),
+            NffLighting::Povray => 0.0,
+        }
+    }
+}
+
+impl FromStr for NffLighting {
+    type Err = String;
+
+    fn from_str(name: &str) -> Result<Self, String> {
+        match name {
+            "readme" => Ok(NffLighting::Readme),
+            "povray" => Ok(NffLighting::Povray),
+            _ => Err(format!(
+                "unknown NFF lighting `{name}`; expected one of {}",
+                NffLighting::NAMES
+            )),
+        }
+    }
+}
+
+impl fmt::Display for NffLighting {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            NffLighting::Readme => "readme",
+            NffLighting::Povray => "povray",
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn readme_splits_light_as_the_spd_readme_suggests() {
+        let l = NffLighting::Readme;
+        assert!((l.light_intensity(1) - 0.5).abs() < 1e-12);
+        assert!((l.light_intensity(3) - 3f64.sqrt() / 6.0).abs() < 1e-12);
+        assert_eq!(l.ambient(7), l.light_intensity(7));
+    }
+
+    #[test]
+    fn povray_uses_one_over_root_n_and_no_ambient() {
+        let l = NffLighting::Povray;
+        assert!((l.light_intensity(5) - 0.447214).abs() < 1e-6);
+        assert_eq!(l.ambient(5), 0.0);
+    }
+
+    #[test]
+    fn names_round_trip_and_unknown_names_are_errors() {
+        for l in [NffLighting::Readme, NffLighting::Povray] {
+            assert_eq!(l.to_string().parse::<NffLighting>(), Ok(l));
+        }
+        let err = "bright".parse::<NffLighting>().unwrap_err();
+        assert!(err.contains("readme, povray"), "{err}");
+    }
+}

@@ -1,0 +1,98 @@
+//! Carrying out [`Action`]s: navigation moves the camera (through [`navigation`]), picking sets
+//! the orbit centre, and the scene, save and print actions do what they say.
+
+use std::path::PathBuf;
+
+use raylab::camera::Camera;
+
+use super::action::Action;
+use super::app::App;
+use super::layout::PixelRect;
+use super::navigation;
+use super::pick;
+use super::save;
+
+impl App {
+    pub(super) fn apply(&mut self, action: Action, shown: PixelRect) {
+        let bounds = self.scene.as_ref().map(|s| s.bounds);
+        match action {
+            Action::Open(path) => {
+                if let Some(p) = &path {
+                    self.panel.open_field = p.display().to_string();
+                }
+                self.start_load(path);
+            }
+            Action::Save => self.save(),
+            Action::ResizeWindow { width, height } => {
+                if let Some(gfx) = &self.gfx {
+                    let size = winit::dpi::LogicalSize::new(width, height);
+                    // The new size, if granted, arrives as a Resized event.
+                    let _ = gfx.window.request_inner_size(size);
+                }
+            }
+            Action::PrintCamera => {
+                if let Some(c) = &self.controls {
+                    println!("{}", save::camera_snippet(&c.camera));
+                    self.panel.message = Some("camera printed on the terminal".into());
+                }
+            }
+            Action::PickCentre { x, y } => self.pick_centre(x, y),
+            other => {
+                let (Some(controls), Some(bounds)) = (&mut self.controls, bounds) else {
+                    return;
+                };
+                let spec = &controls.camera;
+                let size = (controls.settings.width, controls.settings.height);
+                let new = match other {
+                    Action::Orbit { yaw, pitch } => Some(navigation::orbit(spec, yaw, pitch)),
+                    Action::Pan { dx, dy } => {
+                        let height = if shown.is_empty() {
+                            size.1 as f32
+                        } else {
+                            shown.height
+                        };
+                        Some(navigation::pan(spec, dx, dy, height))
+                    }
+                    Action::Dolly(steps) => Some(navigation::dolly(spec, steps)),
+                    Action::Fly { motion, seconds } => {
+                        let distance = navigation::fly_speed(spec, bounds) * seconds;
+                        Some(navigation::fly(spec, motion, distance))
+                    }
+                    Action::Frame => {
+                        navigation::frame(spec, bounds, size.0 as f32 / size.1.max(1) as f32)
+                    }
+                    Action::ResetCamera => self.scene.as_ref().map(|s| s.scene.camera.spec),
+                    _ => None,
+                };
+                if let Some(new) = new {
+                    controls.camera = new;
+                }
+            }
+        }
+    }
+
+    fn pick_centre(&mut self, x: f32, y: f32) {
+        let (Some(scene), Some(controls)) = (&self.scene, &mut self.controls) else {
+            return;
+        };
+        let Ok(camera) = Camera::new(controls.camera) else {
+            return;
+        };
+        let size = (controls.settings.width, controls.settings.height);
+        let point = pick::surface_point(&scene.scene, &scene.bvh, &camera, size, (x, y));
+        match point.and_then(|p| navigation::look_at_point(&controls.camera, p)) {
+            Some(spec) => controls.camera = spec,
+            None => self.panel.message = Some("no surface under the cursor".into()),
+        }
+    }
+
+    /// Saves the image and the camera it was rendered with.
+    fn save(&mut self) {
+        let Some(r) = &self.rendering else { return };
+        let path = PathBuf::from(self.panel.save_field.trim());
+        let message = save::save_view(&path, &r.film, &r.controls.camera)
+            .unwrap_or_else(|e| format!("cannot save: {e}"));
+        println!("{message}");
+        self.panel.message = Some(message);
+    }
+}

@@ -1,0 +1,82 @@
+//! What the user controls: the camera, the render settings and the lights' intensity. The panels
+//! and the navigation edit a [`Controls`]; whenever it differs from the one being rendered, the
+//! app restarts refinement with it.
+
+use raylab::camera::{Camera, CameraSpec};
+use raylab::scene::Scene;
+use raylab::settings::RenderSettings;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Controls {
+    pub camera: CameraSpec,
+    pub settings: RenderSettings,
+    /// Multiplies the colour of every light of the scene.
+    pub light_scale: f32,
+}
+
+impl Controls {
+    /// The scene's own camera and settings, lights as the file says.
+    pub fn from_scene(scene: &Scene) -> Controls {
+        Controls {
+            camera: scene.camera.spec,
+            settings: scene.settings.clone(),
+            light_scale: 1.0,
+        }
+    }
+
+    /// The camera these controls describe, if they are all valid; otherwise what is wrong.
+    /// `max_side` is the largest texture the GPU takes.
+    pub fn check(&self, max_side: u32) -> Result<Camera, String> {
+        self.settings.validate()?;
+        let (w, h) = (self.settings.width, self.settings.height);
+        if w > max_side || h > max_side {
+            return Err(format!(
+                "{w}×{h} is larger than this GPU's largest texture ({max_side} pixels a side)"
+            ));
+        }
+        if !(self.light_scale.is_finite() && self.light_scale >= 0.0) {
+            return Err(format!(
+                "light intensity must be zero or more, got {}",
+                self.light_scale
+            ));
+        }
+        Camera::new(self.camera).map_err(|e| format!("camera: {e}"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+
+    fn controls() -> Controls {
+        let camera = Camera::new(CameraSpec::default()).unwrap();
+        Controls::from_scene(&Scene::new(RenderSettings::default(), camera))
+    }
+
+    #[test]
+    fn valid_controls_give_their_camera() {
+        let c = controls();
+        assert_eq!(c.check(4096).unwrap().spec, c.camera);
+    }
+
+    #[test]
+    fn bad_settings_cameras_and_sizes_are_reported() {
+        let mut c = controls();
+        c.camera.look_at = c.camera.eye;
+        assert!(c.check(4096).unwrap_err().contains("camera"));
+        let mut c = controls();
+        c.camera.up = Vec3::ZERO;
+        assert!(c.check(4096).is_err());
+        let mut c = controls();
+        c.settings.block_size = 3;
+        assert!(c.check(4096).unwrap_err().contains("block_size"));
+        let mut c = controls();
+        c.settings.width = 5000;
+        assert!(c.check(4096).unwrap_err().contains("largest texture"));
+        let mut c = controls();
+        c.light_scale = f32::NAN;
+        assert!(c.check(4096).is_err());
+    }
+}

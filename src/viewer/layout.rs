@@ -1,0 +1,119 @@
+//! Where the image sits in the window: the largest rectangle of the image's aspect that fits the
+//! free area (letterboxing), in whole physical pixels, and the way back from a cursor position to
+//! a point of the image.
+
+/// A rectangle in physical pixels, `x, y` its top-left corner.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PixelRect {
+    pub x: f32,
+    pub y: f32,
+    pub width: f32,
+    pub height: f32,
+}
+
+impl PixelRect {
+    pub const ZERO: PixelRect = PixelRect {
+        x: 0.0,
+        y: 0.0,
+        width: 0.0,
+        height: 0.0,
+    };
+
+    pub fn is_empty(&self) -> bool {
+        !(self.width >= 1.0 && self.height >= 1.0)
+    }
+}
+
+/// The largest rectangle with the aspect of a `image_width × image_height` image that fits in
+/// `area`, centred, with whole-pixel position and size (so nearest sampling is exact).
+pub fn letterbox(area: PixelRect, image_width: u32, image_height: u32) -> PixelRect {
+    if area.is_empty() || image_width == 0 || image_height == 0 {
+        return PixelRect {
+            x: area.x,
+            y: area.y,
+            width: 0.0,
+            height: 0.0,
+        };
+    }
+    let aspect = image_width as f32 / image_height as f32;
+    let (width, height) = if area.width / area.height > aspect {
+        (area.height * aspect, area.height)
+    } else {
+        (area.width, area.width / aspect)
+    };
+    let (width, height) = (width.floor().max(1.0), height.floor().max(1.0));
+    PixelRect {
+        x: (area.x + (area.width - width) / 2.0).round(),
+        y: (area.y + (area.height - height) / 2.0).round(),
+        width,
+        height,
+    }
+}
+
+/// The image point (continuous, `x` right and `y` down, in image pixels) shown at window
+/// position `(px, py)`, or `None` outside the image.
+pub fn image_point(
+    shown: PixelRect,
+    image_width: u32,
+    image_height: u32,
+    px: f32,
+    py: f32,
+) -> Option<(f32, f32)> {
+    if shown.is_empty() {
+        return None;
+    }
+    let u = (px - shown.x) / shown.width;
+    let v = (py - shown.y) / shown.height;
+    ((0.0..1.0).contains(&u) && (0.0..1.0).contains(&v))
+        .then_some((u * image_width as f32, v * image_height as f32))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rect(x: f32, y: f32, width: f32, height: f32) -> PixelRect {
+        PixelRect {
+            x,
+            y,
+            width,
+            height,
+        }
+    }
+
+    #[test]
+    fn a_wide_area_gets_bars_left_and_right() {
+        let shown = letterbox(rect(0.0, 0.0, 400.0, 200.0), 100, 100);
+        assert_eq!(shown, rect(100.0, 0.0, 200.0, 200.0));
+    }
+
+    #[test]
+    fn a_tall_area_gets_bars_above_and_below() {
+        let shown = letterbox(rect(10.0, 20.0, 300.0, 500.0), 300, 150);
+        assert_eq!(shown, rect(10.0, 195.0, 300.0, 150.0));
+    }
+
+    #[test]
+    fn sizes_and_corners_are_whole_pixels() {
+        let shown = letterbox(rect(0.5, 0.0, 333.0, 101.0), 7, 3);
+        for v in [shown.x, shown.y, shown.width, shown.height] {
+            assert_eq!(v, v.round(), "{shown:?}");
+        }
+        assert!(shown.width <= 333.0 && shown.height <= 101.0);
+    }
+
+    #[test]
+    fn an_empty_area_shows_nothing() {
+        assert!(letterbox(rect(0.0, 0.0, 0.0, 300.0), 10, 10).is_empty());
+        assert!(letterbox(rect(0.0, 0.0, 300.0, 300.0), 0, 10).is_empty());
+    }
+
+    #[test]
+    fn cursor_positions_map_to_image_pixels() {
+        let shown = rect(100.0, 0.0, 200.0, 200.0);
+        assert_eq!(image_point(shown, 10, 10, 100.0, 0.0), Some((0.0, 0.0)));
+        assert_eq!(image_point(shown, 10, 10, 299.0, 199.0), Some((9.95, 9.95)));
+        assert_eq!(image_point(shown, 10, 10, 99.0, 50.0), None);
+        assert_eq!(image_point(shown, 10, 10, 300.0, 50.0), None);
+    }
+}

@@ -1,0 +1,82 @@
+//! The interactive viewer: a winit window where the library's progressive renderer refines the
+//! image from coarse blocks down to single pixels on background threads, the current image is
+//! drawn by wgpu on a textured quad every frame, and egui panels change the camera and the
+//! settings (any change restarts refinement). Only the binary knows about it; the data still
+//! flows one way: scene file → scene → BVH → tracer → film → texture → window.
+
+mod action;
+mod app;
+mod apply;
+mod controls;
+mod frame;
+mod gpu;
+mod input;
+mod layout;
+mod navigation;
+mod painter;
+mod panels;
+mod pick;
+mod quad;
+mod rendering;
+mod save;
+mod scene_source;
+mod screenshot;
+mod script;
+mod status;
+mod surface;
+mod timing;
+mod upload;
+mod watch;
+mod worker;
+
+use std::path::PathBuf;
+
+use winit::event_loop::EventLoop;
+
+pub use script::Script;
+
+/// How the viewer starts.
+pub struct Options {
+    /// Scene file; the built-in default scene when `None`.
+    pub scene: Option<PathBuf>,
+    /// Overrides of the scene's settings.
+    pub size: Option<(u32, u32)>,
+    pub block_size: Option<u32>,
+    pub max_depth: Option<u32>,
+    pub samples: Option<u32>,
+    /// Tracing threads (0: one per core).
+    pub threads: usize,
+    /// Window size in logical pixels.
+    pub window: (u32, u32),
+    /// Where Save writes the image.
+    pub save_path: PathBuf,
+    /// Save a screenshot of the window here before exiting (with `exit_when_done`).
+    pub screenshot: Option<PathBuf>,
+    /// Exit once the script has run and refinement is over.
+    pub exit_when_done: bool,
+    /// Print frame rate and refinement times.
+    pub stats: bool,
+    pub script: Script,
+    /// Most frames per second while refining.
+    pub max_fps: f32,
+}
+
+/// Opens the window and runs until it is closed; the error is the message to print.
+pub fn run(options: Options) -> Result<(), String> {
+    let event_loop = EventLoop::<app::UserEvent>::with_user_event()
+        .build()
+        .map_err(|e| {
+            format!(
+                "cannot open a window: {e}. The viewer needs a display (is DISPLAY or \
+                 WAYLAND_DISPLAY set?); without one, use `raylab render` to render to a file"
+            )
+        })?;
+    let mut app = app::App::new(options, event_loop.create_proxy())?;
+    event_loop
+        .run_app(&mut app)
+        .map_err(|e| format!("the window's event loop failed: {e}"))?;
+    match app.error.take() {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}

@@ -1,0 +1,112 @@
+//! Saving what the viewer shows: the image as a PNG (atomically, through the library's
+//! [`save_image`]) and the camera as a `[camera]` snippet to paste into a scene file.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use raylab::camera::CameraSpec;
+use raylab::film::Film;
+use raylab::output::save_image;
+
+/// The camera as a scene file's `[camera]` table. Numbers are written in full (Rust's shortest
+/// round-tripping form), so reading the snippet back gives exactly this camera.
+pub fn camera_snippet(spec: &CameraSpec) -> String {
+    let v = |v: glam::Vec3| format!("[{:?}, {:?}, {:?}]", v.x, v.y, v.z);
+    format!(
+        "[camera]\neye = {}\nlook_at = {}\nup = {}\nview_angle = {:?}\nnear = {:?}\n",
+        v(spec.eye),
+        v(spec.look_at),
+        v(spec.up),
+        spec.view_angle,
+        spec.near
+    )
+}
+
+/// Where the camera snippet of an image saved at `image` goes: beside it, `NAME.camera.toml`.
+pub fn camera_path(image: &Path) -> PathBuf {
+    image.with_extension("camera.toml")
+}
+
+/// Saves the film at `path` (its extension picks the format) and the camera beside it; returns
+/// a line saying what was written.
+pub fn save_view(path: &Path, film: &Film, camera: &CameraSpec) -> Result<String, String> {
+    save_image(path, film.width(), film.height(), &film.pixels()).map_err(|e| e.to_string())?;
+    let snippet_path = camera_path(path);
+    write_atomically(&snippet_path, camera_snippet(camera).as_bytes())?;
+    Ok(format!(
+        "saved {} and {}",
+        path.display(),
+        snippet_path.display()
+    ))
+}
+
+fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    let fail = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let mut temp = tempfile::Builder::new()
+        .prefix(".raylab-")
+        .suffix(".tmp")
+        .tempfile_in(dir)
+        .map_err(|e| fail(&e))?;
+    temp.write_all(bytes).map_err(|e| fail(&e))?;
+    temp.persist(path).map_err(|e| fail(&e.error))?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+    use raylab::material::Color;
+
+    use super::*;
+
+    fn spec() -> CameraSpec {
+        CameraSpec {
+            eye: Vec3::new(0.1, -2.5, 1e-3),
+            look_at: Vec3::new(1.0 / 3.0, 0.0, 7.0),
+            up: Vec3::Y,
+            view_angle: 47.25,
+            near: 0.5,
+        }
+    }
+
+    #[test]
+    fn the_snippet_reads_back_as_the_same_camera() {
+        let text = camera_snippet(&spec());
+        let table: toml::Table = text.parse().unwrap();
+        let camera = table["camera"].as_table().unwrap();
+        let vector = |key: &str| {
+            let a = camera[key].as_array().unwrap();
+            Vec3::from_array([0, 1, 2].map(|i| a[i].as_float().unwrap() as f32))
+        };
+        assert_eq!(vector("eye"), spec().eye);
+        assert_eq!(vector("look_at"), spec().look_at);
+        assert_eq!(vector("up"), spec().up);
+        assert_eq!(camera["view_angle"].as_float().unwrap() as f32, 47.25);
+        assert_eq!(camera["near"].as_float().unwrap() as f32, 0.5);
+    }
+
+    #[test]
+    fn saving_writes_the_png_and_the_snippet() {
+        let dir = tempfile::tempdir().unwrap();
+        let film = Film::new(3, 2);
+        film.set(0, 0, Color::ONE);
+        let path = dir.path().join("view.png");
+        let message = save_view(&path, &film, &spec()).unwrap();
+        assert!(message.contains("view.png"), "{message}");
+        let image = image::open(&path).unwrap().to_rgb8();
+        assert_eq!(image.dimensions(), (3, 2));
+        assert_eq!(image.get_pixel(0, 0).0, [255, 255, 255]);
+        let snippet = std::fs::read_to_string(dir.path().join("view.camera.toml")).unwrap();
+        assert_eq!(snippet, camera_snippet(&spec()));
+    }
+
+    #[test]
+    fn saving_to_a_missing_folder_is_an_error() {
+        let film = Film::new(1, 1);
+        assert!(save_view(Path::new("/no/such/dir/x.png"), &film, &spec()).is_err());
+    }
+}

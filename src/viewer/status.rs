@@ -1,0 +1,111 @@
+//! The status lines: the current pass and block size, progress within the pass, milliseconds per
+//! pass; then rays traced by kind, the tracing speed and the window's frame rate.
+
+use std::time::Duration;
+
+use raylab::progressive::Progress;
+use raylab::stats::RayCounts;
+
+/// What the status line reports about the running (or last) render.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RenderStatus {
+    pub progress: Progress,
+    /// Times of the passes finished so far.
+    pub pass_times: Vec<Duration>,
+    pub rays: RayCounts,
+    /// Time since the render started (to its end, once finished).
+    pub elapsed: Duration,
+    /// Frames per second of the window.
+    pub fps: f32,
+}
+
+/// Two lines of text.
+pub fn status_line(s: &RenderStatus) -> String {
+    let p = &s.progress;
+    let state = if p.finished {
+        format!("done: {} passes", p.passes)
+    } else {
+        let percent = if p.rows == 0 {
+            0.0
+        } else {
+            100.0 * p.rows_done as f32 / p.rows as f32
+        };
+        format!(
+            "pass {}/{} · block {} · {percent:.0}%",
+            p.pass + 1,
+            p.passes.max(1),
+            p.block_size
+        )
+    };
+    let pass_times = if s.pass_times.is_empty() {
+        "–".to_string()
+    } else {
+        let ms: Vec<String> = s
+            .pass_times
+            .iter()
+            .map(|t| format!("{:.1}", t.as_secs_f64() * 1e3))
+            .collect();
+        ms.join(" / ")
+    };
+    let r = &s.rays;
+    let mrays = r.total() as f64 / s.elapsed.as_secs_f64().max(1e-9) / 1e6;
+    format!(
+        "{state} · ms per pass: {pass_times}\nrays: {} eye ({} hit), {} shadow, {} reflected, {} \
+         transmitted · {mrays:.2} Mrays/s · {:.0} fps",
+        r.primary, r.primary_hits, r.shadow, r.reflected, r.transmitted, s.fps
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_running_render_shows_its_pass_block_and_progress() {
+        let s = RenderStatus {
+            progress: Progress {
+                pass: 1,
+                passes: 5,
+                block_size: 8,
+                rows_done: 16,
+                rows: 64,
+                finished: false,
+            },
+            pass_times: vec![Duration::from_micros(1_250), Duration::from_micros(12_340)],
+            rays: RayCounts {
+                primary: 1_000_000,
+                primary_hits: 900_000,
+                shadow: 500_000,
+                reflected: 300_000,
+                transmitted: 200_000,
+            },
+            elapsed: Duration::from_secs(1),
+            fps: 59.6,
+        };
+        let line = status_line(&s);
+        assert!(line.starts_with("pass 2/5 · block 8 · 25%"), "{line}");
+        assert!(line.contains("ms per pass: 1.2 / 12.3\nrays:"), "{line}");
+        assert!(
+            line.contains("1000000 eye (900000 hit), 500000 shadow"),
+            "{line}"
+        );
+        assert!(line.contains("2.00 Mrays/s · 60 fps"), "{line}");
+    }
+
+    #[test]
+    fn a_finished_render_says_so() {
+        let s = RenderStatus {
+            progress: Progress {
+                passes: 5,
+                finished: true,
+                ..Progress::default()
+            },
+            ..RenderStatus::default()
+        };
+        let line = status_line(&s);
+        assert!(
+            line.starts_with("done: 5 passes · ms per pass: –\n"),
+            "{line}"
+        );
+    }
+}

@@ -1,0 +1,68 @@
+//! Scene file watching: the file's folder is watched (editors often save by writing a new file and
+//! renaming it over the old one, which a watch on the file itself would lose), and every change to
+//! the file calls back, so the viewer re-renders when the scene is saved.
+
+use std::path::Path;
+
+use notify::{EventKind, RecursiveMode, Watcher};
+
+/// Watches one file while it lives.
+pub struct SceneWatcher {
+    _watcher: notify::RecommendedWatcher,
+}
+
+impl SceneWatcher {
+    /// Calls `changed` (on the watcher's thread) each time the file at `path` is written,
+    /// created, renamed or removed.
+    pub fn new(path: &Path, changed: impl Fn() + Send + 'static) -> Result<SceneWatcher, String> {
+        let file = std::path::absolute(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let folder = file.parent().unwrap_or(Path::new("/")).to_path_buf();
+        let name = file.file_name().map(|n| n.to_os_string());
+        let mut watcher =
+            notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
+                let Ok(event) = event else { return };
+                let relevant = matches!(
+                    event.kind,
+                    EventKind::Create(_) | EventKind::Modify(_) | EventKind::Remove(_)
+                );
+                if relevant && event.paths.iter().any(|p| p.file_name() == name.as_deref()) {
+                    changed();
+                }
+            })
+            .map_err(|e| format!("cannot watch {}: {e}", path.display()))?;
+        watcher
+            .watch(&folder, RecursiveMode::NonRecursive)
+            .map_err(|e| format!("cannot watch {}: {e}", folder.display()))?;
+        Ok(SceneWatcher { _watcher: watcher })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::mpsc;
+    use std::time::Duration;
+
+    use super::*;
+
+    #[test]
+    fn saving_the_file_calls_back_and_other_files_do_not() {
+        let dir = tempfile::tempdir().unwrap();
+        let scene = dir.path().join("scene.toml");
+        std::fs::write(&scene, "a").unwrap();
+        let (sender, receiver) = mpsc::channel();
+        let _watcher = SceneWatcher::new(&scene, move || {
+            let _ = sender.send(());
+        })
+        .unwrap();
+        std::fs::write(dir.path().join("other.toml"), "b").unwrap();
+        assert!(receiver.recv_timeout(Duration::from_millis(300)).is_err());
+        // Written in place, then replaced by a rename as many editors do.
+        std::fs::write(&scene, "c").unwrap();
+        assert!(receiver.recv_timeout(Duration::from_secs(5)).is_ok());
+        while receiver.try_recv().is_ok() {}
+        let temp = dir.path().join(".scene.toml.swp");
+        std::fs::write(&temp, "d").unwrap();
+        std::fs::rename(&temp, &scene).unwrap();
+        assert!(receiver.recv_timeout(Duration::from_secs(5)).is_ok());
+    }
+}

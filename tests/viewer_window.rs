@@ -1,0 +1,562 @@
+//! The viewer as a person sees it: the real app in a real window under a virtual X display
+//! (Xvfb) with Mesa's software Vulkan, told to exit once refinement is over and to save a
+//! screenshot of its window; the image area is compared with a CPU render of the same scene and
+//! camera. The tests skip (saying why) only where no display can be had at all: no `DISPLAY` and
+//! no `xvfb-run` (`scripts/test` installs it on Debian).
+
+use std::io::{BufRead, BufReader, Read};
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use glam::Vec3;
+use raylab::bvh::Bvh;
+use raylab::camera::{Camera, CameraSpec};
+use raylab::output::to_srgb8;
+use raylab::progressive;
+use raylab::scene::{Scene, default_scene, load_scene};
+use raylab::whitted::Tracer;
+
+/// One viewer at a time: they share two cores, and parallel `xvfb-run -a` can race for a display.
+static DISPLAY_LOCK: Mutex<()> = Mutex::new(());
+const TIMEOUT: Duration = Duration::from_secs(240);
+
+struct Run {
+    success: bool,
+    stdout: String,
+    stderr: String,
+}
+
+/// How to get a display: an existing one, or a virtual one through xvfb-run; `None` if neither.
+fn display_wrapper() -> Option<Vec<String>> {
+    let has = |program: &str| {
+        Command::new("sh")
+            .args(["-c", &format!("command -v {program}")])
+            .stdout(Stdio::null())
+            .status()
+            .is_ok_and(|s| s.success())
+    };
+    if has("xvfb-run") {
+        Some(
+            ["xvfb-run", "-a", "-s", "-screen 0 1280x800x24"]
+                .map(String::from)
+                .to_vec(),
+        )
+    } else if std::env::var_os("DISPLAY").is_some() {
+        Some(Vec::new())
+    } else {
+        None
+    }
+}
+
+/// Runs the viewer with `args` in a window; `None` (after saying why) if no display can be had.
+fn run_viewer(args: &[&str]) -> Option<Run> {
+    run_viewer_watching(args, &[], |_, _| {})
+}
+
+/// [`run_viewer`] with environment variables `env`, handing each line the viewer prints on
+/// stderr to `on_line` as it comes, with the process id of the command started (xvfb-run, or
+/// the viewer itself).
+fn run_viewer_watching(
+    args: &[&str],
+    env: &[(&str, &str)],
+    mut on_line: impl FnMut(&str, u32) + Send + 'static,
+) -> Option<Run> {
+    let Some(wrapper) = display_wrapper() else {
+        eprintln!(
+            "SKIPPED: no display and no xvfb-run; install it (Debian: apt-get install xvfb xauth \
+             mesa-vulkan-drivers libvulkan1 libxkbcommon-x11-0) or run scripts/test"
+        );
+        return None;
+    };
+    let _one_at_a_time = DISPLAY_LOCK.lock().unwrap_or_else(|e| e.into_inner());
+    let runtime_dir = tempfile::tempdir().unwrap();
+    let bin = env!("CARGO_BIN_EXE_raylab");
+    let mut command = match wrapper.split_first() {
+        Some((program, rest)) => {
+            let mut c = Command::new(program);
+            c.args(rest).arg(bin);
+            c
+        }
+        None => Command::new(bin),
+    };
+    let mut child = command
+        .args(args)
+        .env("XDG_RUNTIME_DIR", runtime_dir.path())
+        .envs(env.iter().copied())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("start the viewer");
+    let mut stdout = child.stdout.take().unwrap();
+    let stderr = child.stderr.take().unwrap();
+    let child_id = child.id();
+    let out = std::thread::spawn(move || {
+        let mut s = String::new();
+        let _ = stdout.read_to_string(&mut s);
+        s
+    });
+    let err = std::thread::spawn(move || {
+        let mut all = String::new();
+        for line in BufReader::new(stderr).lines().map_while(Result::ok) {
+            on_line(&line, child_id);
+            all.push_str(&line);
+            all.push('\n');
+        }
+        all
+    });
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if start.elapsed() > TIMEOUT {
+            let _ = child.kill();
+            panic!("the viewer did not exit within {TIMEOUT:?}");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    let run = Run {
+        success: status.success(),
+        stdout: out.join().unwrap(),
+        stderr: err.join().unwrap(),
+    };
+    assert!(!run.stderr.contains("panicked"), "{}", run.stderr);
+    Some(run)
+}
+
+/// Where the screenshot put the image: `(x, y, width, height)` from the viewer's report.
+fn image_rect(stdout: &str) -> (f32, f32, f32, f32) {
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("screenshot "))
+        .unwrap_or_else(|| panic!("no screenshot line in {stdout}"));
+    let words: Vec<&str> = line.split_whitespace().collect();
+    let after = |key: &str| {
+        let i = words.iter().position(|w| *w == key).unwrap();
+        words[i + 1]
+    };
+    let size = after("size");
+    let (w, h) = size.split_once('×').unwrap();
+    (
+        after("x").parse().unwrap(),
+        after("y").parse().unwrap(),
+        w.parse().unwrap(),
+        h.parse().unwrap(),
+    )
+}
+
+/// The `[camera]` snippet printed by the viewer, as a camera spec.
+fn printed_camera(stdout: &str) -> CameraSpec {
+    let start = stdout.find("[camera]").expect("a printed camera");
+    let table: toml::Table = stdout[start..]
+        .lines()
+        .take(6)
+        .collect::<Vec<_>>()
+        .join("\n")
+        .parse()
+        .unwrap();
+    let c = table["camera"].as_table().unwrap();
+    let number = |v: &toml::Value| v.as_float().unwrap() as f32;
+    let vector = |key: &str| {
+        let a = c[key].as_array().unwrap();
+        Vec3::new(number(&a[0]), number(&a[1]), number(&a[2]))
+    };
+    CameraSpec {
+        eye: vector("eye"),
+        look_at: vector("look_at"),
+        up: vector("up"),
+        view_angle: number(&c["view_angle"]),
+        near: number(&c["near"]),
+    }
+}
+
+/// The scene rendered on the CPU at `size × size` with `camera`, as sRGB bytes.
+fn cpu_render(scene: &Scene, size: u32, camera: CameraSpec) -> Vec<u8> {
+    let mut scene = scene.clone();
+    scene.settings.width = size;
+    scene.settings.height = size;
+    scene.camera = Camera::new(camera).unwrap();
+    let bvh = Bvh::build(&scene.geometry);
+    let (pixels, _) = progressive::render_image(&Tracer::new(&scene, &bvh));
+    to_srgb8(&pixels)
+}
+
+/// Compares the screenshot's image area, sampled at the centre of each image pixel, with the
+/// CPU's image; returns the number of pixels that differ by more than 2 levels.
+fn mismatches(screenshot: &Path, rect: (f32, f32, f32, f32), size: u32, expected: &[u8]) -> usize {
+    let shot = image::open(screenshot).unwrap().to_rgb8();
+    let (x0, y0, w, h) = rect;
+    assert!(
+        w >= size as f32 && h >= size as f32,
+        "the image is shown at least 1:1"
+    );
+    let mut bad = 0;
+    for j in 0..size {
+        for i in 0..size {
+            let sx = (x0 + (i as f32 + 0.5) * w / size as f32) as u32;
+            let sy = (y0 + (j as f32 + 0.5) * h / size as f32) as u32;
+            let got = shot.get_pixel(sx, sy).0;
+            let k = ((j * size + i) * 3) as usize;
+            if (0..3).any(|c| got[c].abs_diff(expected[k + c]) > 2) {
+                bad += 1;
+            }
+        }
+    }
+    bad
+}
+
+#[test]
+fn the_window_shows_the_default_scene_as_the_cpu_renders_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("window.png");
+    let size = 96;
+    let Some(run) = run_viewer(&[
+        "view",
+        "--size",
+        &size.to_string(),
+        "--window",
+        "700x500",
+        "--exit-when-done",
+        "--stats",
+        "--screenshot",
+        shot.to_str().unwrap(),
+    ]) else {
+        return;
+    };
+    assert!(
+        run.success,
+        "stdout: {}\nstderr: {}",
+        run.stdout, run.stderr
+    );
+    assert!(
+        run.stderr.contains("block size 1 at 96×96"),
+        "{}",
+        run.stderr
+    );
+    let scene = default_scene().unwrap();
+    let expected = cpu_render(&scene, size, scene.camera.spec);
+    let rect = image_rect(&run.stdout);
+    assert_eq!(mismatches(&shot, rect, size, &expected), 0);
+    // Outside the image: the letterbox bars and the panels, not the image.
+    let shot_image = image::open(&shot).unwrap().to_rgb8();
+    assert_eq!(shot_image.dimensions(), (700, 500));
+}
+
+#[test]
+fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("orbited.png");
+    let saved = dir.path().join("saved.png");
+    let size = 80;
+    let Some(run) = run_viewer(&[
+        "--size",
+        &size.to_string(),
+        "--block-size",
+        "8",
+        "--exit-when-done",
+        "--stats",
+        "--script",
+        "wait; orbit 40 15 4; dolly 1; wait; print-camera; save",
+        "--save",
+        saved.to_str().unwrap(),
+        "--screenshot",
+        shot.to_str().unwrap(),
+    ]) else {
+        return;
+    };
+    assert!(
+        run.success,
+        "stdout: {}\nstderr: {}",
+        run.stdout, run.stderr
+    );
+    let scene = default_scene().unwrap();
+    let camera = printed_camera(&run.stdout);
+    assert!(
+        (camera.eye - scene.camera.spec.eye).length() > 0.5,
+        "the camera moved"
+    );
+    assert_eq!(
+        camera.look_at, scene.camera.spec.look_at,
+        "orbit keeps the centre"
+    );
+    // Refinement ran to block size 1 once for the first view and again after the change.
+    let block_ones = run.stderr.matches("block size 1 at").count();
+    assert!(block_ones >= 2, "{}", run.stderr);
+    let rect = image_rect(&run.stdout);
+    let new_view = cpu_render(&scene, size, camera);
+    assert_eq!(
+        mismatches(&shot, rect, size, &new_view),
+        0,
+        "the window shows the new view"
+    );
+    let old_view = cpu_render(&scene, size, scene.camera.spec);
+    assert!(mismatches(&shot, rect, size, &old_view) > (size * size / 10) as usize);
+    // Save wrote the image itself and a camera snippet that reads back as the printed camera.
+    assert_eq!(image::open(&saved).unwrap().to_rgb8().into_raw(), new_view);
+    let snippet = std::fs::read_to_string(dir.path().join("saved.camera.toml")).unwrap();
+    assert_eq!(printed_camera(&snippet), camera);
+}
+
+#[test]
+fn a_resized_window_letterboxes_the_same_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("tall.png");
+    let size = 64;
+    let Some(run) = run_viewer(&[
+        "--size",
+        &size.to_string(),
+        "--window",
+        "700x500",
+        "--exit-when-done",
+        "--script",
+        "wait; resize 480 640; wait",
+        "--screenshot",
+        shot.to_str().unwrap(),
+    ]) else {
+        return;
+    };
+    assert!(
+        run.success,
+        "stdout: {}\nstderr: {}",
+        run.stdout, run.stderr
+    );
+    let image = image::open(&shot).unwrap();
+    assert_eq!(
+        (image.width(), image.height()),
+        (480, 640),
+        "the screenshot has the new size"
+    );
+    // Narrower than tall beside the panel: bars above and below, the image square.
+    let (x, y, w, h) = image_rect(&run.stdout);
+    assert_eq!(w, h);
+    assert!(y > 0.0 && x + w <= 480.0, "{:?}", (x, y, w, h));
+    let scene = default_scene().unwrap();
+    let expected = cpu_render(&scene, size, scene.camera.spec);
+    assert_eq!(mismatches(&shot, (x, y, w, h), size, &expected), 0);
+}
+
+#[test]
+fn a_hidpi_window_draws_in_physical_pixels() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("hidpi.png");
+    let size = 64;
+    let Some(run) = run_viewer_watching(
+        &[
+            "--size",
+            &size.to_string(),
+            "--window",
+            "560x360",
+            "--exit-when-done",
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ],
+        &[("WINIT_X11_SCALE_FACTOR", "2")],
+        |_, _| {},
+    ) else {
+        return;
+    };
+    assert!(
+        run.success,
+        "stdout: {}\nstderr: {}",
+        run.stdout, run.stderr
+    );
+    let image = image::open(&shot).unwrap();
+    assert_eq!(
+        (image.width(), image.height()),
+        (1120, 720),
+        "twice the logical size"
+    );
+    let scene = default_scene().unwrap();
+    let expected = cpu_render(&scene, size, scene.camera.spec);
+    let rect = image_rect(&run.stdout);
+    assert!(
+        rect.2 > 2.0 * size as f32,
+        "the image fills the physical pixels: {rect:?}"
+    );
+    assert_eq!(mismatches(&shot, rect, size, &expected), 0);
+}
+
+/// A small scene file: a red ball on a floor, seen from `eye`.
+fn ball_scene(eye: [f32; 3]) -> String {
+    format!(
+        "[render]\nwidth = 64\nheight = 64\n\n[camera]\neye = {eye:?}\nlook_at = [0, 1, 0]\n\
+         view_angle = 45\n\n[[lights]]\ntype = \"point\"\nposition = [3, 6, 4]\n\n\
+         [materials.red]\ncolor = [0.8, 0.2, 0.1]\n\n[[objects]]\ntype = \"plane\"\n\n\
+         [[objects]]\ntype = \"sphere\"\ncenter = [0, 1, 0]\nradius = 1\nmaterial = \"red\"\n"
+    )
+}
+
+#[test]
+fn a_broken_scene_file_shows_its_error_and_keeps_the_last_good_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let good = dir.path().join("good.toml");
+    let broken = dir.path().join("broken.toml");
+    std::fs::write(&good, ball_scene([0.0, 2.0, 6.0])).unwrap();
+    std::fs::write(&broken, "[camera]\neye = [0, 1]\n").unwrap();
+    let shot = dir.path().join("shot.png");
+    let Some(run) = run_viewer(&[
+        good.to_str().unwrap(),
+        "--exit-when-done",
+        "--script",
+        &format!("wait; open {}; wait", broken.display()),
+        "--screenshot",
+        shot.to_str().unwrap(),
+    ]) else {
+        return;
+    };
+    assert!(
+        run.success,
+        "stdout: {}\nstderr: {}",
+        run.stdout, run.stderr
+    );
+    // The loader's message, located: file:line:column.
+    let located = format!("{}:2:", broken.display());
+    assert!(run.stderr.contains(&located), "{}", run.stderr);
+    let scene = load_scene(&good).unwrap();
+    let expected = cpu_render(&scene, 64, scene.camera.spec);
+    assert_eq!(mismatches(&shot, image_rect(&run.stdout), 64, &expected), 0);
+}
+
+#[test]
+fn saving_the_watched_scene_file_renders_it_again() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("ball.toml");
+    std::fs::write(&path, ball_scene([0.0, 2.0, 6.0])).unwrap();
+    let shot = dir.path().join("shot.png");
+    let moved = [3.0, 3.0, 4.0];
+    let (edit_path, temp) = (path.clone(), dir.path().join(".ball.toml.new"));
+    let mut edited = false;
+    // Once the first view is done, save the file with the camera moved, as an editor would
+    // (write a new file, rename it over the old one).
+    let on_line = move |line: &str, _| {
+        if !edited && line.contains("block size 1 at") {
+            edited = true;
+            std::fs::write(&temp, ball_scene(moved)).unwrap();
+            std::fs::rename(&temp, &edit_path).unwrap();
+        }
+    };
+    let Some(run) = run_viewer_watching(
+        &[
+            path.to_str().unwrap(),
+            "--stats",
+            "--exit-when-done",
+            "--script",
+            "wait; wait-load 2; wait; print-camera",
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ],
+        &[],
+        on_line,
+    ) else {
+        return;
+    };
+    assert!(
+        run.success,
+        "stdout: {}\nstderr: {}",
+        run.stdout, run.stderr
+    );
+    assert_eq!(printed_camera(&run.stdout).eye, Vec3::from(moved));
+    let scene = load_scene(&path).unwrap();
+    assert_eq!(scene.camera.spec.eye, Vec3::from(moved));
+    let expected = cpu_render(&scene, 64, scene.camera.spec);
+    assert_eq!(mismatches(&shot, image_rect(&run.stdout), 64, &expected), 0);
+}
+
+/// The viewer's process: `pid` itself or its child named raylab (under xvfb-run).
+fn viewer_pid(pid: u32) -> Option<u32> {
+    let comm = |p: u32| std::fs::read_to_string(format!("/proc/{p}/comm")).unwrap_or_default();
+    if comm(pid).trim() == "raylab" {
+        return Some(pid);
+    }
+    std::fs::read_dir("/proc")
+        .ok()?
+        .filter_map(|e| e.ok()?.file_name().to_str()?.parse::<u32>().ok())
+        .find(|&p| comm(p).trim() == "raylab" && stat_fields(p).get(1) == Some(&pid.to_string()))
+}
+
+/// The fields of /proc/PID/stat after the command's name: state, parent, …
+fn stat_fields(pid: u32) -> Vec<String> {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).unwrap_or_default();
+    let after_name = stat.rsplit_once(')').map_or("", |(_, rest)| rest);
+    after_name.split_whitespace().map(String::from).collect()
+}
+
+/// User and system CPU time of a process so far, in clock ticks.
+fn cpu_ticks(pid: u32) -> u64 {
+    let fields = stat_fields(pid);
+    let field = |i: usize| {
+        fields
+            .get(i)
+            .and_then(|f| f.parse::<u64>().ok())
+            .unwrap_or(0)
+    };
+    field(11) + field(12)
+}
+
+#[test]
+fn an_idle_viewer_uses_no_cpu() {
+    let measured = Arc::new(Mutex::new(None));
+    let result = measured.clone();
+    // Once refinement is done, measure the viewer's CPU time for two seconds, then close it.
+    let on_line = move |line: &str, child: u32| {
+        if line.contains("block size 1 at") && result.lock().unwrap().is_none() {
+            let pid = viewer_pid(child).expect("the viewer's process");
+            std::thread::sleep(Duration::from_millis(500));
+            let before = cpu_ticks(pid);
+            std::thread::sleep(Duration::from_secs(2));
+            let used = cpu_ticks(pid) - before;
+            *result.lock().unwrap() = Some(used);
+            let _ = Command::new("kill").arg(pid.to_string()).status();
+        }
+    };
+    let Some(run) = run_viewer_watching(&["--size", "64", "--stats"], &[], on_line) else {
+        return;
+    };
+    let used = measured
+        .lock()
+        .unwrap()
+        .unwrap_or_else(|| panic!("{}", run.stderr));
+    assert!(
+        used <= 5,
+        "an idle viewer used {used} clock ticks of CPU in 2 s"
+    );
+}
+
+#[test]
+fn without_a_display_the_viewer_says_so_and_fails() {
+    let output = Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .args(["view", "--exit-when-done"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success());
+    assert!(stderr.contains("display"), "{stderr}");
+    assert!(stderr.contains("raylab render"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+#[test]
+fn help_documents_the_viewer() {
+    for args in [&["--help"][..], &["view", "--help"][..]] {
+        let output = Command::new(env!("CARGO_BIN_EXE_raylab"))
+            .args(args)
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&output.stdout);
+        assert!(output.status.success());
+        for option in [
+            "--size",
+            "--block-size",
+            "--screenshot",
+            "--exit-when-done",
+            "--script",
+        ] {
+            assert!(text.contains(option), "{args:?} lacks {option}: {text}");
+        }
+    }
+}
