@@ -34,6 +34,13 @@ impl PrimId {
         PrimId(index as u32)
     }
 
+    /// A key that orders primitives as [`Geometry::prim_ids`] lists them: objects first, in
+    /// the order they were added, then triangles.
+    #[inline(always)]
+    pub fn scene_order(self) -> u32 {
+        self.0 ^ Self::OBJECT_BIT
+    }
+
     /// `Ok(object index)` or `Err(triangle index)`.
     #[inline(always)]
     pub fn kind(self) -> Result<usize, usize> {

@@ -101,10 +101,8 @@ fn assert_same_closest(g: &Geometry, bvh: &Bvh, ray: &Ray) {
         (None, None) => {}
         (Some(e), Some(h)) => {
             assert_eq!(e.t, h.t, "ray {ray:?}");
-            if e.prim != h.prim {
-                // A tie: both primitives must really be hit at that t.
-                assert_eq!(g.intersect(e.prim, ray, 0.0, f32::INFINITY).unwrap().t, h.t);
-            }
+            // Ties go to the primitive first in the scene, as in the brute force.
+            assert_eq!(e.prim, h.prim, "ray {ray:?}");
         }
         _ => panic!("brute force {expected:?} but BVH {got:?} for {ray:?}"),
     }
@@ -182,6 +180,31 @@ fn tree_is_shallow_and_covers_every_primitive_once() {
                     child.max.into()
                 )));
             }
+        }
+    }
+}
+
+#[test]
+fn ties_go_to_the_primitive_first_in_the_scene() {
+    // Many copies of one sphere: every ray that hits one hits all at the same t.
+    let mut g = Geometry::default();
+    for _ in 0..50 {
+        g.objects.push(Object {
+            shape: Shape::Sphere(Sphere {
+                center: Vec3::ZERO,
+                radius: 1.0,
+            }),
+            transform: None,
+            material: 0,
+        });
+    }
+    let bvh = Bvh::build(&g);
+    let mut rng = Rng(5);
+    for _ in 0..200 {
+        let origin = rng.vec(-5.0, 5.0) + Vec3::splat(6.0);
+        let ray = Ray::new(origin, rng.vec(-0.5, 0.5) - origin);
+        if let Some(hit) = bvh.closest_hit(&g, &ray, 0.0, f32::INFINITY) {
+            assert_eq!(hit.prim, PrimId::object(0), "ray {ray:?}");
         }
     }
 }

@@ -254,3 +254,40 @@ fn bench_takes_spd_scenes_by_name() {
         "16 triangles: {report}"
     );
 }
+
+#[test]
+fn bench_writes_json_with_the_scaling_factor() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = raylab(
+        &[
+            "bench",
+            "--scenes",
+            "spd:tetra:1,default",
+            "--size",
+            "16",
+            "--threads",
+            "2",
+            "--repeat",
+            "1",
+            "--scaling",
+            "--json",
+            "bench.json",
+        ],
+        dir.path(),
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let json = std::fs::read_to_string(dir.path().join("bench.json")).unwrap();
+    assert!(
+        json.starts_with('{') && json.trim_end().ends_with('}'),
+        "{json}"
+    );
+    for key in [
+        "\"scene\": \"spd:tetra:1\"",
+        "\"scene\": \"default\"",
+        "\"scaling\": ",
+        "\"first_pass_ms\": ",
+    ] {
+        assert!(json.contains(key), "{key} missing: {json}");
+    }
+    assert!(!json.contains("\"scaling\": null"), "{json}");
+}

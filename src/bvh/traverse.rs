@@ -126,31 +126,34 @@ fn boxes_by_axis(nodes: &[Node]) -> ([Vec4; 3], [Vec4; 3]) {
 }
 
 impl Bvh {
-    /// The closest hit of `ray` with `t` in `(t_min, t_max)`.
+    /// The closest hit of `ray` with `t` in `(t_min, t_max)`. When several primitives are hit
+    /// at exactly the same `t` (a ray through the edge two polygons share), the one first in the
+    /// scene wins ([`PrimId::scene_order`]): the answer depends on the scene alone, not on the
+    /// shape of the tree or the order of the walk.
     pub fn closest_hit(
         &self,
         geometry: &Geometry,
         ray: &Ray,
         t_min: f32,
-        mut t_max: f32,
+        t_max: f32,
     ) -> Option<Hit> {
         let sheared = ShearedRay::new(ray);
-        let mut best = None;
-        for &id in &self.unbounded {
-            if let Some(hit) = geometry.intersect_prepared(id, ray, &sheared, t_min, t_max) {
-                t_max = hit.t;
-                best = Some(hit);
-            }
-        }
-        self.walk(ray, t_min, t_max, |prims, t_max| {
+        let mut best: Option<Hit> = None;
+        // Searching up to just past the best hit so far still finds its ties.
+        let mut test = |prims: &[PrimId], t_limit: &mut f32| {
             for &id in prims {
-                if let Some(hit) = geometry.intersect_prepared(id, ray, &sheared, t_min, *t_max) {
-                    *t_max = hit.t;
+                if let Some(hit) = geometry.intersect_prepared(id, ray, &sheared, t_min, *t_limit)
+                    && best.is_none_or(|b| hit.t < b.t || id.scene_order() < b.prim.scene_order())
+                {
+                    *t_limit = hit.t.next_up();
                     best = Some(hit);
                 }
             }
             ControlFlow::Continue(())
-        });
+        };
+        let mut t_limit = t_max;
+        let _ = test(&self.unbounded, &mut t_limit);
+        self.walk(ray, t_min, t_limit, test);
         best
     }
 

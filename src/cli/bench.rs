@@ -1,22 +1,27 @@
 //! `raylab bench`: renders a fixed set of scenes headless and reports, per scene, primitives,
-//! BVH build time, render time to block size 1, rays by kind, Mrays/s and memory; `--json`
-//! writes the same as JSON.
+//! BVH build time, render time to block size 1 (and of the coarsest pass), rays by kind,
+//! Mrays/s and memory; `--json` writes the same as JSON ([`super::bench_report`]).
+//!
+//! Timings on a shared machine vary from run to run, so each scene is built and rendered
+//! `--repeat` times and the medians are reported; `--scaling` also renders each scene on one
+//! thread, interleaved with the other renders so that both see the same machine.
 
 use std::path::PathBuf;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use clap::Args;
 use raylab::bvh::Bvh;
 use raylab::large_mesh::bumpy_sphere_scene;
 use raylab::progressive;
 use raylab::scene::{Scene, default_scene, load_any};
-use raylab::stats::RayCounts;
 use raylab::whitted::Tracer;
+
+use super::bench_report::{self, BenchResult};
 
 #[derive(Args, Debug)]
 pub struct BenchArgs {
-    /// Scenes to run (default: all). `default`, `bumpy:N` for the generated N-triangle mesh, or
-    /// any scene `render` takes (`spd:balls`, a .nff or .toml file).
+    /// Scenes to run (default: the standard set). `default`, `bumpy:N` for the generated
+    /// N-triangle mesh, or any scene `render` takes (`spd:balls`, a .nff or .toml file).
     #[arg(long, value_delimiter = ',')]
     scenes: Vec<String>,
     /// Image size (square).
@@ -25,79 +30,58 @@ pub struct BenchArgs {
     /// Worker threads (default: one per core).
     #[arg(long)]
     threads: Option<usize>,
+    /// Builds and renders per scene; the medians are reported.
+    #[arg(long, default_value_t = 3)]
+    repeat: usize,
+    /// Also render each scene on one thread and report the speed-up of all threads over one.
+    #[arg(long)]
+    scaling: bool,
     /// Also write the results as JSON to this file.
     #[arg(long)]
     json: Option<PathBuf>,
 }
 
-/// The standard set.
-const STANDARD_SCENES: &[&str] = &["default", "bumpy:1000000"];
-
-/// What one scene measured.
-struct BenchResult {
-    name: String,
-    primitives: usize,
-    setup_seconds: f64,
-    build_seconds: f64,
-    render_seconds: f64,
-    rays: RayCounts,
-    scene_bytes: usize,
-    peak_rss_bytes: Option<u64>,
-}
+/// The standard set: the default scene, the seven SPD databases at their standard sizes, and a
+/// million generated triangles for traversal.
+const STANDARD_SCENES: &[&str] = &[
+    "default",
+    "spd:balls:4",
+    "spd:gears:4",
+    "spd:mount:6",
+    "spd:rings:7",
+    "spd:teapot:12",
+    "spd:tetra:6",
+    "spd:tree:11",
+    "bumpy:1000000",
+];
 
 pub fn run(args: BenchArgs) -> Result<(), String> {
+    if args.repeat == 0 {
+        return Err("--repeat must be at least 1".into());
+    }
     let pool = super::thread_pool(args.threads)?;
+    let single = if args.scaling {
+        Some(super::thread_pool(Some(1))?)
+    } else {
+        None
+    };
     let names: Vec<String> = if args.scenes.is_empty() {
         STANDARD_SCENES.iter().map(|s| s.to_string()).collect()
     } else {
         args.scenes.clone()
     };
-    println!(
-        "{:<16} {:>9} {:>9} {:>9} {:>10} {:>10} {:>10} {:>10} {:>9} {:>8} {:>9}",
-        "scene",
-        "prims",
-        "setup ms",
-        "build ms",
-        "render ms",
-        "eye",
-        "shadow",
-        "reflect",
-        "refract",
-        "Mrays/s",
-        "B/prim"
-    );
+    let threads = pool.current_num_threads();
+    println!("{}×{} pixels, {threads} threads", args.size, args.size);
+    bench_report::print_header(args.scaling);
     let mut results = Vec::new();
     for name in &names {
-        let r = bench_scene(name, args.size, &pool)?;
-        let mrays = r.rays.total() as f64 / r.render_seconds / 1e6;
-        println!(
-            "{:<16} {:>9} {:>9.1} {:>9.1} {:>10.1} {:>10} {:>10} {:>10} {:>9} {:>8.2} {:>9.1}",
-            r.name,
-            r.primitives,
-            r.setup_seconds * 1e3,
-            r.build_seconds * 1e3,
-            r.render_seconds * 1e3,
-            r.rays.primary,
-            r.rays.shadow,
-            r.rays.reflected,
-            r.rays.transmitted,
-            mrays,
-            r.scene_bytes as f64 / r.primitives.max(1) as f64,
-        );
-        results.push(r);
-    }
-    if let Some(peak) = results.last().and_then(|r| r.peak_rss_bytes) {
-        println!(
-            "peak resident memory of the process: {:.1} MiB",
-            peak as f64 / 1048576.0
-        );
+        let result = bench_scene(name, &args, &pool, single.as_ref())?;
+        bench_report::print_row(&result);
+        results.push(result);
     }
     if let Some(path) = &args.json {
-        std::fs::write(
-            path,
-            to_json(&results, args.size, pool.current_num_threads()),
-        )
-        .map_err(|e| format!("{}: {e}", path.display()))?;
+        std::fs::write(path, bench_report::to_json(&results, args.size, threads))
+            .map_err(|e| format!("{}: {e}", path.display()))?;
     }
     Ok(())
 }
@@ -119,65 +103,67 @@ fn load(name: &str, size: u32) -> Result<Scene, String> {
     Ok(scene)
 }
 
-fn bench_scene(name: &str, size: u32, pool: &rayon::ThreadPool) -> Result<BenchResult, String> {
+fn bench_scene(
+    name: &str,
+    args: &BenchArgs,
+    pool: &rayon::ThreadPool,
+    single: Option<&rayon::ThreadPool>,
+) -> Result<BenchResult, String> {
+    reset_peak_rss();
     let start = Instant::now();
-    let scene = load(name, size)?;
-    let setup_seconds = start.elapsed().as_secs_f64();
-    pool.install(|| {
+    let scene = load(name, args.size)?;
+    let setup = start.elapsed();
+    let mut builds = Vec::new();
+    let mut bvh = Bvh::default();
+    for _ in 0..args.repeat {
         let start = Instant::now();
-        let bvh = Bvh::build(&scene.geometry);
-        let build_seconds = start.elapsed().as_secs_f64();
-        let (_, stats) = progressive::render_image(&Tracer::new(&scene, &bvh));
-        Ok(BenchResult {
-            name: name.to_string(),
-            primitives: scene.geometry.len(),
-            setup_seconds,
-            build_seconds,
-            render_seconds: stats.time.as_secs_f64(),
-            rays: stats.rays,
-            scene_bytes: scene.geometry.memory_bytes() + bvh.memory_bytes(),
-            peak_rss_bytes: peak_rss_bytes(),
-        })
+        bvh = pool.install(|| Bvh::build(&scene.geometry));
+        builds.push(start.elapsed());
+    }
+    let tracer = Tracer::new(&scene, &bvh);
+    let (mut renders, mut first_passes, mut single_renders) = (Vec::new(), Vec::new(), Vec::new());
+    let mut rays = Default::default();
+    for _ in 0..args.repeat {
+        let (_, stats) = pool.install(|| progressive::render_image(&tracer));
+        renders.push(stats.time);
+        first_passes.push(stats.passes.first().map_or(Duration::ZERO, |p| p.time));
+        rays = stats.rays;
+        if let Some(single) = single {
+            single_renders.push(single.install(|| progressive::render_image(&tracer)).1.time);
+        }
+    }
+    Ok(BenchResult {
+        name: name.to_string(),
+        primitives: scene.geometry.len(),
+        setup,
+        build: median(builds),
+        first_pass: median(first_passes),
+        render: median(renders),
+        render_one_thread: single.map(|_| median(single_renders)),
+        rays,
+        scene_bytes: scene.geometry.memory_bytes() + bvh.memory_bytes(),
+        peak_rss_bytes: peak_rss_bytes(),
     })
 }
 
-/// The process's peak resident memory (Linux: VmHWM in /proc/self/status).
+fn median(mut times: Vec<Duration>) -> Duration {
+    times.sort();
+    times[times.len() / 2]
+}
+
+/// Starts measuring the process's peak resident memory afresh (Linux: writing 5 to
+/// /proc/self/clear_refs), so that each scene's peak is its own. Elsewhere the peak stays the
+/// process's.
+fn reset_peak_rss() {
+    // Without the file there is nothing to reset, and the peak stays the whole process's.
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
+}
+
+/// The process's peak resident memory since the last reset (Linux: VmHWM in
+/// /proc/self/status).
 fn peak_rss_bytes() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib * 1024)
-}
-
-fn to_json(results: &[BenchResult], size: u32, threads: usize) -> String {
-    let scenes: Vec<String> = results
-        .iter()
-        .map(|r| {
-            format!(
-                concat!(
-                    "    {{\"scene\": \"{}\", \"primitives\": {}, \"setup_ms\": {:.3}, \"build_ms\": {:.3}, ",
-                    "\"render_ms\": {:.3}, \"eye_rays\": {}, \"eye_hits\": {}, \"shadow_rays\": {}, ",
-                    "\"reflected_rays\": {}, \"transmitted_rays\": {}, \"mrays_per_s\": {:.3}, ",
-                    "\"scene_bytes\": {}, \"peak_rss_bytes\": {}}}"
-                ),
-                r.name,
-                r.primitives,
-                r.setup_seconds * 1e3,
-                r.build_seconds * 1e3,
-                r.render_seconds * 1e3,
-                r.rays.primary,
-                r.rays.primary_hits,
-                r.rays.shadow,
-                r.rays.reflected,
-                r.rays.transmitted,
-                r.rays.total() as f64 / r.render_seconds / 1e6,
-                r.scene_bytes,
-                r.peak_rss_bytes.map_or("null".to_string(), |b| b.to_string()),
-            )
-        })
-        .collect();
-    format!(
-        "{{\n  \"width\": {size},\n  \"height\": {size},\n  \"threads\": {threads},\n  \"scenes\": [\n{}\n  ]\n}}\n",
-        scenes.join(",\n")
-    )
 }

@@ -1,6 +1,7 @@
 //! The command line: its arguments (clap) and the subcommands.
 
 mod bench;
+mod bench_report;
 mod generate;
 mod render;
 mod view;

@@ -1,0 +1,136 @@
+//! What `raylab bench` measured for a scene, and how it is shown: a table row on the terminal,
+//! and JSON.
+
+use std::time::Duration;
+
+use raylab::stats::RayCounts;
+
+/// What one scene measured (times are medians over the repeats).
+pub struct BenchResult {
+    pub name: String,
+    pub primitives: usize,
+    /// Reading or generating the scene.
+    pub setup: Duration,
+    pub build: Duration,
+    /// The coarsest pass of the progressive render.
+    pub first_pass: Duration,
+    /// The whole render, to block size 1.
+    pub render: Duration,
+    /// The whole render on one thread, with `--scaling`.
+    pub render_one_thread: Option<Duration>,
+    pub rays: RayCounts,
+    /// Geometry and BVH.
+    pub scene_bytes: usize,
+    /// Peak resident memory while the scene was loaded, built and rendered.
+    pub peak_rss_bytes: Option<u64>,
+}
+
+impl BenchResult {
+    pub fn mrays_per_second(&self) -> f64 {
+        self.rays.total() as f64 / self.render.as_secs_f64() / 1e6
+    }
+
+    pub fn bytes_per_primitive(&self) -> f64 {
+        self.scene_bytes as f64 / self.primitives.max(1) as f64
+    }
+
+    /// Render time on one thread over render time on all.
+    pub fn scaling(&self) -> Option<f64> {
+        self.render_one_thread
+            .map(|one| one.as_secs_f64() / self.render.as_secs_f64())
+    }
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+fn mib(bytes: Option<u64>) -> String {
+    bytes.map_or("-".into(), |b| format!("{:.1}", b as f64 / 1048576.0))
+}
+
+pub fn print_header(scaling: bool) {
+    print!(
+        "{:<14} {:>8} {:>8} {:>8} {:>8} {:>9} {:>8} {:>8} {:>8} {:>8} {:>8}",
+        "scene",
+        "prims",
+        "setup ms",
+        "build ms",
+        "pass1 ms",
+        "render ms",
+        "eye",
+        "shadow",
+        "reflect",
+        "refract",
+        "Mrays/s"
+    );
+    if scaling {
+        print!(" {:>9} {:>7}", "1-thr ms", "scaling");
+    }
+    println!(" {:>7} {:>8}", "B/prim", "peak MiB");
+}
+
+pub fn print_row(r: &BenchResult) {
+    print!(
+        "{:<14} {:>8} {:>8.1} {:>8.1} {:>8.2} {:>9.1} {:>8} {:>8} {:>8} {:>8} {:>8.2}",
+        r.name,
+        r.primitives,
+        ms(r.setup),
+        ms(r.build),
+        ms(r.first_pass),
+        ms(r.render),
+        r.rays.primary,
+        r.rays.shadow,
+        r.rays.reflected,
+        r.rays.transmitted,
+        r.mrays_per_second(),
+    );
+    if let (Some(one), Some(scaling)) = (r.render_one_thread, r.scaling()) {
+        print!(" {:>9.1} {:>7.2}", ms(one), scaling);
+    }
+    println!(
+        " {:>7.1} {:>8}",
+        r.bytes_per_primitive(),
+        mib(r.peak_rss_bytes)
+    );
+}
+
+pub fn to_json(results: &[BenchResult], size: u32, threads: usize) -> String {
+    let null_or = |v: Option<String>| v.unwrap_or_else(|| "null".into());
+    let scenes: Vec<String> = results
+        .iter()
+        .map(|r| {
+            format!(
+                concat!(
+                    "    {{\"scene\": \"{}\", \"primitives\": {}, \"setup_ms\": {:.3}, ",
+                    "\"build_ms\": {:.3}, \"first_pass_ms\": {:.3}, \"render_ms\": {:.3}, ",
+                    "\"render_one_thread_ms\": {}, \"scaling\": {}, ",
+                    "\"eye_rays\": {}, \"eye_hits\": {}, \"shadow_rays\": {}, ",
+                    "\"reflected_rays\": {}, \"transmitted_rays\": {}, \"mrays_per_s\": {:.3}, ",
+                    "\"scene_bytes\": {}, \"bytes_per_primitive\": {:.1}, \"peak_rss_bytes\": {}}}"
+                ),
+                r.name,
+                r.primitives,
+                ms(r.setup),
+                ms(r.build),
+                ms(r.first_pass),
+                ms(r.render),
+                null_or(r.render_one_thread.map(|d| format!("{:.3}", ms(d)))),
+                null_or(r.scaling().map(|s| format!("{s:.3}"))),
+                r.rays.primary,
+                r.rays.primary_hits,
+                r.rays.shadow,
+                r.rays.reflected,
+                r.rays.transmitted,
+                r.mrays_per_second(),
+                r.scene_bytes,
+                r.bytes_per_primitive(),
+                null_or(r.peak_rss_bytes.map(|b| b.to_string())),
+            )
+        })
+        .collect();
+    format!(
+        "{{\n  \"width\": {size},\n  \"height\": {size},\n  \"threads\": {threads},\n  \"scenes\": [\n{}\n  ]\n}}\n",
+        scenes.join(",\n")
+    )
+}
