@@ -5,7 +5,7 @@ use std::f32::consts::TAU;
 
 use glam::{Vec2, Vec3};
 
-use super::quadratic::solve_quadratic;
+use super::quadratic::{first_root_between_ends, solve_quadratic};
 use super::tapered_cylinder::disk_uv;
 use super::{LocalSurface, ShapeHit};
 use crate::aabb::Aabb;
@@ -79,18 +79,12 @@ impl Paraboloid {
         let a = k * (d.x * d.x + d.z * d.z);
         let half_b = k * (o.x * d.x + o.z * d.z) - 0.5 * d.y;
         let c = k * (o.x * o.x + o.z * o.z) - o.y;
-        if let Some((s0, s1)) = solve_quadratic(a, half_b, c) {
-            let on_bowl = |s: f32| {
-                let (t, y) = (s + shift, o.y + d.y * s);
-                t > t_min && t < t_far && (0.0..=self.height).contains(&y)
-            };
-            if let Some(s) = [s0, s1].into_iter().find(|&s| on_bowl(s)) {
-                nearest = Some(ShapeHit {
-                    t: s + shift,
-                    part: BOWL,
-                });
-                t_far = s + shift;
-            }
+        let roots = solve_quadratic(a, half_b, c);
+        let bowl = roots
+            .and_then(|r| first_root_between_ends(r, shift, t_min, t_far, (o.y, d.y), self.height));
+        if let Some(t) = bowl {
+            nearest = Some(ShapeHit { t, part: BOWL });
+            t_far = t;
         }
 
         if self.capped && d.y != 0.0 {

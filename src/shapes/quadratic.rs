@@ -37,6 +37,24 @@ pub fn first_root_in((t0, t1): (f32, f32), t_min: f32, t_max: f32) -> Option<f32
     }
 }
 
+/// The ray parameter `t = s + shift` of the first of two sorted roots `s` with `t` in
+/// `(t_min, t_max)` whose point lies between the end planes of a bounded quadric: its height
+/// `o_axis + d_axis·s` along the shape's axis is in `[0, height]`.
+#[inline]
+pub fn first_root_between_ends(
+    (s0, s1): (f32, f32),
+    shift: f32,
+    t_min: f32,
+    t_max: f32,
+    (o_axis, d_axis): (f32, f32),
+    height: f32,
+) -> Option<f32> {
+    [s0, s1]
+        .into_iter()
+        .map(|s| (s + shift, o_axis + d_axis * s))
+        .find_map(|(t, z)| (t > t_min && t < t_max && (0.0..=height).contains(&z)).then_some(t))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

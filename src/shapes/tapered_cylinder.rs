@@ -5,7 +5,7 @@ use std::f32::consts::TAU;
 
 use glam::{Vec2, Vec3};
 
-use super::quadratic::solve_quadratic;
+use super::quadratic::{first_root_between_ends, solve_quadratic};
 use super::{LocalSurface, ShapeHit};
 use crate::aabb::Aabb;
 use crate::ray::Ray;
@@ -124,18 +124,12 @@ impl TaperedCylinder {
         let a = d.x * d.x + d.y * d.y - self.slope * self.slope * d.z * d.z;
         let half_b = o.x * d.x + o.y * d.y - self.slope * radius_at_o * d.z;
         let c = o.x * o.x + o.y * o.y - radius_at_o * radius_at_o;
-        if let Some((s0, s1)) = solve_quadratic(a, half_b, c) {
-            let on_side = |s: f32| {
-                let (t, z) = (s + shift, o.z + d.z * s);
-                t > t_min && t < t_far && (0.0..=self.height).contains(&z)
-            };
-            if let Some(s) = [s0, s1].into_iter().find(|&s| on_side(s)) {
-                nearest = Some(ShapeHit {
-                    t: s + shift,
-                    part: SIDE,
-                });
-                t_far = s + shift;
-            }
+        let roots = solve_quadratic(a, half_b, c);
+        let side = roots
+            .and_then(|r| first_root_between_ends(r, shift, t_min, t_far, (o.z, d.z), self.height));
+        if let Some(t) = side {
+            nearest = Some(ShapeHit { t, part: SIDE });
+            t_far = t;
         }
 
         if self.capped && d.z != 0.0 {
