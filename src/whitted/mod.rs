@@ -164,28 +164,24 @@ impl<'a> Tracer<'a> {
         }
         let scattering = scattering(material, dir, normal, entering);
         let reflect_weight = weight * scattering.reflect;
-        if scattering.reflect > 0.0 {
-            if !settings.reflections {
-                observer.cut(RayKind::Reflected, StopReason::Disabled, reflect_weight);
-            } else if reflect_weight < settings.min_weight {
-                observer.cut(RayKind::Reflected, StopReason::MinWeight, reflect_weight);
-            } else {
-                counts.reflected += 1;
-                let reflected = Ray::new(
-                    offset_origin(surface.point, geometric_normal),
-                    reflect(dir, normal),
-                );
-                let scale = Color::splat(scattering.reflect);
-                observer.ray(
-                    RayKind::Reflected,
-                    depth + 1,
-                    &reflected,
-                    reflect_weight,
-                    scale,
-                );
-                color += scattering.reflect
-                    * self.trace(&reflected, depth + 1, reflect_weight, counts, observer);
-            }
+        if scattering.reflect > 0.0
+            && self.traces_branch(RayKind::Reflected, reflect_weight, observer)
+        {
+            counts.reflected += 1;
+            let reflected = Ray::new(
+                offset_origin(surface.point, geometric_normal),
+                reflect(dir, normal),
+            );
+            let scale = Color::splat(scattering.reflect);
+            observer.ray(
+                RayKind::Reflected,
+                depth + 1,
+                &reflected,
+                reflect_weight,
+                scale,
+            );
+            color += scattering.reflect
+                * self.trace(&reflected, depth + 1, reflect_weight, counts, observer);
         }
         let transmit_weight = weight * scattering.transmit;
         match scattering.refracted {
@@ -194,29 +190,47 @@ impl<'a> Tracer<'a> {
                 StopReason::TotalInternalReflection,
                 weight * material.transparency,
             ),
-            Some(refracted) if scattering.transmit > 0.0 => {
-                if !settings.refractions {
-                    observer.cut(RayKind::Transmitted, StopReason::Disabled, transmit_weight);
-                } else if transmit_weight < settings.min_weight {
-                    observer.cut(RayKind::Transmitted, StopReason::MinWeight, transmit_weight);
-                } else {
-                    counts.transmitted += 1;
-                    let transmitted =
-                        Ray::new(offset_origin(surface.point, -geometric_normal), refracted);
-                    let scale = scattering.transmit * base;
-                    observer.ray(
-                        RayKind::Transmitted,
-                        depth + 1,
-                        &transmitted,
-                        transmit_weight,
-                        scale,
-                    );
-                    color += scale
-                        * self.trace(&transmitted, depth + 1, transmit_weight, counts, observer);
-                }
+            Some(refracted)
+                if scattering.transmit > 0.0
+                    && self.traces_branch(RayKind::Transmitted, transmit_weight, observer) =>
+            {
+                counts.transmitted += 1;
+                let transmitted =
+                    Ray::new(offset_origin(surface.point, -geometric_normal), refracted);
+                let scale = scattering.transmit * base;
+                observer.ray(
+                    RayKind::Transmitted,
+                    depth + 1,
+                    &transmitted,
+                    transmit_weight,
+                    scale,
+                );
+                color +=
+                    scale * self.trace(&transmitted, depth + 1, transmit_weight, counts, observer);
             }
             _ => {}
         }
         color
+    }
+
+    /// Whether a child ray of `kind` carrying `weight` is traced: its kind is switched on and
+    /// its weight is at least `min_weight` (adaptive depth control). If not, the observer hears
+    /// why.
+    #[inline(always)]
+    fn traces_branch<O: TreeObserver>(&self, kind: RayKind, weight: f32, observer: &mut O) -> bool {
+        let settings = &self.scene.settings;
+        let enabled = match kind {
+            RayKind::Reflected => settings.reflections,
+            _ => settings.refractions,
+        };
+        let reason = if !enabled {
+            StopReason::Disabled
+        } else if weight < settings.min_weight {
+            StopReason::MinWeight
+        } else {
+            return true;
+        };
+        observer.cut(kind, reason, weight);
+        false
     }
 }
