@@ -336,7 +336,7 @@ fn inspect_prints_the_ray_tree_of_a_pixel_as_text_and_json() {
 #[test]
 fn inspect_mistakes_are_errors_not_panics() {
     let dir = tempfile::tempdir().unwrap();
-    let cases: [(&[&str], &str); 3] = [
+    let cases: [(&[&str], &str); 4] = [
         (
             &[
                 "inspect", "--pixel", "64,0", "--width", "64", "--height", "48",
@@ -344,7 +344,8 @@ fn inspect_mistakes_are_errors_not_panics() {
             "outside the 64×48 image",
         ),
         (&["inspect", "--pixel", "3"], "expected X,Y"),
-        (&["inspect", "--pixel", "-1,2"], "expected X,Y"),
+        (&["inspect", "--pixel=-1,2"], "expected X,Y"),
+        (&["inspect", "--pixel", "a,b"], "expected X,Y"),
     ];
     for (args, message) in cases {
         let out = raylab(args, dir.path());
