@@ -4,6 +4,9 @@
 //! coarser pass traced, so all passes together trace every pixel once. After block size 1,
 //! optional passes add one jittered sample per pixel each (anti-aliasing).
 //!
+//! Each pixel sample is what the tracer's view shows ([`crate::inspect::view_color`]): the
+//! shaded colour, or a debug view, refined by the same passes.
+//!
 //! Passes run on all of rayon's threads, report their progress as they go, and stop within a row
 //! when cancelled from another thread.
 

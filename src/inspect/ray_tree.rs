@@ -39,6 +39,7 @@ pub struct Blocker {
     /// [`crate::primitive::Geometry::object_id`] of what was hit.
     pub object: u32,
     pub label: String,
+    /// Distance from the shadow ray's origin.
     pub t: f32,
     /// The share of the light left after this blocker (and the nearer ones): zero once opaque.
     pub transmittance_after: [f32; 3],
@@ -70,6 +71,7 @@ pub struct NodeHit {
     pub label: String,
     pub material: u32,
     pub material_name: String,
+    /// Distance from the ray's origin to the hit (the ray's `dir` is a unit vector).
     pub t: f32,
     pub point: Vec3,
     /// Unit shading normal, turned to face the ray.

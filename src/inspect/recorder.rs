@@ -20,7 +20,10 @@ use crate::whitted::{EYE_RAY_T_MIN, Tracer};
 /// the image is clamped to its edge.
 pub fn trace_ray_tree(tracer: &Tracer, x: u32, y: u32) -> RayTree {
     let settings = &tracer.scene.settings;
-    let (x, y) = (x.min(settings.width - 1), y.min(settings.height - 1));
+    let (x, y) = (
+        x.min(settings.width.saturating_sub(1)),
+        y.min(settings.height.saturating_sub(1)),
+    );
     let mut recorder = Recorder {
         scene: tracer.scene,
         nodes: Vec::new(),
