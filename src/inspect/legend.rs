@@ -13,7 +13,7 @@ use crate::whitted::Tracer;
 const BAR_SAMPLES: usize = 64;
 
 /// The BVH cost the heat map's top stands for (nodes plus primitives per pixel, log scale).
-pub const BVH_COST_MAX: f32 = 65536.0;
+pub const BVH_COST_MAX: f32 = 4096.0;
 
 /// The inferno ramp's colours at 0, ¼, ½, ¾ and 1 (sRGB), after matplotlib's.
 const INFERNO: [[f32; 3]; 5] = [
