@@ -134,13 +134,7 @@ fn a_mirror_facing_a_wall_spawns_one_reflected_ray_that_sees_the_wall() {
 /// A glass ball of radius 1 at the origin, without reflection, seen from `eye`.
 fn glass_ball(eye: Vec3, look_at: Vec3) -> Scene {
     let mut scene = Scene::new(settings(5, 0.0), camera(eye, look_at, 0.05));
-    let glass = scene.add_material(Material {
-        color: Color::ONE,
-        diffuse: 0.0,
-        transparency: 0.9,
-        ior: 1.5,
-        ..Material::default()
-    });
+    let glass = scene.add_material(common::clear_glass());
     scene.add_object(sphere(Vec3::ZERO, 1.0), None, glass);
     scene.lights.push(Light::Point {
         position: Vec3::new(0.0, 5.0, 5.0),
