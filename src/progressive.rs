@@ -4,6 +4,9 @@
 //! coarser pass traced, so all passes together trace every pixel once. After block size 1,
 //! optional passes add one jittered sample per pixel each (anti-aliasing).
 //!
+//! Each pixel sample is what the tracer's view shows ([`crate::inspect::view_color`]): the
+//! shaded colour, or a debug view, refined by the same passes.
+//!
 //! Passes run on all of rayon's threads, report their progress as they go, and stop within a row
 //! when cancelled from another thread.
 
@@ -13,6 +16,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use crate::film::Film;
+use crate::inspect::view_color;
 use crate::material::Color;
 use crate::stats::{PassStats, RayCounts, RenderStats, SharedRayCounts};
 use crate::whitted::Tracer;
@@ -165,7 +169,7 @@ pub fn render_pass(
             };
             let r = (height - y) as f32 - offset.1;
             let c = x as f32 + offset.0;
-            let color = tracer.trace_eye(&camera.ray(r, c, height, width), &mut counts);
+            let color = view_color(tracer, &camera.ray(r, c, height, width), &mut counts);
             pixels += 1;
             if sample == 0 {
                 film.fill_block(x, y, step, color);
@@ -198,7 +202,7 @@ pub fn jitter(x: u32, y: u32, k: u32) -> (f32, f32) {
 }
 
 /// A 32-bit integer hash (PCG output permutation).
-fn hash(v: u32) -> u32 {
+pub fn hash(v: u32) -> u32 {
     let state = v.wrapping_mul(747796405).wrapping_add(2891336453);
     let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277803737);
     (word >> 22) ^ word

@@ -24,6 +24,17 @@ pub fn camera(eye: Vec3, look_at: Vec3, view_angle: f32) -> Camera {
     .unwrap()
 }
 
+/// Clear glass: transmits 0.9, index of refraction 1.5, no diffuse light, no mirror reflection.
+pub fn clear_glass() -> Material {
+    Material {
+        color: Color::ONE,
+        diffuse: 0.0,
+        transparency: 0.9,
+        ior: 1.5,
+        ..Material::default()
+    }
+}
+
 /// Three spheres (one mirror, one glass) on a floor, one light: every kind of ray.
 pub fn spheres_on_a_floor(width: u32, height: u32) -> Scene {
     let settings = RenderSettings {
@@ -45,13 +56,7 @@ pub fn spheres_on_a_floor(width: u32, height: u32) -> Scene {
         reflectivity: 0.8,
         ..Material::default()
     });
-    let glass = scene.add_material(Material {
-        color: Color::ONE,
-        diffuse: 0.0,
-        transparency: 0.9,
-        ior: 1.5,
-        ..Material::default()
-    });
+    let glass = scene.add_material(clear_glass());
     let floor = scene.add_material(Material::default());
     for (x, material) in [(-2.0, matte), (0.0, mirror), (2.0, glass)] {
         scene.add_object(
