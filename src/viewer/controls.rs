@@ -6,6 +6,8 @@ use raylab::camera::{Camera, CameraSpec};
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 
+use super::working_scene::TraceSetup;
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Controls {
     pub camera: CameraSpec,
@@ -24,9 +26,9 @@ impl Controls {
         }
     }
 
-    /// The camera these controls describe, if they are all valid; otherwise what is wrong.
+    /// What these controls change in the scene, if they are all valid; otherwise what is wrong.
     /// `max_side` is the largest texture the GPU takes.
-    pub fn check(&self, max_side: u32) -> Result<Camera, String> {
+    pub fn setup(&self, max_side: u32) -> Result<TraceSetup, String> {
         self.settings.validate()?;
         let (w, h) = (self.settings.width, self.settings.height);
         if w > max_side || h > max_side {
@@ -40,7 +42,11 @@ impl Controls {
                 self.light_scale
             ));
         }
-        Camera::new(self.camera).map_err(|e| format!("camera: {e}"))
+        Ok(TraceSetup {
+            camera: Camera::new(self.camera).map_err(|e| format!("camera: {e}"))?,
+            settings: self.settings.clone(),
+            light_scale: self.light_scale,
+        })
     }
 }
 
@@ -58,25 +64,25 @@ mod tests {
     #[test]
     fn valid_controls_give_their_camera() {
         let c = controls();
-        assert_eq!(c.check(4096).unwrap().spec, c.camera);
+        assert_eq!(c.setup(4096).unwrap().camera.spec, c.camera);
     }
 
     #[test]
     fn bad_settings_cameras_and_sizes_are_reported() {
         let mut c = controls();
         c.camera.look_at = c.camera.eye;
-        assert!(c.check(4096).unwrap_err().contains("camera"));
+        assert!(c.setup(4096).unwrap_err().contains("camera"));
         let mut c = controls();
         c.camera.up = Vec3::ZERO;
-        assert!(c.check(4096).is_err());
+        assert!(c.setup(4096).is_err());
         let mut c = controls();
         c.settings.block_size = 3;
-        assert!(c.check(4096).unwrap_err().contains("block_size"));
+        assert!(c.setup(4096).unwrap_err().contains("block_size"));
         let mut c = controls();
         c.settings.width = 5000;
-        assert!(c.check(4096).unwrap_err().contains("largest texture"));
+        assert!(c.setup(4096).unwrap_err().contains("largest texture"));
         let mut c = controls();
         c.light_scale = f32::NAN;
-        assert!(c.check(4096).is_err());
+        assert!(c.setup(4096).is_err());
     }
 }

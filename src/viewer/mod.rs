@@ -28,6 +28,7 @@ mod timing;
 mod upload;
 mod watch;
 mod worker;
+mod working_scene;
 
 use std::path::PathBuf;
 

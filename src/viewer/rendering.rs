@@ -67,15 +67,15 @@ impl App {
         if current {
             return;
         }
-        let camera = match controls.check(self.panel.max_side) {
-            Ok(camera) => camera,
+        let setup = match controls.setup(self.panel.max_side) {
+            Ok(setup) => setup,
             Err(e) => {
                 self.panel.control_error = Some(e);
                 return;
             }
         };
         self.panel.control_error = None;
-        let settings = controls.settings.clone();
+        let settings = &setup.settings;
         if self.options.size.is_some()
             || self.file_controls.as_ref().is_some_and(|f| {
                 (f.settings.width, f.settings.height) != (settings.width, settings.height)
@@ -99,9 +99,7 @@ impl App {
         let report = Arc::new(JobReport::new());
         let job = Job {
             scene: scene.clone(),
-            camera,
-            settings,
-            light_scale: controls.light_scale,
+            setup,
             film: film.clone(),
             control: control.clone(),
             report: report.clone(),

@@ -9,22 +9,17 @@ use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 use std::time::Instant;
 
-use raylab::camera::Camera;
 use raylab::film::Film;
 use raylab::progressive::{self, RenderControl};
-use raylab::scene::Scene;
-use raylab::settings::RenderSettings;
 use raylab::stats::PassStats;
-use raylab::whitted::Tracer;
 
 use super::scene_source::LoadedScene;
+use super::working_scene::{TraceSetup, WorkingScene};
 
 /// One render: a scene seen with a camera and settings, into a film.
 pub struct Job {
     pub scene: Arc<LoadedScene>,
-    pub camera: Camera,
-    pub settings: RenderSettings,
-    pub light_scale: f32,
+    pub setup: TraceSetup,
     pub film: Arc<Film>,
     pub control: Arc<RenderControl>,
     pub report: Arc<JobReport>,
@@ -126,7 +121,7 @@ impl Drop for Worker {
 
 /// The worker's loop: take the newest job, render it, repeat; end when the channel closes.
 fn run(pool: &rayon::ThreadPool, inbox: &Receiver<Job>) {
-    let mut working: Option<(Arc<LoadedScene>, Scene)> = None;
+    let mut working = WorkingScene::default();
     while let Ok(mut job) = inbox.recv() {
         // Jobs queued behind this one supersede it.
         while let Ok(newer) = inbox.try_recv() {
@@ -137,27 +132,7 @@ fn run(pool: &rayon::ThreadPool, inbox: &Receiver<Job>) {
             job.report.finish(Outcome::Cancelled);
             continue;
         }
-        // The tracer reads the scene with the job's camera, settings and lights: keep a copy of
-        // the loaded scene to edit, made once per scene rather than once per job.
-        if !working
-            .as_ref()
-            .is_some_and(|(loaded, _)| Arc::ptr_eq(loaded, &job.scene))
-        {
-            working = Some((job.scene.clone(), job.scene.scene.clone()));
-        }
-        let Some((_, scene)) = working.as_mut() else {
-            continue;
-        };
-        scene.camera = job.camera;
-        scene.settings = job.settings.clone();
-        scene.lights = job
-            .scene
-            .scene
-            .lights
-            .iter()
-            .map(|l| l.scaled(job.light_scale))
-            .collect();
-        let tracer = Tracer::new(scene, &job.scene.bvh);
+        let tracer = working.tracer(&job.scene, &job.setup);
         let rendered = std::panic::catch_unwind(AssertUnwindSafe(|| {
             pool.install(|| {
                 progressive::render(&tracer, &job.film, &job.control, |pass| {
@@ -217,9 +192,11 @@ mod tests {
         settings.block_size = 8;
         Job {
             scene: scene.clone(),
-            camera: scene.scene.camera,
-            settings,
-            light_scale: 1.0,
+            setup: TraceSetup {
+                camera: scene.scene.camera,
+                settings,
+                light_scale: 1.0,
+            },
             film: Arc::new(Film::new(size, size)),
             control: Arc::new(RenderControl::default()),
             report: Arc::new(JobReport::new()),
