@@ -1,8 +1,10 @@
-//! What the user controls: the camera, the render settings and the lights' intensity. The panels
+//! What the user controls: the camera, the render settings, the lights' intensity and the debug
+//! view. The panels
 //! and the navigation edit a [`Controls`]; whenever it differs from the one being rendered, the
 //! app restarts refinement with it.
 
 use raylab::camera::{Camera, CameraSpec};
+use raylab::inspect::DebugView;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 
@@ -14,6 +16,8 @@ pub struct Controls {
     pub settings: RenderSettings,
     /// Multiplies the colour of every light of the scene.
     pub light_scale: f32,
+    /// What the image shows: the shaded colour or a debug view.
+    pub view: DebugView,
 }
 
 impl Controls {
@@ -23,6 +27,7 @@ impl Controls {
             camera: scene.camera.spec,
             settings: scene.settings.clone(),
             light_scale: 1.0,
+            view: DebugView::Shaded,
         }
     }
 
@@ -46,6 +51,7 @@ impl Controls {
             camera: Camera::new(self.camera).map_err(|e| format!("camera: {e}"))?,
             settings: self.settings.clone(),
             light_scale: self.light_scale,
+            view: self.view,
         })
     }
 }

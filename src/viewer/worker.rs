@@ -10,6 +10,7 @@ use std::thread::JoinHandle;
 use std::time::Instant;
 
 use raylab::film::Film;
+use raylab::inspect::Legend;
 use raylab::progressive::{self, RenderControl};
 use raylab::stats::PassStats;
 
@@ -40,6 +41,8 @@ pub struct JobReport {
     pub started: Instant,
     passes: Mutex<Vec<PassStats>>,
     outcome: Mutex<Option<Outcome>>,
+    /// What the colours of the job's debug view mean, for the heat maps.
+    legend: Mutex<Option<Legend>>,
 }
 
 impl JobReport {
@@ -48,12 +51,19 @@ impl JobReport {
             started: Instant::now(),
             passes: Mutex::new(Vec::new()),
             outcome: Mutex::new(None),
+            legend: Mutex::new(None),
         }
     }
 
     /// The passes finished so far.
     pub fn passes(&self) -> Vec<PassStats> {
         self.passes.lock().map(|p| p.clone()).unwrap_or_default()
+    }
+
+    /// The colour bar of the job's view, once the job has started (`None` for views that are
+    /// not a scale).
+    pub fn legend(&self) -> Option<Legend> {
+        self.legend.lock().ok().and_then(|l| l.clone())
     }
 
     /// `None` while the job waits or runs.
@@ -133,6 +143,9 @@ fn run(pool: &rayon::ThreadPool, inbox: &Receiver<Job>) {
             continue;
         }
         let tracer = working.tracer(&job.scene, &job.setup);
+        if let Ok(mut legend) = job.report.legend.lock() {
+            *legend = job.setup.view.legend(&tracer);
+        }
         let rendered = std::panic::catch_unwind(AssertUnwindSafe(|| {
             pool.install(|| {
                 progressive::render(&tracer, &job.film, &job.control, |pass| {
@@ -157,7 +170,7 @@ const TRACER_NICENESS: libc::c_int = 4;
 /// Lowers the calling thread's priority, so that on a busy machine the window (and the GPU
 /// driver's threads, which draw it) go before the tracer and the UI stays fluid.
 #[cfg(target_os = "linux")]
-fn lower_priority() {
+pub(super) fn lower_priority() {
     // SAFETY: plain system calls on the calling thread; Linux's setpriority takes a thread id
     // for PRIO_PROCESS and changes only that thread. Failing leaves the priority as it was.
     unsafe {
@@ -167,9 +180,9 @@ fn lower_priority() {
 }
 
 #[cfg(not(target_os = "linux"))]
-fn lower_priority() {}
+pub(super) fn lower_priority() {}
 
-fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {
+pub(super) fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {
     let text = panic
         .downcast_ref::<&str>()
         .map(|s| s.to_string())
@@ -196,6 +209,7 @@ mod tests {
                 camera: scene.scene.camera,
                 settings,
                 light_scale: 1.0,
+                view: Default::default(),
             },
             film: Arc::new(Film::new(size, size)),
             control: Arc::new(RenderControl::default()),

@@ -1,11 +1,12 @@
 //! The scene as the controls show it: a copy of a loaded scene given the controls' camera,
-//! settings and light intensity. The threads that trace (the render worker, the inspector) each
+//! settings, light intensity and debug view. The threads that trace (the render worker, the inspector) each
 //! keep one, copied once per loaded scene and updated in place for each job, so that moving the
 //! camera copies no geometry.
 
 use std::sync::Arc;
 
 use raylab::camera::Camera;
+use raylab::inspect::DebugView;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::whitted::Tracer;
@@ -19,6 +20,8 @@ pub struct TraceSetup {
     pub settings: RenderSettings,
     /// Multiplies the colour of every light of the scene.
     pub light_scale: f32,
+    /// What the image shows.
+    pub view: DebugView,
 }
 
 /// A thread's copy of the scene it traces.
@@ -48,6 +51,6 @@ impl WorkingScene {
             .iter()
             .map(|l| l.scaled(setup.light_scale))
             .collect();
-        Tracer::new(scene, &loaded.bvh)
+        Tracer::new(scene, &loaded.bvh).with_view(setup.view)
     }
 }
