@@ -1,7 +1,7 @@
 //! The pinhole camera of the lecture: the eye, the axes `u, v, n`, the near distance `N` and the
 //! view angle `θ`, and the eye ray through each pixel.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 use crate::ray::Ray;
 
@@ -117,5 +117,58 @@ impl Camera {
     /// The eye ray `eye + dir_rc·t` through the point (r, c) of the image plane, reached at t = 1.
     pub fn ray(&self, r: f32, c: f32, n_rows: u32, n_cols: u32) -> Ray {
         Ray::new(self.eye, self.dir_rc(r, c, n_rows, n_cols))
+    }
+
+    /// Where the world point lands on the `width × height` image: x from the left, y from the
+    /// top, in pixels, continuous (the centre of pixel (x, y) is (x + ½, y + ½)); `None` for a
+    /// point not in front of the eye. The inverse of [`Self::dir_rc`].
+    pub fn project(&self, point: Vec3, width: u32, height: u32) -> Option<Vec2> {
+        let d = point - self.eye;
+        let depth = d.dot(-self.n);
+        if depth <= f32::EPSILON * d.length() {
+            return None;
+        }
+        // On the image plane at distance N: (x, y) in units of the half sizes W and H.
+        let h = self.half_height;
+        let w = h * width as f32 / height as f32;
+        let x = self.near * d.dot(self.u) / depth / w;
+        let y = self.near * d.dot(self.v) / depth / h;
+        let c = (x + 1.0) * width as f32 / 2.0;
+        let r = (y + 1.0) * height as f32 / 2.0;
+        Some(Vec2::new(c, height as f32 - r))
+    }
+
+    /// The part of the segment `a → b` in front of the image plane, projected as by
+    /// [`Self::project`]: its two ends in pixels, or `None` if all of it is behind.
+    pub fn project_segment(
+        &self,
+        a: Vec3,
+        b: Vec3,
+        width: u32,
+        height: u32,
+    ) -> Option<(Vec2, Vec2)> {
+        let depth = |p: Vec3| (p - self.eye).dot(-self.n);
+        let (da, db) = (depth(a), depth(b));
+        if da < self.near && db < self.near {
+            return None;
+        }
+        // Clip the end behind the image plane to where the segment crosses it.
+        let crossing = |from: Vec3, d_from: f32, to: Vec3, d_to: f32| {
+            from + (to - from) * ((self.near - d_from) / (d_to - d_from))
+        };
+        let a = if da < self.near {
+            crossing(a, da, b, db)
+        } else {
+            a
+        };
+        let b = if db < self.near {
+            crossing(b, db, a, da)
+        } else {
+            b
+        };
+        Some((
+            self.project(a, width, height)?,
+            self.project(b, width, height)?,
+        ))
     }
 }

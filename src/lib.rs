@@ -6,6 +6,7 @@ pub mod aabb;
 pub mod bvh;
 pub mod camera;
 pub mod film;
+pub mod inspect;
 pub mod large_mesh;
 pub mod light;
 pub mod material;

@@ -193,6 +193,38 @@ impl Geometry {
         }
     }
 
+    /// The object a primitive belongs to, numbered for the inspector and the object-id view:
+    /// objects `0..n` in the order they were added, then meshes `n..`.
+    pub fn object_id(&self, prim: PrimId) -> u32 {
+        match prim.kind() {
+            Ok(o) => o as u32,
+            Err(t) => (self.objects.len() + self.triangles[t].mesh as usize) as u32,
+        }
+    }
+
+    /// What the object `object_id` is, e.g. "sphere #2" or "mesh #0" (numbered as
+    /// [`Self::object_id`] numbers them), or "no object #k" for an id out of range.
+    pub fn object_label(&self, object_id: u32) -> String {
+        let id = object_id as usize;
+        match self.objects.get(id) {
+            Some(object) => format!("{} #{id}", object.shape.name()),
+            None if id - self.objects.len() < self.meshes.len() => {
+                format!("mesh #{id}")
+            }
+            None => format!("no object #{id}"),
+        }
+    }
+
+    /// [`Self::object_label`] of the object `prim` belongs to, with the triangle for meshes,
+    /// e.g. "mesh #3, triangle 812".
+    pub fn prim_label(&self, prim: PrimId) -> String {
+        let object = self.object_label(self.object_id(prim));
+        match prim.kind() {
+            Ok(_) => object,
+            Err(t) => format!("{object}, triangle {}", self.triangles[t].face),
+        }
+    }
+
     /// The material of primitive `id`.
     pub fn material(&self, id: PrimId) -> u32 {
         match id.kind() {

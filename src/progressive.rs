@@ -13,6 +13,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use crate::film::Film;
+use crate::inspect::view_color;
 use crate::material::Color;
 use crate::stats::{PassStats, RayCounts, RenderStats, SharedRayCounts};
 use crate::whitted::Tracer;
@@ -165,7 +166,7 @@ pub fn render_pass(
             };
             let r = (height - y) as f32 - offset.1;
             let c = x as f32 + offset.0;
-            let color = tracer.trace_eye(&camera.ray(r, c, height, width), &mut counts);
+            let color = view_color(tracer, &camera.ray(r, c, height, width), &mut counts);
             pixels += 1;
             if sample == 0 {
                 film.fill_block(x, y, step, color);
@@ -198,7 +199,7 @@ pub fn jitter(x: u32, y: u32, k: u32) -> (f32, f32) {
 }
 
 /// A 32-bit integer hash (PCG output permutation).
-fn hash(v: u32) -> u32 {
+pub fn hash(v: u32) -> u32 {
     let state = v.wrapping_mul(747796405).wrapping_add(2891336453);
     let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277803737);
     (word >> 22) ^ word

@@ -5,6 +5,7 @@
 //! beside the tree and tested against every ray.
 
 mod build;
+pub mod cost;
 mod traverse;
 mod widen;
 

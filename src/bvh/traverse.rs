@@ -7,6 +7,7 @@ use std::ops::ControlFlow;
 use glam::{Vec3, Vec4};
 
 use super::build::MAX_DEPTH;
+use super::cost::TraversalCost;
 use super::{Bvh, Node, WIDTH};
 use crate::primitive::{Geometry, Hit, PrimId};
 use crate::ray::Ray;
@@ -137,10 +138,23 @@ impl Bvh {
         t_min: f32,
         t_max: f32,
     ) -> Option<Hit> {
+        self.closest_hit_counted(geometry, ray, t_min, t_max, &mut ())
+    }
+
+    /// [`Self::closest_hit`], telling `cost` of each node visited and primitive tested.
+    pub fn closest_hit_counted<C: TraversalCost>(
+        &self,
+        geometry: &Geometry,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        cost: &mut C,
+    ) -> Option<Hit> {
         let sheared = ShearedRay::new(ray);
         let mut best: Option<Hit> = None;
         // Searching up to just past the best hit so far still finds its ties.
-        let mut test = |prims: &[PrimId], t_limit: &mut f32| {
+        let mut test = |prims: &[PrimId], t_limit: &mut f32, cost: &mut C| {
+            cost.prims_tested(prims.len());
             for &id in prims {
                 if let Some(hit) = geometry.intersect_prepared(id, ray, &sheared, t_min, *t_limit)
                     && best.is_none_or(|b| hit.t < b.t || id.scene_order() < b.prim.scene_order())
@@ -152,8 +166,8 @@ impl Bvh {
             ControlFlow::Continue(())
         };
         let mut t_limit = t_max;
-        let _ = test(&self.unbounded, &mut t_limit);
-        self.walk(ray, t_min, t_limit, test);
+        let _ = test(&self.unbounded, &mut t_limit, cost);
+        self.walk(ray, t_min, t_limit, cost, test);
         best
     }
 
@@ -166,10 +180,24 @@ impl Bvh {
         ray: &Ray,
         t_min: f32,
         t_max: f32,
+        on_hit: impl FnMut(&Hit) -> ControlFlow<()>,
+    ) {
+        self.any_hit_counted(geometry, ray, t_min, t_max, &mut (), on_hit);
+    }
+
+    /// [`Self::any_hit`], telling `cost` of each node visited and primitive tested.
+    pub fn any_hit_counted<C: TraversalCost>(
+        &self,
+        geometry: &Geometry,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        cost: &mut C,
         mut on_hit: impl FnMut(&Hit) -> ControlFlow<()>,
     ) {
         let sheared = ShearedRay::new(ray);
-        let mut visit = |prims: &[PrimId]| {
+        let mut visit = |prims: &[PrimId], cost: &mut C| {
+            cost.prims_tested(prims.len());
             for &id in prims {
                 if let Some(hit) = geometry.intersect_prepared(id, ray, &sheared, t_min, t_max) {
                     on_hit(&hit)?;
@@ -177,21 +205,22 @@ impl Bvh {
             }
             ControlFlow::Continue(())
         };
-        if visit(&self.unbounded).is_break() {
+        if visit(&self.unbounded, cost).is_break() {
             return;
         }
-        self.walk(ray, t_min, t_max, |prims, _| visit(prims));
+        self.walk(ray, t_min, t_max, cost, |prims, _, cost| visit(prims, cost));
     }
 
     /// Visits the leaves whose boxes `ray` enters, nearest child first. `leaf` may shrink
-    /// `t_max` (closest hit) or break (any hit).
+    /// `t_max` (closest hit) or break (any hit). `cost` hears of each interior node visited.
     #[inline(always)]
-    fn walk(
+    fn walk<C: TraversalCost>(
         &self,
         ray: &Ray,
         t_min: f32,
         mut t_max: f32,
-        mut leaf: impl FnMut(&[PrimId], &mut f32) -> ControlFlow<()>,
+        cost: &mut C,
+        mut leaf: impl FnMut(&[PrimId], &mut f32, &mut C) -> ControlFlow<()>,
     ) {
         let Some(root) = self.nodes.first() else {
             return;
@@ -208,10 +237,11 @@ impl Bvh {
             if node.is_leaf() {
                 let first = node.first as usize;
                 let prims = &self.prims[first..first + node.count as usize];
-                if leaf(prims, &mut t_max).is_break() {
+                if leaf(prims, &mut t_max, cost).is_break() {
                     return;
                 }
             } else {
+                cost.node_visited();
                 let (t, entered) = test.enter4(&self.nodes[node.children()], t_min, t_max);
                 let t = t.to_array();
                 let first = node.first;

@@ -91,7 +91,8 @@ impl NffDocument {
             });
         }
 
-        let mut material = scene.add_material(material(&Fill::DEFAULT));
+        let nff_name = |index: usize| format!("nff #{index}");
+        let mut material = scene.add_named_material(nff_name(0), material(&Fill::DEFAULT));
         let mut patches: BTreeMap<u32, Mesh> = BTreeMap::new();
         for (i, item) in self.items.iter().enumerate() {
             let at = |message| BuildError {
@@ -100,7 +101,8 @@ impl NffDocument {
             };
             let shape = match item {
                 Item::Fill(fill) => {
-                    material = scene.add_material(self::material(fill));
+                    let name = nff_name(scene.materials.len());
+                    material = scene.add_named_material(name, self::material(fill));
                     continue;
                 }
                 Item::Patch(vertices) => {

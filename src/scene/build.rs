@@ -58,6 +58,8 @@ pub(crate) fn build_scene(
         .collect::<Result<_, _>>()?;
 
     let material_names = Names::new("material", file.materials.keys(), DEFAULT_MATERIAL + 1);
+    let mut names = vec!["default".to_string()];
+    names.extend(file.materials.keys().cloned());
     let mut materials = vec![Material::default()];
     for material in file.materials.into_values() {
         materials.push(build_material(material, &texture_names, source)?);
@@ -68,6 +70,7 @@ pub(crate) fn build_scene(
         files,
         material_names,
         materials,
+        names,
         geometry: Geometry::default(),
     };
     for object in file.objects {
@@ -78,6 +81,7 @@ pub(crate) fn build_scene(
         camera,
         lights,
         materials: builder.materials,
+        material_names: builder.names,
         textures,
         geometry: builder.geometry,
     })
@@ -359,6 +363,8 @@ struct GeometryBuilder<'a> {
     files: SceneFiles<'a>,
     material_names: Names,
     materials: Vec<Material>,
+    /// The materials' names, index for index.
+    names: Vec<String>,
     geometry: Geometry,
 }
 
@@ -553,6 +559,9 @@ impl GeometryBuilder<'_> {
                 .materials
                 .map_err(|e| fail(format!("its MTL materials: {e}")))?;
             mtl_count = mtl.len();
+            let obj_name = file.get_ref();
+            self.names
+                .extend((0..mtl_count).map(|i| format!("{obj_name} MTL #{i}")));
             self.materials.extend(mtl);
         }
         for part in contents.parts {

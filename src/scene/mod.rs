@@ -36,6 +36,9 @@ pub struct Scene {
     pub camera: Camera,
     pub lights: Vec<Light>,
     pub materials: Vec<Material>,
+    /// The materials' names, index for index: the scene file's names, "default" for
+    /// [`DEFAULT_MATERIAL`], "nff #k" for NFF fills, "#k" for materials added by code.
+    pub material_names: Vec<String>,
     pub textures: Vec<Texture>,
     pub geometry: Geometry,
 }
@@ -48,15 +51,31 @@ impl Scene {
             camera,
             lights: Vec::new(),
             materials: Vec::new(),
+            material_names: Vec::new(),
             textures: Vec::new(),
             geometry: Geometry::default(),
         }
     }
 
-    /// Adds a material and returns its index.
+    /// Adds a material, named "#k" after its index k, and returns its index.
     pub fn add_material(&mut self, material: Material) -> u32 {
+        let name = format!("#{}", self.materials.len());
+        self.add_named_material(name, material)
+    }
+
+    /// Adds a material with a name and returns its index.
+    pub fn add_named_material(&mut self, name: String, material: Material) -> u32 {
+        self.material_names.push(name);
         self.materials.push(material);
         self.materials.len() as u32 - 1
+    }
+
+    /// The name of material `index` (its number if it has none).
+    pub fn material_name(&self, index: u32) -> String {
+        match self.material_names.get(index as usize) {
+            Some(name) => name.clone(),
+            None => format!("#{index}"),
+        }
     }
 
     /// Adds an analytic shape, with an optional transform, and returns its object index.

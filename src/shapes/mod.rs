@@ -87,6 +87,19 @@ impl Shape {
         }
     }
 
+    /// The shape's kind, as the scene file names it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Shape::Sphere(_) => "sphere",
+            Shape::Plane(_) => "plane",
+            Shape::Polygon(_) => "polygon",
+            Shape::Cuboid(_) => "cuboid",
+            Shape::TaperedCylinder(_) => "tapered cylinder",
+            Shape::Ellipsoid(_) => "ellipsoid",
+            Shape::Paraboloid(_) => "paraboloid",
+        }
+    }
+
     /// Object-space bounds; `None` for unbounded shapes (planes).
     pub fn bounds(&self) -> Option<Aabb> {
         match self {

@@ -1,0 +1,106 @@
+//! The debug views: what the image shows instead of (or as) the shaded colour. Each is rendered
+//! progressively like the shaded image ([`super::view_color`] computes a pixel); the heat-map
+//! and depth views come with a [`Legend`] that says what their colours mean.
+
+use std::fmt;
+use std::str::FromStr;
+
+use super::legend::{Legend, depth_range};
+use crate::scene::Scene;
+use crate::whitted::Tracer;
+
+/// What a rendered image shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum DebugView {
+    /// The Whitted colour.
+    #[default]
+    Shaded,
+    /// The shading normal `n` of the first hit (pointing out of the surface's front) as
+    /// `n × 0.5 + 0.5`.
+    Normals,
+    /// The distance of the first hit along the view direction, grey from white (near) to black
+    /// (far) over the range [`depth_range`] takes from the scene's bounds.
+    Depth,
+    /// The first hit's texture coordinates as `(fract u, fract v, 0)`.
+    Uv,
+    /// A distinct colour per object (mesh) seen by the eye ray.
+    ObjectId,
+    /// A distinct colour per material seen by the eye ray.
+    MaterialId,
+    /// How deep the pixel's ray tree went: heat map over 1 ..= max_depth.
+    TreeDepth,
+    /// Rays traced for the pixel (eye, shadow, reflected, transmitted): heat map, log scale.
+    RayCount,
+    /// BVH nodes visited plus primitives tested by all the pixel's rays: heat map, log scale.
+    BvhCost,
+}
+
+impl DebugView {
+    pub const ALL: [DebugView; 9] = [
+        DebugView::Shaded,
+        DebugView::Normals,
+        DebugView::Depth,
+        DebugView::Uv,
+        DebugView::ObjectId,
+        DebugView::MaterialId,
+        DebugView::TreeDepth,
+        DebugView::RayCount,
+        DebugView::BvhCost,
+    ];
+
+    /// The name the CLI and the viewer use.
+    pub fn name(self) -> &'static str {
+        match self {
+            DebugView::Shaded => "shaded",
+            DebugView::Normals => "normals",
+            DebugView::Depth => "depth",
+            DebugView::Uv => "uv",
+            DebugView::ObjectId => "object",
+            DebugView::MaterialId => "material",
+            DebugView::TreeDepth => "tree-depth",
+            DebugView::RayCount => "rays",
+            DebugView::BvhCost => "bvh-cost",
+        }
+    }
+
+    /// The colour bar of a heat-map view (and the grey bar of the depth view), `None` for views
+    /// whose colours are not a scale.
+    pub fn legend(self, tracer: &Tracer) -> Option<Legend> {
+        let scene = tracer.scene;
+        match self {
+            DebugView::Depth => Some(Legend::depth(depth_range(tracer))),
+            DebugView::TreeDepth => Some(Legend::tree_depth(scene.settings.max_depth)),
+            DebugView::RayCount => Some(Legend::ray_count(max_rays(scene))),
+            DebugView::BvhCost => Some(Legend::bvh_cost()),
+            _ => None,
+        }
+    }
+}
+
+/// The most rays one pixel's tree can trace: a full binary tree of `max_depth` levels, each
+/// ray with one shadow ray per light.
+pub fn max_rays(scene: &Scene) -> u64 {
+    let depth = scene.settings.max_depth.min(63);
+    let rays = (1u64 << depth) - 1;
+    rays * (1 + scene.lights.len() as u64)
+}
+
+impl fmt::Display for DebugView {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for DebugView {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        DebugView::ALL
+            .into_iter()
+            .find(|v| v.name() == s)
+            .ok_or_else(|| {
+                let names: Vec<_> = DebugView::ALL.iter().map(|v| v.name()).collect();
+                format!("unknown view `{s}`; the views are {}", names.join(", "))
+            })
+    }
+}

@@ -1,0 +1,139 @@
+//! The ray tree of one pixel as plain data: one [`RayNode`] per ray traced (eye, reflected,
+//! transmitted), with what it hit, its shadow rays, the colours it gathered and where its branch
+//! stopped. [`super::trace_ray_tree`] builds it; the CLI prints it ([`RayTree::to_text`] or
+//! JSON) and the viewer shows it.
+
+use glam::{Vec2, Vec3};
+use serde::Serialize;
+
+use crate::material::Color;
+
+/// Why a ray was traced.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RayKind {
+    Eye,
+    Reflected,
+    Transmitted,
+}
+
+/// Why a branch of the tree ends.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StopReason {
+    /// The ray left the scene.
+    Miss,
+    /// The ray is at `max_depth`: its reflected and transmitted rays are not traced.
+    MaxDepth,
+    /// The child's weight is below `min_weight` (adaptive depth control).
+    MinWeight,
+    /// Past the critical angle: no transmitted ray (its share goes to the reflected one).
+    TotalInternalReflection,
+    /// Reflections or refractions are switched off in the settings.
+    Disabled,
+}
+
+/// An object a shadow ray passed through or was stopped by.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Blocker {
+    /// [`crate::primitive::Geometry::object_id`] of what was hit.
+    pub object: u32,
+    pub label: String,
+    pub t: f32,
+    /// The share of the light left after this blocker (and the nearer ones): zero once opaque.
+    pub transmittance_after: [f32; 3],
+}
+
+/// A shadow ray from a hit point towards a light.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ShadowRay {
+    /// Index of the light in the scene.
+    pub light: usize,
+    pub origin: Vec3,
+    /// Unit direction towards the light.
+    pub dir: Vec3,
+    /// Distance to the light, infinite for a directional light.
+    pub distance: f32,
+    /// What the ray met on its way, nearest first (the search stops at an opaque blocker).
+    pub blockers: Vec<Blocker>,
+    /// No light arrived.
+    pub blocked: bool,
+    /// The light that arrived: the light's colour times the blockers' tints.
+    pub light_color: Color,
+}
+
+/// What a ray hit.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NodeHit {
+    pub object: u32,
+    /// E.g. "sphere #2" or "mesh #0, triangle 812".
+    pub label: String,
+    pub material: u32,
+    pub material_name: String,
+    pub t: f32,
+    pub point: Vec3,
+    /// Unit shading normal, turned to face the ray.
+    pub normal: Vec3,
+    pub uv: Vec2,
+    /// The ray came from the front side of the surface (into the object, for a solid).
+    pub entering: bool,
+}
+
+/// A child ray that was not traced, and why.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Cut {
+    pub branch: RayKind,
+    pub reason: StopReason,
+    /// The weight the child would have carried.
+    pub weight: f32,
+}
+
+/// One ray of the tree.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RayNode {
+    pub kind: RayKind,
+    /// The eye ray is depth 1.
+    pub depth: u32,
+    pub origin: Vec3,
+    pub dir: Vec3,
+    /// The weight this ray carries (adaptive depth control compares it with `min_weight`).
+    pub weight: f32,
+    /// What this ray's colour is multiplied by on its way to the pixel: the product of the
+    /// reflection coefficients `kr` and tinted transmission coefficients `kt·colour` above it.
+    pub factor: Color,
+    /// `None`: the ray missed (`stop` is `Miss`, `local_color` the background).
+    pub hit: Option<NodeHit>,
+    pub shadows: Vec<ShadowRay>,
+    /// Ambient, diffuse and specular light at the hit (or the background).
+    pub local_color: Color,
+    /// The colour this ray returns to its parent: local colour plus its children's, weighted.
+    pub color: Color,
+    /// `factor × local_color`: this node's own share of the pixel.
+    pub contribution: Color,
+    /// Set where the branch ended at this ray: `Miss`, or `MaxDepth` at a reflective or
+    /// transparent surface.
+    pub stop: Option<StopReason>,
+    /// The child rays that were not traced.
+    pub cuts: Vec<Cut>,
+    /// Indices into [`RayTree::nodes`].
+    pub children: Vec<usize>,
+    pub parent: Option<usize>,
+}
+
+/// The ray tree of one pixel, as the renderer traces it (one sample, at the pixel centre).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RayTree {
+    /// (x, y), y from the top of the image.
+    pub pixel: (u32, u32),
+    /// `nodes[0]` is the eye ray; children follow their parents.
+    pub nodes: Vec<RayNode>,
+    /// The pixel's colour: what the renderer writes there at one sample per pixel.
+    pub color: Color,
+}
+
+impl RayTree {
+    /// The sum of all nodes' contributions: the pixel colour, up to rounding.
+    pub fn sum_of_contributions(&self) -> Color {
+        self.nodes.iter().map(|n| n.contribution).sum()
+    }
+}

@@ -1,0 +1,189 @@
+//! The inspector: traces one pixel's eye ray with the renderer's own code and an observer that
+//! records every event as a [`RayTree`]; and the object each pixel's eye ray sees.
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use super::observer::{ShadowEvent, TreeObserver};
+use super::ray_tree::{Blocker, Cut, NodeHit, RayKind, RayNode, RayTree, ShadowRay, StopReason};
+use crate::bvh::cost::TraversalCost;
+use crate::material::Color;
+use crate::primitive::{Hit, SurfacePoint};
+use crate::ray::Ray;
+use crate::scene::Scene;
+use crate::stats::RayCounts;
+use crate::whitted::{EYE_RAY_T_MIN, Tracer};
+
+/// The ray tree of pixel (x, y) of the scene's `width × height` image (y from the top): the
+/// eye ray through the pixel's centre, as the first pass of [`crate::progressive::render`]
+/// traces it, so `tree.color` is the rendered pixel at one sample per pixel. A pixel outside
+/// the image is clamped to its edge.
+pub fn trace_ray_tree(tracer: &Tracer, x: u32, y: u32) -> RayTree {
+    let settings = &tracer.scene.settings;
+    let (x, y) = (x.min(settings.width - 1), y.min(settings.height - 1));
+    let mut recorder = Recorder {
+        scene: tracer.scene,
+        nodes: Vec::new(),
+        open: Vec::new(),
+    };
+    let ray = eye_ray(tracer, x, y);
+    let color = tracer.trace_eye_observed(&ray, &mut RayCounts::default(), &mut recorder);
+    RayTree {
+        pixel: (x, y),
+        nodes: recorder.nodes,
+        color,
+    }
+}
+
+/// The eye ray through the centre of pixel (x, y), y from the top, as the renderer builds it.
+pub fn eye_ray(tracer: &Tracer, x: u32, y: u32) -> Ray {
+    let settings = &tracer.scene.settings;
+    let (width, height) = (settings.width, settings.height);
+    let r = (height - y) as f32 - 0.5;
+    let c = x as f32 + 0.5;
+    tracer.scene.camera.ray(r, c, height, width)
+}
+
+/// Per pixel (row-major, top row first) the object id ([`crate::primitive::Geometry::object_id`])
+/// the eye ray through its centre sees, `u32::MAX` where it sees none.
+pub fn object_ids(tracer: &Tracer) -> Vec<u32> {
+    let settings = &tracer.scene.settings;
+    let (width, height) = (settings.width, settings.height);
+    let geometry = &tracer.scene.geometry;
+    (0..width * height)
+        .into_par_iter()
+        .map(|i| {
+            let ray = eye_ray(tracer, i % width, i / width);
+            tracer
+                .closest_hit(&ray, EYE_RAY_T_MIN)
+                .map_or(u32::MAX, |hit| geometry.object_id(hit.prim))
+        })
+        .collect()
+}
+
+/// Builds the tree from the tracer's events.
+struct Recorder<'a> {
+    scene: &'a Scene,
+    nodes: Vec<RayNode>,
+    /// The rays started and not yet done: the path from the eye ray to the current one.
+    open: Vec<usize>,
+}
+
+impl Recorder<'_> {
+    fn current(&mut self) -> &mut RayNode {
+        let index = *self
+            .open
+            .last()
+            .expect("events arrive between `ray` and `done`");
+        &mut self.nodes[index]
+    }
+}
+
+impl TraversalCost for Recorder<'_> {}
+
+impl TreeObserver for Recorder<'_> {
+    const RECORDS_BLOCKERS: bool = true;
+
+    fn ray(&mut self, kind: RayKind, depth: u32, ray: &Ray, weight: f32, scale: Color) {
+        let parent = self.open.last().copied();
+        let factor = parent.map_or(Color::ONE, |p| self.nodes[p].factor) * scale;
+        let index = self.nodes.len();
+        if let Some(p) = parent {
+            self.nodes[p].children.push(index);
+        }
+        self.nodes.push(RayNode {
+            kind,
+            depth,
+            origin: ray.origin,
+            dir: ray.dir.normalize(),
+            weight,
+            factor,
+            hit: None,
+            shadows: Vec::new(),
+            local_color: Color::ZERO,
+            color: Color::ZERO,
+            contribution: Color::ZERO,
+            stop: None,
+            cuts: Vec::new(),
+            children: Vec::new(),
+            parent,
+        });
+        self.open.push(index);
+    }
+
+    fn hit(&mut self, hit: &Hit, surface: &SurfacePoint, normal: Vec3, entering: bool) {
+        let scene = self.scene;
+        let geometry = &scene.geometry;
+        let node = self.current();
+        // The reported `t` is along the unit direction, as a distance.
+        let t = (surface.point - node.origin).length();
+        node.hit = Some(NodeHit {
+            object: geometry.object_id(hit.prim),
+            label: geometry.prim_label(hit.prim),
+            material: surface.material,
+            material_name: scene.material_name(surface.material),
+            t,
+            point: surface.point,
+            normal,
+            uv: surface.uv,
+            entering,
+        });
+    }
+
+    fn miss(&mut self, background: Color) {
+        let node = self.current();
+        node.local_color = background;
+        node.stop = Some(StopReason::Miss);
+    }
+
+    fn shadow(&mut self, shadow: ShadowEvent) {
+        let geometry = &self.scene.geometry;
+        let mut met = shadow.blockers.to_vec();
+        met.sort_by(|a, b| a.0.t.total_cmp(&b.0.t));
+        let mut passed = Color::ONE;
+        let blockers = met
+            .iter()
+            .map(|(hit, tint)| {
+                passed *= *tint;
+                Blocker {
+                    object: geometry.object_id(hit.prim),
+                    label: geometry.prim_label(hit.prim),
+                    t: hit.t,
+                    transmittance_after: passed.to_array(),
+                }
+            })
+            .collect();
+        self.current().shadows.push(ShadowRay {
+            light: shadow.light,
+            origin: shadow.ray.origin,
+            dir: shadow.ray.dir,
+            distance: shadow.distance,
+            blockers,
+            blocked: shadow.arrived == Color::ZERO,
+            light_color: shadow.arrived,
+        });
+    }
+
+    fn local(&mut self, color: Color) {
+        self.current().local_color = color;
+    }
+
+    fn stop(&mut self, reason: StopReason) {
+        self.current().stop = Some(reason);
+    }
+
+    fn cut(&mut self, branch: RayKind, reason: StopReason, weight: f32) {
+        self.current().cuts.push(Cut {
+            branch,
+            reason,
+            weight,
+        });
+    }
+
+    fn done(&mut self, color: Color) {
+        let node = self.current();
+        node.color = color;
+        node.contribution = node.factor * node.local_color;
+        self.open.pop();
+    }
+}

@@ -1,0 +1,142 @@
+//! The ray tree as indented text, one ray per paragraph, children below their parent: what
+//! `raylab inspect` prints.
+
+use std::fmt::Write;
+
+use glam::Vec3;
+
+use super::ray_tree::{RayKind, RayNode, RayTree, ShadowRay, StopReason};
+
+impl RayTree {
+    /// The tree as human-readable text.
+    pub fn to_text(&self) -> String {
+        let mut out = format!(
+            "pixel ({}, {}): colour {}\n",
+            self.pixel.0,
+            self.pixel.1,
+            vec3(self.color)
+        );
+        if !self.nodes.is_empty() {
+            self.write_node(&mut out, 0);
+        }
+        out
+    }
+
+    fn write_node(&self, out: &mut String, index: usize) {
+        let node = &self.nodes[index];
+        let pad = "  ".repeat(node.depth as usize - 1);
+        write_ray(out, &pad, index, node);
+        for shadow in &node.shadows {
+            write_shadow(out, &pad, shadow);
+        }
+        for cut in &node.cuts {
+            let _ = writeln!(
+                out,
+                "{pad}  {} ray not traced: {} (weight {:.4})",
+                kind_name(cut.branch),
+                reason_text(cut.reason),
+                cut.weight
+            );
+        }
+        if let Some(stop) = node.stop {
+            let _ = writeln!(out, "{pad}  stop: {}", reason_text(stop));
+        }
+        for &child in &node.children {
+            self.write_node(out, child);
+        }
+    }
+}
+
+/// The ray's header (`index` into the tree's nodes), what it hit and its colours.
+fn write_ray(out: &mut String, pad: &str, index: usize, node: &RayNode) {
+    let _ = writeln!(
+        out,
+        "{pad}#{} {} ray, depth {}, weight {:.4}, from {} dir {}",
+        index,
+        kind_name(node.kind),
+        node.depth,
+        node.weight,
+        vec3(node.origin),
+        vec3(node.dir)
+    );
+    match &node.hit {
+        Some(hit) => {
+            let _ = writeln!(
+                out,
+                "{pad}  hit {} (material {} \"{}\") at t {:.4}, point {}, normal {}, uv ({:.3}, {:.3}), {}",
+                hit.label,
+                hit.material,
+                hit.material_name,
+                hit.t,
+                vec3(hit.point),
+                vec3(hit.normal),
+                hit.uv.x,
+                hit.uv.y,
+                if hit.entering {
+                    "front side"
+                } else {
+                    "back side"
+                }
+            );
+        }
+        None => {
+            let _ = writeln!(out, "{pad}  missed: background");
+        }
+    }
+    let _ = writeln!(
+        out,
+        "{pad}  local {} × factor {} = contribution {}; returns {}",
+        vec3(node.local_color),
+        vec3(node.factor),
+        vec3(node.contribution),
+        vec3(node.color)
+    );
+}
+
+fn write_shadow(out: &mut String, pad: &str, shadow: &ShadowRay) {
+    let state = if shadow.blocked {
+        "blocked"
+    } else if shadow.blockers.is_empty() {
+        "clear"
+    } else {
+        "tinted"
+    };
+    let _ = write!(
+        out,
+        "{pad}  shadow ray to light {}: {state}, light arriving {}",
+        shadow.light,
+        vec3(shadow.light_color)
+    );
+    for blocker in &shadow.blockers {
+        let _ = write!(
+            out,
+            "; {} at t {:.4} leaves {}",
+            blocker.label,
+            blocker.t,
+            vec3(Vec3::from(blocker.transmittance_after))
+        );
+    }
+    out.push('\n');
+}
+
+fn kind_name(kind: RayKind) -> &'static str {
+    match kind {
+        RayKind::Eye => "eye",
+        RayKind::Reflected => "reflected",
+        RayKind::Transmitted => "transmitted",
+    }
+}
+
+fn reason_text(reason: StopReason) -> &'static str {
+    match reason {
+        StopReason::Miss => "missed",
+        StopReason::MaxDepth => "max_depth reached",
+        StopReason::MinWeight => "weight below min_weight",
+        StopReason::TotalInternalReflection => "total internal reflection",
+        StopReason::Disabled => "switched off in the settings",
+    }
+}
+
+fn vec3(v: Vec3) -> String {
+    format!("({:.4}, {:.4}, {:.4})", v.x, v.y, v.z)
+}

@@ -1,0 +1,222 @@
+//! The Whitted integrator: the colour seen along a ray, found by building the lecture's ray
+//! tree. At each hit: ambient light, a shadow ray to each light for its diffuse and specular
+//! share ([`lighting`]), then a reflected ray and, through transparent surfaces, a transmitted
+//! ray bent by Snell's law ([`scattering`]), recursively, until a ray leaves the scene,
+//! `max_depth` is reached, or the branch's weight falls below `min_weight` (adaptive depth
+//! control).
+//!
+//! The tracing functions are generic over a [`TreeObserver`] that hears the tree as it grows.
+//! The renderer passes `()`, which compiles away; the inspector records the tree with the very
+//! same code.
+
+mod lighting;
+mod scattering;
+
+pub use scattering::{Scattering, reflect, refract, scattering};
+
+use crate::bvh::Bvh;
+use crate::inspect::{DebugView, RayKind, StopReason, TreeObserver};
+use crate::material::{Color, Material};
+use crate::primitive::{Hit, SurfacePoint};
+use crate::ray::{Ray, offset_origin};
+use crate::scene::Scene;
+use crate::stats::RayCounts;
+
+/// Eye rays start at the eye but only see what lies beyond the image plane, at `t = 1`.
+pub const EYE_RAY_T_MIN: f32 = 1.0;
+
+/// A scene and its BVH, ready to trace, and what the rendered image shows.
+#[derive(Clone, Copy)]
+pub struct Tracer<'a> {
+    pub scene: &'a Scene,
+    pub bvh: &'a Bvh,
+    /// What [`crate::progressive`] renders: the shaded image or a debug view.
+    pub view: DebugView,
+}
+
+impl<'a> Tracer<'a> {
+    pub fn new(scene: &'a Scene, bvh: &'a Bvh) -> Self {
+        Tracer {
+            scene,
+            bvh,
+            view: DebugView::Shaded,
+        }
+    }
+
+    /// The same tracer rendering `view`.
+    pub fn with_view(self, view: DebugView) -> Self {
+        Tracer { view, ..self }
+    }
+
+    /// The closest hit along `ray` beyond `t_min`.
+    pub fn closest_hit(&self, ray: &Ray, t_min: f32) -> Option<Hit> {
+        self.bvh
+            .closest_hit(&self.scene.geometry, ray, t_min, f32::INFINITY)
+    }
+
+    /// The colour seen by the eye ray `ray` (depth 1, weight 1).
+    pub fn trace_eye(&self, ray: &Ray, counts: &mut RayCounts) -> Color {
+        self.trace_eye_observed(ray, counts, &mut ())
+    }
+
+    /// [`Self::trace_eye`], telling `observer` of every ray of the tree.
+    pub fn trace_eye_observed<O: TreeObserver>(
+        &self,
+        ray: &Ray,
+        counts: &mut RayCounts,
+        observer: &mut O,
+    ) -> Color {
+        counts.primary += 1;
+        observer.ray(RayKind::Eye, 1, ray, 1.0, Color::ONE);
+        let geometry = &self.scene.geometry;
+        let hit =
+            self.bvh
+                .closest_hit_counted(geometry, ray, EYE_RAY_T_MIN, f32::INFINITY, observer);
+        let color = match hit {
+            Some(hit) => {
+                counts.primary_hits += 1;
+                self.shade(ray, &hit, 1, 1.0, counts, observer)
+            }
+            None => self.miss(observer),
+        };
+        observer.done(color);
+        color
+    }
+
+    /// The colour seen along a secondary ray at `depth` carrying `weight`.
+    fn trace<O: TreeObserver>(
+        &self,
+        ray: &Ray,
+        depth: u32,
+        weight: f32,
+        counts: &mut RayCounts,
+        observer: &mut O,
+    ) -> Color {
+        let geometry = &self.scene.geometry;
+        let hit = self
+            .bvh
+            .closest_hit_counted(geometry, ray, 0.0, f32::INFINITY, observer);
+        let color = match hit {
+            Some(hit) => self.shade(ray, &hit, depth, weight, counts, observer),
+            None => self.miss(observer),
+        };
+        observer.done(color);
+        color
+    }
+
+    /// What a ray that leaves the scene sees: the background.
+    #[inline(always)]
+    fn miss<O: TreeObserver>(&self, observer: &mut O) -> Color {
+        let background = self.scene.settings.background;
+        observer.miss(background);
+        background
+    }
+
+    /// The surface's colour: its texture's if it has one (and textures are on).
+    pub fn base_color(&self, material: &Material, surface: &SurfacePoint) -> Color {
+        match material.texture {
+            Some(t) if self.scene.settings.textures => {
+                self.scene.textures[t as usize].color(surface.uv, surface.object_point)
+            }
+            _ => material.color,
+        }
+    }
+
+    /// The colour at a hit: the local (Phong) colour plus the reflected and transmitted rays.
+    fn shade<O: TreeObserver>(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        depth: u32,
+        weight: f32,
+        counts: &mut RayCounts,
+        observer: &mut O,
+    ) -> Color {
+        let settings = &self.scene.settings;
+        let surface = self.scene.geometry.surface(ray, hit);
+        let material = &self.scene.materials[surface.material as usize];
+        let base = self.base_color(material, &surface);
+        let dir = ray.dir.normalize();
+        // Face the normals towards the side the ray came from.
+        let entering = dir.dot(surface.geometric_normal) < 0.0;
+        let side = if entering { 1.0 } else { -1.0 };
+        let normal = surface.normal * side;
+        let geometric_normal = surface.geometric_normal * side;
+        observer.hit(hit, &surface, normal, entering);
+
+        let mut color = self.local_color(
+            material,
+            base,
+            &surface,
+            normal,
+            geometric_normal,
+            dir,
+            counts,
+            observer,
+        );
+        observer.local(color);
+
+        if depth >= settings.max_depth {
+            if material.reflectivity > 0.0 || material.transparency > 0.0 {
+                observer.stop(StopReason::MaxDepth);
+            }
+            return color;
+        }
+        let scattering = scattering(material, dir, normal, entering);
+        let reflect_weight = weight * scattering.reflect;
+        if scattering.reflect > 0.0 {
+            if !settings.reflections {
+                observer.cut(RayKind::Reflected, StopReason::Disabled, reflect_weight);
+            } else if reflect_weight < settings.min_weight {
+                observer.cut(RayKind::Reflected, StopReason::MinWeight, reflect_weight);
+            } else {
+                counts.reflected += 1;
+                let reflected = Ray::new(
+                    offset_origin(surface.point, geometric_normal),
+                    reflect(dir, normal),
+                );
+                let scale = Color::splat(scattering.reflect);
+                observer.ray(
+                    RayKind::Reflected,
+                    depth + 1,
+                    &reflected,
+                    reflect_weight,
+                    scale,
+                );
+                color += scattering.reflect
+                    * self.trace(&reflected, depth + 1, reflect_weight, counts, observer);
+            }
+        }
+        let transmit_weight = weight * scattering.transmit;
+        match scattering.refracted {
+            None if material.transparency > 0.0 => observer.cut(
+                RayKind::Transmitted,
+                StopReason::TotalInternalReflection,
+                weight * material.transparency,
+            ),
+            Some(refracted) if scattering.transmit > 0.0 => {
+                if !settings.refractions {
+                    observer.cut(RayKind::Transmitted, StopReason::Disabled, transmit_weight);
+                } else if transmit_weight < settings.min_weight {
+                    observer.cut(RayKind::Transmitted, StopReason::MinWeight, transmit_weight);
+                } else {
+                    counts.transmitted += 1;
+                    let transmitted =
+                        Ray::new(offset_origin(surface.point, -geometric_normal), refracted);
+                    let scale = scattering.transmit * base;
+                    observer.ray(
+                        RayKind::Transmitted,
+                        depth + 1,
+                        &transmitted,
+                        transmit_weight,
+                        scale,
+                    );
+                    color += scale
+                        * self.trace(&transmitted, depth + 1, transmit_weight, counts, observer);
+                }
+            }
+            _ => {}
+        }
+        color
+    }
+}
