@@ -29,6 +29,16 @@ struct Run {
     stderr: String,
 }
 
+impl Run {
+    fn assert_success(&self) {
+        assert!(
+            self.success,
+            "stdout: {}\nstderr: {}",
+            self.stdout, self.stderr
+        );
+    }
+}
+
 /// How to get a display: an existing one, or a virtual one through xvfb-run; `None` if neither.
 fn display_wrapper() -> Option<Vec<String>> {
     let has = |program: &str| {
@@ -237,11 +247,7 @@ fn the_window_shows_the_default_scene_as_the_cpu_renders_it() {
     ]) else {
         return;
     };
-    assert!(
-        run.success,
-        "stdout: {}\nstderr: {}",
-        run.stdout, run.stderr
-    );
+    run.assert_success();
     assert!(
         run.stderr.contains("block size 1 at 96×96"),
         "{}",
@@ -278,11 +284,7 @@ fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
     ]) else {
         return;
     };
-    assert!(
-        run.success,
-        "stdout: {}\nstderr: {}",
-        run.stdout, run.stderr
-    );
+    run.assert_success();
     let scene = default_scene().unwrap();
     let camera = printed_camera(&run.stdout);
     assert!(
@@ -329,11 +331,7 @@ fn a_resized_window_letterboxes_the_same_image() {
     ]) else {
         return;
     };
-    assert!(
-        run.success,
-        "stdout: {}\nstderr: {}",
-        run.stdout, run.stderr
-    );
+    run.assert_success();
     let image = image::open(&shot).unwrap();
     assert_eq!(
         (image.width(), image.height()),
@@ -369,11 +367,7 @@ fn a_hidpi_window_draws_in_physical_pixels() {
     ) else {
         return;
     };
-    assert!(
-        run.success,
-        "stdout: {}\nstderr: {}",
-        run.stdout, run.stderr
-    );
+    run.assert_success();
     let image = image::open(&shot).unwrap();
     assert_eq!(
         (image.width(), image.height()),
@@ -418,11 +412,7 @@ fn a_broken_scene_file_shows_its_error_and_keeps_the_last_good_scene() {
     ]) else {
         return;
     };
-    assert!(
-        run.success,
-        "stdout: {}\nstderr: {}",
-        run.stdout, run.stderr
-    );
+    run.assert_success();
     // The loader's message, located: file:line:column.
     let located = format!("{}:2:", broken.display());
     assert!(run.stderr.contains(&located), "{}", run.stderr);
@@ -464,11 +454,7 @@ fn saving_the_watched_scene_file_renders_it_again() {
     ) else {
         return;
     };
-    assert!(
-        run.success,
-        "stdout: {}\nstderr: {}",
-        run.stdout, run.stderr
-    );
+    run.assert_success();
     assert_eq!(printed_camera(&run.stdout).eye, Vec3::from(moved));
     let scene = load_scene(&path).unwrap();
     assert_eq!(scene.camera.spec.eye, Vec3::from(moved));
@@ -567,6 +553,7 @@ fn help_documents_the_viewer() {
             "--screenshot",
             "--exit-when-done",
             "--script",
+            "--view",
         ] {
             assert!(text.contains(option), "{args:?} lacks {option}: {text}");
         }
@@ -640,11 +627,7 @@ fn a_click_on_a_pixel_shows_its_ray_tree_and_draws_it_over_the_image() {
     ]) else {
         return;
     };
-    assert!(
-        run.success,
-        "stdout: {}\nstderr: {}",
-        run.stdout, run.stderr
-    );
+    run.assert_success();
     // The panel's headings, in the tree's order, each indented by its depth.
     let printed: Vec<&str> = run
         .stdout
@@ -724,11 +707,7 @@ fn a_debug_view_chosen_in_the_viewer_renders_as_on_the_cpu() {
     ]) else {
         return;
     };
-    assert!(
-        run.success,
-        "stdout: {}\nstderr: {}",
-        run.stdout, run.stderr
-    );
+    run.assert_success();
     // Refined to block size 1 in the depth view, then again in the normals view.
     assert!(
         run.stderr.matches("block size 1 at").count() >= 2,

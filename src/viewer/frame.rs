@@ -87,7 +87,11 @@ impl App {
         let Some(gfx) = &mut self.gfx else { return };
         let mut raw_input = gfx.egui_state.take_egui_input(&gfx.window);
         self.synthetic.play(&mut raw_input.events);
-        self.inspection.receive();
+        for time in self.inspection.receive() {
+            if self.timing.enabled() {
+                eprintln!("stats: {time}");
+            }
+        }
         let ctx = self.egui_ctx.clone();
         let mut actions = Vec::new();
         let mut shown = None;

@@ -182,6 +182,15 @@ mod tests {
         }
     }
 
+    /// A left click at `at`: moved there, pressed and released a frame apart.
+    fn click(at: Pos2) -> Vec<Vec<Event>> {
+        vec![
+            vec![Event::PointerMoved(at)],
+            vec![button(PointerButton::Primary, true, at)],
+            vec![button(PointerButton::Primary, false, at)],
+        ]
+    }
+
     fn drag(with: PointerButton) -> Vec<Action> {
         let mut h = Harness::new();
         let start = pos2(50.0, 50.0);
@@ -244,12 +253,7 @@ mod tests {
     #[test]
     fn a_click_inspects_the_pixel_under_the_cursor_and_so_does_the_key_i() {
         let mut h = Harness::new();
-        let at = pos2(55.0, 25.0);
-        let actions = h.frames(vec![
-            vec![Event::PointerMoved(at)],
-            vec![button(PointerButton::Primary, true, at)],
-            vec![button(PointerButton::Primary, false, at)],
-        ]);
+        let actions = h.frames(click(pos2(55.0, 25.0)));
         assert_eq!(actions, vec![Action::Inspect { x: 5, y: 2 }]);
         let actions = h.frames(vec![
             vec![Event::PointerMoved(pos2(99.0, 0.0))],
@@ -266,13 +270,9 @@ mod tests {
     fn double_click_picks_the_image_point() {
         let mut h = Harness::new();
         let at = pos2(55.0, 25.0);
-        let actions = h.frames(vec![
-            vec![Event::PointerMoved(at)],
-            vec![button(PointerButton::Primary, true, at)],
-            vec![button(PointerButton::Primary, false, at)],
-            vec![button(PointerButton::Primary, true, at)],
-            vec![button(PointerButton::Primary, false, at)],
-        ]);
+        let mut frames = click(at);
+        frames.extend(click(at).into_iter().skip(1));
+        let actions = h.frames(frames);
         // Each click also inspects the pixel (the first cannot know a second will come).
         let (centre, inspect): (Vec<_>, Vec<_>) = actions
             .into_iter()

@@ -16,7 +16,7 @@ use raylab::inspect::{self, RayTree};
 
 use super::controls::Controls;
 use super::scene_source::LoadedScene;
-use super::worker::{lower_priority, panic_message};
+use super::worker::{low_priority_pool, panic_message};
 use super::working_scene::{TraceSetup, WorkingScene};
 
 /// A traced ray tree and the view it was traced in.
@@ -79,12 +79,7 @@ impl Inspection {
     /// Starts the thread (with `threads` threads for the object ids, 0: one per core);
     /// `wake` tells the window an answer has come.
     pub fn start(threads: usize, wake: impl Fn() + Send + 'static) -> Result<Inspection, String> {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .thread_name(|i| format!("inspector {i}"))
-            .start_handler(|_| lower_priority())
-            .build()
-            .map_err(|e| format!("cannot start the inspector's threads: {e}"))?;
+        let pool = low_priority_pool(threads, "inspector")?;
         let (requests, inbox) = mpsc::channel();
         let (outbox, answers) = mpsc::channel();
         let latest = Arc::new(AtomicU64::new(0));
@@ -124,11 +119,14 @@ impl Inspection {
         self.traced_for = None;
     }
 
-    /// Takes the answers that came (at the start of a frame, so that the frame shows them).
-    pub fn receive(&mut self) {
+    /// Takes the answers that came (at the start of a frame, so that the frame shows them);
+    /// returns how long each took, in words.
+    pub fn receive(&mut self) -> Vec<String> {
+        let mut times = Vec::new();
         while let Ok(answer) = self.answers.try_recv() {
-            self.take(answer);
+            times.extend(self.take(answer));
         }
+        times
     }
 
     /// Traces the pixel again if the scene, the controls or the pixel changed. `setup` is what
@@ -203,14 +201,22 @@ impl Inspection {
         }
     }
 
-    fn take(&mut self, answer: Answer) {
+    fn take(&mut self, answer: Answer) -> Option<String> {
+        let ms = |t: Duration| t.as_secs_f64() * 1e3;
         match answer {
             Answer::Tree(key, result) if key == self.key && self.pixel.is_some() => {
                 self.tree_key = key;
                 match result {
-                    Ok(tree) => {
-                        self.tree = Some(tree);
+                    Ok(traced) => {
+                        let (x, y) = traced.tree.pixel;
+                        let time = format!(
+                            "ray tree of pixel ({x}, {y}): {} rays in {:.3} ms",
+                            traced.tree.nodes.len(),
+                            ms(traced.time)
+                        );
+                        self.tree = Some(traced);
                         self.error = None;
+                        return Some(time);
                     }
                     Err(e) => {
                         self.tree = None;
@@ -219,12 +225,16 @@ impl Inspection {
                 }
             }
             Answer::Ids(key, Ok(ids)) if key == self.key => {
+                let (w, h) = ids.size;
+                let time = format!("object ids of the {w}×{h} image in {:.1} ms", ms(ids.time));
                 self.ids_key = Some(key);
                 self.object_ids = Some(ids);
+                return Some(time);
             }
             Answer::Ids(_, Err(e)) => self.error = Some(e),
             _ => {}
         }
+        None
     }
 }
 

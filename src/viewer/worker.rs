@@ -93,12 +93,7 @@ pub struct Worker {
 impl Worker {
     /// Starts the worker with `threads` tracing threads (0: one per core).
     pub fn start(threads: usize) -> Result<Worker, String> {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .thread_name(|i| format!("tracer {i}"))
-            .start_handler(|_| lower_priority())
-            .build()
-            .map_err(|e| format!("cannot start the tracing threads: {e}"))?;
+        let pool = low_priority_pool(threads, "tracer")?;
         let (jobs, inbox) = mpsc::channel();
         let thread = std::thread::Builder::new()
             .name("render worker".into())
@@ -161,6 +156,19 @@ fn run(pool: &rayon::ThreadPool, inbox: &Receiver<Job>) {
     }
 }
 
+/// A pool of `threads` threads (0: one per core) named `name` and of lowered priority.
+pub(super) fn low_priority_pool(
+    threads: usize,
+    name: &'static str,
+) -> Result<rayon::ThreadPool, String> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .thread_name(move |i| format!("{name} {i}"))
+        .start_handler(|_| lower_priority())
+        .build()
+        .map_err(|e| format!("cannot start the {name} threads: {e}"))
+}
+
 /// How much lower the tracing threads' priority is than the window's (a `nice` value). Measured
 /// at 512² on two cores with software Vulkan: 0 gave 30 fps and block size 1 after 230 ms, 10
 /// gave 42 fps and 480 ms; 4 gives 37 fps and 300 ms.
@@ -170,7 +178,7 @@ const TRACER_NICENESS: libc::c_int = 4;
 /// Lowers the calling thread's priority, so that on a busy machine the window (and the GPU
 /// driver's threads, which draw it) go before the tracer and the UI stays fluid.
 #[cfg(target_os = "linux")]
-pub(super) fn lower_priority() {
+fn lower_priority() {
     // SAFETY: plain system calls on the calling thread; Linux's setpriority takes a thread id
     // for PRIO_PROCESS and changes only that thread. Failing leaves the priority as it was.
     unsafe {
@@ -180,7 +188,7 @@ pub(super) fn lower_priority() {
 }
 
 #[cfg(not(target_os = "linux"))]
-pub(super) fn lower_priority() {}
+fn lower_priority() {}
 
 pub(super) fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {
     let text = panic
