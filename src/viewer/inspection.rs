@@ -156,7 +156,19 @@ impl Inspection {
                 pixel.0, pixel.1
             ));
         }
+        // Another pixel of the same view keeps the view's object ids.
+        let same_view = self
+            .traced_for
+            .as_ref()
+            .is_some_and(|(s, c, _)| Arc::ptr_eq(s, scene) && c == controls);
+        let ids_current = self.ids_key == Some(self.key);
         self.key += 1;
+        if same_view && ids_current {
+            self.ids_key = Some(self.key);
+            if let Some(ids) = &mut self.object_ids {
+                ids.key = self.key;
+            }
+        }
         self.traced_for = Some((scene.clone(), controls.clone(), pixel));
         self.setup = Some(setup);
         self.send(false);
@@ -345,6 +357,13 @@ mod tests {
         let eye_ray = &inspection.tree.as_ref().unwrap().tree.nodes[0];
         let seen = eye_ray.hit.as_ref().map_or(u32::MAX, |h| h.object);
         assert_eq!(ids.ids[7 * 32 + 5], seen);
+        // Another pixel of the same view keeps the ids; another view needs its own.
+        inspection.pick((6, 7));
+        settle(&mut inspection, &scene, &controls);
+        assert!(inspection.current_object_ids().is_some());
+        controls.camera.eye += Vec3::Y;
+        settle(&mut inspection, &scene, &controls);
+        assert!(inspection.current_object_ids().is_none());
         controls.settings.width = 4;
         let dropped = inspection.sync(&scene, &controls, controls.setup(4096).ok());
         assert!(dropped.unwrap_err().contains("outside the 4×32 image"));
