@@ -1,55 +1,16 @@
-//! The inspector's tracing: the picked pixel, and a background thread that traces its ray tree
-//! and, once a node is hovered, the object seen at every pixel (to highlight that object), on the
-//! scene as the controls show it. The window never waits: it sends requests and takes the answers
-//! when they arrive; a camera or scene change keeps the pixel and traces it again. The thread
-//! has its own copy of the scene (made at the first pick) and finds the object ids on a pool of
-//! lowered priority, so the window and the render go first.
+//! The inspection: the picked pixel, its ray tree and, once a node is hovered, the object seen
+//! at every pixel (to highlight that object), on the scene as the controls show it. They are
+//! traced on the inspector's thread ([`super::inspector_thread`]): the window never waits, it
+//! asks and takes the answers when they arrive; a camera or scene change keeps the pixel and
+//! traces it again.
 
-use std::panic::AssertUnwindSafe;
 use std::sync::Arc;
-use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::mpsc::{self, Receiver, Sender};
-use std::time::{Duration, Instant};
-
-use raylab::camera::Camera;
-use raylab::inspect::{self, RayTree};
+use std::time::Duration;
 
 use super::controls::Controls;
+use super::inspector_thread::{Answer, InspectorThread, ObjectIds, Request, TracedTree};
 use super::scene_source::LoadedScene;
-use super::worker::{low_priority_pool, panic_message};
-use super::working_scene::{TraceSetup, WorkingScene};
-
-/// A traced ray tree and the view it was traced in.
-pub struct TracedTree {
-    pub tree: RayTree,
-    pub camera: Camera,
-    /// The image size.
-    pub size: (u32, u32),
-    pub time: Duration,
-}
-
-/// The object seen at each pixel (row-major, top row first; `u32::MAX` for none).
-pub struct ObjectIds {
-    /// The inspection's key of the view they were traced for.
-    pub key: u64,
-    pub ids: Vec<u32>,
-    pub size: (u32, u32),
-    pub time: Duration,
-}
-
-/// What the thread is asked: `key` names the scene, controls and pixel it was asked for.
-struct Request {
-    key: u64,
-    scene: Arc<LoadedScene>,
-    setup: TraceSetup,
-    pixel: (u32, u32),
-    object_ids: bool,
-}
-
-enum Answer {
-    Tree(u64, Result<TracedTree, String>),
-    Ids(u64, Result<ObjectIds, String>),
-}
+use super::working_scene::TraceSetup;
 
 /// The picked pixel and what is known of it.
 pub struct Inspection {
@@ -70,24 +31,14 @@ pub struct Inspection {
     tree_key: u64,
     ids_key: Option<u64>,
     ids_asked: Option<u64>,
-    latest: Arc<AtomicU64>,
-    requests: Sender<Request>,
-    answers: Receiver<Answer>,
+    thread: InspectorThread,
 }
 
 impl Inspection {
     /// Starts the thread (with `threads` threads for the object ids, 0: one per core);
     /// `wake` tells the window an answer has come.
     pub fn start(threads: usize, wake: impl Fn() + Send + 'static) -> Result<Inspection, String> {
-        let pool = low_priority_pool(threads, "inspector")?;
-        let (requests, inbox) = mpsc::channel();
-        let (outbox, answers) = mpsc::channel();
-        let latest = Arc::new(AtomicU64::new(0));
-        let newest = latest.clone();
-        std::thread::Builder::new()
-            .name("inspector".into())
-            .spawn(move || run(&pool, &inbox, &outbox, &newest, wake))
-            .map_err(|e| format!("cannot start the inspector: {e}"))?;
+        let thread = InspectorThread::start(threads, wake)?;
         Ok(Inspection {
             pixel: None,
             tree: None,
@@ -101,9 +52,7 @@ impl Inspection {
             tree_key: 0,
             ids_key: None,
             ids_asked: None,
-            latest,
-            requests,
-            answers,
+            thread,
         })
     }
 
@@ -123,7 +72,7 @@ impl Inspection {
     /// returns how long each took, in words.
     pub fn receive(&mut self) -> Vec<String> {
         let mut times = Vec::new();
-        while let Ok(answer) = self.answers.try_recv() {
+        while let Some(answer) = self.thread.answer() {
             times.extend(self.take(answer));
         }
         times
@@ -200,7 +149,6 @@ impl Inspection {
         let (Some((scene, _, pixel)), Some(setup)) = (&self.traced_for, &self.setup) else {
             return;
         };
-        self.latest.store(self.key, Ordering::Relaxed);
         let request = Request {
             key: self.key,
             scene: scene.clone(),
@@ -208,8 +156,8 @@ impl Inspection {
             pixel: *pixel,
             object_ids,
         };
-        if self.requests.send(request).is_err() {
-            self.error = Some("the inspector has stopped".into());
+        if let Err(e) = self.thread.ask(request) {
+            self.error = Some(e);
         }
     }
 
@@ -250,61 +198,12 @@ impl Inspection {
     }
 }
 
-/// The thread's loop: answer each request, skipping object ids asked for a view since changed.
-fn run(
-    pool: &rayon::ThreadPool,
-    inbox: &Receiver<Request>,
-    outbox: &Sender<Answer>,
-    latest: &AtomicU64,
-    wake: impl Fn(),
-) {
-    let mut working = WorkingScene::default();
-    while let Ok(request) = inbox.recv() {
-        if request.key < latest.load(Ordering::Relaxed) {
-            continue;
-        }
-        let tracer = working.tracer(&request.scene, &request.setup);
-        let size = (request.setup.settings.width, request.setup.settings.height);
-        let start = Instant::now();
-        let answer = if request.object_ids {
-            let ids = catching(|| pool.install(|| inspect::object_ids(&tracer)));
-            Answer::Ids(
-                request.key,
-                ids.map(|ids| ObjectIds {
-                    key: request.key,
-                    ids,
-                    size,
-                    time: start.elapsed(),
-                }),
-            )
-        } else {
-            let (x, y) = request.pixel;
-            let tree = catching(|| inspect::trace_ray_tree(&tracer, x, y));
-            Answer::Tree(
-                request.key,
-                tree.map(|tree| TracedTree {
-                    tree,
-                    camera: request.setup.camera,
-                    size,
-                    time: start.elapsed(),
-                }),
-            )
-        };
-        if outbox.send(answer).is_err() {
-            return;
-        }
-        wake();
-    }
-}
-
-/// `f`'s result, or the message of its panic (a broken scene must not take the viewer down).
-fn catching<T>(f: impl FnOnce() -> T) -> Result<T, String> {
-    std::panic::catch_unwind(AssertUnwindSafe(f)).map_err(|p| panic_message(p.as_ref()))
-}
-
 #[cfg(test)]
 mod tests {
+    use std::time::Instant;
+
     use glam::Vec3;
+    use raylab::inspect;
     use raylab::whitted::Tracer;
 
     use super::*;

@@ -15,6 +15,7 @@ mod input;
 mod input_harness;
 mod inspection;
 mod inspector;
+mod inspector_thread;
 mod layout;
 mod legend_bar;
 mod navigation;

@@ -10,7 +10,8 @@ use raylab::aabb::Aabb;
 use raylab::camera::Camera;
 use raylab::inspect::{RayKind, RayTree};
 
-use super::inspection::{Inspection, ObjectIds};
+use super::inspection::Inspection;
+use super::inspector_thread::ObjectIds;
 
 /// How a projected ray is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
