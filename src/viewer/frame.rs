@@ -1,4 +1,5 @@
-//! One frame: the panels and the navigation (egui), the actions, restarting refinement, the film
+//! One frame: the panels, the inspector and the navigation (egui) with the overlay over the image,
+//! the actions, restarting refinement and re-tracing the inspected pixel, the film
 //! uploaded if it changed, the frame drawn and presented, the screenshot and exit when the
 //! script is done, and when the next frame is due.
 
