@@ -3,6 +3,7 @@
 mod bench;
 mod bench_report;
 mod generate;
+mod inspect;
 mod render;
 mod view;
 
@@ -37,6 +38,9 @@ enum Command {
     Gen(generate::GenArgs),
     /// Render a fixed set of scenes and report speed and memory.
     Bench(bench::BenchArgs),
+    /// Print the ray tree of one pixel: every eye, reflected, transmitted and shadow ray, what
+    /// it hit, the colours it carried and why each branch stopped.
+    Inspect(inspect::InspectArgs),
 }
 
 /// Runs the command; the error is the message to print.
@@ -45,6 +49,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
         Some(Command::Render(args)) => render::run(args),
         Some(Command::Gen(args)) => generate::run(args),
         Some(Command::Bench(args)) => bench::run(args),
+        Some(Command::Inspect(args)) => inspect::run(args),
         Some(Command::View(args)) => view::run(args),
         None => view::run(cli.view),
     }

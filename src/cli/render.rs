@@ -7,6 +7,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use raylab::bvh::Bvh;
 use raylab::film::Film;
+use raylab::inspect::DebugView;
 use raylab::nff::NffLighting;
 use raylab::output::save_image;
 use raylab::progressive::{self, RenderControl};
@@ -22,6 +23,11 @@ pub struct RenderArgs {
     /// Output image: .png or .ppm (8-bit sRGB), .exr or .hdr (linear floats).
     #[arg(short, long, default_value = "out.png")]
     output: PathBuf,
+    /// What the image shows: shaded, normals, depth, uv, object, material, tree-depth, rays or
+    /// bvh-cost. For depth and the heat maps the scale is printed and its colour bar written
+    /// beside the image as NAME.legend.png.
+    #[arg(long, default_value_t = DebugView::Shaded)]
+    view: DebugView,
     /// Overrides of the scene's render settings.
     #[command(flatten)]
     overrides: SettingsOverrides,
@@ -85,7 +91,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     let (width, height) = (settings.width, settings.height);
     let film = Film::new(width, height);
     let control = RenderControl::default();
-    let tracer = Tracer::new(&scene, &bvh);
+    let tracer = Tracer::new(&scene, &bvh).with_view(args.view);
     let total = u64::from(width) * u64::from(height) * u64::from(settings.samples);
     let bar = progress_bar(total);
     let stats = std::thread::scope(|s| {
@@ -106,8 +112,23 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         "{}",
         summary(&scene.settings, &stats, build_time, &args.output)
     );
+    if let Some(legend) = args.view.legend(&tracer) {
+        let path = args.output.with_extension("legend.png");
+        let (bar_width, bar_height) = LEGEND_SIZE;
+        save_image(
+            &path,
+            bar_width,
+            bar_height,
+            &legend.bar_image(bar_width, bar_height),
+        )
+        .map_err(|e| e.to_string())?;
+        println!("{} → {}", legend.to_text(), path.display());
+    }
     Ok(())
 }
+
+/// Size of the colour bar image written beside a debug view's image.
+const LEGEND_SIZE: (u32, u32) = (256, 24);
 
 /// A bar on the terminal (hidden when stderr is not one).
 fn progress_bar(total: u64) -> ProgressBar {

@@ -98,6 +98,32 @@ impl Legend {
         }
     }
 
+    /// The bar as a `width × height` image (row-major, top row first): the colours in the top
+    /// three quarters, white tick marks on black below.
+    pub fn bar_image(&self, width: u32, height: u32) -> Vec<Color> {
+        let bar_rows = height - height / 4;
+        let last = (width.max(2) - 1) as f32;
+        let tick_columns: Vec<u32> = self
+            .ticks
+            .iter()
+            .map(|(p, _)| (p.clamp(0.0, 1.0) * last).round() as u32)
+            .collect();
+        let mut pixels = Vec::with_capacity((width * height) as usize);
+        for y in 0..height {
+            for x in 0..width {
+                pixels.push(if y < bar_rows {
+                    let i = (x as f32 / last * (self.colors.len() - 1) as f32).round();
+                    self.colors[i as usize]
+                } else if tick_columns.contains(&x) {
+                    Color::ONE
+                } else {
+                    Color::ZERO
+                });
+            }
+        }
+        pixels
+    }
+
     /// One line: the label and the ticks, as the CLI prints it.
     pub fn to_text(&self) -> String {
         let ticks: Vec<String> = self

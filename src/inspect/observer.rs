@@ -33,9 +33,12 @@ pub struct ShadowEvent<'a> {
 /// rays, `local`, the children (each its own `ray` … `done`) or `cut`s, then `done`.
 #[allow(unused_variables)]
 pub trait TreeObserver: TraversalCost {
-    /// Whether shadow rays must report every blocker. The shadow cache, which can skip the
-    /// search, is bypassed then (its answer is the same).
+    /// Whether shadow rays must report every blocker (the shadow cache must be off then).
     const RECORDS_BLOCKERS: bool = false;
+    /// Whether shadow rays may try the thread's last blocker first ([`crate::shadow_cache`]).
+    /// The answer is the same either way, but what the search meets and costs then depends on
+    /// the pixels traced before on the thread; observers that report those turn it off.
+    const USES_SHADOW_CACHE: bool = true;
 
     /// A ray starts. `scale` is what its colour is multiplied by in its parent's colour (one
     /// for the eye ray).

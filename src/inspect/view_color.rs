@@ -73,7 +73,11 @@ impl TraversalCost for TreeStats {
     }
 }
 
+/// The cost of a pixel's tree without the shadow cache, so that it depends on the pixel alone,
+/// not on the pixels its thread traced before.
 impl TreeObserver for TreeStats {
+    const USES_SHADOW_CACHE: bool = false;
+
     fn ray(&mut self, _: RayKind, depth: u32, _: &Ray, _: f32, _: Color) {
         self.depth = self.depth.max(depth);
     }

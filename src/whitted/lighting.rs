@@ -82,8 +82,9 @@ impl Tracer<'_> {
     }
 
     /// [`Self::transmittance`] along the shadow ray `ray` towards light `light`, trying the
-    /// light's last blocker on this thread first (see [`crate::shadow_cache`]). With an
-    /// observer that records blockers, also every primitive the search met, with its tint.
+    /// light's last blocker on this thread first (see [`crate::shadow_cache`]) unless the
+    /// observer says not to. With an observer that records blockers, also every primitive the
+    /// search met, with its tint.
     fn light_transmittance<O: TreeObserver>(
         &self,
         light: usize,
@@ -93,7 +94,7 @@ impl Tracer<'_> {
     ) -> (Color, Vec<(Hit, Color)>) {
         let geometry = &self.scene.geometry;
         let mut blockers = Vec::new();
-        if !O::RECORDS_BLOCKERS
+        if O::USES_SHADOW_CACHE
             && let Some(id) = shadow_cache::last_blocker(light)
             && geometry.contains(id)
             && self.tint(id) == Color::ZERO

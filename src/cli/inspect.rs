@@ -1,0 +1,58 @@
+//! `raylab inspect`: the ray tree of one pixel, as text or JSON.
+
+use clap::Args;
+use raylab::bvh::Bvh;
+use raylab::inspect::trace_ray_tree;
+use raylab::nff::NffLighting;
+use raylab::whitted::Tracer;
+
+use super::render::SettingsOverrides;
+
+#[derive(Args, Debug)]
+pub struct InspectArgs {
+    /// Scene: a .toml or .nff file, or `spd:NAME[:SIZE]`; the built-in default scene when left
+    /// out.
+    scene: Option<String>,
+    /// The pixel, `X,Y`: X from the left, Y from the top of the image, from 0.
+    #[arg(long, value_parser = parse_pixel)]
+    pixel: (u32, u32),
+    /// Print the tree as JSON instead of text.
+    #[arg(long)]
+    json: bool,
+    /// Overrides of the scene's render settings.
+    #[command(flatten)]
+    overrides: SettingsOverrides,
+    /// Brightness of NFF and SPD scenes' lights (see `raylab render --help`).
+    #[arg(long, default_value_t = NffLighting::default())]
+    nff_lights: NffLighting,
+}
+
+/// `X,Y` as two integers.
+fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
+    let usage = || format!("expected X,Y (two whole numbers, e.g. 320,240), got `{text}`");
+    let (x, y) = text.split_once(',').ok_or_else(usage)?;
+    let number = |s: &str| s.trim().parse::<u32>().map_err(|_| usage());
+    Ok((number(x)?, number(y)?))
+}
+
+pub fn run(args: InspectArgs) -> Result<(), String> {
+    let mut scene = super::load_scene(args.scene.as_deref(), args.nff_lights)?;
+    args.overrides.apply(&mut scene.settings)?;
+    let (width, height) = (scene.settings.width, scene.settings.height);
+    let (x, y) = args.pixel;
+    if x >= width || y >= height {
+        return Err(format!(
+            "pixel ({x}, {y}) is outside the {width}×{height} image (x < {width}, y < {height})"
+        ));
+    }
+    let bvh = Bvh::build(&scene.geometry);
+    let tree = trace_ray_tree(&Tracer::new(&scene, &bvh), x, y);
+    if args.json {
+        let json = serde_json::to_string_pretty(&tree)
+            .map_err(|e| format!("cannot write the tree as JSON: {e}"))?;
+        println!("{json}");
+    } else {
+        print!("{}", tree.to_text());
+    }
+    Ok(())
+}
