@@ -13,6 +13,7 @@ use std::time::{Duration, Instant};
 use glam::Vec3;
 use raylab::bvh::Bvh;
 use raylab::camera::{Camera, CameraSpec};
+use raylab::inspect::{DebugView, RayKind, RayTree, trace_ray_tree};
 use raylab::output::to_srgb8;
 use raylab::progressive;
 use raylab::scene::{Scene, default_scene, load_scene};
@@ -26,6 +27,16 @@ struct Run {
     success: bool,
     stdout: String,
     stderr: String,
+}
+
+impl Run {
+    fn assert_success(&self) {
+        assert!(
+            self.success,
+            "stdout: {}\nstderr: {}",
+            self.stdout, self.stderr
+        );
+    }
 }
 
 /// How to get a display: an existing one, or a virtual one through xvfb-run; `None` if neither.
@@ -172,15 +183,26 @@ fn printed_camera(stdout: &str) -> CameraSpec {
     }
 }
 
-/// The scene rendered on the CPU at `size × size` with `camera`, as sRGB bytes.
-fn cpu_render(scene: &Scene, size: u32, camera: CameraSpec) -> Vec<u8> {
+/// The scene at `size × size` seen with `camera`, and its BVH.
+fn sized(scene: &Scene, size: u32, camera: CameraSpec) -> (Scene, Bvh) {
     let mut scene = scene.clone();
     scene.settings.width = size;
     scene.settings.height = size;
     scene.camera = Camera::new(camera).unwrap();
     let bvh = Bvh::build(&scene.geometry);
-    let (pixels, _) = progressive::render_image(&Tracer::new(&scene, &bvh));
+    (scene, bvh)
+}
+
+/// `view` of the scene rendered on the CPU at `size × size` with `camera`, as sRGB bytes.
+fn cpu_render_view(scene: &Scene, size: u32, camera: CameraSpec, view: DebugView) -> Vec<u8> {
+    let (scene, bvh) = sized(scene, size, camera);
+    let (pixels, _) = progressive::render_image(&Tracer::new(&scene, &bvh).with_view(view));
     to_srgb8(&pixels)
+}
+
+/// The scene rendered on the CPU at `size × size` with `camera`, as sRGB bytes.
+fn cpu_render(scene: &Scene, size: u32, camera: CameraSpec) -> Vec<u8> {
+    cpu_render_view(scene, size, camera, DebugView::Shaded)
 }
 
 /// Compares the screenshot's image area, sampled at the centre of each image pixel, with the
@@ -225,11 +247,7 @@ fn the_window_shows_the_default_scene_as_the_cpu_renders_it() {
     ]) else {
         return;
     };
-    assert!(
-        run.success,
-        "stdout: {}\nstderr: {}",
-        run.stdout, run.stderr
-    );
+    run.assert_success();
     assert!(
         run.stderr.contains("block size 1 at 96×96"),
         "{}",
@@ -266,11 +284,7 @@ fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
     ]) else {
         return;
     };
-    assert!(
-        run.success,
-        "stdout: {}\nstderr: {}",
-        run.stdout, run.stderr
-    );
+    run.assert_success();
     let scene = default_scene().unwrap();
     let camera = printed_camera(&run.stdout);
     assert!(
@@ -317,11 +331,7 @@ fn a_resized_window_letterboxes_the_same_image() {
     ]) else {
         return;
     };
-    assert!(
-        run.success,
-        "stdout: {}\nstderr: {}",
-        run.stdout, run.stderr
-    );
+    run.assert_success();
     let image = image::open(&shot).unwrap();
     assert_eq!(
         (image.width(), image.height()),
@@ -357,11 +367,7 @@ fn a_hidpi_window_draws_in_physical_pixels() {
     ) else {
         return;
     };
-    assert!(
-        run.success,
-        "stdout: {}\nstderr: {}",
-        run.stdout, run.stderr
-    );
+    run.assert_success();
     let image = image::open(&shot).unwrap();
     assert_eq!(
         (image.width(), image.height()),
@@ -406,11 +412,7 @@ fn a_broken_scene_file_shows_its_error_and_keeps_the_last_good_scene() {
     ]) else {
         return;
     };
-    assert!(
-        run.success,
-        "stdout: {}\nstderr: {}",
-        run.stdout, run.stderr
-    );
+    run.assert_success();
     // The loader's message, located: file:line:column.
     let located = format!("{}:2:", broken.display());
     assert!(run.stderr.contains(&located), "{}", run.stderr);
@@ -452,11 +454,7 @@ fn saving_the_watched_scene_file_renders_it_again() {
     ) else {
         return;
     };
-    assert!(
-        run.success,
-        "stdout: {}\nstderr: {}",
-        run.stdout, run.stderr
-    );
+    run.assert_success();
     assert_eq!(printed_camera(&run.stdout).eye, Vec3::from(moved));
     let scene = load_scene(&path).unwrap();
     assert_eq!(scene.camera.spec.eye, Vec3::from(moved));
@@ -555,8 +553,171 @@ fn help_documents_the_viewer() {
             "--screenshot",
             "--exit-when-done",
             "--script",
+            "--view",
         ] {
             assert!(text.contains(option), "{args:?} lacks {option}: {text}");
         }
     }
+}
+
+/// The screenshot's pixels inside the image area that differ (by more than 2 levels) from the
+/// CPU's image shown there at the same scale (nearest pixel), in window coordinates.
+fn differing_window_pixels(
+    screenshot: &Path,
+    rect: (f32, f32, f32, f32),
+    size: u32,
+    expected: &[u8],
+) -> Vec<(u32, u32)> {
+    let shot = image::open(screenshot).unwrap().to_rgb8();
+    let (x0, y0, w, h) = rect;
+    let mut differing = Vec::new();
+    for sy in y0 as u32..(y0 + h) as u32 {
+        for sx in x0 as u32..(x0 + w) as u32 {
+            let i = (((sx as f32 + 0.5 - x0) / w * size as f32) as u32).min(size - 1);
+            let j = (((sy as f32 + 0.5 - y0) / h * size as f32) as u32).min(size - 1);
+            let k = ((j * size + i) * 3) as usize;
+            let got = shot.get_pixel(sx, sy).0;
+            if (0..3).any(|c| got[c].abs_diff(expected[k + c]) > 2) {
+                differing.push((sx, sy));
+            }
+        }
+    }
+    differing
+}
+
+/// The pixel of the default scene at `size × size` with the largest ray tree (the first of
+/// them, row by row), and that tree.
+fn busiest_pixel(scene: &Scene, bvh: &Bvh, size: u32) -> RayTree {
+    let tracer = Tracer::new(scene, bvh);
+    let mut best: Option<RayTree> = None;
+    for y in 0..size {
+        for x in 0..size {
+            let tree = trace_ray_tree(&tracer, x, y);
+            if best
+                .as_ref()
+                .is_none_or(|b| tree.nodes.len() > b.nodes.len())
+            {
+                best = Some(tree);
+            }
+        }
+    }
+    best.unwrap()
+}
+
+#[test]
+fn a_click_on_a_pixel_shows_its_ray_tree_and_draws_it_over_the_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("inspected.png");
+    let size = 64;
+    let scene = default_scene().unwrap();
+    let (sized_scene, bvh) = sized(&scene, size, scene.camera.spec);
+    let tree = busiest_pixel(&sized_scene, &bvh, size);
+    assert!(tree.nodes.len() >= 3, "a pixel with secondary rays");
+    let (x, y) = tree.pixel;
+    let Some(run) = run_viewer(&[
+        "--size",
+        &size.to_string(),
+        "--window",
+        "1000x600",
+        "--exit-when-done",
+        "--script",
+        &format!("wait; click {x} {y}; wait; print-tree"),
+        "--screenshot",
+        shot.to_str().unwrap(),
+    ]) else {
+        return;
+    };
+    run.assert_success();
+    // The panel's headings, in the tree's order, each indented by its depth.
+    let printed: Vec<&str> = run
+        .stdout
+        .lines()
+        .filter_map(|l| l.strip_prefix("tree: "))
+        .collect();
+    assert_eq!(
+        printed.len(),
+        tree.nodes.len(),
+        "stdout: {}\nstderr: {}",
+        run.stdout,
+        run.stderr
+    );
+    let mut order = vec![0];
+    let mut preorder = Vec::new();
+    while let Some(i) = order.pop() {
+        preorder.push(i);
+        order.extend(tree.nodes[i].children.iter().rev());
+    }
+    for (line, &i) in printed.iter().zip(&preorder) {
+        let node = &tree.nodes[i];
+        let indent = line.len() - line.trim_start().len();
+        assert_eq!(indent, 2 * (node.depth as usize - 1), "{line}");
+        let kind = match node.kind {
+            RayKind::Eye => "eye",
+            RayKind::Reflected => "reflected",
+            RayKind::Transmitted => "transmitted",
+        };
+        assert!(line.trim_start().starts_with(kind), "{line}: {kind}");
+        assert!(line.contains(&format!("depth {}", node.depth)), "{line}");
+        match &node.hit {
+            Some(hit) => assert!(line.contains(&hit.label), "{line}: {}", hit.label),
+            None => assert!(line.contains("miss"), "{line}"),
+        }
+    }
+    // The overlay: the image differs from the CPU's where the rays and the pixel's frame are
+    // drawn, and around the picked pixel.
+    let rect = image_rect(&run.stdout);
+    let expected = cpu_render(&scene, size, scene.camera.spec);
+    let differing = differing_window_pixels(&shot, rect, size, &expected);
+    assert!(!differing.is_empty(), "the overlay is drawn");
+    let scale = rect.2 / size as f32;
+    let centre = (
+        rect.0 + (x as f32 + 0.5) * scale,
+        rect.1 + (y as f32 + 0.5) * scale,
+    );
+    let near_pixel = |&(sx, sy): &(u32, u32)| {
+        (sx as f32 - centre.0).abs() <= scale + 2.0 && (sy as f32 - centre.1).abs() <= scale + 2.0
+    };
+    assert!(
+        differing.iter().any(near_pixel),
+        "the picked pixel is framed"
+    );
+    assert!(
+        differing.len() < (rect.2 * rect.3 / 4.0) as usize,
+        "the rest of the image is as rendered: {} pixels differ",
+        differing.len()
+    );
+}
+
+#[test]
+fn a_debug_view_chosen_in_the_viewer_renders_as_on_the_cpu() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("normals.png");
+    let size = 64;
+    let Some(run) = run_viewer(&[
+        "--size",
+        &size.to_string(),
+        "--view",
+        "depth",
+        "--exit-when-done",
+        "--stats",
+        "--script",
+        "wait; view normals; wait",
+        "--screenshot",
+        shot.to_str().unwrap(),
+    ]) else {
+        return;
+    };
+    run.assert_success();
+    // Refined to block size 1 in the depth view, then again in the normals view.
+    assert!(
+        run.stderr.matches("block size 1 at").count() >= 2,
+        "{}",
+        run.stderr
+    );
+    let scene = default_scene().unwrap();
+    let rect = image_rect(&run.stdout);
+    let normals = cpu_render_view(&scene, size, scene.camera.spec, DebugView::Normals);
+    assert_eq!(mismatches(&shot, rect, size, &normals), 0);
+    let shaded = cpu_render(&scene, size, scene.camera.spec);
+    assert!(mismatches(&shot, rect, size, &shaded) > (size * size / 4) as usize);
 }

@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
+use raylab::inspect::DebugView;
 
 use crate::viewer::{self, Options, Script};
 
@@ -23,6 +24,10 @@ pub struct ViewArgs {
     /// Samples per pixel (more than 1 anti-aliases after block size 1).
     #[arg(long)]
     samples: Option<u32>,
+    /// What the image shows: shaded, normals, depth, uv, object, material, tree-depth, rays or
+    /// bvh-cost (switchable in the Tracing panel).
+    #[arg(long, value_name = "NAME", default_value = "shaded", value_parser = |s: &str| s.parse::<DebugView>())]
+    view: DebugView,
     /// Tracing threads (default: one per core).
     #[arg(long)]
     threads: Option<usize>,
@@ -44,7 +49,9 @@ pub struct ViewArgs {
     stats: bool,
     /// Scripted input, steps separated by `;`: wait (for refinement to finish), wait-load N (for
     /// N scene loads, the first included), orbit YAW PITCH [FRAMES], pan DX DY [FRAMES], dolly STEPS,
-    /// fly X Y Z SECONDS, frame, reset, save, print-camera, open [PATH], resize W H.
+    /// fly X Y Z SECONDS, frame, reset, save, print-camera, open [PATH], resize W H, pick X Y
+    /// (inspect image pixel X Y), click X Y (a left click on that pixel), close-inspector,
+    /// print-tree (print the inspector's node headings), view NAME.
     #[arg(long, value_name = "STEPS", value_parser = Script::parse)]
     script: Option<Script>,
     /// Most frames per second while refining.
@@ -79,6 +86,7 @@ pub fn run(args: ViewArgs) -> Result<(), String> {
         block_size: args.block_size,
         max_depth: args.max_depth,
         samples: args.samples,
+        view: args.view,
         threads: args.threads.unwrap_or(0),
         window: args.window.unwrap_or((1100, 720)),
         save_path: args.save,

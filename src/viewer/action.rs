@@ -5,6 +5,7 @@
 use std::path::PathBuf;
 
 use glam::Vec3;
+use raylab::inspect::DebugView;
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Action {
@@ -22,6 +23,17 @@ pub enum Action {
     ResetCamera,
     /// Make the surface point under this image point (pixels, y down) the orbit centre.
     PickCentre { x: f32, y: f32 },
+    /// Show the ray tree of image pixel (x, y) (y down) in the inspector.
+    Inspect { x: u32, y: u32 },
+    /// Close the inspector.
+    CloseInspector,
+    /// Print the inspector's node headings on the terminal (scripts only).
+    PrintTree,
+    /// A left click at the centre of image pixel (x, y), sent as the pointer events of a real
+    /// mouse (scripts only).
+    Click { x: u32, y: u32 },
+    /// Show this view of the scene (restarts refinement).
+    SetView(DebugView),
     /// Open a scene file (`None`: the built-in default scene).
     Open(Option<PathBuf>),
     /// Save the image and the camera snippet.

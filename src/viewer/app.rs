@@ -16,12 +16,15 @@ use super::Options;
 use super::action::Action;
 use super::controls::Controls;
 use super::gpu::Gpu;
+use super::inspection::Inspection;
 use super::layout::PixelRect;
+use super::overlay::Overlay;
 use super::painter::Painter;
 use super::panels::PanelState;
 use super::rendering::Rendering;
 use super::scene_source::{self, LoadedScene};
 use super::surface::WindowSurface;
+use super::synthetic::SyntheticInput;
 use super::timing::Timing;
 use super::upload::Uploader;
 use super::watch::SceneWatcher;
@@ -36,6 +39,8 @@ pub enum UserEvent {
     },
     /// The watched scene file changed on disk.
     SceneFileChanged,
+    /// The inspector has traced what it was asked.
+    Inspected,
 }
 
 /// The window and what draws into it.
@@ -62,6 +67,11 @@ pub struct App {
     pub(super) rendering: Option<Rendering>,
     pub(super) uploader: Uploader,
     pub(super) panel: PanelState,
+    /// The picked pixel's ray tree, and what is drawn of it over the image.
+    pub(super) inspection: Inspection,
+    pub(super) overlay: Overlay,
+    /// Scripted clicks on their way to egui.
+    pub(super) synthetic: SyntheticInput,
     /// The scene file asked for last (watched even while it fails to load).
     pub(super) requested: Option<PathBuf>,
     pub(super) watcher: Option<SceneWatcher>,
@@ -81,6 +91,10 @@ pub struct App {
 impl App {
     pub fn new(options: Options, proxy: EventLoopProxy<UserEvent>) -> Result<App, String> {
         let worker = Worker::start(options.threads)?;
+        let wake = proxy.clone();
+        let inspection = Inspection::start(options.threads, move || {
+            let _ = wake.send_event(UserEvent::Inspected);
+        })?;
         let timing = Timing::new(options.stats);
         let save_field = options.save_path.display().to_string();
         let open_field = options
@@ -111,6 +125,9 @@ impl App {
                 light_count: 0,
                 max_side: 2048,
             },
+            inspection,
+            overlay: Overlay::default(),
+            synthetic: SyntheticInput::default(),
             requested: None,
             watcher: None,
             generation: 0,
@@ -212,6 +229,7 @@ impl App {
         c.settings.block_size = o.block_size.unwrap_or(c.settings.block_size);
         c.settings.max_depth = o.max_depth.unwrap_or(c.settings.max_depth);
         c.settings.samples = o.samples.unwrap_or(c.settings.samples);
+        c.view = o.view;
         c
     }
 
@@ -282,6 +300,7 @@ impl ApplicationHandler<UserEvent> for App {
                 self.loaded(event_loop, result);
             }
             UserEvent::Loaded { .. } => {}
+            UserEvent::Inspected => {}
             UserEvent::SceneFileChanged => {
                 if self.requested.is_some() {
                     let path = self.requested.clone();

@@ -1,5 +1,6 @@
 //! Carrying out [`Action`]s: navigation moves the camera (through [`navigation`]), picking sets
-//! the orbit centre, and the scene, save and print actions do what they say.
+//! the orbit centre, inspecting picks the inspector's pixel, and the scene, save and print
+//! actions do what they say.
 
 use std::path::PathBuf;
 
@@ -7,7 +8,8 @@ use raylab::camera::Camera;
 
 use super::action::Action;
 use super::app::App;
-use super::layout::PixelRect;
+use super::inspector;
+use super::layout::{PixelRect, window_point};
 use super::navigation;
 use super::pick;
 use super::save;
@@ -37,6 +39,15 @@ impl App {
                 }
             }
             Action::PickCentre { x, y } => self.pick_centre(x, y),
+            Action::Inspect { x, y } => self.inspection.pick((x, y)),
+            Action::CloseInspector => self.inspection.close(),
+            Action::PrintTree => self.print_tree(),
+            Action::Click { x, y } => self.click(x, y, shown),
+            Action::SetView(view) => {
+                if let Some(c) = &mut self.controls {
+                    c.view = view;
+                }
+            }
             other => {
                 let (Some(controls), Some(bounds)) = (&mut self.controls, bounds) else {
                     return;
@@ -83,6 +94,34 @@ impl App {
         match point.and_then(|p| navigation::look_at_point(&controls.camera, p)) {
             Some(spec) => controls.camera = spec,
             None => self.panel.message = Some("no surface under the cursor".into()),
+        }
+    }
+
+    /// A left click at the centre of image pixel (x, y), through egui like a mouse's.
+    fn click(&mut self, x: u32, y: u32, shown: PixelRect) {
+        let Some(r) = &self.rendering else { return };
+        let (width, height) = (r.film.width(), r.film.height());
+        if x >= width || y >= height || shown.is_empty() {
+            self.panel.message = Some(format!(
+                "cannot click pixel ({x}, {y}): it is outside the {width}×{height} image"
+            ));
+            return;
+        }
+        let (px, py) = window_point(shown, width, height, (x as f32 + 0.5, y as f32 + 0.5));
+        let ppp = self.egui_ctx.pixels_per_point();
+        self.synthetic.click(egui::pos2(px / ppp, py / ppp));
+    }
+
+    /// Prints the inspector's headings, one line each, after `tree: `.
+    fn print_tree(&self) {
+        match (&self.inspection.tree, &self.inspection.error) {
+            (_, Some(e)) => println!("tree: error: {e}"),
+            (Some(traced), None) => {
+                for line in inspector::heading_lines(&traced.tree) {
+                    println!("tree: {line}");
+                }
+            }
+            (None, None) => println!("tree: none"),
         }
     }
 

@@ -1,10 +1,14 @@
-//! What the user controls: the camera, the render settings and the lights' intensity. The panels
+//! What the user controls: the camera, the render settings, the lights' intensity and the debug
+//! view. The panels
 //! and the navigation edit a [`Controls`]; whenever it differs from the one being rendered, the
 //! app restarts refinement with it.
 
 use raylab::camera::{Camera, CameraSpec};
+use raylab::inspect::DebugView;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
+
+use super::working_scene::TraceSetup;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Controls {
@@ -12,6 +16,8 @@ pub struct Controls {
     pub settings: RenderSettings,
     /// Multiplies the colour of every light of the scene.
     pub light_scale: f32,
+    /// What the image shows: the shaded colour or a debug view.
+    pub view: DebugView,
 }
 
 impl Controls {
@@ -21,12 +27,13 @@ impl Controls {
             camera: scene.camera.spec,
             settings: scene.settings.clone(),
             light_scale: 1.0,
+            view: DebugView::Shaded,
         }
     }
 
-    /// The camera these controls describe, if they are all valid; otherwise what is wrong.
+    /// What these controls change in the scene, if they are all valid; otherwise what is wrong.
     /// `max_side` is the largest texture the GPU takes.
-    pub fn check(&self, max_side: u32) -> Result<Camera, String> {
+    pub fn setup(&self, max_side: u32) -> Result<TraceSetup, String> {
         self.settings.validate()?;
         let (w, h) = (self.settings.width, self.settings.height);
         if w > max_side || h > max_side {
@@ -40,7 +47,12 @@ impl Controls {
                 self.light_scale
             ));
         }
-        Camera::new(self.camera).map_err(|e| format!("camera: {e}"))
+        Ok(TraceSetup {
+            camera: Camera::new(self.camera).map_err(|e| format!("camera: {e}"))?,
+            settings: self.settings.clone(),
+            light_scale: self.light_scale,
+            view: self.view,
+        })
     }
 }
 
@@ -58,25 +70,25 @@ mod tests {
     #[test]
     fn valid_controls_give_their_camera() {
         let c = controls();
-        assert_eq!(c.check(4096).unwrap().spec, c.camera);
+        assert_eq!(c.setup(4096).unwrap().camera.spec, c.camera);
     }
 
     #[test]
     fn bad_settings_cameras_and_sizes_are_reported() {
         let mut c = controls();
         c.camera.look_at = c.camera.eye;
-        assert!(c.check(4096).unwrap_err().contains("camera"));
+        assert!(c.setup(4096).unwrap_err().contains("camera"));
         let mut c = controls();
         c.camera.up = Vec3::ZERO;
-        assert!(c.check(4096).is_err());
+        assert!(c.setup(4096).is_err());
         let mut c = controls();
         c.settings.block_size = 3;
-        assert!(c.check(4096).unwrap_err().contains("block_size"));
+        assert!(c.setup(4096).unwrap_err().contains("block_size"));
         let mut c = controls();
         c.settings.width = 5000;
-        assert!(c.check(4096).unwrap_err().contains("largest texture"));
+        assert!(c.setup(4096).unwrap_err().contains("largest texture"));
         let mut c = controls();
         c.light_scale = f32::NAN;
-        assert!(c.check(4096).is_err());
+        assert!(c.setup(4096).is_err());
     }
 }

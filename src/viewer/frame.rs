@@ -1,4 +1,5 @@
-//! One frame: the panels and the navigation (egui), the actions, restarting refinement, the film
+//! One frame: the panels, the inspector and the navigation (egui) with the overlay over the image,
+//! the actions, restarting refinement and re-tracing the inspected pixel, the film
 //! uploaded if it changed, the frame drawn and presented, the screenshot and exit when the
 //! script is done, and when the next frame is due.
 
@@ -9,7 +10,9 @@ use winit::event_loop::ActiveEventLoop;
 use super::action::Action;
 use super::app::App;
 use super::input::{self, ImageArea};
+use super::inspector;
 use super::layout::{PixelRect, letterbox};
+use super::overlay;
 use super::painter::FrameContent;
 use super::panels;
 use super::screenshot;
@@ -24,8 +27,18 @@ impl App {
         let mut actions = Vec::new();
         let status = self.status();
         panels::status_bar(ui, &status, &self.panel);
+        let legend = self.rendering.as_ref().and_then(|r| r.report.legend());
         if let Some(controls) = &mut self.controls {
-            actions.extend(panels::side_panel(ui, controls, &mut self.panel));
+            actions.extend(panels::side_panel(
+                ui,
+                controls,
+                &mut self.panel,
+                legend.as_ref(),
+            ));
+        }
+        actions.extend(inspector::show(ui, &mut self.inspection));
+        if self.inspection.hovered.is_some() {
+            self.inspection.want_object_ids();
         }
         let ppp = ui.ctx().pixels_per_point();
         let image_size = self
@@ -43,6 +56,13 @@ impl App {
                 height: rect.height() * ppp,
             };
             shown = letterbox(area, image_size.0, image_size.1);
+            let image = egui::Rect::from_min_size(
+                egui::pos2(shown.x / ppp, shown.y / ppp),
+                egui::vec2(shown.width / ppp, shown.height / ppp),
+            );
+            let far = self.scene.as_ref().map_or(1.0, |s| overlay::far(s.bounds));
+            self.overlay
+                .paint(ui, &self.inspection, image, image_size, far);
             if self.rendering.is_none() {
                 let text = self
                     .panel
@@ -66,7 +86,13 @@ impl App {
         let dt = now - self.last_frame;
         self.last_frame = now;
         let Some(gfx) = &mut self.gfx else { return };
-        let raw_input = gfx.egui_state.take_egui_input(&gfx.window);
+        let mut raw_input = gfx.egui_state.take_egui_input(&gfx.window);
+        self.synthetic.play(&mut raw_input.events);
+        for time in self.inspection.receive() {
+            if self.timing.enabled() {
+                eprintln!("stats: {time}");
+            }
+        }
         let ctx = self.egui_ctx.clone();
         let mut actions = Vec::new();
         let mut shown = None;
@@ -76,13 +102,17 @@ impl App {
             shown = Some(s);
         });
         let shown = shown.unwrap_or(PixelRect::ZERO);
-        if let Some(action) = self.options.script.next(self.idle(), self.loads) {
-            actions.push(action);
-        }
         for action in actions {
             self.apply(action, shown);
         }
         self.sync_render(now);
+        self.sync_inspection();
+        // The script sees what this frame's input started (a click's inspection, say).
+        if let Some(action) = self.options.script.next(self.idle(), self.loads) {
+            self.apply(action, shown);
+            self.sync_render(now);
+            self.sync_inspection();
+        }
         let idle = self.idle();
 
         let Some(gfx) = &mut self.gfx else { return };
@@ -174,8 +204,11 @@ impl App {
         }
 
         // The next frame: soon while something moves, else when egui or an event asks.
-        let animating =
-            tracing || self.loading || input::flying(&ctx) || !self.options.script.is_done();
+        let animating = tracing
+            || self.loading
+            || input::flying(&ctx)
+            || !self.options.script.is_done()
+            || !self.synthetic.is_empty();
         let egui_delay = output
             .viewport_output
             .get(&egui::ViewportId::ROOT)

@@ -1,13 +1,14 @@
 //! Mouse and keyboard navigation over the image, the conventions people know: left-drag orbits,
 //! right- or middle-drag pans, the wheel dollies, W/A/S/D/Q/E fly, F frames the scene,
-//! double-click sets the orbit centre; Ctrl+S saves and C prints the camera. Turns one frame's
-//! egui input into [`Action`]s.
+//! double-click sets the orbit centre; Ctrl+S saves and C prints the camera. A click that is not
+//! a drag (or the key I) inspects the pixel under the cursor, Esc closes the inspector. Turns one
+//! frame's egui input into [`Action`]s.
 
 use egui::{Key, Modifiers, MouseWheelUnit, PointerButton};
 use glam::Vec3;
 
 use super::action::Action;
-use super::layout::{PixelRect, image_point};
+use super::layout::{PixelRect, image_pixel, image_point};
 
 /// Degrees of orbit per point of drag.
 const ORBIT_DEGREES_PER_POINT: f32 = 0.3;
@@ -70,6 +71,27 @@ pub fn actions(
     {
         actions.push(Action::PickCentre { x, y });
     }
+    // egui tells a click from a drag: released before moving past its drag threshold.
+    let inspect_key = !ctx.egui_wants_keyboard_input()
+        && ctx.input_mut(|i| i.consume_key(Modifiers::NONE, Key::I));
+    let inspect_at = if response.clicked_by(PointerButton::Primary) {
+        response.interact_pointer_pos()
+    } else if inspect_key {
+        response.hover_pos()
+    } else {
+        None
+    };
+    if let Some(pos) = inspect_at
+        && let Some((x, y)) = image_pixel(
+            area.shown,
+            area.image_size.0,
+            area.image_size.1,
+            pos.x * ppp,
+            pos.y * ppp,
+        )
+    {
+        actions.push(Action::Inspect { x, y });
+    }
     if response.hovered() {
         let steps = ctx.input(|i| {
             i.events
@@ -121,6 +143,9 @@ fn key_actions(ctx: &egui::Context, seconds: f32) -> Vec<Action> {
         if i.consume_key(Modifiers::NONE, Key::C) {
             actions.push(Action::PrintCamera);
         }
+        if i.consume_key(Modifiers::NONE, Key::Escape) {
+            actions.push(Action::CloseInspector);
+        }
         actions
     })
 }
@@ -136,55 +161,7 @@ mod tests {
     use egui::{Event, Pos2, TouchPhase, pos2, vec2};
 
     use super::*;
-
-    /// Feeds egui frames of events (each frame 1/60 s after the last) over a 100×100 image area
-    /// showing a 10×10 image, and collects the actions.
-    struct Harness {
-        ctx: egui::Context,
-        time: f64,
-    }
-
-    impl Harness {
-        fn new() -> Harness {
-            Harness {
-                ctx: egui::Context::default(),
-                time: 0.0,
-            }
-        }
-
-        fn frame(&mut self, events: Vec<Event>) -> Vec<Action> {
-            self.time += 1.0 / 60.0;
-            let input = egui::RawInput {
-                screen_rect: Some(egui::Rect::from_min_size(Pos2::ZERO, vec2(100.0, 100.0))),
-                time: Some(self.time),
-                events,
-                ..Default::default()
-            };
-            let mut actions = Vec::new();
-            let mut output = self.ctx.run_ui(input, |ui| {
-                let rect = ui.available_rect_before_wrap();
-                let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
-                let area = ImageArea {
-                    shown: PixelRect {
-                        x: 0.0,
-                        y: 0.0,
-                        width: 100.0,
-                        height: 100.0,
-                    },
-                    pixels_per_point: 1.0,
-                    image_size: (10, 10),
-                };
-                actions = super::actions(ui.ctx(), &response, &area, 0.5);
-            });
-            // Nothing is painted here.
-            output.textures_delta.clear();
-            actions
-        }
-
-        fn frames(&mut self, frames: Vec<Vec<Event>>) -> Vec<Action> {
-            frames.into_iter().flat_map(|e| self.frame(e)).collect()
-        }
-    }
+    use crate::viewer::input_harness::Harness;
 
     fn key(key: Key, pressed: bool, modifiers: Modifiers) -> Event {
         Event::Key {
@@ -203,6 +180,15 @@ mod tests {
             pressed,
             modifiers: Modifiers::NONE,
         }
+    }
+
+    /// A left click at `at`: moved there, pressed and released a frame apart.
+    fn click(at: Pos2) -> Vec<Vec<Event>> {
+        vec![
+            vec![Event::PointerMoved(at)],
+            vec![button(PointerButton::Primary, true, at)],
+            vec![button(PointerButton::Primary, false, at)],
+        ]
     }
 
     fn drag(with: PointerButton) -> Vec<Action> {
@@ -265,17 +251,35 @@ mod tests {
     }
 
     #[test]
+    fn a_click_inspects_the_pixel_under_the_cursor_and_so_does_the_key_i() {
+        let mut h = Harness::new();
+        let actions = h.frames(click(pos2(55.0, 25.0)));
+        assert_eq!(actions, vec![Action::Inspect { x: 5, y: 2 }]);
+        let actions = h.frames(vec![
+            vec![Event::PointerMoved(pos2(99.0, 0.0))],
+            vec![key(Key::I, true, Modifiers::NONE)],
+            vec![key(Key::Escape, true, Modifiers::NONE)],
+        ]);
+        assert_eq!(
+            actions,
+            vec![Action::Inspect { x: 9, y: 0 }, Action::CloseInspector]
+        );
+    }
+
+    #[test]
     fn double_click_picks_the_image_point() {
         let mut h = Harness::new();
         let at = pos2(55.0, 25.0);
-        let actions = h.frames(vec![
-            vec![Event::PointerMoved(at)],
-            vec![button(PointerButton::Primary, true, at)],
-            vec![button(PointerButton::Primary, false, at)],
-            vec![button(PointerButton::Primary, true, at)],
-            vec![button(PointerButton::Primary, false, at)],
-        ]);
-        assert_eq!(actions, vec![Action::PickCentre { x: 5.5, y: 2.5 }]);
+        let mut frames = click(at);
+        frames.extend(click(at).into_iter().skip(1));
+        let actions = h.frames(frames);
+        // Each click also inspects the pixel (the first cannot know a second will come).
+        let (centre, inspect): (Vec<_>, Vec<_>) = actions
+            .into_iter()
+            .partition(|a| matches!(a, Action::PickCentre { .. }));
+        assert_eq!(centre, vec![Action::PickCentre { x: 5.5, y: 2.5 }]);
+        assert!(!inspect.is_empty());
+        assert!(inspect.iter().all(|a| *a == Action::Inspect { x: 5, y: 2 }));
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! Where the image sits in the window: the largest rectangle of the image's aspect that fits the
-//! free area (letterboxing), in whole physical pixels, and the way back from a cursor position to
-//! a point of the image.
+//! free area (letterboxing), in whole physical pixels, the way back from a cursor position to
+//! a point or a pixel of the image, and the way from a point of the image to the window.
 
 /// A rectangle in physical pixels, `x, y` its top-left corner.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -68,6 +68,35 @@ pub fn image_point(
         .then_some((u * image_width as f32, v * image_height as f32))
 }
 
+/// The image pixel (`x` right and `y` down) shown at window position `(px, py)`, or `None`
+/// outside the image.
+pub fn image_pixel(
+    shown: PixelRect,
+    image_width: u32,
+    image_height: u32,
+    px: f32,
+    py: f32,
+) -> Option<(u32, u32)> {
+    let (x, y) = image_point(shown, image_width, image_height, px, py)?;
+    Some((
+        (x as u32).min(image_width - 1),
+        (y as u32).min(image_height - 1),
+    ))
+}
+
+/// The window position (physical pixels) where image point `(x, y)` is shown.
+pub fn window_point(
+    shown: PixelRect,
+    image_width: u32,
+    image_height: u32,
+    (x, y): (f32, f32),
+) -> (f32, f32) {
+    (
+        shown.x + x * shown.width / image_width.max(1) as f32,
+        shown.y + y * shown.height / image_height.max(1) as f32,
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -115,5 +144,22 @@ mod tests {
         assert_eq!(image_point(shown, 10, 10, 299.0, 199.0), Some((9.95, 9.95)));
         assert_eq!(image_point(shown, 10, 10, 99.0, 50.0), None);
         assert_eq!(image_point(shown, 10, 10, 300.0, 50.0), None);
+    }
+
+    #[test]
+    fn cursor_positions_map_to_whole_pixels_and_back() {
+        // A 4×2 image shown 25 times larger, 10 pixels from the window's corner.
+        let shown = rect(10.0, 10.0, 100.0, 50.0);
+        assert_eq!(image_pixel(shown, 4, 2, 10.0, 10.0), Some((0, 0)));
+        assert_eq!(image_pixel(shown, 4, 2, 34.9, 34.9), Some((0, 0)));
+        assert_eq!(image_pixel(shown, 4, 2, 35.0, 35.0), Some((1, 1)));
+        assert_eq!(image_pixel(shown, 4, 2, 109.9, 59.9), Some((3, 1)));
+        assert_eq!(image_pixel(shown, 4, 2, 110.0, 30.0), None);
+        // The centre of each pixel lands back on that pixel.
+        for (x, y) in [(0, 0), (3, 1), (2, 0)] {
+            let (px, py) = window_point(shown, 4, 2, (x as f32 + 0.5, y as f32 + 0.5));
+            assert_eq!(image_pixel(shown, 4, 2, px, py), Some((x, y)));
+        }
+        assert_eq!(window_point(shown, 4, 2, (4.0, 2.0)), (110.0, 60.0));
     }
 }

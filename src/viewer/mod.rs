@@ -11,8 +11,15 @@ mod controls;
 mod frame;
 mod gpu;
 mod input;
+#[cfg(test)]
+mod input_harness;
+mod inspection;
+mod inspector;
+mod inspector_thread;
 mod layout;
+mod legend_bar;
 mod navigation;
+mod overlay;
 mod painter;
 mod panels;
 mod pick;
@@ -24,13 +31,17 @@ mod screenshot;
 mod script;
 mod status;
 mod surface;
+mod swatch;
+mod synthetic;
 mod timing;
 mod upload;
 mod watch;
 mod worker;
+mod working_scene;
 
 use std::path::PathBuf;
 
+use raylab::inspect::DebugView;
 use winit::event_loop::EventLoop;
 
 pub use script::Script;
@@ -44,6 +55,8 @@ pub struct Options {
     pub block_size: Option<u32>,
     pub max_depth: Option<u32>,
     pub samples: Option<u32>,
+    /// What the image shows at the start: the shaded colour or a debug view.
+    pub view: DebugView,
     /// Tracing threads (0: one per core).
     pub threads: usize,
     /// Window size in logical pixels.

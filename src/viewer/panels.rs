@@ -4,10 +4,12 @@
 use std::path::{Path, PathBuf};
 
 use egui::{Color32, DragValue, Slider};
+use raylab::inspect::{DebugView, Legend};
 use raylab::settings::{MAX_BLOCK_SIZE, MAX_DEPTH_LIMIT, MAX_SAMPLES};
 
 use super::action::Action;
 use super::controls::Controls;
+use super::legend_bar;
 
 /// Everything the side panel shows or edits besides the controls.
 pub struct PanelState {
@@ -33,11 +35,13 @@ pub struct PanelState {
     pub max_side: u32,
 }
 
-/// Shows the side panel; returns what its buttons asked for.
+/// Shows the side panel (with the colour bar of the view being rendered, if it has one);
+/// returns what its buttons asked for.
 pub fn side_panel(
     ui: &mut egui::Ui,
     controls: &mut Controls,
     state: &mut PanelState,
+    legend: Option<&Legend>,
 ) -> Vec<Action> {
     let mut actions = Vec::new();
     egui::Panel::left("controls")
@@ -47,7 +51,7 @@ pub fn side_panel(
             egui::ScrollArea::vertical().show(ui, |ui| {
                 scene_section(ui, state, &mut actions);
                 camera_section(ui, controls, &mut actions);
-                tracing_section(ui, controls, state);
+                tracing_section(ui, controls, state, legend);
                 lights_section(ui, controls, state);
                 save_section(ui, state, &mut actions);
             });
@@ -151,17 +155,32 @@ fn camera_section(ui: &mut egui::Ui, controls: &mut Controls, actions: &mut Vec<
             ui.label(
                 egui::RichText::new(
                     "left-drag orbit · right/middle-drag pan · wheel dolly · W/A/S/D/Q/E fly · \
-                     double-click: orbit centre",
+                     double-click: orbit centre · click or I: inspect the pixel · Esc: close",
                 )
                 .small(),
             );
         });
 }
 
-fn tracing_section(ui: &mut egui::Ui, controls: &mut Controls, state: &mut PanelState) {
+fn tracing_section(
+    ui: &mut egui::Ui,
+    controls: &mut Controls,
+    state: &mut PanelState,
+    legend: Option<&Legend>,
+) {
     egui::CollapsingHeader::new("Tracing")
         .default_open(true)
         .show(ui, |ui| {
+            egui::ComboBox::from_label("view")
+                .selected_text(controls.view.name())
+                .show_ui(ui, |ui| {
+                    for view in DebugView::ALL {
+                        ui.selectable_value(&mut controls.view, view, view.name());
+                    }
+                });
+            if let Some(legend) = legend {
+                legend_bar::show(ui, legend);
+            }
             let s = &mut controls.settings;
             ui.add(Slider::new(&mut s.max_depth, 1..=MAX_DEPTH_LIMIT).text("max depth"));
             ui.add(

@@ -67,15 +67,15 @@ impl App {
         if current {
             return;
         }
-        let camera = match controls.check(self.panel.max_side) {
-            Ok(camera) => camera,
+        let setup = match controls.setup(self.panel.max_side) {
+            Ok(setup) => setup,
             Err(e) => {
                 self.panel.control_error = Some(e);
                 return;
             }
         };
         self.panel.control_error = None;
-        let settings = controls.settings.clone();
+        let settings = &setup.settings;
         if self.options.size.is_some()
             || self.file_controls.as_ref().is_some_and(|f| {
                 (f.settings.width, f.settings.height) != (settings.width, settings.height)
@@ -84,6 +84,8 @@ impl App {
             // A size the user chose stays for the next scenes.
             self.options.size = Some((settings.width, settings.height));
         }
+        // And so does the view.
+        self.options.view = setup.view;
         let film = match &self.rendering {
             // The film is reused at the same size: the new render's first pass paints over
             // every pixel, and until then the old image stays on screen.
@@ -99,9 +101,7 @@ impl App {
         let report = Arc::new(JobReport::new());
         let job = Job {
             scene: scene.clone(),
-            camera,
-            settings,
-            light_scale: controls.light_scale,
+            setup,
             film: film.clone(),
             control: control.clone(),
             report: report.clone(),
@@ -122,8 +122,20 @@ impl App {
         });
     }
 
-    /// Refinement of the current scene and controls is over and on screen, no scene is loading
-    /// and the window has the size it was last given.
+    /// Keeps the inspector on the current scene and controls, and takes what it traced.
+    pub(super) fn sync_inspection(&mut self) {
+        let (Some(scene), Some(controls)) = (&self.scene, &self.controls) else {
+            return;
+        };
+        let setup = controls.setup(self.panel.max_side).ok();
+        if let Err(e) = self.inspection.sync(scene, controls, setup) {
+            eprintln!("{e}");
+            self.panel.message = Some(e);
+        }
+    }
+
+    /// Refinement of the current scene and controls is over and on screen, no scene is loading,
+    /// the inspector has traced its pixel and the window has the size it was last given.
     pub(super) fn idle(&self) -> bool {
         // A resize the window system made but the surface has not caught up with yet.
         let resizing = self.gfx.as_ref().is_some_and(|g| {
@@ -138,7 +150,8 @@ impl App {
             }
             _ => false,
         };
-        !self.loading && !resizing && settled
+        let inspecting = self.inspection.busy() || !self.synthetic.is_empty();
+        !self.loading && !resizing && settled && !inspecting
     }
 
     pub(super) fn status(&self) -> String {

@@ -9,12 +9,17 @@
 //! - `pan DX DY [FRAMES]`: pixels, likewise; `dolly STEPS`: wheel steps;
 //! - `fly X Y Z SECONDS`: as the W/A/S/D/Q/E keys; `frame`; `reset`;
 //! - `save`: the image and camera; `print-camera`; `open PATH` (`open` alone: the default scene);
-//! - `resize WIDTH HEIGHT`: asks for a new window size (logical pixels).
+//! - `resize WIDTH HEIGHT`: asks for a new window size (logical pixels);
+//! - `pick X Y`: inspects image pixel (X, Y) (from the top left); `click X Y`: a left click at the
+//!   centre of that pixel, through the window's input like a mouse's; `close-inspector`;
+//!   `print-tree`: prints the inspector's node headings on the terminal;
+//! - `view NAME`: shows a debug view (`shaded`, `normals`, `depth`, …).
 
 use std::collections::VecDeque;
 use std::path::PathBuf;
 
 use glam::Vec3;
+use raylab::inspect::DebugView;
 
 use super::action::Action;
 
@@ -153,6 +158,23 @@ fn parse_step(step: &str) -> Result<Step, String> {
                 frames,
             }
         }
+        "pick" | "click" => {
+            let n = count(numbers()?, 2, 0)?;
+            if n.iter()
+                .any(|&v| !(0.0..=65535.0).contains(&v) || v.fract() != 0.0)
+            {
+                return Err("pixel coordinates must be whole numbers from 0".into());
+            }
+            let (x, y) = (n[0] as u32, n[1] as u32);
+            once(match command {
+                "pick" => Action::Inspect { x, y },
+                _ => Action::Click { x, y },
+            })
+        }
+        "view" if args.len() == 1 => once(Action::SetView(args[0].parse::<DebugView>()?)),
+        "view" => return Err("takes one view name".into()),
+        "close-inspector" if args.is_empty() => once(Action::CloseInspector),
+        "print-tree" if args.is_empty() => once(Action::PrintTree),
         "dolly" => once(Action::Dolly(count(numbers()?, 1, 0)?[0])),
         "resize" => {
             let n = count(numbers()?, 2, 0)?;
@@ -173,13 +195,14 @@ fn parse_step(step: &str) -> Result<Step, String> {
                 seconds: n[3],
             })
         }
-        "wait" | "frame" | "reset" | "save" | "print-camera" => {
+        "wait" | "frame" | "reset" | "save" | "print-camera" | "close-inspector" | "print-tree" => {
             return Err("takes no arguments".into());
         }
         _ => {
             return Err(
                 "unknown step (use wait, wait-load, orbit, pan, dolly, fly, frame, reset, \
-                 save, print-camera, open, resize)"
+                 save, print-camera, open, resize, pick, click, close-inspector, print-tree, \
+                 view)"
                     .into(),
             );
         }
@@ -220,7 +243,8 @@ mod tests {
     #[test]
     fn every_step_parses() {
         let mut script = Script::parse(
-            "pan 10 -4; dolly -2; fly 0 0 1 0.5; reset; save; open a b.toml; open; resize 300 200",
+            "pan 10 -4; dolly -2; fly 0 0 1 0.5; reset; save; open a b.toml; open; resize 300 200;\
+             pick 3 0; click 0 7; print-tree; close-inspector; view bvh-cost",
         )
         .unwrap();
         let all: Vec<_> = std::iter::from_fn(|| script.next(true, 0)).collect();
@@ -241,6 +265,11 @@ mod tests {
                     width: 300,
                     height: 200
                 },
+                Action::Inspect { x: 3, y: 0 },
+                Action::Click { x: 0, y: 7 },
+                Action::PrintTree,
+                Action::CloseInspector,
+                Action::SetView(DebugView::BvhCost),
             ]
         );
     }
@@ -258,6 +287,12 @@ mod tests {
             ("wait-load 0", "whole number of loads"),
             ("dolly nan", "not a number"),
             ("resize 0 10", "whole numbers from 1"),
+            ("pick -1 2", "whole numbers from 0"),
+            ("click 1.5 2", "whole numbers from 0"),
+            ("pick 1", "takes 2 numbers"),
+            ("print-tree now", "takes no arguments"),
+            ("view", "takes one view name"),
+            ("view glossy", "unknown view"),
         ] {
             let err = Script::parse(text).unwrap_err();
             assert!(err.contains(expected), "{text}: {err}");

@@ -9,22 +9,18 @@ use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 use std::time::Instant;
 
-use raylab::camera::Camera;
 use raylab::film::Film;
+use raylab::inspect::Legend;
 use raylab::progressive::{self, RenderControl};
-use raylab::scene::Scene;
-use raylab::settings::RenderSettings;
 use raylab::stats::PassStats;
-use raylab::whitted::Tracer;
 
 use super::scene_source::LoadedScene;
+use super::working_scene::{TraceSetup, WorkingScene};
 
 /// One render: a scene seen with a camera and settings, into a film.
 pub struct Job {
     pub scene: Arc<LoadedScene>,
-    pub camera: Camera,
-    pub settings: RenderSettings,
-    pub light_scale: f32,
+    pub setup: TraceSetup,
     pub film: Arc<Film>,
     pub control: Arc<RenderControl>,
     pub report: Arc<JobReport>,
@@ -45,6 +41,8 @@ pub struct JobReport {
     pub started: Instant,
     passes: Mutex<Vec<PassStats>>,
     outcome: Mutex<Option<Outcome>>,
+    /// What the colours of the job's debug view mean, for the heat maps.
+    legend: Mutex<Option<Legend>>,
 }
 
 impl JobReport {
@@ -53,12 +51,19 @@ impl JobReport {
             started: Instant::now(),
             passes: Mutex::new(Vec::new()),
             outcome: Mutex::new(None),
+            legend: Mutex::new(None),
         }
     }
 
     /// The passes finished so far.
     pub fn passes(&self) -> Vec<PassStats> {
         self.passes.lock().map(|p| p.clone()).unwrap_or_default()
+    }
+
+    /// The colour bar of the job's view, once the job has started (`None` for views that are
+    /// not a scale).
+    pub fn legend(&self) -> Option<Legend> {
+        self.legend.lock().ok().and_then(|l| l.clone())
     }
 
     /// `None` while the job waits or runs.
@@ -88,12 +93,7 @@ pub struct Worker {
 impl Worker {
     /// Starts the worker with `threads` tracing threads (0: one per core).
     pub fn start(threads: usize) -> Result<Worker, String> {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .thread_name(|i| format!("tracer {i}"))
-            .start_handler(|_| lower_priority())
-            .build()
-            .map_err(|e| format!("cannot start the tracing threads: {e}"))?;
+        let pool = low_priority_pool(threads, "tracer")?;
         let (jobs, inbox) = mpsc::channel();
         let thread = std::thread::Builder::new()
             .name("render worker".into())
@@ -126,7 +126,7 @@ impl Drop for Worker {
 
 /// The worker's loop: take the newest job, render it, repeat; end when the channel closes.
 fn run(pool: &rayon::ThreadPool, inbox: &Receiver<Job>) {
-    let mut working: Option<(Arc<LoadedScene>, Scene)> = None;
+    let mut working = WorkingScene::default();
     while let Ok(mut job) = inbox.recv() {
         // Jobs queued behind this one supersede it.
         while let Ok(newer) = inbox.try_recv() {
@@ -137,27 +137,10 @@ fn run(pool: &rayon::ThreadPool, inbox: &Receiver<Job>) {
             job.report.finish(Outcome::Cancelled);
             continue;
         }
-        // The tracer reads the scene with the job's camera, settings and lights: keep a copy of
-        // the loaded scene to edit, made once per scene rather than once per job.
-        if !working
-            .as_ref()
-            .is_some_and(|(loaded, _)| Arc::ptr_eq(loaded, &job.scene))
-        {
-            working = Some((job.scene.clone(), job.scene.scene.clone()));
+        let tracer = working.tracer(&job.scene, &job.setup);
+        if let Ok(mut legend) = job.report.legend.lock() {
+            *legend = job.setup.view.legend(&tracer);
         }
-        let Some((_, scene)) = working.as_mut() else {
-            continue;
-        };
-        scene.camera = job.camera;
-        scene.settings = job.settings.clone();
-        scene.lights = job
-            .scene
-            .scene
-            .lights
-            .iter()
-            .map(|l| l.scaled(job.light_scale))
-            .collect();
-        let tracer = Tracer::new(scene, &job.scene.bvh);
         let rendered = std::panic::catch_unwind(AssertUnwindSafe(|| {
             pool.install(|| {
                 progressive::render(&tracer, &job.film, &job.control, |pass| {
@@ -171,6 +154,19 @@ fn run(pool: &rayon::ThreadPool, inbox: &Receiver<Job>) {
             Err(panic) => Outcome::Failed(panic_message(panic.as_ref())),
         });
     }
+}
+
+/// A pool of `threads` threads (0: one per core) named `name` and of lowered priority.
+pub(super) fn low_priority_pool(
+    threads: usize,
+    name: &'static str,
+) -> Result<rayon::ThreadPool, String> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .thread_name(move |i| format!("{name} {i}"))
+        .start_handler(|_| lower_priority())
+        .build()
+        .map_err(|e| format!("cannot start the {name} threads: {e}"))
 }
 
 /// How much lower the tracing threads' priority is than the window's (a `nice` value). Measured
@@ -194,7 +190,7 @@ fn lower_priority() {
 #[cfg(not(target_os = "linux"))]
 fn lower_priority() {}
 
-fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {
+pub(super) fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {
     let text = panic
         .downcast_ref::<&str>()
         .map(|s| s.to_string())
@@ -217,9 +213,12 @@ mod tests {
         settings.block_size = 8;
         Job {
             scene: scene.clone(),
-            camera: scene.scene.camera,
-            settings,
-            light_scale: 1.0,
+            setup: TraceSetup {
+                camera: scene.scene.camera,
+                settings,
+                light_scale: 1.0,
+                view: Default::default(),
+            },
             film: Arc::new(Film::new(size, size)),
             control: Arc::new(RenderControl::default()),
             report: Arc::new(JobReport::new()),
