@@ -4,12 +4,13 @@
 #   2. raylab's BVH, the `bvh` crate and `obvhs` on the same dumped meshes and rays (raylab-peers);
 #   3. POV-Ray 3.7 against `raylab render` on the seven SPD standard scenes, 512x512, depth 5,
 #      no anti-aliasing, 2 threads: whole-process wall time, and POV's own trace time against
-#      raylab's render time.
+#      raylab's render time;
+#   4. `raylab bench --scaling` (the standard set, 2 threads) for the figures of raylab alone.
 #
 # usage: peers/run.sh [OUT_DIR=/tmp/raylab-peers] [RUNS=5]
 #   env: SHARED  the measurement tools and scenes (default: ../shared beside the repository).
 #                They are not part of this repository; this script stops when they are missing.
-#        SKIP    any of embree,crates,povray to leave out, comma-separated.
+#        SKIP    any of embree,crates,povray,bench to leave out, comma-separated.
 # Needs: python3 with embreex and numpy (pip), povray (Debian package), cargo.
 set -euo pipefail
 
@@ -46,7 +47,8 @@ if wants embree; then
     cat "$out/embree.md"
 fi
 if wants crates; then
-    cargo build --release --quiet --manifest-path "$root/peers/Cargo.toml"
+    # raylab's own build folder: the library is built there already.
+    cargo build --release --quiet --manifest-path "$root/peers/Cargo.toml" --target-dir "$root/target"
     embree_json=()
     [[ -e "$out/embree.json" ]] && embree_json=(--embree "$out/embree.json")
     "$root/target/release/raylab-peers" "$out/dump" --reps "$runs" "${embree_json[@]}" | tee "$out/crates.md"
@@ -84,4 +86,11 @@ if wants povray; then
         awk -v s="$scene" -v pw="$pov_whole" -v rw="$ray_whole" -v pt="$pov_trace" -v rr="$ray_render" \
             'BEGIN { printf "| %s | %.3f | %.3f | %.1f× | %.3f | %.3f | %.1f× |\n", s, pw, rw, pw / rw, pt, rr, pt / rr }'
     done | tee "$out/povray.md"
+fi
+
+if wants bench; then
+    cargo build --release --quiet --manifest-path "$root/Cargo.toml" --bin raylab
+    echo
+    "$root/target/release/raylab" bench --threads "$threads" --scaling --repeat "$runs" \
+        --json "$out/bench.json" | tee "$out/bench.md"
 fi

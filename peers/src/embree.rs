@@ -13,6 +13,9 @@ pub struct EmbreeFigures {
 impl EmbreeFigures {
     pub fn load(path: &Path) -> Result<Self, String> {
         let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        // Python writes NaN for a figure it could not measure (no quiet moment for a build);
+        // JSON has no NaN, so it becomes null here: "not measured".
+        let text = text.replace("NaN", "null");
         let json = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
         Ok(EmbreeFigures { json })
     }
