@@ -12,6 +12,7 @@ use glam::Vec3A;
 use nalgebra::{Point3, Vector3};
 
 use crate::anchor::{AnchorMesh, AnchorRay, Query};
+use crate::obvhs_tracer::triangles_of;
 use crate::tracer::Tracer;
 
 type CrateRay = bvh::ray::Ray<f32, 3>;
@@ -93,28 +94,15 @@ impl Tracer for BvhCrateTracer {
     const NAME: &'static str = "bvh";
 
     fn build(mesh: &AnchorMesh) -> Result<Self, String> {
-        let vertex = |i: u32| {
-            mesh.positions
-                .get(i as usize)
-                .map(|&p| Vec3A::from(p))
-                .ok_or_else(|| format!("vertex {i} does not exist"))
-        };
-        let mut shapes = mesh
-            .faces
-            .iter()
+        let mut shapes: Vec<Shape> = triangles_of(mesh)?
+            .into_iter()
             .enumerate()
-            .map(|(face, f)| {
-                Ok(Shape {
-                    triangle: obvhs::triangle::Triangle {
-                        v0: vertex(f[0])?,
-                        v1: vertex(f[1])?,
-                        v2: vertex(f[2])?,
-                    },
-                    face: face as u32,
-                    node_index: 0,
-                })
+            .map(|(face, triangle)| Shape {
+                triangle,
+                face: face as u32,
+                node_index: 0,
             })
-            .collect::<Result<Vec<_>, String>>()?;
+            .collect();
         let bvh = Bvh::build_par(&mut shapes);
         Ok(BvhCrateTracer { bvh, shapes })
     }

@@ -20,6 +20,27 @@ pub struct ObvhsTracer {
     triangles: Vec<Triangle>,
 }
 
+/// `mesh`'s triangles, face by face, as `obvhs` stores them (the `bvh` crate's tracer uses them
+/// too).
+pub fn triangles_of(mesh: &AnchorMesh) -> Result<Vec<Triangle>, String> {
+    let vertex = |i: u32| {
+        mesh.positions
+            .get(i as usize)
+            .map(|&p| Vec3A::from(p))
+            .ok_or_else(|| format!("vertex {i} does not exist"))
+    };
+    mesh.faces
+        .iter()
+        .map(|f| {
+            Ok(Triangle {
+                v0: vertex(f[0])?,
+                v1: vertex(f[1])?,
+                v2: vertex(f[2])?,
+            })
+        })
+        .collect()
+}
+
 fn ray_of(ray: &AnchorRay) -> Ray {
     Ray::new(Vec3A::from(ray.origin), Vec3A::from(ray.dir), 0.0, ray.tfar)
 }
@@ -28,23 +49,7 @@ impl Tracer for ObvhsTracer {
     const NAME: &'static str = "obvhs";
 
     fn build(mesh: &AnchorMesh) -> Result<Self, String> {
-        let vertex = |i: u32| {
-            mesh.positions
-                .get(i as usize)
-                .map(|&p| Vec3A::from(p))
-                .ok_or_else(|| format!("vertex {i} does not exist"))
-        };
-        let triangles = mesh
-            .faces
-            .iter()
-            .map(|f| {
-                Ok(Triangle {
-                    v0: vertex(f[0])?,
-                    v1: vertex(f[1])?,
-                    v2: vertex(f[2])?,
-                })
-            })
-            .collect::<Result<Vec<_>, String>>()?;
+        let triangles = triangles_of(mesh)?;
         let bvh = build_cwbvh_from_tris(
             &triangles,
             BvhBuildParams::medium_build(),
