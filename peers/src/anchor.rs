@@ -122,7 +122,7 @@ fn load_ray_set(dir: &Path, name: &str, entry: &Value) -> Result<RaySet, String>
 
 fn read_bytes(path: &Path) -> Result<Vec<[u8; 4]>, String> {
     let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    if bytes.len() % 4 != 0 {
+    if !bytes.len().is_multiple_of(4) {
         return Err(format!(
             "{}: not a whole number of 4-byte values",
             path.display()
@@ -150,7 +150,7 @@ fn read_u32(path: &Path) -> Result<Vec<u32>, String> {
 
 /// Consecutive values grouped by three.
 fn triples<T: Copy>(values: &[T]) -> Result<Vec<[T; 3]>, String> {
-    if values.len() % 3 != 0 {
+    if !values.len().is_multiple_of(3) {
         return Err(format!("{} values do not make whole triples", values.len()));
     }
     Ok(values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
