@@ -94,7 +94,6 @@ fn intersection(c: &mut Criterion) {
             Vec3::Y,
         ],
         0,
-        0,
     );
     group.bench_function("triangle (watertight)", |b| {
         b.iter(|| {

@@ -88,9 +88,9 @@ impl Mesh {
     }
 
     /// The mesh's triangles, skipping degenerate ones (zero area: no ray can hit them).
-    pub fn triangles(&self, mesh_index: u32) -> impl Iterator<Item = Triangle> + '_ {
+    pub fn triangles(&self) -> impl Iterator<Item = Triangle> + '_ {
         self.faces.iter().enumerate().filter_map(move |(i, f)| {
-            let tri = Triangle::new(f.map(|v| self.positions[v as usize]), mesh_index, i as u32);
+            let tri = Triangle::new(f.map(|v| self.positions[v as usize]), i as u32);
             (tri.double_area() > 0.0).then_some(tri)
         })
     }

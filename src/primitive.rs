@@ -82,17 +82,20 @@ pub struct SurfacePoint {
 pub struct Geometry {
     pub objects: Vec<Object>,
     pub meshes: Vec<Mesh>,
+    /// The triangles of all meshes, mesh after mesh.
     pub triangles: Vec<Triangle>,
+    /// Where each mesh's triangles start in `triangles`.
+    pub mesh_starts: Vec<u32>,
 }
 
 impl Geometry {
     /// Adds a mesh (already in world space) and its triangles.
     pub fn add_mesh(&mut self, mesh: Mesh) {
-        let index = self.meshes.len() as u32;
+        self.mesh_starts.push(self.triangles.len() as u32);
         // Reserve first: the iterator skips degenerate faces, so it cannot tell `extend` its
         // length, and growing by doubling would leave up to half the array unused.
         self.triangles.reserve_exact(mesh.faces.len());
-        self.triangles.extend(mesh.triangles(index));
+        self.triangles.extend(mesh.triangles());
         self.meshes.push(mesh);
     }
 
@@ -120,6 +123,7 @@ impl Geometry {
             .sum();
         self.objects.capacity() * size_of::<Object>()
             + self.triangles.capacity() * size_of::<Triangle>()
+            + self.mesh_starts.capacity() * size_of::<u32>()
             + meshes
     }
 
@@ -198,7 +202,7 @@ impl Geometry {
     pub fn object_id(&self, prim: PrimId) -> u32 {
         match prim.kind() {
             Ok(o) => o as u32,
-            Err(t) => (self.objects.len() + self.triangles[t].mesh as usize) as u32,
+            Err(t) => (self.objects.len() + self.mesh_index(t)) as u32,
         }
     }
 
@@ -225,11 +229,24 @@ impl Geometry {
         }
     }
 
+    /// The index of the mesh that triangle `t` belongs to.
+    fn mesh_index(&self, t: usize) -> usize {
+        let later = self
+            .mesh_starts
+            .partition_point(|&start| start as usize <= t);
+        later - 1
+    }
+
+    /// The mesh that triangle `t` belongs to.
+    fn mesh_of(&self, t: usize) -> &Mesh {
+        &self.meshes[self.mesh_index(t)]
+    }
+
     /// The material of primitive `id`.
     pub fn material(&self, id: PrimId) -> u32 {
         match id.kind() {
             Ok(o) => self.objects[o].material,
-            Err(t) => self.meshes[self.triangles[t].mesh as usize].material,
+            Err(t) => self.mesh_of(t).material,
         }
     }
 
@@ -259,7 +276,7 @@ impl Geometry {
             }
             Err(t) => {
                 let tri = &self.triangles[t];
-                let mesh = &self.meshes[tri.mesh as usize];
+                let mesh = self.mesh_of(t);
                 let geometric = tri.normal();
                 let (normal, uv) = mesh.shading(tri.face, hit.bary, geometric);
                 // Vertex normals say which side is out; the winding may disagree.

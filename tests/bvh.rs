@@ -174,7 +174,7 @@ fn tree_is_shallow_and_covers_every_primitive_once() {
                 assert!(inside(g.bounds(id).unwrap()));
             }
         } else {
-            for child in &bvh.nodes[node.first as usize..node.first as usize + 2] {
+            for child in &bvh.nodes[node.children()] {
                 assert!(inside(raylab::aabb::Aabb::new(
                     child.min.into(),
                     child.max.into()
@@ -255,4 +255,34 @@ proptest! {
             assert_same_closest(&g, &bvh, &random_ray(&mut rng));
         }
     }
+}
+
+#[test]
+fn each_triangle_has_its_own_mesh_material() {
+    // Two meshes, one triangle each (and a degenerate face in the first, which makes no
+    // triangle): each hit reports the material of the mesh its triangle came from.
+    let mut g = Geometry::default();
+    for (material, z) in [(3, 0.0), (5, 1.0)] {
+        let corner = |x: f32, y: f32| Vec3::new(x, y, z);
+        g.add_mesh(Mesh {
+            positions: vec![corner(-1.0, -1.0), corner(1.0, -1.0), corner(0.0, 1.0)],
+            faces: if material == 3 {
+                vec![[0, 0, 1], [0, 1, 2]]
+            } else {
+                vec![[0, 1, 2]]
+            },
+            material,
+            ..Mesh::default()
+        });
+    }
+    let bvh = Bvh::build(&g);
+    let material_seen_from = |z: f32, dir: Vec3| {
+        let ray = Ray::new(Vec3::new(0.0, 0.0, z), dir);
+        let hit = bvh
+            .closest_hit(&g, &ray, 0.0, f32::INFINITY)
+            .expect("a hit");
+        (g.material(hit.prim), g.surface(&ray, &hit).material)
+    };
+    assert_eq!(material_seen_from(-5.0, Vec3::Z), (3, 3));
+    assert_eq!(material_seen_from(5.0, -Vec3::Z), (5, 5));
 }

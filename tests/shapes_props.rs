@@ -548,7 +548,7 @@ proptest! {
             segment_distance(target, L_SHAPE[a], L_SHAPE[b]) > 1e-3
         }));
         let polygon = Polygon::new(L_SHAPE.iter().map(|&q| place(q)).collect()).unwrap();
-        let triangles = L_TRIANGLES.map(|corners| Triangle::new(corners.map(|i| place(L_SHAPE[i])), 0, 0));
+        let triangles = L_TRIANGLES.map(|corners| Triangle::new(corners.map(|i| place(L_SHAPE[i])), 0));
         let origin = place(target) + turn * offset;
         let ray = Ray::new(origin, (place(target) - origin) * scale);
         let polygon_hit = polygon.intersect(&ray, 0.0, f32::INFINITY);

@@ -29,8 +29,8 @@ proptest! {
         let edge = c - a;
         let b = a + edge * u1 + side;
         let d = a + edge * u2 - side + fold;
-        let t1 = Triangle::new([a, b, c], 0, 0);
-        let t2 = Triangle::new([a, c, d], 0, 1);
+        let t1 = Triangle::new([a, b, c], 0);
+        let t2 = Triangle::new([a, c, d], 1);
         prop_assume!(t1.double_area() > 1e-2 && t2.double_area() > 1e-2);
         let ray = Ray::new(origin, a + edge * s - origin);
         // The ray sees both from the same side (else the edge is a silhouette, and a ray beside

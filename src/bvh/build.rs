@@ -220,7 +220,7 @@ impl SubtreeBuilder {
             prims.len() - split.mid,
         ));
         nodes[index].first = left as u32;
-        nodes[index].count = Node::INTERIOR;
+        nodes[index].count = Node::INTERIOR | 2;
         let parallel = prims.len() >= PARALLEL_MIN_PRIMS;
         let (left_prims, right_prims) = prims.split_at_mut(split.mid);
         let right_first = first + split.mid;

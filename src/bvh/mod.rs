@@ -14,37 +14,40 @@ use crate::primitive::PrimId;
 /// Children per interior node of the finished tree.
 pub const WIDTH: usize = 4;
 
-/// A node of the flattened tree. An interior node's children are the [`WIDTH`] nodes from
-/// `first` (unused ones are empty leaves with an empty box); a leaf holds primitives
-/// `first .. first + count` of [`Bvh::prims`]. 32 bytes, aligned to 32 so that no node
-/// straddles two 64-byte cache lines.
+/// A node of the flattened tree. An interior node's children are the two to [`WIDTH`] nodes
+/// from `first`; a leaf holds primitives `first .. first + count` of [`Bvh::prims`]. 32 bytes,
+/// aligned to 32 so that no node straddles two 64-byte cache lines.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(32))]
 pub struct Node {
     pub min: [f32; 3],
     pub first: u32,
     pub max: [f32; 3],
-    /// Number of primitives; [`Node::INTERIOR`] for an interior node.
+    /// A leaf's number of primitives; an interior node's number of children plus
+    /// [`Node::INTERIOR`].
     pub count: u32,
 }
 
 impl Node {
-    /// The `count` that marks an interior node.
-    pub const INTERIOR: u32 = u32::MAX;
+    /// The bit of `count` that marks an interior node.
+    pub const INTERIOR: u32 = 1 << 31;
 
     pub fn is_leaf(&self) -> bool {
-        self.count != Node::INTERIOR
+        self.count & Node::INTERIOR == 0
     }
 
     /// The indices of an interior node's children.
     pub fn children(&self) -> std::ops::Range<usize> {
-        self.first as usize..self.first as usize + WIDTH
+        let count = (self.count & !Node::INTERIOR) as usize;
+        self.first as usize..self.first as usize + count
     }
 }
 
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
-    /// The tree, root first; empty when the scene has no bounded primitive.
+    /// The tree, root first, then [`WIDTH`] − 1 empty nodes, so that the traversal can load
+    /// [`WIDTH`] nodes from any node's first child on; empty when the scene has no bounded
+    /// primitive.
     pub nodes: Vec<Node>,
     /// Bounded primitives in leaf order.
     pub prims: Vec<PrimId>,

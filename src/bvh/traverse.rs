@@ -1,6 +1,6 @@
 //! Walking the BVH: the closest hit along a ray (front-to-back, nearest child first, pruning
 //! by the best `t` so far) and every hit on a segment with early exit (shadow rays). At each
-//! interior node the ray is tested against all four children's boxes at once.
+//! interior node the ray is tested against all its (up to four) children's boxes at once.
 
 use std::ops::ControlFlow;
 
@@ -242,7 +242,10 @@ impl Bvh {
                 }
             } else {
                 cost.node_visited();
-                let (t, entered) = test.enter4(&self.nodes[node.children()], t_min, t_max);
+                // Four nodes from the first child on, some perhaps not children: masked out.
+                let group = node.first as usize..node.first as usize + WIDTH;
+                let (t, entered) = test.enter4(&self.nodes[group], t_min, t_max);
+                let entered = entered & ((1 << node.children().len()) - 1);
                 let t = t.to_array();
                 let first = node.first;
                 if entered.count_ones() == 1 {

@@ -8,7 +8,7 @@
 use super::{Node, WIDTH};
 use crate::aabb::Aabb;
 
-/// An unused child slot: an empty leaf whose box no ray enters.
+/// Padding after the last node: an empty leaf whose box no ray enters.
 const EMPTY_SLOT: Node = Node {
     min: [f32::INFINITY; 3],
     first: 0,
@@ -17,15 +17,16 @@ const EMPTY_SLOT: Node = Node {
 };
 
 /// The four-wide tree over the binary tree `binary` (root first, children of an interior node at
-/// `first` and `first + 1`). The root stays at index 0, alone in the first group of `WIDTH`
-/// slots so that every group starts at a multiple of `WIDTH`; the children of an interior node
-/// are the `WIDTH` slots from `first`, in depth-first order.
+/// `first` and `first + 1`). The root stays at index 0; the two to `WIDTH` children of an
+/// interior node follow one another from `first`, in depth-first order, with no unused slots
+/// between groups. `WIDTH − 1` empty leaves at the end let the traversal load `WIDTH` nodes
+/// from any group.
 pub(super) fn widen(binary: &[Node]) -> Vec<Node> {
     let mut wide = Vec::with_capacity(binary.len() + WIDTH);
     if let Some(&root) = binary.first() {
         wide.push(root);
-        wide.extend([EMPTY_SLOT; WIDTH - 1]);
         add_children(binary, 0, &mut wide, 0);
+        wide.extend([EMPTY_SLOT; WIDTH - 1]);
     }
     wide.shrink_to_fit();
     wide
@@ -56,8 +57,8 @@ fn add_children(binary: &[Node], node: usize, wide: &mut Vec<Node>, at: usize) {
     }
     let group = wide.len();
     wide.extend(children[..count].iter().map(|&c| binary[c]));
-    wide.extend(std::iter::repeat_n(EMPTY_SLOT, WIDTH - count));
     wide[at].first = group as u32;
+    wide[at].count = Node::INTERIOR | count as u32;
     for (k, &child) in children[..count].iter().enumerate() {
         add_children(binary, child, wide, group + k);
     }

@@ -317,7 +317,7 @@ fn triangle_mesh(
     uvs: Option<[TexCoord; 3]>,
 ) -> Result<Mesh, String> {
     let positions = vertices.map(|v| v.0);
-    if Triangle::new(positions, 0, 0).double_area() <= 0.0 {
+    if Triangle::new(positions, 0).double_area() <= 0.0 {
         return Err("the triangle's vertices lie on one line, so it has no area".into());
     }
     Ok(Mesh {

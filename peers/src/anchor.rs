@@ -1,0 +1,157 @@
+//! Reading what `embree_anchor.py --dump DIR` writes: per mesh, its vertices and triangles and
+//! its ray sets (origins, unit directions, `tfar` for shadow rays) with Embree's answer for each
+//! ray (the closest triangle, −1 for a miss, or 1/0 for occluded/not). Raw little-endian files
+//! listed in `manifest.json`.
+
+use std::path::{Path, PathBuf};
+
+use serde_json::Value;
+
+/// A triangle mesh as Embree saw it.
+pub struct AnchorMesh {
+    pub name: String,
+    pub positions: Vec<[f32; 3]>,
+    pub faces: Vec<[u32; 3]>,
+    pub ray_sets: Vec<RaySet>,
+}
+
+/// What a ray set asks for: the closest hit, or only whether anything is hit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Query {
+    Closest,
+    Occluded,
+}
+
+/// One ray of a set: `origin + t·dir` for `t` in `(0, tfar)`.
+#[derive(Clone, Copy, Debug)]
+pub struct AnchorRay {
+    pub origin: [f32; 3],
+    pub dir: [f32; 3],
+    pub tfar: f32,
+}
+
+/// Rays of one kind with Embree's answers: the triangle hit (−1 for none) or 1/0 for occluded.
+pub struct RaySet {
+    pub name: String,
+    pub query: Query,
+    pub rays: Vec<AnchorRay>,
+    pub embree: Vec<i32>,
+}
+
+/// The meshes named in `only` (all when empty) from the dump in `dir`.
+pub fn load(dir: &Path, only: &[String]) -> Result<Vec<AnchorMesh>, String> {
+    let manifest_path = dir.join("manifest.json");
+    let text = std::fs::read_to_string(&manifest_path).map_err(|e| {
+        format!(
+            "cannot read {}: {e} (write it with embree_anchor.py --dump {})",
+            manifest_path.display(),
+            dir.display()
+        )
+    })?;
+    let manifest: Value =
+        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", manifest_path.display()))?;
+    let meshes = manifest["meshes"]
+        .as_object()
+        .ok_or_else(|| format!("{}: no \"meshes\" table", manifest_path.display()))?;
+    meshes
+        .iter()
+        .filter(|(name, _)| only.is_empty() || only.contains(name))
+        .map(|(name, entry)| load_mesh(dir, name, entry))
+        .collect()
+}
+
+fn load_mesh(dir: &Path, name: &str, entry: &Value) -> Result<AnchorMesh, String> {
+    let file = |key: &str| -> Result<PathBuf, String> {
+        entry[key]
+            .as_str()
+            .map(|f| dir.join(f))
+            .ok_or_else(|| format!("mesh {name}: no \"{key}\""))
+    };
+    let positions = triples(&read_f32(&file("vertices_file")?)?)?;
+    let faces = triples(&read_u32(&file("indices_file")?)?)?;
+    let sets = entry["rays"]
+        .as_object()
+        .ok_or_else(|| format!("mesh {name}: no \"rays\""))?;
+    let ray_sets = sets
+        .iter()
+        .map(|(set, e)| load_ray_set(dir, set, e).map_err(|err| format!("{name}/{set}: {err}")))
+        .collect::<Result<_, _>>()?;
+    Ok(AnchorMesh {
+        name: name.to_string(),
+        positions,
+        faces,
+        ray_sets,
+    })
+}
+
+fn load_ray_set(dir: &Path, name: &str, entry: &Value) -> Result<RaySet, String> {
+    let path = |key: &str| entry[key].as_str().map(|f| dir.join(f));
+    let need = |key: &str| path(key).ok_or_else(|| format!("no \"{key}\""));
+    let query = match entry["query"].as_str() {
+        Some("INTERSECT") => Query::Closest,
+        Some("OCCLUDED") => Query::Occluded,
+        other => return Err(format!("unknown query {other:?}")),
+    };
+    let origins = triples(&read_f32(&need("org")?)?)?;
+    let dirs = triples(&read_f32(&need("dir")?)?)?;
+    let embree: Vec<i32> = read_u32(&need("embree_result")?)?
+        .into_iter()
+        .map(|v| v as i32)
+        .collect();
+    let tfar = match path("tfar") {
+        Some(p) => read_f32(&p)?,
+        None => vec![f32::INFINITY; origins.len()],
+    };
+    if dirs.len() != origins.len() || tfar.len() != origins.len() || embree.len() != origins.len() {
+        return Err("files of different lengths".into());
+    }
+    let rays = (0..origins.len())
+        .map(|i| AnchorRay {
+            origin: origins[i],
+            dir: dirs[i],
+            tfar: tfar[i],
+        })
+        .collect();
+    Ok(RaySet {
+        name: name.to_string(),
+        query,
+        rays,
+        embree,
+    })
+}
+
+fn read_bytes(path: &Path) -> Result<Vec<[u8; 4]>, String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    if !bytes.len().is_multiple_of(4) {
+        return Err(format!(
+            "{}: not a whole number of 4-byte values",
+            path.display()
+        ));
+    }
+    Ok(bytes
+        .chunks_exact(4)
+        .map(|c| [c[0], c[1], c[2], c[3]])
+        .collect())
+}
+
+fn read_f32(path: &Path) -> Result<Vec<f32>, String> {
+    Ok(read_bytes(path)?
+        .into_iter()
+        .map(f32::from_le_bytes)
+        .collect())
+}
+
+fn read_u32(path: &Path) -> Result<Vec<u32>, String> {
+    Ok(read_bytes(path)?
+        .into_iter()
+        .map(u32::from_le_bytes)
+        .collect())
+}
+
+/// Consecutive values grouped by three.
+fn triples<T: Copy>(values: &[T]) -> Result<Vec<[T; 3]>, String> {
+    if !values.len().is_multiple_of(3) {
+        return Err(format!("{} values do not make whole triples", values.len()));
+    }
+    Ok(values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
+}
