@@ -75,6 +75,12 @@ fn run_viewer_watching(
     mut on_line: impl FnMut(&str, u32) + Send + 'static,
 ) -> Option<Run> {
     let Some(wrapper) = display_wrapper() else {
+        // scripts/test installs the display packages and sets this: there, a missing display
+        // is a failure, not a skip.
+        assert!(
+            std::env::var_os("RAYLAB_REQUIRE_DISPLAY").is_none(),
+            "RAYLAB_REQUIRE_DISPLAY is set but there is no display and no xvfb-run"
+        );
         eprintln!(
             "SKIPPED: no display and no xvfb-run; install it (Debian: apt-get install xvfb xauth \
              mesa-vulkan-drivers libvulkan1 libxkbcommon-x11-0) or run scripts/test"
