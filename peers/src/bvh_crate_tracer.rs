@@ -13,7 +13,7 @@ use nalgebra::{Point3, Vector3};
 
 use crate::anchor::{AnchorMesh, AnchorRay, Query};
 use crate::obvhs_tracer::triangles_of;
-use crate::tracer::Tracer;
+use crate::tracer::{Tracer, WalkCost};
 
 type CrateRay = bvh::ray::Ray<f32, 3>;
 
@@ -72,11 +72,14 @@ fn obvhs_ray(ray: &AnchorRay) -> obvhs::ray::Ray {
 }
 
 impl BvhCrateTracer {
-    /// Tests the candidates `query` yields: the nearest hit's face, or (`any`) the first hit.
-    fn trace(&self, query: &impl IntersectsAabb<f32, 3>, ray: &AnchorRay, any: bool) -> i32 {
+    /// Tests the candidates `query` yields: the nearest hit's face, or (`any`) the first hit's;
+    /// and how many triangles it tested.
+    fn trace(&self, query: &impl IntersectsAabb<f32, 3>, ray: &AnchorRay, any: bool) -> (i32, u32) {
         let mut test_ray = obvhs_ray(ray);
         let mut face = -1;
+        let mut tested = 0;
         for shape in self.bvh.traverse_iterator(query, &self.shapes) {
+            tested += 1;
             let t = shape.triangle.intersect(&test_ray);
             if t < test_ray.tmax {
                 test_ray.tmax = t;
@@ -86,7 +89,7 @@ impl BvhCrateTracer {
                 }
             }
         }
-        face
+        (face, tested)
     }
 }
 
@@ -108,19 +111,24 @@ impl Tracer for BvhCrateTracer {
     }
 
     fn closest(&self, ray: &AnchorRay) -> i32 {
-        self.trace(&crate_ray(ray), ray, false)
+        self.trace(&crate_ray(ray), ray, false).0
     }
 
     fn occluded(&self, ray: &AnchorRay) -> bool {
-        self.trace(&crate_ray(ray), ray, true) >= 0
+        self.trace(&crate_ray(ray), ray, true).0 >= 0
     }
 
-    fn nodes_visited(&self, ray: &AnchorRay, query: Query) -> Option<u32> {
+    fn cost(&self, ray: &AnchorRay, query: Query) -> Option<WalkCost> {
         let counting = CountingRay {
             ray: crate_ray(ray),
             boxes: Cell::new(0),
         };
-        self.trace(&counting, ray, query == Query::Occluded);
-        Some(counting.boxes.get())
+        let (_, triangles) = self.trace(&counting, ray, query == Query::Occluded);
+        // Every interior node reached has both its children's boxes tested, once each (the
+        // root's own box is never tested), so the nodes visited are half the boxes.
+        Some(WalkCost {
+            nodes: counting.boxes.get() / 2,
+            triangles,
+        })
     }
 }

@@ -1,7 +1,8 @@
 //! `raylab-peers DUMP_DIR [--meshes a,b] [--reps N] [--embree FILE]`: builds raylab's BVH, the
 //! `bvh` crate's and `obvhs`'s over the meshes that `embree_anchor.py --dump DUMP_DIR` wrote,
 //! traces the same rays with each on 1 and 2 threads, checks every answer against Embree's and
-//! prints markdown tables: build times, Mrays/s, ratios to raylab, mismatches, nodes per ray.
+//! prints markdown tables: build times, Mrays/s, ratios to raylab, mismatches, and the interior
+//! nodes visited and triangles tested per ray.
 //! With `--embree FILE` (from `embree_anchor.py --json FILE`) Embree's own figures join them.
 
 mod anchor;
@@ -123,24 +124,27 @@ fn print_builds(reports: &[(&AnchorMesh, Vec<TracerReport>)], embree: Option<&Em
 fn print_traces(reports: &[(&AnchorMesh, Vec<TracerReport>)], embree: Option<&EmbreeFigures>) {
     println!("\n### Traversal, median Mrays/s (1 thread / 2 threads), raylab ÷ peer\n");
     println!(
-        "| mesh | rays | tracer | Mrays/s 1T / 2T | raylab ÷ it 1T / 2T | ≠ Embree | nodes/ray |"
+        "| mesh | rays | tracer | Mrays/s 1T / 2T | raylab ÷ it 1T / 2T | ≠ Embree | nodes/ray | tris/ray |"
     );
-    println!("|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|");
     for (mesh, tracers) in reports {
         let ours = &tracers[0];
         for (k, set) in ours.sets.iter().enumerate() {
             let rows = tracers.iter().map(|t| {
                 let s = &t.sets[k];
-                let nodes = s.nodes_per_ray.map_or("–".into(), |n| format!("{n:.1}"));
-                (t.name, s.mrays, format!("{}", s.mismatches), nodes)
+                let (nodes, tris) =
+                    s.cost_per_ray.map_or(("–".into(), "–".into()), |(n, t)| {
+                        (format!("{n:.1}"), format!("{t:.1}"))
+                    });
+                (t.name, s.mrays, format!("{}", s.mismatches), nodes, tris)
             });
             let embree_row = embree.map(|e| {
                 let mrays = THREADS.map(|n| e.mrays(&mesh.name, &set.set, n).unwrap_or(f64::NAN));
-                ("Embree", mrays, "–".into(), "–".into())
+                ("Embree", mrays, "–".into(), "–".into(), "–".into())
             });
-            for (name, mrays, mismatches, nodes) in rows.chain(embree_row) {
+            for (name, mrays, mismatches, nodes, tris) in rows.chain(embree_row) {
                 println!(
-                    "| {} | {} ({}) | {name} | {:.2} / {:.2} | {:.2} / {:.2} | {mismatches} | {nodes} |",
+                    "| {} | {} ({}) | {name} | {:.2} / {:.2} | {:.2} / {:.2} | {mismatches} | {nodes} | {tris} |",
                     mesh.name,
                     set.set,
                     set.rays,

@@ -7,7 +7,7 @@ use rayon::ThreadPool;
 use rayon::prelude::*;
 
 use crate::anchor::{AnchorMesh, RaySet};
-use crate::tracer::Tracer;
+use crate::tracer::{Tracer, WalkCost};
 
 /// The thread counts compared.
 pub const THREADS: [usize; 2] = [1, 2];
@@ -15,7 +15,8 @@ pub const THREADS: [usize; 2] = [1, 2];
 /// Rays per task handed to a thread.
 const CHUNK: usize = 4096;
 
-/// Every this many rays one is traced again counting nodes (counting all would take long).
+/// Every this many rays one is traced again, untimed, counting nodes and triangles (counting all
+/// would take long).
 const NODE_SAMPLE_STRIDE: usize = 16;
 
 /// One ray set traced by one tracer.
@@ -26,7 +27,8 @@ pub struct SetResult {
     pub mrays: [f64; 2],
     /// Rays whose answer differs from Embree's.
     pub mismatches: usize,
-    pub nodes_per_ray: Option<f64>,
+    /// Mean interior nodes visited and triangles tested per ray, over a sample of the rays.
+    pub cost_per_ray: Option<(f64, f64)>,
 }
 
 /// Everything measured of one tracer on one mesh.
@@ -96,20 +98,23 @@ fn trace_set<T: Tracer>(
         .zip(&set.embree)
         .filter(|(ours, embree)| ours != embree)
         .count();
-    let sample: Option<Vec<u32>> = set
+    let sample: Option<Vec<WalkCost>> = set
         .rays
         .iter()
         .step_by(NODE_SAMPLE_STRIDE)
-        .map(|ray| tracer.nodes_visited(ray, set.query))
+        .map(|ray| tracer.cost(ray, set.query))
         .collect();
-    let nodes_per_ray =
-        sample.map(|s| s.iter().map(|&n| f64::from(n)).sum::<f64>() / s.len().max(1) as f64);
+    let cost_per_ray = sample.map(|costs| {
+        let n = costs.len().max(1) as f64;
+        let sum = |f: fn(&WalkCost) -> u32| costs.iter().map(|c| f64::from(f(c))).sum::<f64>() / n;
+        (sum(|c| c.nodes), sum(|c| c.triangles))
+    });
     SetResult {
         set: set.name.clone(),
         rays: set.rays.len(),
         mrays,
         mismatches,
-        nodes_per_ray,
+        cost_per_ray,
     }
 }
 

@@ -12,7 +12,7 @@ use obvhs::ray::Ray;
 use obvhs::triangle::Triangle;
 
 use crate::anchor::{AnchorMesh, AnchorRay, Query};
-use crate::tracer::Tracer;
+use crate::tracer::{Tracer, WalkCost};
 
 pub struct ObvhsTracer {
     bvh: CwBvh,
@@ -81,30 +81,35 @@ impl Tracer for ObvhsTracer {
             .ray_traverse_miss(ray_of(ray), |r, id| self.triangles[id].intersect(r))
     }
 
-    fn nodes_visited(&self, ray: &AnchorRay, query: Query) -> Option<u32> {
-        // The crate's own traversal macro, with a count added to its node test.
+    fn cost(&self, ray: &AnchorRay, query: Query) -> Option<WalkCost> {
+        // The crate's own traversal macro, with counts added to its node and triangle tests.
+        // Each node it visits is an interior node: its (up to eight) children's boxes are
+        // tested at once, the triangles of its leaf children are listed in it.
         let mut traverse_ray = ray_of(ray);
         let mut state = self.bvh.new_traversal(traverse_ray.direction);
         let mut node;
-        let mut nodes = 0;
-        obvhs::traverse!(
-            self.bvh,
-            node,
-            state,
-            {
-                nodes += 1;
-                node.intersect_ray(&traverse_ray, state.oct_inv4)
-            },
-            {
-                let t = self.triangles[state.primitive_id as usize].intersect(&traverse_ray);
-                if t < traverse_ray.tmax {
-                    traverse_ray.tmax = t;
-                    if query == Query::Occluded {
-                        break;
+        let mut cost = WalkCost::default();
+        'walk: {
+            obvhs::traverse!(
+                self.bvh,
+                node,
+                state,
+                {
+                    cost.nodes += 1;
+                    node.intersect_ray(&traverse_ray, state.oct_inv4)
+                },
+                {
+                    cost.triangles += 1;
+                    let t = self.triangles[state.primitive_id as usize].intersect(&traverse_ray);
+                    if t < traverse_ray.tmax {
+                        traverse_ray.tmax = t;
+                        if query == Query::Occluded {
+                            break 'walk; // out of the whole walk, as `ray_traverse_miss` does
+                        }
                     }
                 }
-            }
-        );
-        Some(nodes)
+            );
+        }
+        Some(cost)
     }
 }

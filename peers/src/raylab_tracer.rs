@@ -1,16 +1,18 @@
 //! raylab's own BVH (four-wide, SAH) and watertight triangle test, through the library's public
-//! API: a [`Mesh`] added to a [`Geometry`], [`Bvh::build`], [`Bvh::closest_hit`], [`Bvh::any_hit`].
+//! API: a [`Mesh`] added to a [`Geometry`], [`Bvh::build`], [`Bvh::closest_hit_counted`],
+//! [`Bvh::any_hit_counted`] (counting nodes and triangles only in the untimed cost run).
 
 use std::ops::ControlFlow;
 
 use glam::Vec3;
 use raylab::bvh::Bvh;
+use raylab::bvh::cost::{BvhCost, TraversalCost};
 use raylab::mesh::Mesh;
 use raylab::primitive::Geometry;
 use raylab::ray::Ray;
 
 use crate::anchor::{AnchorMesh, AnchorRay, Query};
-use crate::tracer::Tracer;
+use crate::tracer::{Tracer, WalkCost};
 
 pub struct RaylabTracer {
     geometry: Geometry,
@@ -38,9 +40,39 @@ impl Tracer for RaylabTracer {
     }
 
     fn closest(&self, ray: &AnchorRay) -> i32 {
+        self.closest_counted(ray, &mut ())
+    }
+
+    fn occluded(&self, ray: &AnchorRay) -> bool {
+        self.occluded_counted(ray, &mut ())
+    }
+
+    fn cost(&self, ray: &AnchorRay, query: Query) -> Option<WalkCost> {
+        let mut cost = BvhCost::default();
+        match query {
+            Query::Closest => {
+                self.closest_counted(ray, &mut cost);
+            }
+            Query::Occluded => {
+                self.occluded_counted(ray, &mut cost);
+            }
+        }
+        // The counter hears of interior nodes only (leaves are counted as primitives tested)
+        // and not of the root's own box test before the walk.
+        Some(WalkCost {
+            nodes: cost.nodes as u32,
+            triangles: cost.prims as u32,
+        })
+    }
+}
+
+impl RaylabTracer {
+    /// [`Tracer::closest`], telling `cost` of the nodes visited and triangles tested; the timed
+    /// runs pass `()`, which counts nothing and compiles to the plain walk.
+    fn closest_counted(&self, ray: &AnchorRay, cost: &mut impl TraversalCost) -> i32 {
         let hit = self
             .bvh
-            .closest_hit(&self.geometry, &ray_of(ray), 0.0, ray.tfar);
+            .closest_hit_counted(&self.geometry, &ray_of(ray), 0.0, ray.tfar, cost);
         match hit.map(|h| h.prim.kind()) {
             // Degenerate faces make no triangle: the triangle knows its face.
             Some(Err(t)) => self.geometry.triangles[t].face as i32,
@@ -48,18 +80,14 @@ impl Tracer for RaylabTracer {
         }
     }
 
-    fn occluded(&self, ray: &AnchorRay) -> bool {
+    /// [`Tracer::occluded`], telling `cost` as [`Self::closest_counted`] does.
+    fn occluded_counted(&self, ray: &AnchorRay, cost: &mut impl TraversalCost) -> bool {
         let mut blocked = false;
         self.bvh
-            .any_hit(&self.geometry, &ray_of(ray), 0.0, ray.tfar, |_| {
+            .any_hit_counted(&self.geometry, &ray_of(ray), 0.0, ray.tfar, cost, |_| {
                 blocked = true;
                 ControlFlow::Break(())
             });
         blocked
-    }
-
-    fn nodes_visited(&self, _ray: &AnchorRay, _query: Query) -> Option<u32> {
-        // raylab's walk counts nothing yet; issue 6's traversal cost counter will tell.
-        None
     }
 }

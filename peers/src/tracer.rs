@@ -4,6 +4,16 @@
 
 use crate::anchor::{AnchorMesh, AnchorRay, Query};
 
+/// The cost of one walk, counted the same way for every crate.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct WalkCost {
+    /// Interior nodes visited: nodes whose children's boxes were tested against the ray (two
+    /// boxes in the `bvh` crate's binary tree, up to four in raylab's, up to eight in `obvhs`'s).
+    pub nodes: u32,
+    /// Triangles tested against the ray.
+    pub triangles: u32,
+}
+
 pub trait Tracer: Send + Sync + Sized {
     /// The name in the tables.
     const NAME: &'static str;
@@ -17,8 +27,9 @@ pub trait Tracer: Send + Sync + Sized {
     /// Whether any triangle is hit in `(0, ray.tfar)`.
     fn occluded(&self, ray: &AnchorRay) -> bool;
 
-    /// BVH nodes whose boxes the walk tested for `ray`, where the crate can tell.
-    fn nodes_visited(&self, ray: &AnchorRay, query: Query) -> Option<u32>;
+    /// What the walk for `query` cost on `ray`, where the crate can tell; traced apart from the
+    /// timed runs, so counting never slows them.
+    fn cost(&self, ray: &AnchorRay, query: Query) -> Option<WalkCost>;
 
     /// The answer to `query` in Embree's terms.
     #[inline]
