@@ -7,10 +7,11 @@ mod common;
 use std::hint::black_box;
 use std::ops::ControlFlow;
 
-use common::{camera_rays, random_rays};
+use common::{camera_rays, in_tiles, random_rays};
 use criterion::{Criterion, criterion_group, criterion_main};
 use glam::Vec3;
 use raylab::bvh::Bvh;
+use raylab::bvh::packet::PACKET_SIZE;
 use raylab::large_mesh::bumpy_sphere_scene;
 use raylab::primitive::Geometry;
 use raylab::ray::Ray;
@@ -36,6 +37,18 @@ fn count_hits(bvh: &Bvh, geometry: &Geometry, rays: &[Ray]) -> usize {
     rays.iter()
         .filter(|r| bvh.closest_hit(geometry, r, 0.0, f32::INFINITY).is_some())
         .count()
+}
+
+/// [`count_hits`] with the rays traced [`PACKET_SIZE`] at a time.
+fn count_hits_in_packets(bvh: &Bvh, geometry: &Geometry, rays: &[Ray]) -> usize {
+    let mut hits = [None; PACKET_SIZE];
+    rays.chunks(PACKET_SIZE)
+        .map(|packet| {
+            let hits = &mut hits[..packet.len()];
+            bvh.closest_hits(geometry, packet, 0.0, f32::INFINITY, hits);
+            hits.iter().filter(|h| h.is_some()).count()
+        })
+        .sum()
 }
 
 fn bvh(c: &mut Criterion) {
@@ -70,6 +83,15 @@ fn bvh(c: &mut Criterion) {
     group.bench_function("closest hit, 16384 camera rays", |b| {
         b.iter(|| count_hits(&bvh, geometry, black_box(&camera)))
     });
+    let tiled = in_tiles(&camera, 128);
+    group.bench_function(
+        "closest hit, 16384 camera rays in 8×8 tiles, one by one",
+        |b| b.iter(|| count_hits(&bvh, geometry, black_box(&tiled))),
+    );
+    group.bench_function(
+        "closest hit, 16384 camera rays in 8×8 tiles, as packets",
+        |b| b.iter(|| count_hits_in_packets(&bvh, geometry, black_box(&tiled))),
+    );
     group.bench_function("closest hit, 16384 random rays", |b| {
         b.iter(|| count_hits(&bvh, geometry, black_box(&random)))
     });

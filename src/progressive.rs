@@ -7,17 +7,21 @@
 //! Each pixel sample is what the tracer's view shows ([`crate::inspect::view_color`]): the
 //! shaded colour, or a debug view, refined by the same passes.
 //!
-//! Passes run on all of rayon's threads, report their progress as they go, and stop within a row
-//! when cancelled from another thread.
+//! Passes run on all of rayon's threads, band by band of 8 rows, each band tile by tile of 8 × 8
+//! traced pixels whose eye rays are traced together ([`crate::bvh::packet`]). They report their
+//! progress as they go, and stop within a band when cancelled from another thread.
 
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
 use std::time::Instant;
 
+use arrayvec::ArrayVec;
 use rayon::prelude::*;
 
+use crate::bvh::packet::PACKET_SIZE;
 use crate::film::Film;
-use crate::inspect::view_color;
+use crate::inspect::view_colors;
 use crate::material::Color;
+use crate::ray::Ray;
 use crate::stats::{PassStats, RayCounts, RenderStats, SharedRayCounts};
 use crate::whitted::Tracer;
 
@@ -38,6 +42,11 @@ pub fn passes(block_size: u32, samples: u32) -> Vec<Pass> {
         .chain((1..samples).map(Pass::Sample))
         .collect()
 }
+
+/// Traced pixels per side of a tile: a tile's eye rays go through the BVH as one packet of
+/// [`PACKET_SIZE`].
+const TILE: u32 = 8;
+const _: () = assert!((TILE * TILE) as usize == PACKET_SIZE);
 
 /// Whether block pass `b` of a render that started at `start` traces pixel (x, y).
 pub fn traces_pixel(b: u32, start: u32, x: u32, y: u32) -> bool {
@@ -154,36 +163,57 @@ pub fn render_pass(
     let rays_before = control.rays.get();
     let pixels_before = control.pixels.load(Ordering::Relaxed);
     let camera = &tracer.scene.camera;
-    (0..rows).into_par_iter().try_for_each(|row| {
-        if control.is_cancelled() {
-            return Err(Cancelled);
-        }
-        let y = row * step;
-        let mut counts = RayCounts::default();
-        let mut pixels = 0;
-        for x in (0..width).step_by(step as usize) {
-            let (offset, sample) = match pass {
-                Pass::Block(b) if traces_pixel(b, start_block, x, y) => ((0.5, 0.5), 0),
-                Pass::Block(_) => continue,
-                Pass::Sample(k) => (jitter(x, y, k), k),
-            };
-            let r = (height - y) as f32 - offset.1;
-            let c = x as f32 + offset.0;
-            let color = view_color(tracer, &camera.ray(r, c, height, width), &mut counts);
-            pixels += 1;
-            if sample == 0 {
-                film.fill_block(x, y, step, color);
-            } else {
-                let mean = film.get(x, y);
-                film.set(x, y, mean + (color - mean) / (sample + 1) as f32);
+    let columns = width.div_ceil(step);
+    // Bands of TILE rows go to the threads; each band is traced tile by tile.
+    (0..rows.div_ceil(TILE))
+        .into_par_iter()
+        .try_for_each(|band| {
+            if control.is_cancelled() {
+                return Err(Cancelled);
             }
-        }
-        control.rays.add(&counts);
-        control.pixels.fetch_add(pixels, Ordering::Relaxed);
-        control.rows_done.fetch_add(1, Ordering::Relaxed);
-        film.touch();
-        Ok(())
-    })?;
+            let band_rows = band * TILE..((band + 1) * TILE).min(rows);
+            let mut counts = RayCounts::default();
+            let mut pixels = 0;
+            // A tile's traced pixels (x, y, sample number), their eye rays, and their colours.
+            let mut samples: ArrayVec<(u32, u32, u32), PACKET_SIZE> = ArrayVec::new();
+            let mut rays: ArrayVec<Ray, PACKET_SIZE> = ArrayVec::new();
+            let mut colors = [Color::ZERO; PACKET_SIZE];
+            for tile_column in (0..columns).step_by(TILE as usize) {
+                samples.clear();
+                rays.clear();
+                for y in band_rows.clone().map(|row| row * step) {
+                    for x in (tile_column..(tile_column + TILE).min(columns)).map(|c| c * step) {
+                        let (offset, sample) = match pass {
+                            Pass::Block(b) if traces_pixel(b, start_block, x, y) => ((0.5, 0.5), 0),
+                            Pass::Block(_) => continue,
+                            Pass::Sample(k) => (jitter(x, y, k), k),
+                        };
+                        let r = (height - y) as f32 - offset.1;
+                        let c = x as f32 + offset.0;
+                        rays.push(camera.ray(r, c, height, width));
+                        samples.push((x, y, sample));
+                    }
+                }
+                let colors = &mut colors[..rays.len()];
+                view_colors(tracer, &rays, colors, &mut counts);
+                for (&(x, y, sample), &color) in samples.iter().zip(colors.iter()) {
+                    if sample == 0 {
+                        film.fill_block(x, y, step, color);
+                    } else {
+                        let mean = film.get(x, y);
+                        film.set(x, y, mean + (color - mean) / (sample + 1) as f32);
+                    }
+                }
+                pixels += rays.len() as u64;
+            }
+            control.rays.add(&counts);
+            control.pixels.fetch_add(pixels, Ordering::Relaxed);
+            control
+                .rows_done
+                .fetch_add(band_rows.len() as u32, Ordering::Relaxed);
+            film.touch();
+            Ok(())
+        })?;
     let rays = control.rays.get() - rays_before;
     Ok(PassStats {
         pass,

@@ -6,6 +6,8 @@ use std::ops::ControlFlow;
 use glam::Vec3;
 use proptest::prelude::*;
 use raylab::bvh::Bvh;
+use raylab::bvh::packet::PACKET_SIZE;
+use raylab::camera::{Camera, CameraSpec};
 use raylab::mesh::Mesh;
 use raylab::primitive::{Geometry, Hit, Object, PrimId};
 use raylab::ray::Ray;
@@ -255,6 +257,98 @@ proptest! {
             assert_same_closest(&g, &bvh, &random_ray(&mut rng));
         }
     }
+
+    #[test]
+    fn packets_get_the_single_ray_hits_from_any_eye(seed in 0u64..1_000_000, n in 1usize..200) {
+        let g = random_scene(seed, n, n * 3, (seed % 2) as usize);
+        let bvh = Bvh::build(&g);
+        let mut rng = Rng(seed ^ 0x5eed);
+        let camera = camera_at(rng.vec(-30.0, 30.0));
+        let rays = eye_rays_in_tiles(&camera, 24, 16);
+        assert_packets_equal_single_rays(&g, &bvh, &rays, PACKET_SIZE);
+    }
+}
+
+/// Traces `rays` in packets of `size` and checks that each ray gets exactly its single-ray hit.
+fn assert_packets_equal_single_rays(g: &Geometry, bvh: &Bvh, rays: &[Ray], size: usize) {
+    let t_min = 1.0;
+    let mut hits = vec![None; size];
+    for packet in rays.chunks(size) {
+        let hits = &mut hits[..packet.len()];
+        bvh.closest_hits(g, packet, t_min, f32::INFINITY, hits);
+        for (ray, hit) in packet.iter().zip(hits.iter()) {
+            let single = bvh.closest_hit(g, ray, t_min, f32::INFINITY);
+            assert_eq!(*hit, single, "ray {ray:?}");
+        }
+    }
+}
+
+/// The eye rays of a `width` × `height` image in tiles of 8 × 8, tile after tile.
+fn eye_rays_in_tiles(camera: &Camera, width: u32, height: u32) -> Vec<Ray> {
+    let mut rays = Vec::new();
+    for tile_y in (0..height).step_by(8) {
+        for tile_x in (0..width).step_by(8) {
+            for y in tile_y..(tile_y + 8).min(height) {
+                for x in tile_x..(tile_x + 8).min(width) {
+                    rays.push(camera.ray(y as f32 + 0.5, x as f32 + 0.5, height, width));
+                }
+            }
+        }
+    }
+    rays
+}
+
+fn camera_at(eye: Vec3) -> Camera {
+    Camera::new(CameraSpec {
+        eye,
+        look_at: Vec3::ZERO,
+        up: Vec3::Y,
+        view_angle: 50.0,
+        near: 1.0,
+    })
+    .unwrap()
+}
+
+#[test]
+fn packets_of_eye_rays_get_the_single_ray_hits() {
+    for seed in 0..6 {
+        let g = random_scene(seed, 60, 400, (seed % 3) as usize);
+        let bvh = Bvh::build(&g);
+        let mut rng = Rng(seed + 77);
+        let camera = camera_at(rng.vec(-12.0, 12.0) + Vec3::new(0.0, 0.0, 24.0));
+        let rays = eye_rays_in_tiles(&camera, 96, 72);
+        assert!(
+            rays.iter()
+                .filter(|r| bvh.closest_hit(&g, r, 1.0, f32::INFINITY).is_some())
+                .count()
+                > 1000
+        );
+        assert_packets_equal_single_rays(&g, &bvh, &rays, PACKET_SIZE);
+        assert_packets_equal_single_rays(&g, &bvh, &rays, 5);
+    }
+}
+
+#[test]
+fn packets_of_incoherent_and_axis_parallel_rays_get_the_single_ray_hits() {
+    let g = random_scene(3, 120, 600, 1);
+    let bvh = Bvh::build(&g);
+    let mut rng = Rng(99);
+    // Directions of every sign: the packet has no bounds to cull with.
+    let random: Vec<Ray> = (0..4096).map(|_| random_ray(&mut rng)).collect();
+    assert_packets_equal_single_rays(&g, &bvh, &random, PACKET_SIZE);
+    // Parallel rays from a grid of origins (one sign per axis, many origins), and the same
+    // straight down the z axis (a direction component of zero).
+    let grid = |dir: Vec3| -> Vec<Ray> {
+        (0..64 * 64)
+            .map(|i| {
+                let (x, y) = ((i % 64) as f32, (i / 64) as f32);
+                Ray::new(Vec3::new(x * 0.3 - 9.6, y * 0.3 - 9.6, 20.0), dir)
+            })
+            .collect()
+    };
+    assert_packets_equal_single_rays(&g, &bvh, &grid(Vec3::new(0.1, -0.05, -1.0)), PACKET_SIZE);
+    assert_packets_equal_single_rays(&g, &bvh, &grid(Vec3::new(0.0, 0.0, -1.0)), PACKET_SIZE);
+    assert_packets_equal_single_rays(&g, &bvh, &[], PACKET_SIZE);
 }
 
 #[test]

@@ -47,6 +47,22 @@ pub fn camera_rays(scene: &Scene, size: u32) -> Vec<Ray> {
         .collect()
 }
 
+/// `rays` of a `size × size` grid in row order, reordered tile by tile (8 × 8 tiles, each in
+/// row order): the order in which a packet tracer takes them.
+pub fn in_tiles(rays: &[Ray], size: u32) -> Vec<Ray> {
+    let size = size as usize;
+    let mut tiled = Vec::with_capacity(rays.len());
+    for tile_y in (0..size).step_by(8) {
+        for tile_x in (0..size).step_by(8) {
+            for y in tile_y..(tile_y + 8).min(size) {
+                let row = y * size;
+                tiled.extend_from_slice(&rays[row + tile_x..row + (tile_x + 8).min(size)]);
+            }
+        }
+    }
+    tiled
+}
+
 /// `n` rays from random points in the box `[lo, hi]` in random directions: incoherent rays.
 pub fn random_rays(n: usize, lo: Vec3, hi: Vec3, seed: u64) -> Vec<Ray> {
     let mut rng = Rng(seed);

@@ -36,6 +36,36 @@ pub struct RaySet {
     pub query: Query,
     pub rays: Vec<AnchorRay>,
     pub embree: Vec<i32>,
+    /// The rays come in 8 × 8 tiles of neighbouring pixels, 64 at a time, for packet tracers.
+    pub in_tiles: bool,
+}
+
+/// Suffix of the name of a camera ray set reordered into tiles.
+pub const TILES: &str = "_tiles";
+
+impl RaySet {
+    /// The same set in 8 × 8 tiles (tile after tile, each in row order), when it is the camera
+    /// rays of a square image in row order (a set named `primaryN` with N × N rays, N a
+    /// multiple of 8).
+    pub fn in_tiles(&self) -> Option<RaySet> {
+        let size: usize = self.name.strip_prefix("primary")?.parse().ok()?;
+        if size * size != self.rays.len() || !size.is_multiple_of(8) {
+            return None;
+        }
+        let order: Vec<usize> = (0..size / 8)
+            .flat_map(|tile_y| (0..size / 8).map(move |tile_x| (tile_y, tile_x)))
+            .flat_map(|(tile_y, tile_x)| {
+                (0..64).map(move |k| (tile_y * 8 + k / 8) * size + tile_x * 8 + k % 8)
+            })
+            .collect();
+        Some(RaySet {
+            name: format!("{}{TILES}", self.name),
+            query: self.query,
+            rays: order.iter().map(|&i| self.rays[i]).collect(),
+            embree: order.iter().map(|&i| self.embree[i]).collect(),
+            in_tiles: true,
+        })
+    }
 }
 
 /// The meshes named in `only` (all when empty) from the dump in `dir`.
@@ -72,10 +102,12 @@ fn load_mesh(dir: &Path, name: &str, entry: &Value) -> Result<AnchorMesh, String
     let sets = entry["rays"]
         .as_object()
         .ok_or_else(|| format!("mesh {name}: no \"rays\""))?;
-    let ray_sets = sets
+    let mut ray_sets: Vec<RaySet> = sets
         .iter()
         .map(|(set, e)| load_ray_set(dir, set, e).map_err(|err| format!("{name}/{set}: {err}")))
         .collect::<Result<_, _>>()?;
+    let tiled: Vec<RaySet> = ray_sets.iter().filter_map(RaySet::in_tiles).collect();
+    ray_sets.extend(tiled);
     Ok(AnchorMesh {
         name: name.to_string(),
         positions,
@@ -117,6 +149,7 @@ fn load_ray_set(dir: &Path, name: &str, entry: &Value) -> Result<RaySet, String>
         query,
         rays,
         embree,
+        in_tiles: false,
     })
 }
 

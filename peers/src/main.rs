@@ -15,7 +15,7 @@ mod tracer;
 
 use std::path::PathBuf;
 
-use anchor::AnchorMesh;
+use anchor::{AnchorMesh, TILES};
 use bvh_crate_tracer::BvhCrateTracer;
 use embree::EmbreeFigures;
 use measure::{THREADS, TracerReport, measure};
@@ -139,7 +139,10 @@ fn print_traces(reports: &[(&AnchorMesh, Vec<TracerReport>)], embree: Option<&Em
                 (t.name, s.mrays, format!("{}", s.mismatches), nodes, tris)
             });
             let embree_row = embree.map(|e| {
-                let mrays = THREADS.map(|n| e.mrays(&mesh.name, &set.set, n).unwrap_or(f64::NAN));
+                let mrays = THREADS.map(|n| {
+                    e.mrays(&mesh.name, set.set.trim_end_matches(TILES), n)
+                        .unwrap_or(f64::NAN)
+                });
                 ("Embree", mrays, "–".into(), "–".into(), "–".into())
             });
             for (name, mrays, mismatches, nodes, tris) in rows.chain(embree_row) {

@@ -15,6 +15,9 @@ pub const THREADS: [usize; 2] = [1, 2];
 /// Rays per task handed to a thread.
 const CHUNK: usize = 4096;
 
+/// Rays of a tile, traced together by a packet tracer.
+const PACKET: usize = 64;
+
 /// Every this many rays one is traced again, untimed, counting nodes and triangles (counting all
 /// would take long).
 const NODE_SAMPLE_STRIDE: usize = 16;
@@ -83,11 +86,21 @@ fn trace_set<T: Tracer>(
         for _ in 0..reps {
             let start = Instant::now();
             answers = pool.install(|| {
-                set.rays
-                    .par_iter()
-                    .with_min_len(CHUNK)
-                    .map(|ray| tracer.answer(ray, set.query))
-                    .collect::<Vec<i32>>()
+                if set.in_tiles {
+                    let mut answers = vec![0; set.rays.len()];
+                    answers
+                        .par_chunks_mut(PACKET)
+                        .zip(set.rays.par_chunks(PACKET))
+                        .with_min_len(CHUNK / PACKET)
+                        .for_each(|(answers, rays)| tracer.closest_in_packet(rays, answers));
+                    answers
+                } else {
+                    set.rays
+                        .par_iter()
+                        .with_min_len(CHUNK)
+                        .map(|ray| tracer.answer(ray, set.query))
+                        .collect::<Vec<i32>>()
+                }
             });
             times.push(start.elapsed().as_secs_f64());
         }

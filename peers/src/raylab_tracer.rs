@@ -7,8 +7,9 @@ use std::ops::ControlFlow;
 use glam::Vec3;
 use raylab::bvh::Bvh;
 use raylab::bvh::cost::{BvhCost, TraversalCost};
+use raylab::bvh::packet::PACKET_SIZE;
 use raylab::mesh::Mesh;
-use raylab::primitive::Geometry;
+use raylab::primitive::{Geometry, Hit};
 use raylab::ray::Ray;
 
 use crate::anchor::{AnchorMesh, AnchorRay, Query};
@@ -47,6 +48,25 @@ impl Tracer for RaylabTracer {
         self.occluded_counted(ray, &mut ())
     }
 
+    fn closest_in_packet(&self, rays: &[AnchorRay], answers: &mut [i32]) {
+        let mut hits = [None; PACKET_SIZE];
+        for (rays, answers) in rays
+            .chunks(PACKET_SIZE)
+            .zip(answers.chunks_mut(PACKET_SIZE))
+        {
+            let packet: [Ray; PACKET_SIZE] =
+                std::array::from_fn(|k| ray_of(&rays[k.min(rays.len() - 1)]));
+            let hits = &mut hits[..rays.len()];
+            // The camera rays share one far limit (infinity).
+            let t_max = rays[0].tfar;
+            self.bvh
+                .closest_hits(&self.geometry, &packet[..rays.len()], 0.0, t_max, hits);
+            for (answer, hit) in answers.iter_mut().zip(hits.iter()) {
+                *answer = self.triangle_index(*hit);
+            }
+        }
+    }
+
     fn cost(&self, ray: &AnchorRay, query: Query) -> Option<WalkCost> {
         let mut cost = BvhCost::default();
         match query {
@@ -73,6 +93,11 @@ impl RaylabTracer {
         let hit = self
             .bvh
             .closest_hit_counted(&self.geometry, &ray_of(ray), 0.0, ray.tfar, cost);
+        self.triangle_index(hit)
+    }
+
+    /// The mesh's index of the triangle `hit` (−1 for none).
+    fn triangle_index(&self, hit: Option<Hit>) -> i32 {
         match hit.map(|h| h.prim.kind()) {
             // Degenerate faces make no triangle: the triangle knows its face.
             Some(Err(t)) => self.geometry.triangles[t].face as i32,

@@ -31,6 +31,14 @@ pub trait Tracer: Send + Sync + Sized {
     /// timed runs, so counting never slows them.
     fn cost(&self, ray: &AnchorRay, query: Query) -> Option<WalkCost>;
 
+    /// [`Self::closest`] of up to 64 neighbouring camera rays (an 8 × 8 tile) into `answers`:
+    /// one by one, unless the crate traces packets.
+    fn closest_in_packet(&self, rays: &[AnchorRay], answers: &mut [i32]) {
+        for (ray, answer) in rays.iter().zip(answers) {
+            *answer = self.closest(ray);
+        }
+    }
+
     /// The answer to `query` in Embree's terms.
     #[inline]
     fn answer(&self, ray: &AnchorRay, query: Query) -> i32 {

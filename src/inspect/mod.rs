@@ -1,6 +1,6 @@
 //! Seeing inside the tracer: the ray tree of one pixel ([`trace_ray_tree`], recorded by an
 //! observer of the Whitted tracer's own code), the object each pixel sees ([`object_ids`]),
-//! and the debug views of the whole image ([`DebugView`], rendered by [`view_color`]).
+//! and the debug views of the whole image ([`DebugView`], rendered by [`view_colors`]).
 
 mod debug_view;
 mod legend;
@@ -17,4 +17,4 @@ pub use legend::{
 pub use observer::{ShadowEvent, TreeObserver};
 pub use ray_tree::{Blocker, Cut, NodeHit, RayKind, RayNode, RayTree, ShadowRay, StopReason};
 pub use recorder::{eye_ray, object_ids, trace_ray_tree};
-pub use view_color::{MISS_COLOR, id_color, view_color};
+pub use view_color::{MISS_COLOR, id_color, view_colors};

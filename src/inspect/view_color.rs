@@ -22,17 +22,22 @@ use crate::whitted::{EYE_RAY_T_MIN, Tracer};
 /// What a pixel whose eye ray misses shows in every view but the shaded one.
 pub const MISS_COLOR: Color = Color::ZERO;
 
-/// The colour the tracer's view gives the eye ray `ray`; the shaded view is
-/// [`Tracer::trace_eye`] itself.
-#[inline(always)]
-pub fn view_color(tracer: &Tracer, ray: &Ray, counts: &mut RayCounts) -> Color {
+/// The colours the tracer's view gives the neighbouring eye rays `rays` (up to
+/// [`crate::bvh::packet::PACKET_SIZE`]), into `colors`. The shaded view is
+/// [`Tracer::trace_eye`] itself, with the eye rays traced as one packet
+/// ([`Tracer::trace_eye_packet`]).
+pub fn view_colors(tracer: &Tracer, rays: &[Ray], colors: &mut [Color], counts: &mut RayCounts) {
     match tracer.view {
-        DebugView::Shaded => tracer.trace_eye(ray, counts),
-        view => debug_color(tracer, view, ray, counts),
+        DebugView::Shaded => tracer.trace_eye_packet(rays, colors, counts),
+        view => {
+            for (ray, color) in rays.iter().zip(colors) {
+                *color = debug_color(tracer, view, ray, counts);
+            }
+        }
     }
 }
 
-/// [`view_color`] for the debug views.
+/// [`view_colors`] of one eye ray, for the debug views.
 fn debug_color(tracer: &Tracer, view: DebugView, ray: &Ray, counts: &mut RayCounts) -> Color {
     let scene = tracer.scene;
     let tree_view = |tree: &TreeStats, rays: u64| match view {

@@ -15,6 +15,7 @@ mod scattering;
 pub use scattering::{Scattering, reflect, refract, scattering};
 
 use crate::bvh::Bvh;
+use crate::bvh::packet::PACKET_SIZE;
 use crate::inspect::{DebugView, RayKind, StopReason, TreeObserver};
 use crate::material::{Color, Material};
 use crate::primitive::{Hit, SurfacePoint};
@@ -66,12 +67,36 @@ impl<'a> Tracer<'a> {
         counts: &mut RayCounts,
         observer: &mut O,
     ) -> Color {
-        counts.primary += 1;
         observer.ray(RayKind::Eye, 1, ray, 1.0, Color::ONE);
         let geometry = &self.scene.geometry;
         let hit =
             self.bvh
                 .closest_hit_counted(geometry, ray, EYE_RAY_T_MIN, f32::INFINITY, observer);
+        self.shade_eye(ray, hit, counts, observer)
+    }
+
+    /// The colours seen by the eye rays `rays` (up to [`PACKET_SIZE`], neighbours in the image),
+    /// into `colors`: [`Self::trace_eye`] of each, with the eye rays traced as one packet.
+    pub fn trace_eye_packet(&self, rays: &[Ray], colors: &mut [Color], counts: &mut RayCounts) {
+        let mut hits = [None; PACKET_SIZE];
+        let hits = &mut hits[..rays.len()];
+        let geometry = &self.scene.geometry;
+        self.bvh
+            .closest_hits(geometry, rays, EYE_RAY_T_MIN, f32::INFINITY, hits);
+        for ((ray, hit), color) in rays.iter().zip(hits.iter()).zip(colors) {
+            *color = self.shade_eye(ray, *hit, counts, &mut ());
+        }
+    }
+
+    /// The colour seen by the eye ray `ray`, whose closest hit is `hit`.
+    fn shade_eye<O: TreeObserver>(
+        &self,
+        ray: &Ray,
+        hit: Option<Hit>,
+        counts: &mut RayCounts,
+        observer: &mut O,
+    ) -> Color {
+        counts.primary += 1;
         let color = match hit {
             Some(hit) => {
                 counts.primary_hits += 1;
