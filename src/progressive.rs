@@ -11,6 +11,7 @@
 //! traced pixels whose eye rays are traced together ([`crate::bvh::packet`]). They report their
 //! progress as they go, and stop within a band when cancelled from another thread.
 
+use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
 use std::time::Instant;
 
@@ -162,9 +163,15 @@ pub fn render_pass(
     control.rows_done.store(0, Ordering::Relaxed);
     let rays_before = control.rays.get();
     let pixels_before = control.pixels.load(Ordering::Relaxed);
-    let camera = &tracer.scene.camera;
+    let grid = PassGrid {
+        pass,
+        start_block,
+        step,
+        width,
+        height,
+    };
     let columns = width.div_ceil(step);
-    // Bands of TILE rows go to the threads; each band is traced tile by tile.
+    // Bands of TILE rows of the grid go to the threads; each band is traced tile by tile.
     (0..rows.div_ceil(TILE))
         .into_par_iter()
         .try_for_each(|band| {
@@ -173,39 +180,13 @@ pub fn render_pass(
             }
             let band_rows = band * TILE..((band + 1) * TILE).min(rows);
             let mut counts = RayCounts::default();
-            let mut pixels = 0;
-            // A tile's traced pixels (x, y, sample number), their eye rays, and their colours.
-            let mut samples: ArrayVec<(u32, u32, u32), PACKET_SIZE> = ArrayVec::new();
-            let mut rays: ArrayVec<Ray, PACKET_SIZE> = ArrayVec::new();
-            let mut colors = [Color::ZERO; PACKET_SIZE];
-            for tile_column in (0..columns).step_by(TILE as usize) {
-                samples.clear();
-                rays.clear();
-                for y in band_rows.clone().map(|row| row * step) {
-                    for x in (tile_column..(tile_column + TILE).min(columns)).map(|c| c * step) {
-                        let (offset, sample) = match pass {
-                            Pass::Block(b) if traces_pixel(b, start_block, x, y) => ((0.5, 0.5), 0),
-                            Pass::Block(_) => continue,
-                            Pass::Sample(k) => (jitter(x, y, k), k),
-                        };
-                        let r = (height - y) as f32 - offset.1;
-                        let c = x as f32 + offset.0;
-                        rays.push(camera.ray(r, c, height, width));
-                        samples.push((x, y, sample));
-                    }
-                }
-                let colors = &mut colors[..rays.len()];
-                view_colors(tracer, &rays, colors, &mut counts);
-                for (&(x, y, sample), &color) in samples.iter().zip(colors.iter()) {
-                    if sample == 0 {
-                        film.fill_block(x, y, step, color);
-                    } else {
-                        let mean = film.get(x, y);
-                        film.set(x, y, mean + (color - mean) / (sample + 1) as f32);
-                    }
-                }
-                pixels += rays.len() as u64;
-            }
+            let pixels: u64 = (0..columns)
+                .step_by(TILE as usize)
+                .map(|c| {
+                    let tile_columns = c..(c + TILE).min(columns);
+                    trace_tile(tracer, film, &grid, &band_rows, tile_columns, &mut counts)
+                })
+                .sum();
             control.rays.add(&counts);
             control.pixels.fetch_add(pixels, Ordering::Relaxed);
             control
@@ -221,6 +202,76 @@ pub fn render_pass(
         rays,
         time: started.elapsed(),
     })
+}
+
+/// The pixels of one pass: a grid of `step`-pixel blocks over the film, of which the pass traces
+/// the top-left pixel of each block it has not traced before (or adds a sample to every pixel).
+struct PassGrid {
+    pass: Pass,
+    start_block: u32,
+    step: u32,
+    width: u32,
+    height: u32,
+}
+
+impl PassGrid {
+    /// The samples the pass takes in `rows` × `columns` of its grid: the pixel (x, y), the offset
+    /// of the sample in it, and the sample's number (0 for the pixel's centre).
+    fn samples(
+        &self,
+        rows: &Range<u32>,
+        columns: Range<u32>,
+    ) -> impl Iterator<Item = (u32, u32, (f32, f32), u32)> {
+        let step = self.step;
+        rows.clone()
+            .flat_map(move |row| {
+                columns
+                    .clone()
+                    .map(move |column| (column * step, row * step))
+            })
+            .filter_map(|(x, y)| match self.pass {
+                Pass::Block(b) if traces_pixel(b, self.start_block, x, y) => {
+                    Some((x, y, (0.5, 0.5), 0))
+                }
+                Pass::Block(_) => None,
+                Pass::Sample(k) => Some((x, y, jitter(x, y, k), k)),
+            })
+    }
+}
+
+/// Traces the samples of one tile of `grid` (at most [`PACKET_SIZE`]), the eye rays as one
+/// packet, and writes them to the film: a block painted, or a sample added to the pixel's mean.
+/// Returns how many it traced.
+fn trace_tile(
+    tracer: &Tracer,
+    film: &Film,
+    grid: &PassGrid,
+    rows: &Range<u32>,
+    columns: Range<u32>,
+    counts: &mut RayCounts,
+) -> u64 {
+    let camera = &tracer.scene.camera;
+    let (width, height) = (grid.width, grid.height);
+    let mut samples: ArrayVec<(u32, u32, u32), PACKET_SIZE> = ArrayVec::new();
+    let mut rays: ArrayVec<Ray, PACKET_SIZE> = ArrayVec::new();
+    for (x, y, offset, sample) in grid.samples(rows, columns) {
+        let r = (height - y) as f32 - offset.1;
+        let c = x as f32 + offset.0;
+        rays.push(camera.ray(r, c, height, width));
+        samples.push((x, y, sample));
+    }
+    let mut colors = [Color::ZERO; PACKET_SIZE];
+    let colors = &mut colors[..rays.len()];
+    view_colors(tracer, &rays, colors, counts);
+    for (&(x, y, sample), &color) in samples.iter().zip(colors.iter()) {
+        if sample == 0 {
+            film.fill_block(x, y, grid.step, color);
+        } else {
+            let mean = film.get(x, y);
+            film.set(x, y, mean + (color - mean) / (sample + 1) as f32);
+        }
+    }
+    rays.len() as u64
 }
 
 /// A deterministic sub-pixel offset in [0, 1)² for sample `k` of pixel (x, y), so a render is
