@@ -5,7 +5,7 @@
 //! no `xvfb-run` (`scripts/test` installs it on Debian).
 
 use std::io::{BufRead, BufReader, Read};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -64,6 +64,18 @@ fn display_wrapper() -> Option<Vec<String>> {
 /// Runs the viewer with `args` in a window; `None` (after saying why) if no display can be had.
 fn run_viewer(args: &[&str]) -> Option<Run> {
     run_viewer_watching(args, &[], |_, _| {})
+}
+
+/// [`run_viewer`] with `args`, until refinement is done, then a screenshot of the window saved
+/// into `dir`: the run, which must have succeeded, and the screenshot's path.
+fn run_to_screenshot(dir: &Path, args: &[&str]) -> Option<(Run, PathBuf)> {
+    let shot = dir.join("window.png");
+    let shot_arg = shot.to_str().unwrap().to_string();
+    let mut all = args.to_vec();
+    all.extend(["--exit-when-done", "--screenshot", &shot_arg]);
+    let run = run_viewer(&all)?;
+    run.assert_success();
+    Some((run, shot))
 }
 
 /// [`run_viewer`] with environment variables `env`, handing each line the viewer prints on
@@ -238,22 +250,20 @@ fn mismatches(screenshot: &Path, rect: (f32, f32, f32, f32), size: u32, expected
 #[test]
 fn the_window_shows_the_default_scene_as_the_cpu_renders_it() {
     let dir = tempfile::tempdir().unwrap();
-    let shot = dir.path().join("window.png");
     let size = 96;
-    let Some(run) = run_viewer(&[
-        "view",
-        "--size",
-        &size.to_string(),
-        "--window",
-        "700x500",
-        "--exit-when-done",
-        "--stats",
-        "--screenshot",
-        shot.to_str().unwrap(),
-    ]) else {
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "view",
+            "--size",
+            &size.to_string(),
+            "--window",
+            "700x500",
+            "--stats",
+        ],
+    ) else {
         return;
     };
-    run.assert_success();
     assert!(
         run.stderr.contains("block size 1 at 96×96"),
         "{}",
@@ -271,26 +281,24 @@ fn the_window_shows_the_default_scene_as_the_cpu_renders_it() {
 #[test]
 fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
     let dir = tempfile::tempdir().unwrap();
-    let shot = dir.path().join("orbited.png");
     let saved = dir.path().join("saved.png");
     let size = 80;
-    let Some(run) = run_viewer(&[
-        "--size",
-        &size.to_string(),
-        "--block-size",
-        "8",
-        "--exit-when-done",
-        "--stats",
-        "--script",
-        "wait; orbit 40 15 4; dolly 1; wait; print-camera; save",
-        "--save",
-        saved.to_str().unwrap(),
-        "--screenshot",
-        shot.to_str().unwrap(),
-    ]) else {
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            &size.to_string(),
+            "--block-size",
+            "8",
+            "--stats",
+            "--script",
+            "wait; orbit 40 15 4; dolly 1; wait; print-camera; save",
+            "--save",
+            saved.to_str().unwrap(),
+        ],
+    ) else {
         return;
     };
-    run.assert_success();
     let scene = default_scene().unwrap();
     let camera = printed_camera(&run.stdout);
     assert!(
@@ -322,22 +330,20 @@ fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
 #[test]
 fn a_resized_window_letterboxes_the_same_image() {
     let dir = tempfile::tempdir().unwrap();
-    let shot = dir.path().join("tall.png");
     let size = 64;
-    let Some(run) = run_viewer(&[
-        "--size",
-        &size.to_string(),
-        "--window",
-        "700x500",
-        "--exit-when-done",
-        "--script",
-        "wait; resize 480 640; wait",
-        "--screenshot",
-        shot.to_str().unwrap(),
-    ]) else {
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            &size.to_string(),
+            "--window",
+            "700x500",
+            "--script",
+            "wait; resize 480 640; wait",
+        ],
+    ) else {
         return;
     };
-    run.assert_success();
     let image = image::open(&shot).unwrap();
     assert_eq!(
         (image.width(), image.height()),
@@ -407,18 +413,16 @@ fn a_broken_scene_file_shows_its_error_and_keeps_the_last_good_scene() {
     let broken = dir.path().join("broken.toml");
     std::fs::write(&good, ball_scene([0.0, 2.0, 6.0])).unwrap();
     std::fs::write(&broken, "[camera]\neye = [0, 1]\n").unwrap();
-    let shot = dir.path().join("shot.png");
-    let Some(run) = run_viewer(&[
-        good.to_str().unwrap(),
-        "--exit-when-done",
-        "--script",
-        &format!("wait; open {}; wait", broken.display()),
-        "--screenshot",
-        shot.to_str().unwrap(),
-    ]) else {
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            good.to_str().unwrap(),
+            "--script",
+            &format!("wait; open {}; wait", broken.display()),
+        ],
+    ) else {
         return;
     };
-    run.assert_success();
     // The loader's message, located: file:line:column.
     let located = format!("{}:2:", broken.display());
     assert!(run.stderr.contains(&located), "{}", run.stderr);
@@ -613,27 +617,25 @@ fn busiest_pixel(scene: &Scene, bvh: &Bvh, size: u32) -> RayTree {
 #[test]
 fn a_click_on_a_pixel_shows_its_ray_tree_and_draws_it_over_the_image() {
     let dir = tempfile::tempdir().unwrap();
-    let shot = dir.path().join("inspected.png");
     let size = 64;
     let scene = default_scene().unwrap();
     let (sized_scene, bvh) = sized(&scene, size, scene.camera.spec);
     let tree = busiest_pixel(&sized_scene, &bvh, size);
     assert!(tree.nodes.len() >= 3, "a pixel with secondary rays");
     let (x, y) = tree.pixel;
-    let Some(run) = run_viewer(&[
-        "--size",
-        &size.to_string(),
-        "--window",
-        "1000x600",
-        "--exit-when-done",
-        "--script",
-        &format!("wait; click {x} {y}; wait; print-tree"),
-        "--screenshot",
-        shot.to_str().unwrap(),
-    ]) else {
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            &size.to_string(),
+            "--window",
+            "1000x600",
+            "--script",
+            &format!("wait; click {x} {y}; wait; print-tree"),
+        ],
+    ) else {
         return;
     };
-    run.assert_success();
     // The panel's headings, in the tree's order, each indented by its depth.
     let printed: Vec<&str> = run
         .stdout
@@ -697,23 +699,21 @@ fn a_click_on_a_pixel_shows_its_ray_tree_and_draws_it_over_the_image() {
 #[test]
 fn a_debug_view_chosen_in_the_viewer_renders_as_on_the_cpu() {
     let dir = tempfile::tempdir().unwrap();
-    let shot = dir.path().join("normals.png");
     let size = 64;
-    let Some(run) = run_viewer(&[
-        "--size",
-        &size.to_string(),
-        "--view",
-        "depth",
-        "--exit-when-done",
-        "--stats",
-        "--script",
-        "wait; view normals; wait",
-        "--screenshot",
-        shot.to_str().unwrap(),
-    ]) else {
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            &size.to_string(),
+            "--view",
+            "depth",
+            "--stats",
+            "--script",
+            "wait; view normals; wait",
+        ],
+    ) else {
         return;
     };
-    run.assert_success();
     // Refined to block size 1 in the depth view, then again in the normals view.
     assert!(
         run.stderr.matches("block size 1 at").count() >= 2,
