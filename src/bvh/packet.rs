@@ -54,6 +54,7 @@ impl Bvh {
         if n == 0 {
             return;
         }
+        // Per-ray state lives in fixed arrays; the slots past the last ray copy it, unused.
         let ray = |r: usize| &rays[r.min(n - 1)];
         let sheared: [ShearedRay; PACKET_SIZE] = array::from_fn(|r| ShearedRay::new(ray(r)));
         let mut t_limit = [t_max; PACKET_SIZE];
