@@ -4,7 +4,7 @@
 //! coarser pass traced, so all passes together trace every pixel once. After block size 1,
 //! optional passes add one jittered sample per pixel each (anti-aliasing).
 //!
-//! Each pixel sample is what the tracer's view shows ([`crate::inspect::view_color`]): the
+//! Each pixel sample is what the tracer's view shows ([`crate::inspect::view_colors`]): the
 //! shaded colour, or a debug view, refined by the same passes.
 //!
 //! Passes run on all of rayon's threads, band by band of 8 rows, each band tile by tile of 8 × 8

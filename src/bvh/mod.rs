@@ -1,7 +1,7 @@
 //! The bounding volume hierarchy: a tree of boxes over all bounded primitives, built with the
-//! surface area heuristic as a binary tree ([`build`]), widened to four children per node
-//! ([`widen`]) and flattened into an array of 32-byte nodes. Traversal ([`traverse`]) tests a
-//! node's four children against a ray at once ([`ray_box`]); a tile of coherent eye rays walks
+//! surface area heuristic as a binary tree (`build`), widened to four children per node
+//! (`widen`) and flattened into an array of 32-byte nodes. Traversal (`traverse`) tests a
+//! node's four children against a ray at once (`ray_box`); a tile of coherent eye rays walks
 //! the tree once, together ([`packet`]). Unbounded primitives (planes) are kept in a list
 //! beside the tree and tested against every ray.
 

@@ -1,6 +1,6 @@
 //! The Whitted integrator: the colour seen along a ray, found by building the lecture's ray
 //! tree. At each hit: ambient light, a shadow ray to each light for its diffuse and specular
-//! share ([`lighting`]), then a reflected ray and, through transparent surfaces, a transmitted
+//! share (`lighting`), then a reflected ray and, through transparent surfaces, a transmitted
 //! ray bent by Snell's law ([`scattering`]), recursively, until a ray leaves the scene,
 //! `max_depth` is reached, or the branch's weight falls below `min_weight` (adaptive depth
 //! control).
