@@ -56,12 +56,18 @@ pub fn run(cli: Cli) -> Result<(), String> {
 }
 
 /// Loads the scene `name` names (a TOML or NFF file, or `spd:NAME[:SIZE]`), or the built-in
-/// default scene when there is none. `lighting` applies to NFF and SPD scenes.
+/// default scene when there is none, and prints the reader's warnings. `lighting` applies to
+/// NFF and SPD scenes.
 fn load_scene(name: Option<&str>, lighting: NffLighting) -> Result<Scene, String> {
-    match name {
-        Some(name) => scene::load_any_with(name, lighting).map_err(|e| e.to_string()),
-        None => scene::default_scene().map_err(|e| e.to_string()),
+    let scene = match name {
+        Some(name) => scene::load_any_with(name, lighting),
+        None => scene::default_scene(),
     }
+    .map_err(|e| e.to_string())?;
+    for warning in &scene.warnings {
+        eprintln!("warning: {warning}");
+    }
+    Ok(scene)
 }
 
 /// A rayon pool of `threads` workers (default: one per core).

@@ -84,6 +84,7 @@ pub(crate) fn build_scene(
         material_names: builder.names,
         textures,
         geometry: builder.geometry,
+        warnings: Vec::new(),
     })
 }
 

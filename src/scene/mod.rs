@@ -41,6 +41,10 @@ pub struct Scene {
     pub material_names: Vec<String>,
     pub textures: Vec<Texture>,
     pub geometry: Geometry,
+    /// What the reader accepted but a person should hear about (`file:line: message`): a
+    /// material an OBJ file names but never defines, a face it dropped. The scene renders as
+    /// read; the command line prints these, the viewer shows them.
+    pub warnings: Vec<String>,
 }
 
 impl Scene {
@@ -54,6 +58,7 @@ impl Scene {
             material_names: Vec::new(),
             textures: Vec::new(),
             geometry: Geometry::default(),
+            warnings: Vec::new(),
         }
     }
 
