@@ -3,6 +3,7 @@
 
 use glam::{Vec2, Vec3};
 
+use crate::limits;
 use crate::ray::Ray;
 
 /// The camera as a scene file describes it: where the eye is, what it looks at, which way is up.
@@ -36,7 +37,11 @@ pub enum CameraError {
     /// The up vector is parallel to the view direction, so `u = up × n` is undefined.
     UpParallelToView,
     ViewAngle(f32),
+    /// Outside [`limits::NEAR_RANGE`].
     Near(f32),
+    /// The eye or the look-at point lies past [`limits::MAX_COORDINATE`].
+    Eye(Vec3),
+    LookAt(Vec3),
 }
 
 impl std::fmt::Display for CameraError {
@@ -52,7 +57,20 @@ impl std::fmt::Display for CameraError {
             CameraError::ViewAngle(a) => {
                 write!(f, "view angle must be between 0 and 180 degrees, got {a}")
             }
-            CameraError::Near(n) => write!(f, "near distance must be positive, got {n}"),
+            CameraError::Near(n) => write!(
+                f,
+                "near distance must be from {:e} to {:e}, got {n}",
+                limits::NEAR_RANGE.start(),
+                limits::NEAR_RANGE.end()
+            ),
+            CameraError::Eye(p) => write!(f, "{}", limits::out_of_range_message("the eye", *p)),
+            CameraError::LookAt(p) => {
+                write!(
+                    f,
+                    "{}",
+                    limits::out_of_range_message("the look-at point", *p)
+                )
+            }
         }
     }
 }
@@ -79,8 +97,14 @@ impl Camera {
         if !(spec.view_angle > 0.0 && spec.view_angle < 180.0) {
             return Err(CameraError::ViewAngle(spec.view_angle));
         }
-        if !(spec.near > 0.0 && spec.near.is_finite()) {
+        if !limits::NEAR_RANGE.contains(&spec.near) {
             return Err(CameraError::Near(spec.near));
+        }
+        if !limits::within_range(spec.eye) {
+            return Err(CameraError::Eye(spec.eye));
+        }
+        if !limits::within_range(spec.look_at) {
+            return Err(CameraError::LookAt(spec.look_at));
         }
         let n = (spec.eye - spec.look_at)
             .try_normalize()

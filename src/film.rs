@@ -19,6 +19,11 @@ pub struct Film {
 }
 
 impl Film {
+    /// The memory a `width × height` film takes.
+    pub fn memory_bytes(width: u32, height: u32) -> u64 {
+        u64::from(width) * u64::from(height) * 3 * std::mem::size_of::<AtomicU32>() as u64
+    }
+
     pub fn new(width: u32, height: u32) -> Film {
         let n = width as usize * height as usize * 3;
         Film {

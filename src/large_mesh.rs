@@ -60,6 +60,26 @@ pub fn bumpy_sphere(triangles: usize) -> Mesh {
     mesh
 }
 
+/// Most triangles [`bumpy_sphere_scene`] makes.
+pub const MAX_BUMPY_TRIANGLES: usize = 20_000_000;
+
+/// Memory per triangle while the scene and its BVH are built, at most (measured about 200).
+pub const BUMPY_BYTES_PER_TRIANGLE: u64 = 300;
+
+/// Checks a triangle count for [`bumpy_sphere_scene`]: from 1 to [`MAX_BUMPY_TRIANGLES`], and
+/// within the memory available.
+pub fn check_bumpy_triangles(triangles: usize) -> Result<(), String> {
+    if !(1..=MAX_BUMPY_TRIANGLES).contains(&triangles) {
+        return Err(format!(
+            "the bumpy sphere has from 1 to {MAX_BUMPY_TRIANGLES} triangles, got {triangles}"
+        ));
+    }
+    crate::memory::check(
+        &format!("a bumpy sphere of {triangles} triangles"),
+        triangles as u64 * BUMPY_BYTES_PER_TRIANGLE,
+    )
+}
+
 /// The benchmark scene: the bumpy sphere of `triangles` triangles, 2 units across, on a floor.
 pub fn bumpy_sphere_scene(triangles: usize, width: u32, height: u32) -> Scene {
     let settings = RenderSettings {

@@ -3,6 +3,7 @@
 
 use glam::{Vec2, Vec3};
 
+use crate::limits;
 use crate::shapes::Triangle;
 use crate::transform::Transform;
 
@@ -20,10 +21,22 @@ pub struct Mesh {
 /// Why a mesh cannot be used.
 #[derive(Clone, Debug, PartialEq)]
 pub enum MeshError {
-    IndexOutOfRange { face: usize, index: u32 },
-    NormalCount { normals: usize, positions: usize },
-    UvCount { uvs: usize, positions: usize },
+    IndexOutOfRange {
+        face: usize,
+        index: u32,
+    },
+    NormalCount {
+        normals: usize,
+        positions: usize,
+    },
+    UvCount {
+        uvs: usize,
+        positions: usize,
+    },
+    /// A normal that is not a finite number.
     NotFinite,
+    /// A vertex past [`limits::MAX_COORDINATE`] (or not a number).
+    OutOfRange(Vec3),
 }
 
 impl std::fmt::Display for MeshError {
@@ -40,7 +53,10 @@ impl std::fmt::Display for MeshError {
                 f,
                 "{uvs} texture coordinates for {positions} vertices (need one per vertex, or none)"
             ),
-            MeshError::NotFinite => write!(f, "a vertex or normal is not a finite number"),
+            MeshError::NotFinite => write!(f, "a normal is not a finite number"),
+            MeshError::OutOfRange(p) => {
+                write!(f, "{}", limits::out_of_range_message("a vertex", *p))
+            }
         }
     }
 }
@@ -61,12 +77,10 @@ impl Mesh {
                 positions: n,
             });
         }
-        if !self
-            .positions
-            .iter()
-            .chain(&self.normals)
-            .all(|p| p.is_finite())
-        {
+        if let Some(&p) = self.positions.iter().find(|&&p| !limits::within_range(p)) {
+            return Err(MeshError::OutOfRange(p));
+        }
+        if !self.normals.iter().all(|n| n.is_finite()) {
             return Err(MeshError::NotFinite);
         }
         for (face, f) in self.faces.iter().enumerate() {

@@ -25,6 +25,16 @@ pub enum OutputFormat {
 impl OutputFormat {
     pub const EXTENSIONS: &'static str = "png, ppm, exr, hdr";
 
+    /// Memory that saving an image of `pixels` pixels takes, at most: the linear pixels handed
+    /// to [`save_image`], the encoder's input and what the encoder keeps while it writes.
+    pub fn save_bytes(self, pixels: u64) -> u64 {
+        let per_pixel = match self {
+            OutputFormat::Png | OutputFormat::Ppm => 12 + 3 + 3,
+            OutputFormat::Exr | OutputFormat::Hdr => 12 + 12 + 12,
+        };
+        pixels * per_pixel
+    }
+
     /// The format a file name's extension asks for.
     pub fn from_path(path: &Path) -> Option<OutputFormat> {
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();

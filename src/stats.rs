@@ -14,6 +14,9 @@ pub struct RayCounts {
     pub shadow: u64,
     pub reflected: u64,
     pub transmitted: u64,
+    /// Reflected or transmitted rays not traced because their eye ray's tree had used up
+    /// [`crate::whitted::RAY_BUDGET`]. Not rays: not in [`Self::total`].
+    pub over_budget: u64,
 }
 
 impl RayCounts {
@@ -29,6 +32,7 @@ impl std::ops::AddAssign for RayCounts {
         self.shadow += o.shadow;
         self.reflected += o.reflected;
         self.transmitted += o.transmitted;
+        self.over_budget += o.over_budget;
     }
 }
 
@@ -41,6 +45,7 @@ impl std::ops::Sub for RayCounts {
             shadow: self.shadow - o.shadow,
             reflected: self.reflected - o.reflected,
             transmitted: self.transmitted - o.transmitted,
+            over_budget: self.over_budget - o.over_budget,
         }
     }
 }
@@ -53,6 +58,7 @@ pub struct SharedRayCounts {
     shadow: AtomicU64,
     reflected: AtomicU64,
     transmitted: AtomicU64,
+    over_budget: AtomicU64,
 }
 
 impl SharedRayCounts {
@@ -63,6 +69,7 @@ impl SharedRayCounts {
         self.shadow.fetch_add(c.shadow, Ordering::Relaxed);
         self.reflected.fetch_add(c.reflected, Ordering::Relaxed);
         self.transmitted.fetch_add(c.transmitted, Ordering::Relaxed);
+        self.over_budget.fetch_add(c.over_budget, Ordering::Relaxed);
     }
 
     pub fn get(&self) -> RayCounts {
@@ -72,6 +79,7 @@ impl SharedRayCounts {
             shadow: self.shadow.load(Ordering::Relaxed),
             reflected: self.reflected.load(Ordering::Relaxed),
             transmitted: self.transmitted.load(Ordering::Relaxed),
+            over_budget: self.over_budget.load(Ordering::Relaxed),
         }
     }
 }

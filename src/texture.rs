@@ -1,9 +1,10 @@
 //! Textures: colours that vary over a surface. Solid 3D checkerboards (carved out of space, so
 //! they follow the object), checkerboards in texture coordinates, and images (PNG/JPEG) sampled
-//! with bilinear filtering.
+//! with bilinear filtering. Images keep their 8-bit sRGB texels, three bytes each, and turn
+//! them into linear colours as they are sampled.
 
-use std::path::Path;
-use std::sync::Arc;
+use std::io::Cursor;
+use std::sync::{Arc, LazyLock};
 
 use glam::{Vec2, Vec3};
 
@@ -16,12 +17,13 @@ pub enum Wrap {
     Clamp,
 }
 
-/// An image in linear RGB, row 0 at the top.
+/// An image of 8-bit sRGB texels, row 0 at the top.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TextureImage {
     pub width: u32,
     pub height: u32,
-    pub texels: Vec<Color>,
+    /// `width × height` texels, row by row.
+    pub texels: Vec<[u8; 3]>,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -69,36 +71,35 @@ impl Texture {
 }
 
 impl TextureImage {
-    /// Loads a PNG or JPEG file, converting its sRGB values to linear.
-    pub fn load(path: &Path) -> Result<TextureImage, image::ImageError> {
-        Ok(Self::from_dynamic(image::open(path)?))
+    /// Decodes a PNG or JPEG file's bytes. The image's size is read first, and an image that
+    /// would not fit in memory ([`crate::memory::check`]) is refused before it is decoded.
+    pub fn from_bytes(bytes: &[u8]) -> Result<TextureImage, String> {
+        let reader = image::ImageReader::new(Cursor::new(bytes))
+            .with_guessed_format()
+            .map_err(|e| e.to_string())?;
+        let decoder = reader.into_decoder().map_err(|e| e.to_string())?;
+        let (width, height) = image::ImageDecoder::dimensions(&decoder);
+        let texels = u64::from(width) * u64::from(height);
+        let decoded = image::ImageDecoder::total_bytes(&decoder);
+        crate::memory::check(&format!("the {width}×{height} image"), decoded + texels * 3)?;
+        let image = image::DynamicImage::from_decoder(decoder).map_err(|e| e.to_string())?;
+        let rgb = image.into_rgb8();
+        Ok(TextureImage {
+            width,
+            height,
+            texels: rgb.pixels().map(|p| p.0).collect(),
+        })
     }
 
-    /// Decodes an image held in memory (the built-in scene's textures).
-    pub fn from_bytes(bytes: &[u8]) -> Result<TextureImage, image::ImageError> {
-        Ok(Self::from_dynamic(image::load_from_memory(bytes)?))
-    }
-
-    fn from_dynamic(img: image::DynamicImage) -> TextureImage {
-        let rgb = img.to_rgb8();
-        let texels = rgb
-            .pixels()
-            .map(|p| Color::from_array(p.0.map(|c| srgb_to_linear(c as f32 / 255.0))))
-            .collect();
-        TextureImage {
-            width: rgb.width(),
-            height: rgb.height(),
-            texels,
-        }
-    }
-
+    /// The linear colour of texel (x, y), wrapped into the image.
     fn texel(&self, x: i64, y: i64, wrap: Wrap) -> Color {
         let (w, h) = (self.width as i64, self.height as i64);
         let (x, y) = match wrap {
             Wrap::Repeat => (x.rem_euclid(w), y.rem_euclid(h)),
             Wrap::Clamp => (x.clamp(0, w - 1), y.clamp(0, h - 1)),
         };
-        self.texels[(y * w + x) as usize]
+        let linear = &*SRGB8_TO_LINEAR;
+        Color::from_array(self.texels[(y * w + x) as usize].map(|c| linear[c as usize]))
     }
 
     /// Bilinear sample at `uv`; `v = 0` is the bottom of the image.
@@ -117,6 +118,10 @@ impl TextureImage {
         top.lerp(bottom, fy)
     }
 }
+
+/// [`srgb_to_linear`] of each 8-bit value `c / 255`.
+static SRGB8_TO_LINEAR: LazyLock<[f32; 256]> =
+    LazyLock::new(|| std::array::from_fn(|c| srgb_to_linear(c as f32 / 255.0)));
 
 /// The sRGB transfer function, inverted.
 pub fn srgb_to_linear(c: f32) -> f32 {
@@ -145,7 +150,7 @@ mod tests {
         TextureImage {
             width: 2,
             height: 2,
-            texels: vec![Color::X, Color::Y, Color::Z, Color::ONE],
+            texels: vec![[255, 0, 0], [0, 255, 0], [0, 0, 255], [255, 255, 255]],
         }
     }
 
@@ -190,6 +195,29 @@ mod tests {
         };
         assert_eq!(t.color(Vec2::new(0.1, 0.1), Vec3::ZERO), Color::ZERO);
         assert_eq!(t.color(Vec2::new(0.3, 0.1), Vec3::ZERO), Color::ONE);
+    }
+
+    #[test]
+    fn texels_decode_to_the_linear_value_of_their_srgb_byte() {
+        let img = TextureImage {
+            width: 1,
+            height: 1,
+            texels: vec![[0, 128, 255]],
+        };
+        let c = img.sample(Vec2::splat(0.5), Wrap::Clamp);
+        assert_eq!(c, Color::new(0.0, srgb_to_linear(128.0 / 255.0), 1.0));
+        assert!((c.y - 0.2158605).abs() < 1e-6, "{c}");
+    }
+
+    #[test]
+    fn images_are_decoded_to_three_bytes_a_texel() {
+        let mut png = Vec::new();
+        image::RgbImage::from_pixel(3, 2, image::Rgb([10, 20, 30]))
+            .write_to(&mut Cursor::new(&mut png), image::ImageFormat::Png)
+            .unwrap();
+        let img = TextureImage::from_bytes(&png).unwrap();
+        assert_eq!((img.width, img.height), (3, 2));
+        assert_eq!(img.texels, vec![[10, 20, 30]; 6]);
     }
 
     #[test]

@@ -458,7 +458,8 @@ fn relative_paths_resolve_against_the_scene_files_folder() {
         dir.path().join("grid.png"),
     )
     .unwrap();
-    let text = "[textures.grid]\ntype = \"image\"\nfile = \"../grid.png\"\n";
+    let text = "[textures.grid]\ntype = \"image\"\nfile = \"../grid.png\"\n\
+                [materials.m]\ntexture = \"grid\"\n";
     let scene_path = scenes.join("scene.toml");
     std::fs::write(&scene_path, text).unwrap();
     let scene = load_scene(&scene_path).unwrap_or_else(|e| panic!("{e}"));
@@ -569,7 +570,7 @@ fn wrong_types_say_what_was_expected() {
         "[[objects]]\ntype = \"sphere\"\ncenter = [0, 1]\n",
         3,
         10,
-        "expected an array of length 3",
+        "expected 3 values, got 2",
     );
 }
 
@@ -645,7 +646,7 @@ fn unknown_names_list_the_names_defined() {
 #[test]
 fn missing_files_point_at_the_file_name() {
     assert_error(
-        "[textures.t]\ntype = \"image\"\nfile = \"no-such.png\"\n",
+        "[textures.t]\ntype = \"image\"\nfile = \"no-such.png\"\n[materials.m]\ntexture = \"t\"\n",
         3,
         8,
         "cannot load texture image",
@@ -658,7 +659,8 @@ fn missing_files_point_at_the_file_name() {
     );
     // A file that is there but is not an image.
     assert_error(
-        "[textures.t]\ntype = \"image\"\nfile = \"../models/tetra.obj\"\n",
+        "[textures.t]\ntype = \"image\"\nfile = \"../models/tetra.obj\"\n\
+         [materials.m]\ntexture = \"t\"\n",
         3,
         8,
         "cannot load texture image",

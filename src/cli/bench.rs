@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 
 use clap::Args;
 use raylab::bvh::Bvh;
-use raylab::large_mesh::bumpy_sphere_scene;
+use raylab::large_mesh::{bumpy_sphere_scene, check_bumpy_triangles};
 use raylab::progressive;
 use raylab::scene::{Scene, default_scene, load_any};
 use raylab::whitted::Tracer;
@@ -93,6 +93,7 @@ fn load(name: &str, size: u32) -> Result<Scene, String> {
         let n: usize = n
             .parse()
             .map_err(|_| format!("`{name}`: expected bumpy:N with N a number of triangles"))?;
+        check_bumpy_triangles(n).map_err(|e| format!("`{name}`: {e}"))?;
         bumpy_sphere_scene(n, size, size)
     } else {
         load_any(name).map_err(|e| e.to_string())?

@@ -8,12 +8,13 @@ use indicatif::{ProgressBar, ProgressStyle};
 use raylab::bvh::Bvh;
 use raylab::film::Film;
 use raylab::inspect::DebugView;
+use raylab::memory;
 use raylab::nff::NffLighting;
-use raylab::output::save_image;
+use raylab::output::{OutputFormat, save_image};
 use raylab::progressive::{self, RenderControl};
 use raylab::settings::RenderSettings;
 use raylab::stats::RenderStats;
-use raylab::whitted::Tracer;
+use raylab::whitted::{RAY_BUDGET, Tracer};
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
@@ -82,13 +83,20 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     let mut scene = super::load_scene(args.scene.as_deref(), args.nff_lights)?;
     args.overrides.apply(&mut scene.settings)?;
     let pool = super::thread_pool(args.threads)?;
+    let (width, height) = (scene.settings.width, scene.settings.height);
+    if let Some(format) = OutputFormat::from_path(&args.output) {
+        let pixels = u64::from(width) * u64::from(height);
+        memory::check(
+            &format!("rendering a {width}×{height} image"),
+            Film::memory_bytes(width, height) + format.save_bytes(pixels),
+        )?;
+    }
 
     let build_start = Instant::now();
     let bvh = Bvh::build(&scene.geometry);
     let build_time = build_start.elapsed();
 
     let settings = &scene.settings;
-    let (width, height) = (settings.width, settings.height);
     let film = Film::new(width, height);
     let control = RenderControl::default();
     let tracer = Tracer::new(&scene, &bvh).with_view(args.view);
@@ -112,6 +120,14 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         "{}",
         summary(&scene.settings, &stats, build_time, &args.output)
     );
+    if stats.rays.over_budget > 0 {
+        eprintln!(
+            "warning: {} reflected or transmitted rays were not traced: their pixels' ray trees \
+             used up the budget of {RAY_BUDGET} rays per eye ray (raise min_weight or lower \
+             max_depth)",
+            stats.rays.over_budget
+        );
+    }
     if let Some(legend) = args.view.legend(&tracer) {
         let path = args.output.with_extension("legend.png");
         let (bar_width, bar_height) = LEGEND_SIZE;

@@ -31,6 +31,8 @@ pub enum StopReason {
     TotalInternalReflection,
     /// Reflections or refractions are switched off in the settings.
     Disabled,
+    /// The eye ray's tree has used up its [`crate::whitted::RAY_BUDGET`].
+    RayBudget,
 }
 
 /// An object a shadow ray passed through or was stopped by.

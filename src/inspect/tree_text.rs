@@ -134,6 +134,7 @@ fn reason_text(reason: StopReason) -> &'static str {
         StopReason::MinWeight => "weight below min_weight",
         StopReason::TotalInternalReflection => "total internal reflection",
         StopReason::Disabled => "switched off in the settings",
+        StopReason::RayBudget => "the pixel's ray budget is used up",
     }
 }
 

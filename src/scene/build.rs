@@ -2,7 +2,7 @@
 //! checks that need more than one value, and textures and OBJ files loaded from disk. Every
 //! error points at the value it is about.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::ops::Range;
 use std::sync::Arc;
 
@@ -17,9 +17,10 @@ use super::file::{
 };
 use super::files::SceneFiles;
 use super::obj::load_obj;
-use super::values::{ColorValue, Direction, NonNegative, TexCoord, Vector};
+use super::values::{ColorValue, Direction, Exact, NonNegative, TexCoord, Vector};
 use crate::camera::{Camera, CameraError, CameraSpec};
 use crate::light::Light;
+use crate::limits;
 use crate::material::{Color, Material};
 use crate::mesh::{Mesh, MeshError};
 use crate::primitive::{Geometry, Object};
@@ -51,18 +52,33 @@ pub(crate) fn build_scene(
     let lights = file.lights.into_iter().map(build_light).collect();
 
     let texture_names = Names::new("texture", file.textures.keys(), 0);
-    let textures = file
-        .textures
-        .into_values()
-        .map(|texture| build_texture(texture, source, files))
-        .collect::<Result<_, _>>()?;
-
     let material_names = Names::new("material", file.materials.keys(), DEFAULT_MATERIAL + 1);
     let mut names = vec!["default".to_string()];
     names.extend(file.materials.keys().cloned());
     let mut materials = vec![Material::default()];
     for material in file.materials.into_values() {
         materials.push(build_material(material, &texture_names, source)?);
+    }
+
+    // Only the textures a material uses are loaded (an image can be large), renumbered in
+    // name order.
+    let used: BTreeSet<u32> = materials.iter().filter_map(|m| m.texture).collect();
+    for material in &mut materials {
+        if let Some(t) = &mut material.texture {
+            *t = used.range(..*t).count() as u32;
+        }
+    }
+    let mut warnings = Vec::new();
+    let mut textures = Vec::new();
+    for (index, (name, texture)) in file.textures.into_iter().enumerate() {
+        if used.contains(&(index as u32)) {
+            textures.push(build_texture(texture, source, files)?);
+        } else {
+            warnings.push(format!(
+                "{}: texture `{name}` is not used by any material, so it is not loaded",
+                source.origin.display()
+            ));
+        }
     }
 
     let mut builder = GeometryBuilder {
@@ -84,7 +100,7 @@ pub(crate) fn build_scene(
         material_names: builder.names,
         textures,
         geometry: builder.geometry,
-        warnings: Vec::new(),
+        warnings,
     })
 }
 
@@ -174,6 +190,8 @@ fn build_camera(camera: Option<Spanned<CameraFile>>, source: Source) -> Result<C
     Camera::new(spec).map_err(|error| {
         let key_span = match error {
             CameraError::EyeAtLookAt => file.look_at.or(file.eye).map(|k| k.span()),
+            CameraError::Eye(_) => file.eye.map(|k| k.span()),
+            CameraError::LookAt(_) => file.look_at.map(|k| k.span()),
             CameraError::UpParallelToView => file.up.map(|k| k.span()),
             CameraError::ViewAngle(_) => file.view_angle.map(|k| k.span()),
             CameraError::Near(_) => file.near.map(|k| k.span()),
@@ -239,7 +257,7 @@ fn build_texture(
                 )
             };
             let bytes = files.read(&path).map_err(fail)?;
-            let image = TextureImage::from_bytes(&bytes).map_err(|e| fail(e.to_string()))?;
+            let image = TextureImage::from_bytes(&bytes).map_err(fail)?;
             if image.width == 0 || image.height == 0 {
                 return Err(fail("the image has no pixels".into()));
             }
@@ -249,7 +267,7 @@ fn build_texture(
                     None | Some(WrapFile::Repeat) => Wrap::Repeat,
                     Some(WrapFile::Clamp) => Wrap::Clamp,
                 },
-                scale: scale.map_or(Vec2::ONE, |[u, v]| Vec2::new(u.0, v.0)),
+                scale: scale.map_or(Vec2::ONE, |Exact([u, v])| Vec2::new(u.0, v.0)),
             }
         }
     })
@@ -304,7 +322,14 @@ fn build_transform(
     }
     let transform =
         Transform::from_steps(&steps).map_err(|e| source.error(span.clone(), e.to_string()))?;
-    // Scales that are each fine can still multiply out to something too small to invert.
+    // Steps that are each fine can still multiply out past what single precision holds, or to
+    // something too small to invert.
+    if !transform.world_from_object.is_finite() {
+        return Err(source.error(
+            span,
+            "the transform's steps multiply out past the largest single-precision number",
+        ));
+    }
     if !transform.object_from_world.is_finite() {
         return Err(source.error(span, "the transform squashes the object too flat to invert"));
     }
@@ -314,8 +339,8 @@ fn build_transform(
 /// A mesh of one triangle.
 fn triangle_mesh(
     vertices: [Vector; 3],
-    normals: Option<[Direction; 3]>,
-    uvs: Option<[TexCoord; 3]>,
+    normals: Option<Exact<Direction, 3>>,
+    uvs: Option<Exact<TexCoord, 3>>,
 ) -> Result<Mesh, String> {
     let positions = vertices.map(|v| v.0);
     if Triangle::new(positions, 0).double_area() <= 0.0 {
@@ -323,8 +348,8 @@ fn triangle_mesh(
     }
     Ok(Mesh {
         positions: positions.to_vec(),
-        normals: normals.map_or(Vec::new(), |n| n.map(|n| n.0).to_vec()),
-        uvs: uvs.map_or(Vec::new(), |uv| uv.map(|uv| uv.0).to_vec()),
+        normals: normals.map_or(Vec::new(), |n| n.0.map(|n| n.0).to_vec()),
+        uvs: uvs.map_or(Vec::new(), |uv| uv.0.map(|uv| uv.0).to_vec()),
         faces: vec![[0, 1, 2]],
         material: DEFAULT_MATERIAL,
     })
@@ -353,7 +378,7 @@ impl MeshSpans {
             MeshError::IndexOutOfRange { .. } => self.faces.clone(),
             MeshError::NormalCount { .. } => self.normals.clone(),
             MeshError::UvCount { .. } => self.uvs.clone(),
-            MeshError::NotFinite => self.whole.clone(),
+            MeshError::NotFinite | MeshError::OutOfRange(_) => self.whole.clone(),
         }
     }
 }
@@ -406,7 +431,7 @@ impl GeometryBuilder<'_> {
                 uvs,
             } => {
                 let vertices_span = vertices.span();
-                let mesh = triangle_mesh(vertices.into_inner(), normals, uvs)
+                let mesh = triangle_mesh(vertices.into_inner().0, normals, uvs)
                     .map_err(|message| source.error(vertices_span.clone(), message))?;
                 let material = material.unwrap_or(DEFAULT_MATERIAL);
                 self.add_mesh(mesh, material, transform, &MeshSpans::all(vertices_span))
@@ -430,7 +455,7 @@ impl GeometryBuilder<'_> {
                     uvs: uvs.map_or(Vec::new(), |uv| {
                         uv.get_ref().iter().map(|uv| uv.0).collect()
                     }),
-                    faces: faces.into_inner(),
+                    faces: faces.into_inner().into_iter().map(|f| f.0).collect(),
                     material: DEFAULT_MATERIAL,
                 };
                 let material = material.unwrap_or(DEFAULT_MATERIAL);
@@ -499,8 +524,8 @@ impl GeometryBuilder<'_> {
         }
     }
 
-    /// Adds an analytic shape made by a constructor; the constructor's error is reported at
-    /// `span`.
+    /// Adds an analytic shape made by a constructor; the constructor's error, or the shape
+    /// reaching past [`limits::MAX_COORDINATE`], is reported at `span`.
     fn add_shape(
         &mut self,
         shape: Result<Shape, String>,
@@ -508,7 +533,12 @@ impl GeometryBuilder<'_> {
         material: Option<u32>,
         transform: Option<Transform>,
     ) -> Result<(), SceneError> {
-        let shape = shape.map_err(|message| self.source.error(span, message))?;
+        let shape = shape.map_err(|message| self.source.error(span.clone(), message))?;
+        if let Some(bounds) = shape.bounds() {
+            let bounds = transform.map_or(bounds, |t| t.bounds_to_world(&bounds));
+            limits::check_bounds(&format!("the {}", shape.name()), &bounds)
+                .map_err(|message| self.source.error(span, message))?;
+        }
         self.geometry.objects.push(Object {
             shape,
             transform,

@@ -13,7 +13,8 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::values::{
-    ColorValue, Direction, Finite, Fraction, NonNegative, Positive, ScaleFactors, TexCoord, Vector,
+    ColorValue, Direction, Exact, Finite, Fraction, NonNegative, Positive, ScaleFactors, TexCoord,
+    Vector,
 };
 
 /// The whole file.
@@ -102,7 +103,7 @@ pub enum TextureFile {
         file: Spanned<String>,
         wrap: Option<WrapFile>,
         /// `[su, sv]`: how many times the image repeats across texture space.
-        scale: Option<[Positive; 2]>,
+        scale: Option<Exact<Positive, 2>>,
     },
 }
 
@@ -170,15 +171,15 @@ pub enum ShapeFile {
         normal: Option<Direction>,
     },
     Triangle {
-        vertices: Spanned<[Vector; 3]>,
-        normals: Option<[Direction; 3]>,
-        uvs: Option<[TexCoord; 3]>,
+        vertices: Spanned<Exact<Vector, 3>>,
+        normals: Option<Exact<Direction, 3>>,
+        uvs: Option<Exact<TexCoord, 3>>,
     },
     /// A mesh written out in the file.
     Mesh {
         positions: Vec<Vector>,
         /// Vertex indices, counted from 0.
-        faces: Spanned<Vec<[u32; 3]>>,
+        faces: Spanned<Vec<Exact<u32, 3>>>,
         normals: Option<Spanned<Vec<Direction>>>,
         uvs: Option<Spanned<Vec<TexCoord>>>,
     },

@@ -13,6 +13,7 @@ use super::error::{SceneError, Source};
 use super::file::{OBJECT_KEYS, SceneFile};
 use super::files::SceneFiles;
 use super::retag::retag_document;
+use crate::memory::{self, Bytes};
 
 /// Reads the scene file at `path`. Texture and OBJ file names are relative to its folder.
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
@@ -27,8 +28,18 @@ pub fn parse_scene(text: &str, origin: &Path, base_dir: &Path) -> Result<Scene, 
     parse_scene_with(text, origin, SceneFiles::Folder(base_dir))
 }
 
+/// Memory the TOML reader takes per byte of the file, at most (measured: about 40, for files
+/// of many small tables, such as a million lights).
+const PARSE_BYTES_PER_BYTE: u64 = 48;
+
 /// Reads a scene from `text`, taking the files it names from `files`.
 pub fn parse_scene_with(text: &str, origin: &Path, files: SceneFiles) -> Result<Scene, SceneError> {
+    let size = text.len() as u64;
+    memory::check(
+        &format!("reading this {} file", Bytes(size)),
+        size * PARSE_BYTES_PER_BYTE,
+    )
+    .map_err(|message| SceneError::whole_file(origin, message))?;
     let source = Source { origin, text };
     let mut document = DeTable::parse(text).map_err(|e| source.toml_error(&e))?;
     let shape_keys = retag_document(document.get_mut(), source)?;

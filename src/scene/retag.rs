@@ -32,12 +32,12 @@ pub(crate) fn retag_document(
 ) -> Result<Vec<Range<usize>>, SceneError> {
     if let Some(DeValue::Array(lights)) = root.get_mut("lights").map(Spanned::get_mut) {
         for light in lights.iter_mut() {
-            retag(light, source, "light", "point")?;
+            retag(light, source, "light", Kind::Default("point"))?;
         }
     }
     if let Some(DeValue::Table(textures)) = root.get_mut("textures").map(Spanned::get_mut) {
         for (_, texture) in textures.iter_mut() {
-            retag(texture, source, "texture", "checker3d")?;
+            retag(texture, source, "texture", Kind::Required("checker3d"))?;
         }
     }
     let mut shape_keys = Vec::new();
@@ -49,6 +49,15 @@ pub(crate) fn retag_document(
     Ok(shape_keys)
 }
 
+/// What a table without a `type` is.
+#[derive(Clone, Copy)]
+enum Kind {
+    /// An error; the kind named is the example the message gives.
+    Required(&'static str),
+    /// This kind.
+    Default(&'static str),
+}
+
 /// `{ type = "x", rest… }` becomes `{ x = { rest… } }`. The key `x` takes the position of the
 /// tag's value, so that an unknown kind is reported there; the inner table takes the position
 /// of the whole, so that a missing key is reported at the table.
@@ -56,19 +65,27 @@ fn retag(
     value: &mut Spanned<DeValue<'_>>,
     source: Source,
     what: &str,
-    example: &str,
+    kind: Kind,
 ) -> Result<(), SceneError> {
     let span = value.span();
     let DeValue::Table(table) = value.get_mut() else {
         return Ok(());
     };
-    let Some(tag) = table.remove(TAG) else {
-        return Err(source.error(
-            span,
-            format!(
-                "missing field `{TAG}`: the kind of {what}, for example `{TAG} = \"{example}\"`"
-            ),
-        ));
+    let (Kind::Required(example) | Kind::Default(example)) = kind;
+    let tag = match (table.remove(TAG), kind) {
+        (Some(tag), _) => tag,
+        (None, Kind::Default(default)) => {
+            Spanned::new(span.clone(), DeValue::String(default.into()))
+        }
+        (None, Kind::Required(_)) => {
+            return Err(source.error(
+                span,
+                format!(
+                    "missing field `{TAG}`: the kind of {what}, for example \
+                     `{TAG} = \"{example}\"`"
+                ),
+            ));
+        }
     };
     let tag_span = tag.span();
     let DeValue::String(kind) = tag.into_inner() else {
@@ -104,7 +121,7 @@ fn retag_object(
         }
     }
     shape_keys.extend(table.keys().map(|key| key.span()));
-    retag(value, source, "object", "sphere")?;
+    retag(value, source, "object", Kind::Required("sphere"))?;
     let shape = std::mem::replace(value.get_mut(), DeValue::Table(DeTable::new()));
     object.insert(
         Spanned::new(span.clone(), SHAPE_KEY.into()),

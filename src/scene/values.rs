@@ -1,14 +1,60 @@
-//! Checked values of the scene file: numbers and vectors that must lie in a range. serde rejects
-//! a bad one while it reads it, so the TOML reader points the error at the value's place in the
-//! file.
+//! Checked values of the scene file: numbers and vectors that must lie in a range, and arrays
+//! that must hold exactly so many values. serde rejects a bad one while it reads it, so the TOML
+//! reader points the error at the value's place in the file.
 
 use std::fmt;
 use std::marker::PhantomData;
 
+use arrayvec::ArrayVec;
 use glam::{Vec2, Vec3};
-use serde::de::{Deserialize, Deserializer, Error, Visitor};
+use serde::de::{Deserialize, Deserializer, Error, IgnoredAny, SeqAccess, Visitor};
 
+use crate::limits::{MAX_COORDINATE, WHY, short_vector, within_range};
 use crate::material::Color;
+
+/// An array of exactly `N` values. serde's own `[T; N]` stops reading after `N` and the TOML
+/// reader does not mind what is left, so `[0, 0, 0, 99]` would pass as three numbers; this
+/// counts them all, and too many is the same error as too few.
+#[derive(Clone, Copy, Debug)]
+pub struct Exact<T, const N: usize>(pub [T; N]);
+
+impl<'de, T: Deserialize<'de>, const N: usize> Deserialize<'de> for Exact<T, N> {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_seq(ExactVisitor(PhantomData))
+    }
+}
+
+struct ExactVisitor<T, const N: usize>(PhantomData<fn() -> T>);
+
+impl<'de, T: Deserialize<'de>, const N: usize> Visitor<'de> for ExactVisitor<T, N> {
+    type Value = Exact<T, N>;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "an array of {N} values")
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Exact<T, N>, A::Error> {
+        let mut values = ArrayVec::<T, N>::new();
+        while !values.is_full() {
+            match seq.next_element()? {
+                Some(value) => values.push(value),
+                None => break,
+            }
+        }
+        let mut count = values.len();
+        if values.is_full() {
+            while seq.next_element::<IgnoredAny>()?.is_some() {
+                count += 1;
+            }
+        }
+        match values.into_inner() {
+            Ok(array) if count == N => Ok(Exact(array)),
+            _ => Err(A::Error::custom(format!(
+                "expected {N} values, got {count}"
+            ))),
+        }
+    }
+}
 
 /// Implements `Deserialize` for a checked type by reading `$raw` and checking it with the type's
 /// `TryFrom<$raw>`. The read goes through `deserialize_newtype_struct`, so that the TOML reader
@@ -46,19 +92,24 @@ where
     }
 }
 
-/// A point or offset: three finite numbers.
+/// A point or offset: three numbers within ±[`MAX_COORDINATE`].
 #[derive(Clone, Copy, Debug)]
 pub struct Vector(pub Vec3);
 
-deserialize_checked!(Vector, [f32; 3]);
+deserialize_checked!(Vector, Exact<f32, 3>);
 
-impl TryFrom<[f32; 3]> for Vector {
+impl TryFrom<Exact<f32, 3>> for Vector {
     type Error = String;
 
-    fn try_from(v: [f32; 3]) -> Result<Self, String> {
+    fn try_from(Exact(v): Exact<f32, 3>) -> Result<Self, String> {
         let v = Vec3::from_array(v);
-        if v.is_finite() {
+        if within_range(v) {
             Ok(Vector(v))
+        } else if v.is_finite() {
+            Err(format!(
+                "expected numbers within ±{MAX_COORDINATE:e}, got {}: {WHY}",
+                short_vector(v)
+            ))
         } else {
             Err(format!("expected three finite numbers, got {v}"))
         }
@@ -69,12 +120,12 @@ impl TryFrom<[f32; 3]> for Vector {
 #[derive(Clone, Copy, Debug)]
 pub struct Direction(pub Vec3);
 
-deserialize_checked!(Direction, [f32; 3]);
+deserialize_checked!(Direction, Exact<f32, 3>);
 
-impl TryFrom<[f32; 3]> for Direction {
+impl TryFrom<Exact<f32, 3>> for Direction {
     type Error = String;
 
-    fn try_from(v: [f32; 3]) -> Result<Self, String> {
+    fn try_from(Exact(v): Exact<f32, 3>) -> Result<Self, String> {
         let v = Vec3::from_array(v);
         // `try_normalize` also refuses vectors too long or too short to normalise.
         match v.try_normalize() {
@@ -90,12 +141,12 @@ impl TryFrom<[f32; 3]> for Direction {
 #[derive(Clone, Copy, Debug)]
 pub struct ColorValue(pub Color);
 
-deserialize_checked!(ColorValue, [f32; 3]);
+deserialize_checked!(ColorValue, Exact<f32, 3>);
 
-impl TryFrom<[f32; 3]> for ColorValue {
+impl TryFrom<Exact<f32, 3>> for ColorValue {
     type Error = String;
 
-    fn try_from(c: [f32; 3]) -> Result<Self, String> {
+    fn try_from(Exact(c): Exact<f32, 3>) -> Result<Self, String> {
         let c = Color::from_array(c);
         if c.is_finite() && c.min_element() >= 0.0 {
             Ok(ColorValue(c))
@@ -111,12 +162,12 @@ impl TryFrom<[f32; 3]> for ColorValue {
 #[derive(Clone, Copy, Debug)]
 pub struct ScaleFactors(pub Vec3);
 
-deserialize_checked!(ScaleFactors, [f32; 3]);
+deserialize_checked!(ScaleFactors, Exact<f32, 3>);
 
-impl TryFrom<[f32; 3]> for ScaleFactors {
+impl TryFrom<Exact<f32, 3>> for ScaleFactors {
     type Error = String;
 
-    fn try_from(s: [f32; 3]) -> Result<Self, String> {
+    fn try_from(Exact(s): Exact<f32, 3>) -> Result<Self, String> {
         let s = Vec3::from_array(s);
         if s.is_finite() && !s.cmpeq(Vec3::ZERO).any() {
             Ok(ScaleFactors(s))
@@ -132,12 +183,12 @@ impl TryFrom<[f32; 3]> for ScaleFactors {
 #[derive(Clone, Copy, Debug)]
 pub struct TexCoord(pub Vec2);
 
-deserialize_checked!(TexCoord, [f32; 2]);
+deserialize_checked!(TexCoord, Exact<f32, 2>);
 
-impl TryFrom<[f32; 2]> for TexCoord {
+impl TryFrom<Exact<f32, 2>> for TexCoord {
     type Error = String;
 
-    fn try_from(uv: [f32; 2]) -> Result<Self, String> {
+    fn try_from(Exact(uv): Exact<f32, 2>) -> Result<Self, String> {
         let uv = Vec2::from_array(uv);
         if uv.is_finite() {
             Ok(TexCoord(uv))
@@ -236,13 +287,18 @@ mod tests {
 
     #[test]
     fn vectors_reject_what_they_cannot_be() {
-        assert!(Vector::try_from([0.0, f32::NAN, 0.0]).is_err());
-        assert!(Direction::try_from([0.0; 3]).is_err());
-        assert!(Direction::try_from([1e30, 0.0, 0.0]).is_err());
-        assert_eq!(Direction::try_from([0.0, 0.0, 2.0]).unwrap().0, Vec3::Z);
-        assert!(ColorValue::try_from([1.0, -0.1, 0.0]).is_err());
-        assert!(ScaleFactors::try_from([1.0, 0.0, 1.0]).is_err());
-        assert!(ScaleFactors::try_from([-1.0, 2.0, 1.0]).is_ok());
-        assert!(TexCoord::try_from([f32::INFINITY, 0.0]).is_err());
+        assert!(Vector::try_from(Exact([0.0, f32::NAN, 0.0])).is_err());
+        assert!(Vector::try_from(Exact([0.0, 0.0, 3e38])).is_err());
+        assert!(Vector::try_from(Exact([0.0, 0.0, -1e15])).is_ok());
+        assert!(Direction::try_from(Exact([0.0; 3])).is_err());
+        assert!(Direction::try_from(Exact([1e30, 0.0, 0.0])).is_err());
+        assert_eq!(
+            Direction::try_from(Exact([0.0, 0.0, 2.0])).unwrap().0,
+            Vec3::Z
+        );
+        assert!(ColorValue::try_from(Exact([1.0, -0.1, 0.0])).is_err());
+        assert!(ScaleFactors::try_from(Exact([1.0, 0.0, 1.0])).is_err());
+        assert!(ScaleFactors::try_from(Exact([-1.0, 2.0, 1.0])).is_ok());
+        assert!(TexCoord::try_from(Exact([f32::INFINITY, 0.0])).is_err());
     }
 }

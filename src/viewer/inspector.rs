@@ -28,6 +28,7 @@ fn stop_text(reason: StopReason) -> &'static str {
         StopReason::MinWeight => "adaptive threshold (weight below min weight)",
         StopReason::TotalInternalReflection => "total internal reflection",
         StopReason::Disabled => "switched off in the settings",
+        StopReason::RayBudget => "ray budget of the pixel used up",
     }
 }
 

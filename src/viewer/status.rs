@@ -49,9 +49,14 @@ pub fn status_line(s: &RenderStatus) -> String {
     };
     let r = &s.rays;
     let mrays = r.total() as f64 / s.elapsed.as_secs_f64().max(1e-9) / 1e6;
+    let over_budget = if r.over_budget > 0 {
+        format!(" · {} rays cut by the ray budget", r.over_budget)
+    } else {
+        String::new()
+    };
     format!(
         "{state} · ms per pass: {pass_times}\nrays: {} eye ({} hit), {} shadow, {} reflected, {} \
-         transmitted · {mrays:.2} Mrays/s · {:.0} fps",
+         transmitted{over_budget} · {mrays:.2} Mrays/s · {:.0} fps",
         r.primary, r.primary_hits, r.shadow, r.reflected, r.transmitted, s.fps
     )
 }
@@ -78,6 +83,7 @@ mod tests {
                 shadow: 500_000,
                 reflected: 300_000,
                 transmitted: 200_000,
+                over_budget: 7,
             },
             elapsed: Duration::from_secs(1),
             fps: 59.6,
@@ -85,6 +91,10 @@ mod tests {
         let line = status_line(&s);
         assert!(line.starts_with("pass 2/5 · block 8 · 25%"), "{line}");
         assert!(line.contains("ms per pass: 1.2 / 12.3\nrays:"), "{line}");
+        assert!(
+            line.contains("transmitted · 7 rays cut by the ray budget"),
+            "{line}"
+        );
         assert!(
             line.contains("1000000 eye (900000 hit), 500000 shadow"),
             "{line}"

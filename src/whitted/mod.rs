@@ -2,8 +2,8 @@
 //! tree. At each hit: ambient light, a shadow ray to each light for its diffuse and specular
 //! share (`lighting`), then a reflected ray and, through transparent surfaces, a transmitted
 //! ray bent by Snell's law ([`scattering`]), recursively, until a ray leaves the scene,
-//! `max_depth` is reached, or the branch's weight falls below `min_weight` (adaptive depth
-//! control).
+//! `max_depth` is reached, the branch's weight falls below `min_weight` (adaptive depth
+//! control), or the tree has used up its [`RAY_BUDGET`].
 //!
 //! The tracing functions are generic over a [`TreeObserver`] that hears the tree as it grows.
 //! The renderer passes `()`, which compiles away; the inspector records the tree with the very
@@ -25,6 +25,14 @@ use crate::stats::RayCounts;
 
 /// Eye rays start at the eye but only see what lies beyond the image plane, at `t = 1`.
 pub const EYE_RAY_T_MIN: f32 = 1.0;
+
+/// Most reflected and transmitted rays one eye ray's tree may trace. A tree can double at
+/// every level (two nested glass balls with `min_weight = 0` and `max_depth = 64` would need
+/// about 3·10¹³ rays for one pixel), so the budget bounds the work per pixel, and what the
+/// inspector records, at about a millisecond. A full binary tree ten levels deep needs 1022;
+/// trees with adaptive depth control on stay far below that. Branches past the budget are cut,
+/// depth first, and counted in [`RayCounts::over_budget`].
+pub const RAY_BUDGET: u64 = 1024;
 
 /// A scene and its BVH, ready to trace, and what the rendered image shows.
 #[derive(Clone, Copy)]
@@ -97,10 +105,15 @@ impl<'a> Tracer<'a> {
         observer: &mut O,
     ) -> Color {
         counts.primary += 1;
+        let branch = Branch {
+            depth: 1,
+            weight: 1.0,
+            budget_end: counts.reflected + counts.transmitted + RAY_BUDGET,
+        };
         let color = match hit {
             Some(hit) => {
                 counts.primary_hits += 1;
-                self.shade(ray, &hit, 1, 1.0, counts, observer)
+                self.shade(ray, &hit, branch, counts, observer)
             }
             None => self.miss(observer),
         };
@@ -108,12 +121,11 @@ impl<'a> Tracer<'a> {
         color
     }
 
-    /// The colour seen along a secondary ray at `depth` carrying `weight`.
+    /// The colour seen along a secondary ray of `branch`.
     fn trace<O: TreeObserver>(
         &self,
         ray: &Ray,
-        depth: u32,
-        weight: f32,
+        branch: Branch,
         counts: &mut RayCounts,
         observer: &mut O,
     ) -> Color {
@@ -122,7 +134,7 @@ impl<'a> Tracer<'a> {
             .bvh
             .closest_hit_counted(geometry, ray, 0.0, f32::INFINITY, observer);
         let color = match hit {
-            Some(hit) => self.shade(ray, &hit, depth, weight, counts, observer),
+            Some(hit) => self.shade(ray, &hit, branch, counts, observer),
             None => self.miss(observer),
         };
         observer.done(color);
@@ -152,11 +164,11 @@ impl<'a> Tracer<'a> {
         &self,
         ray: &Ray,
         hit: &Hit,
-        depth: u32,
-        weight: f32,
+        branch: Branch,
         counts: &mut RayCounts,
         observer: &mut O,
     ) -> Color {
+        let Branch { depth, weight, .. } = branch;
         let settings = &self.scene.settings;
         let surface = self.scene.geometry.surface(ray, hit);
         let material = &self.scene.materials[surface.material as usize];
@@ -190,7 +202,7 @@ impl<'a> Tracer<'a> {
         let scattering = scattering(material, dir, normal, entering);
         let reflect_weight = weight * scattering.reflect;
         if scattering.reflect > 0.0
-            && self.traces_branch(RayKind::Reflected, reflect_weight, observer)
+            && self.traces_branch(RayKind::Reflected, reflect_weight, branch, counts, observer)
         {
             counts.reflected += 1;
             let reflected = Ray::new(
@@ -205,8 +217,8 @@ impl<'a> Tracer<'a> {
                 reflect_weight,
                 scale,
             );
-            color += scattering.reflect
-                * self.trace(&reflected, depth + 1, reflect_weight, counts, observer);
+            let child = branch.child(reflect_weight);
+            color += scattering.reflect * self.trace(&reflected, child, counts, observer);
         }
         let transmit_weight = weight * scattering.transmit;
         match scattering.refracted {
@@ -217,7 +229,13 @@ impl<'a> Tracer<'a> {
             ),
             Some(refracted)
                 if scattering.transmit > 0.0
-                    && self.traces_branch(RayKind::Transmitted, transmit_weight, observer) =>
+                    && self.traces_branch(
+                        RayKind::Transmitted,
+                        transmit_weight,
+                        branch,
+                        counts,
+                        observer,
+                    ) =>
             {
                 counts.transmitted += 1;
                 let transmitted =
@@ -230,19 +248,26 @@ impl<'a> Tracer<'a> {
                     transmit_weight,
                     scale,
                 );
-                color +=
-                    scale * self.trace(&transmitted, depth + 1, transmit_weight, counts, observer);
+                let child = branch.child(transmit_weight);
+                color += scale * self.trace(&transmitted, child, counts, observer);
             }
             _ => {}
         }
         color
     }
 
-    /// Whether a child ray of `kind` carrying `weight` is traced: its kind is switched on and
-    /// its weight is at least `min_weight` (adaptive depth control). If not, the observer hears
-    /// why.
+    /// Whether a child ray of `kind` carrying `weight` is traced from `branch`: its kind is
+    /// switched on, its weight is at least `min_weight` (adaptive depth control) and the tree
+    /// has budget left. If not, the observer hears why.
     #[inline(always)]
-    fn traces_branch<O: TreeObserver>(&self, kind: RayKind, weight: f32, observer: &mut O) -> bool {
+    fn traces_branch<O: TreeObserver>(
+        &self,
+        kind: RayKind,
+        weight: f32,
+        branch: Branch,
+        counts: &mut RayCounts,
+        observer: &mut O,
+    ) -> bool {
         let settings = &self.scene.settings;
         let enabled = match kind {
             RayKind::Reflected => settings.reflections,
@@ -252,10 +277,36 @@ impl<'a> Tracer<'a> {
             StopReason::Disabled
         } else if weight < settings.min_weight {
             StopReason::MinWeight
+        } else if counts.reflected + counts.transmitted >= branch.budget_end {
+            counts.over_budget += 1;
+            StopReason::RayBudget
         } else {
             return true;
         };
         observer.cut(kind, reason, weight);
         false
+    }
+}
+
+/// Where a ray stands in its eye ray's tree.
+#[derive(Clone, Copy, Debug)]
+struct Branch {
+    /// The eye ray is depth 1.
+    depth: u32,
+    /// The product of the reflection and transmission weights from the eye.
+    weight: f32,
+    /// The tree's budget runs out when the counts of reflected plus transmitted rays reach
+    /// this ([`RAY_BUDGET`] past their value when the eye ray started).
+    budget_end: u64,
+}
+
+impl Branch {
+    /// A child ray one level deeper, carrying `weight`.
+    fn child(self, weight: f32) -> Branch {
+        Branch {
+            depth: self.depth + 1,
+            weight,
+            ..self
+        }
     }
 }
