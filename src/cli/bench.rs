@@ -6,12 +6,14 @@
 //! `--repeat` times and the medians are reported; `--scaling` also renders each scene on one
 //! thread, interleaved with the other renders so that both see the same machine.
 
+use std::io::Write;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use clap::Args;
 use raylab::bvh::Bvh;
 use raylab::large_mesh::{bumpy_sphere_scene, check_bumpy_triangles};
+use raylab::output::{check_writable, write_atomically};
 use raylab::progressive;
 use raylab::scene::{Scene, default_scene, load_any};
 use raylab::whitted::Tracer;
@@ -59,6 +61,9 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
     if args.repeat == 0 {
         return Err("--repeat must be at least 1".into());
     }
+    if let Some(path) = &args.json {
+        check_writable(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
     let pool = super::thread_pool(args.threads)?;
     let single = if args.scaling {
         Some(super::thread_pool(Some(1))?)
@@ -71,16 +76,19 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
         args.scenes.clone()
     };
     let threads = pool.current_num_threads();
-    println!("{}×{} pixels, {threads} threads", args.size, args.size);
-    bench_report::print_header(args.scaling);
+    super::print_out(|out| {
+        writeln!(out, "{}×{} pixels, {threads} threads", args.size, args.size)?;
+        bench_report::write_header(out, args.scaling)
+    })?;
     let mut results = Vec::new();
     for name in &names {
         let result = bench_scene(name, &args, &pool, single.as_ref())?;
-        bench_report::print_row(&result);
+        super::print_out(|out| bench_report::write_row(out, &result))?;
         results.push(result);
     }
     if let Some(path) = &args.json {
-        std::fs::write(path, bench_report::to_json(&results, args.size, threads))
+        let json = bench_report::to_json(&results, args.size, threads);
+        write_atomically(path, |e| e, |out| out.write_all(json.as_bytes()))
             .map_err(|e| format!("{}: {e}", path.display()))?;
     }
     Ok(())

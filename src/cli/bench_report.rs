@@ -1,6 +1,7 @@
 //! What `raylab bench` measured for a scene, and how it is shown: a table row on the terminal,
 //! and JSON.
 
+use std::io::{self, Write};
 use std::time::Duration;
 
 use raylab::stats::RayCounts;
@@ -49,8 +50,10 @@ fn mib(bytes: Option<u64>) -> String {
     bytes.map_or("-".into(), |b| format!("{:.1}", b as f64 / 1048576.0))
 }
 
-pub fn print_header(scaling: bool) {
-    print!(
+/// The table's header line.
+pub fn write_header(out: &mut impl Write, scaling: bool) -> io::Result<()> {
+    write!(
+        out,
         "{:<14} {:>8} {:>8} {:>8} {:>8} {:>9} {:>8} {:>8} {:>8} {:>8} {:>8}",
         "scene",
         "prims",
@@ -63,15 +66,17 @@ pub fn print_header(scaling: bool) {
         "reflect",
         "refract",
         "Mrays/s"
-    );
+    )?;
     if scaling {
-        print!(" {:>9} {:>7}", "1-thr ms", "scaling");
+        write!(out, " {:>9} {:>7}", "1-thr ms", "scaling")?;
     }
-    println!(" {:>7} {:>8}", "B/prim", "peak MiB");
+    writeln!(out, " {:>7} {:>8}", "B/prim", "peak MiB")
 }
 
-pub fn print_row(r: &BenchResult) {
-    print!(
+/// One scene's line of the table.
+pub fn write_row(out: &mut impl Write, r: &BenchResult) -> io::Result<()> {
+    write!(
+        out,
         "{:<14} {:>8} {:>8.1} {:>8.1} {:>8.2} {:>9.1} {:>8} {:>8} {:>8} {:>8} {:>8.2}",
         r.name,
         r.primitives,
@@ -84,15 +89,16 @@ pub fn print_row(r: &BenchResult) {
         r.rays.reflected,
         r.rays.transmitted,
         r.mrays_per_second(),
-    );
+    )?;
     if let (Some(one), Some(scaling)) = (r.render_one_thread, r.scaling()) {
-        print!(" {:>9.1} {:>7.2}", ms(one), scaling);
+        write!(out, " {:>9.1} {:>7.2}", ms(one), scaling)?;
     }
-    println!(
+    writeln!(
+        out,
         " {:>7.1} {:>8}",
         r.bytes_per_primitive(),
         mib(r.peak_rss_bytes)
-    );
+    )
 }
 
 pub fn to_json(results: &[BenchResult], size: u32, threads: usize) -> String {

@@ -1,7 +1,6 @@
 //! `raylab gen`: one of the built-in SPD scenes as an NFF file, or on standard output.
 
-use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::Args;
 use raylab::output::write_atomically;
@@ -20,6 +19,9 @@ pub struct GenArgs {
 }
 
 pub fn run(args: GenArgs) -> Result<(), String> {
+    if let Some(path) = &args.output {
+        check_nff_extension(path)?;
+    }
     let database = args.database;
     let size = args.size.unwrap_or(database.standard_size());
     let document = database.generate(size)?;
@@ -32,14 +34,23 @@ pub fn run(args: GenArgs) -> Result<(), String> {
                 document.primitive_counts(),
                 path.display()
             );
+            Ok(())
         }
-        None => {
-            let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-            document
-                .write_nff(&mut out)
-                .and_then(|()| out.flush())
-                .map_err(|e| format!("cannot write to standard output: {e}"))?;
-        }
+        None => super::print_out(|out| document.write_nff(out)),
     }
-    Ok(())
+}
+
+/// `gen` writes NFF: an output named otherwise (`x.png`) is a mistake, not a wish.
+fn check_nff_extension(path: &Path) -> Result<(), String> {
+    let is_nff = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("nff"));
+    if is_nff {
+        Ok(())
+    } else {
+        Err(format!(
+            "-o/--output {}: gen writes NFF, so the file name must end in .nff",
+            path.display()
+        ))
+    }
 }

@@ -1,5 +1,7 @@
 //! `raylab inspect`: the ray tree of one pixel, as text or JSON.
 
+use std::io::Write;
+
 use clap::Args;
 use raylab::bvh::Bvh;
 use raylab::inspect::trace_ray_tree;
@@ -47,12 +49,12 @@ pub fn run(args: InspectArgs) -> Result<(), String> {
     }
     let bvh = Bvh::build(&scene.geometry);
     let tree = trace_ray_tree(&Tracer::new(&scene, &bvh), x, y);
-    if args.json {
+    let text = if args.json {
         let json = serde_json::to_string_pretty(&tree)
             .map_err(|e| format!("cannot write the tree as JSON: {e}"))?;
-        println!("{json}");
+        json + "\n"
     } else {
-        print!("{}", tree.to_text());
-    }
-    Ok(())
+        tree.to_text()
+    };
+    super::print_out(|out| out.write_all(text.as_bytes()))
 }

@@ -1,4 +1,6 @@
-//! The command line: its arguments (clap) and the subcommands.
+//! The command line: its arguments (clap) and the subcommands, and what they share: loading
+//! a scene, the `--threads` limit, writing to standard output, and removing unfinished files
+//! when a signal stops the program.
 
 mod bench;
 mod bench_report;
@@ -6,6 +8,8 @@ mod generate;
 mod inspect;
 mod render;
 mod view;
+
+use std::io::{self, BufWriter, StdoutLock, Write};
 
 use clap::{Parser, Subcommand};
 use raylab::nff::NffLighting;
@@ -45,6 +49,7 @@ enum Command {
 
 /// Runs the command; the error is the message to print.
 pub fn run(cli: Cli) -> Result<(), String> {
+    remove_unfinished_files_on_signals()?;
     match cli.command {
         Some(Command::Render(args)) => render::run(args),
         Some(Command::Gen(args)) => generate::run(args),
@@ -72,11 +77,62 @@ fn load_scene(name: Option<&str>, lighting: NffLighting) -> Result<Scene, String
 
 /// A rayon pool of `threads` workers (default: one per core).
 fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, String> {
-    if threads == Some(0) {
-        return Err("--threads must be at least 1".into());
-    }
     rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.unwrap_or(0))
+        .num_threads(thread_count(threads)?)
         .build()
         .map_err(|e| format!("cannot start worker threads: {e}"))
+}
+
+/// The most `--threads` per core: more only adds overhead (and a mistyped huge number would
+/// start thousands of threads).
+const THREADS_PER_CORE: usize = 4;
+
+/// Checks `--threads`: from 1 to [`THREADS_PER_CORE`] per core. Left out, it is 0, which rayon
+/// (and the viewer) read as one thread per core.
+fn thread_count(threads: Option<usize>) -> Result<usize, String> {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let most = THREADS_PER_CORE * cores;
+    match threads {
+        None => Ok(0),
+        Some(0) => Err("--threads must be at least 1".into()),
+        Some(n) if n > most => Err(format!(
+            "--threads {n} is too many: at most {most} ({THREADS_PER_CORE} per core, and this \
+             machine has {cores} cores)"
+        )),
+        Some(n) => Ok(n),
+    }
+}
+
+/// Writes to standard output with `write`. When standard output is closed (its reader, such
+/// as `head`, has had enough), exits quietly with status 0, as Unix tools do.
+fn print_out(
+    write: impl FnOnce(&mut BufWriter<StdoutLock<'static>>) -> io::Result<()>,
+) -> Result<(), String> {
+    let mut out = BufWriter::new(io::stdout().lock());
+    match write(&mut out).and_then(|()| out.flush()) {
+        Err(e) if e.kind() == io::ErrorKind::BrokenPipe => std::process::exit(0),
+        result => result.map_err(|e| format!("cannot write to standard output: {e}")),
+    }
+}
+
+/// On SIGINT, SIGTERM or SIGHUP, removes the temporary files of the writes in progress
+/// ([`raylab::output::write_atomically`]) and exits with status 128 + the signal's number, as a shell
+/// reports a process the signal stopped.
+#[cfg(unix)]
+fn remove_unfinished_files_on_signals() -> Result<(), String> {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP])
+        .map_err(|e| format!("cannot handle signals: {e}"))?;
+    std::thread::spawn(move || {
+        if let Some(signal) = signals.forever().next() {
+            raylab::output::remove_temporary_files(|| std::process::exit(128 + signal));
+        }
+    });
+    Ok(())
+}
+
+/// Elsewhere an interrupted write may leave its temporary file behind.
+#[cfg(not(unix))]
+fn remove_unfinished_files_on_signals() -> Result<(), String> {
+    Ok(())
 }

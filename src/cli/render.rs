@@ -1,5 +1,6 @@
 //! `raylab render`: a scene to an image file, with a progress bar and a one-line summary.
 
+use std::io::Write;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -10,7 +11,7 @@ use raylab::film::Film;
 use raylab::inspect::DebugView;
 use raylab::memory;
 use raylab::nff::NffLighting;
-use raylab::output::{OutputFormat, save_image};
+use raylab::output::{check_image_path, save_image};
 use raylab::progressive::{self, RenderControl};
 use raylab::settings::RenderSettings;
 use raylab::stats::RenderStats;
@@ -80,17 +81,17 @@ impl SettingsOverrides {
 }
 
 pub fn run(args: RenderArgs) -> Result<(), String> {
+    // Before any long work: the scene, the BVH, the render.
+    let format = check_image_path(&args.output).map_err(|e| e.to_string())?;
     let mut scene = super::load_scene(args.scene.as_deref(), args.nff_lights)?;
     args.overrides.apply(&mut scene.settings)?;
     let pool = super::thread_pool(args.threads)?;
     let (width, height) = (scene.settings.width, scene.settings.height);
-    if let Some(format) = OutputFormat::from_path(&args.output) {
-        let pixels = u64::from(width) * u64::from(height);
-        memory::check(
-            &format!("rendering a {width}×{height} image"),
-            Film::memory_bytes(width, height) + format.save_bytes(pixels),
-        )?;
-    }
+    let pixels = u64::from(width) * u64::from(height);
+    memory::check(
+        &format!("rendering a {width}×{height} image"),
+        Film::memory_bytes(width, height) + format.save_bytes(pixels),
+    )?;
 
     let build_start = Instant::now();
     let bvh = Bvh::build(&scene.geometry);
@@ -100,6 +101,11 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     let film = Film::new(width, height);
     let control = RenderControl::default();
     let tracer = Tracer::new(&scene, &bvh).with_view(args.view);
+    let legend = args.view.legend(&tracer);
+    let legend_path = args.output.with_extension("legend.png");
+    if legend.is_some() {
+        check_image_path(&legend_path).map_err(|e| e.to_string())?;
+    }
     let total = u64::from(width) * u64::from(height) * u64::from(settings.samples);
     let bar = progress_bar(total);
     let stats = std::thread::scope(|s| {
@@ -116,10 +122,11 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     bar.finish_and_clear();
 
     save_image(&args.output, width, height, &film.pixels()).map_err(|e| e.to_string())?;
-    println!(
-        "{}",
-        summary(&scene.settings, &stats, build_time, &args.output)
-    );
+    if let Some(legend) = &legend {
+        let (bar_width, bar_height) = LEGEND_SIZE;
+        let bar_image = legend.bar_image(bar_width, bar_height);
+        save_image(&legend_path, bar_width, bar_height, &bar_image).map_err(|e| e.to_string())?;
+    }
     if stats.rays.over_budget > 0 {
         eprintln!(
             "warning: {} reflected or transmitted rays were not traced: their pixels' ray trees \
@@ -128,19 +135,18 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
             stats.rays.over_budget
         );
     }
-    if let Some(legend) = args.view.legend(&tracer) {
-        let path = args.output.with_extension("legend.png");
-        let (bar_width, bar_height) = LEGEND_SIZE;
-        save_image(
-            &path,
-            bar_width,
-            bar_height,
-            &legend.bar_image(bar_width, bar_height),
-        )
-        .map_err(|e| e.to_string())?;
-        println!("{} → {}", legend.to_text(), path.display());
-    }
-    Ok(())
+    // Printed once every file is written: a closed standard output ends the program.
+    super::print_out(|out| {
+        writeln!(
+            out,
+            "{}",
+            summary(settings, &stats, build_time, &args.output)
+        )?;
+        if let Some(legend) = &legend {
+            writeln!(out, "{} → {}", legend.to_text(), legend_path.display())?;
+        }
+        Ok(())
+    })
 }
 
 /// Size of the colour bar image written beside a debug view's image.

@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use raylab::inspect::DebugView;
+use raylab::output::check_writable;
 
 use crate::viewer::{self, Options, Script};
 
@@ -74,11 +75,12 @@ fn parse_size(text: &str) -> Result<(u32, u32), String> {
 }
 
 pub fn run(args: ViewArgs) -> Result<(), String> {
-    if args.threads == Some(0) {
-        return Err("--threads must be at least 1".into());
-    }
-    if args.screenshot.is_some() && !args.exit_when_done {
-        return Err("--screenshot is taken when the viewer exits: add --exit-when-done".into());
+    let threads = super::thread_count(args.threads)?;
+    if let Some(path) = &args.screenshot {
+        if !args.exit_when_done {
+            return Err("--screenshot is taken when the viewer exits: add --exit-when-done".into());
+        }
+        check_writable(path).map_err(|e| format!("{}: {e}", path.display()))?;
     }
     viewer::run(Options {
         scene: args.scene,
@@ -87,7 +89,7 @@ pub fn run(args: ViewArgs) -> Result<(), String> {
         max_depth: args.max_depth,
         samples: args.samples,
         view: args.view,
-        threads: args.threads.unwrap_or(0),
+        threads,
         window: args.window.unwrap_or((1100, 720)),
         save_path: args.save,
         screenshot: args.screenshot,
