@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use raylab::camera::CameraSpec;
 use raylab::film::Film;
-use raylab::output::save_image;
+use raylab::output::{save_image, write_atomically};
 
 /// The camera as a scene file's `[camera]` table. Numbers are written in full (Rust's shortest
 /// round-tripping form), so reading the snippet back gives exactly this camera.
@@ -32,28 +32,17 @@ pub fn camera_path(image: &Path) -> PathBuf {
 pub fn save_view(path: &Path, film: &Film, camera: &CameraSpec) -> Result<String, String> {
     save_image(path, film.width(), film.height(), &film.pixels()).map_err(|e| e.to_string())?;
     let snippet_path = camera_path(path);
-    write_atomically(&snippet_path, camera_snippet(camera).as_bytes())?;
+    let snippet = camera_snippet(camera);
+    write_atomically(
+        &snippet_path,
+        |e| format!("{}: {e}", snippet_path.display()),
+        |out| out.write_all(snippet.as_bytes()).map_err(|e| e.to_string()),
+    )?;
     Ok(format!(
         "saved {} and {}",
         path.display(),
         snippet_path.display()
     ))
-}
-
-fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    let fail = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let mut temp = tempfile::Builder::new()
-        .prefix(".raylab-")
-        .suffix(".tmp")
-        .tempfile_in(dir)
-        .map_err(|e| fail(&e))?;
-    temp.write_all(bytes).map_err(|e| fail(&e))?;
-    temp.persist(path).map_err(|e| fail(&e.error))?;
-    Ok(())
 }
 
 #[cfg(test)]
