@@ -510,6 +510,47 @@ fn comments_run_to_the_end_of_the_line_anywhere() {
     assert_eq!(scene.geometry.objects.len(), 1);
 }
 
+// ---- bytes that are not plain ASCII text --------------------------------------------------
+
+/// Loads `bytes` as an NFF file.
+fn load_bytes(bytes: &[u8]) -> Result<Scene, SceneError> {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bytes.nff");
+    std::fs::write(&path, bytes).unwrap();
+    load_nff(&path, NffLighting::Readme)
+}
+
+#[test]
+fn latin1_comments_a_byte_order_mark_and_a_dos_end_of_file_are_read() {
+    let text = with_head("s 0 0 0 1 # the unit sphere\n");
+    let cases = [
+        (
+            "a Latin-1 comment",
+            [b"# caf\xe9 cr\xe8me\n".as_slice(), text.as_bytes()].concat(),
+        ),
+        (
+            "a byte-order mark",
+            [b"\xef\xbb\xbf".as_slice(), text.as_bytes()].concat(),
+        ),
+        (
+            "a DOS end-of-file mark",
+            [text.as_bytes(), b"\x1a"].concat(),
+        ),
+    ];
+    for (what, bytes) in cases {
+        let scene = load_bytes(&bytes).unwrap_or_else(|e| panic!("{what}: {e}"));
+        assert_eq!(scene.geometry.objects.len(), 1, "{what}");
+    }
+}
+
+#[test]
+fn a_byte_that_is_not_text_outside_a_comment_is_an_error_where_it_is() {
+    let bytes = [with_head("").as_bytes(), b"# caf\xe9\ns 0 0 \xe9 1\n"].concat();
+    let error = load_bytes(&bytes).unwrap_err();
+    assert_eq!((error.line, error.column), (10, 7), "{error}");
+    assert!(error.message.contains("expected a number"), "{error}");
+}
+
 // ---- robustness and speed --------------------------------------------------------------------
 
 /// Characters that mean something to NFF, and a few that do not.
