@@ -418,10 +418,10 @@ fn view_mistakes_point_at_the_value() {
     assert_error(&view("0", "1", "8 8"), 5, 7, "between 0 and 180");
     assert_error(&view("180", "1", "8 8"), 5, 7, "between 0 and 180");
     assert_error(
-        &view("45", "0", "8 8"),
+        &view("45", "-1", "8 8"),
         6,
         8,
-        "hither distance must be positive",
+        "hither distance must not be negative",
     );
     assert_error(
         &view("45", "1", "0 8"),
@@ -443,6 +443,23 @@ fn view_mistakes_point_at_the_value() {
         1,
         "second view",
     );
+}
+
+#[test]
+fn hither_0_means_no_clipping() {
+    // SPD's `lattice` writes `hither 0`, BRL-CAD's exporter `hither 0.0`.
+    for hither in ["0", "0.0"] {
+        let text = format!(
+            "v\nfrom 0 -5 0\nat 0 0 0\nup 0 0 1\nangle 45\nhither {hither}\nresolution 8 8\n\
+             s 0 0 0 1\n"
+        );
+        let scene = parse(&text).unwrap_or_else(|e| panic!("hither {hither}: {e}"));
+        let near = scene.camera.near;
+        // Eye rays start at the near distance: now close to the eye, 5 away from the look-at point.
+        assert!(near > 0.0 && near < 0.01, "hither {hither}: near {near}");
+        let document = parse_nff_document(&text, Path::new("test.nff")).unwrap();
+        assert!(document.to_nff_string().contains("\nhither 0\n"));
+    }
 }
 
 #[test]

@@ -139,8 +139,27 @@ fn camera_spec(view: &View) -> Result<CameraSpec, String> {
         look_at: single(view.at, "look-at point")?,
         up: single(view.up, "up vector")?,
         view_angle: vertical.to_degrees() as f32,
-        near: view.hither as f32,
+        near: near(view) as f32,
     })
+}
+
+/// The fraction of the way from the eye to the look-at point where the image plane goes for
+/// `hither 0`: close enough to the eye to clip nothing a scene shows.
+const NO_CLIPPING_NEAR: f64 = 1e-3;
+
+/// raylab's near distance, where its eye rays start: `hither`, or for `hither 0` (no clipping)
+/// close to the eye, as raylab's near distance must be positive.
+fn near(view: &View) -> f64 {
+    if view.hither > 0.0 {
+        return view.hither;
+    }
+    let near = NO_CLIPPING_NEAR * view.from.distance(view.at);
+    // An eye at the look-at point is for the camera to report, not a near distance of 0.
+    if near as f32 > 0.0 {
+        near
+    } else {
+        f64::from(CameraSpec::default().near)
+    }
 }
 
 /// The material of an `f`: `Ks` weighs the highlight and the reflected ray, `T` the refracted
