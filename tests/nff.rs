@@ -389,6 +389,12 @@ fn degenerate_shapes_are_errors_at_their_keyword() {
     assert_error(&with_head("s 0 0 0 0\n"), 9, 1, "radius must be a positive");
     assert_error(&with_head("c 0 0 0 -1 0 0 1 1\n"), 9, 1, "same sign");
     assert_error(&with_head("p 3\n0 0 0\n1 1 1\n2 2 2\n"), 9, 1, "zero area");
+    let bowtie = "p 4\n0 0 0\n1 1 0\n1 0 0\n0 1 0\n";
+    let error = assert_error(&with_head(bowtie), 9, 1, "self-intersecting");
+    assert!(!error.message.contains("collinear"), "{error}");
+    let tiny = "p 3\n0 0 0\n1e-30 0 0\n0 1e-30 0\n";
+    let error = assert_error(&with_head(tiny), 9, 1, "too small");
+    assert!(!error.message.contains("collinear"), "{error}");
     assert_error(
         &with_head("p 4\n0 0 0\n1 0 0\n1 1 0\n0 1 1\n"),
         9,
