@@ -503,17 +503,21 @@ fn obj_and_mtl_files_with_latin1_comments_a_byte_order_mark_or_a_dos_end_of_file
 
 #[test]
 fn a_missing_mtl_file_and_an_undefined_material_are_warnings_at_their_line() {
-    let obj = format!("mtllib gone.mtl\nusemtl red\n{QUAD_OBJ}usemtl red\nf 1 2 3\n");
+    let obj = format!("mtllib gone.mtl\nusemtl red\n{QUAD_OBJ}usemtl red\nf 1 2 3\nf 1 2\n");
     let scene = with_files(&quad_scene(None), &[("quad.obj", obj.as_bytes())]).unwrap();
     assert!(warning(&scene, "quad.obj:1: ").contains("cannot read the MTL file"));
     assert!(warning(&scene, "gone.mtl").contains("quad.obj:1: "));
     assert!(warning(&scene, "quad.obj:2: ").contains("no MTL file defines the material `red`"));
-    assert_eq!(
-        scene.warnings.len(),
-        2,
-        "once per material: {:?}",
-        scene.warnings
-    );
+    // Once per material, and in line order with the other warnings.
+    let places: Vec<&str> = scene
+        .warnings
+        .iter()
+        .map(|w| w.split(' ').next().unwrap())
+        .collect();
+    assert_eq!(places.len(), 3, "{:?}", scene.warnings);
+    for (place, line) in places.iter().zip(["1", "2", "10"]) {
+        assert!(place.ends_with(&format!("quad.obj:{line}:")), "{places:?}");
+    }
     assert!(
         scene
             .geometry

@@ -555,17 +555,12 @@ impl GeometryBuilder<'_> {
                 format!("cannot load OBJ file `{path}`: {message}"),
             )
         };
-        let contents = load_obj(&path, self.files).map_err(|e| match e {
+        let contents = load_obj(&path, self.files, material.is_none()).map_err(|e| match e {
             ObjError::At(error) => error,
             ObjError::Whole(message) => fail(message),
         })?;
-        // MTL warnings matter only without a `material` key; a file used twice warns once.
-        let material_warnings = contents.material_warnings.into_iter();
-        for warning in contents
-            .warnings
-            .into_iter()
-            .chain(material_warnings.filter(|_| material.is_none()))
-        {
+        // A file used twice warns once.
+        for warning in contents.warnings {
             if !self.warnings.contains(&warning) {
                 self.warnings.push(warning);
             }

@@ -23,11 +23,8 @@ pub struct ObjContents {
     pub parts: Vec<ObjPart>,
     /// The MTL materials, or why they could not be loaded.
     pub materials: Result<Vec<Material>, String>,
-    /// What was accepted but is worth hearing about (faces left out), as `file:line: message`.
+    /// What was accepted but is worth hearing about, as `file:line: message`, in line order.
     pub warnings: Vec<String>,
-    /// The same about the MTL materials (an MTL file that cannot be read, a material that no
-    /// MTL file defines), which matter only to an object that uses them.
-    pub material_warnings: Vec<String>,
 }
 
 /// One object or group of an OBJ file: a mesh (its `material` field not yet set) and the MTL
@@ -50,8 +47,10 @@ pub enum ObjError {
 
 /// Reads an OBJ file, triangulated, with one index per vertex for position, normal and texture
 /// coordinates. MTL files are looked up next to the OBJ file. OBJ is ASCII: a comment may hold
-/// any byte, and a byte-order mark or a DOS end-of-file mark (^Z) is skipped.
-pub fn load_obj(path: &Path, files: SceneFiles) -> Result<ObjContents, ObjError> {
+/// any byte, and a byte-order mark or a DOS end-of-file mark (^Z) is skipped. The warnings are
+/// about faces left out, and if `uses_mtl` (the object takes its materials from the MTL files)
+/// about MTL files that cannot be read and materials that no MTL file defines.
+pub fn load_obj(path: &Path, files: SceneFiles, uses_mtl: bool) -> Result<ObjContents, ObjError> {
     let bytes = files.read(path).map_err(ObjError::Whole)?;
     let text = ascii_text(&bytes);
     let lines = read_lines(Source {
@@ -83,7 +82,13 @@ pub fn load_obj(path: &Path, files: SceneFiles) -> Result<ObjContents, ObjError>
         loaded.map_err(|_| tobj::LoadError::OpenFileFailed)
     })
     .map_err(|e| ObjError::Whole(e.to_string()))?;
-    let material_warnings = lines.material_warnings(path, libraries.into_inner());
+    let mut warnings = if uses_mtl {
+        lines.material_warnings(libraries.into_inner())
+    } else {
+        Vec::new()
+    };
+    warnings.extend(lines.warnings);
+    warnings.sort_by_key(|&(line, _)| line);
     let parts = models
         .into_iter()
         .map(|model| {
@@ -104,21 +109,24 @@ pub fn load_obj(path: &Path, files: SceneFiles) -> Result<ObjContents, ObjError>
             }
         })
         .collect();
+    let origin = path.display();
     Ok(ObjContents {
         parts,
         materials: materials
             .map(|materials| materials.iter().map(mtl_material).collect())
             .map_err(|e| e.to_string()),
-        warnings: lines.warnings,
-        material_warnings,
+        warnings: warnings
+            .into_iter()
+            .map(|(line, message)| format!("{origin}:{line}: {message}"))
+            .collect(),
     })
 }
 
 /// What the first look at an OBJ file's lines found.
 #[derive(Debug, Default)]
 struct ObjLines<'a> {
-    /// `file:line: message` about faces tobj leaves out or reads oddly.
-    warnings: Vec<String>,
+    /// Faces tobj leaves out or reads oddly: the line and what to say.
+    warnings: Vec<(usize, String)>,
     /// The `mtllib` and `usemtl` lines, in file order.
     material_lines: Vec<MaterialLine<'a>>,
 }
@@ -223,20 +231,21 @@ fn read_lines(source: Source<'_>) -> Result<ObjLines<'_>, SceneError> {
             _ => {}
         }
     }
-    let origin = source.origin.display();
     if let Some((line, vertices, count)) = short_faces {
         let more = match count - 1 {
             0 => String::new(),
             1 => " (and 1 more such face)".to_string(),
             n => format!(" (and {n} more such faces)"),
         };
-        lines.warnings.push(format!(
-            "{origin}:{line}: a face of {vertices} vertices has no area, so it is left out{more}"
+        lines.warnings.push((
+            line,
+            format!("a face of {vertices} vertices has no area, so it is left out{more}"),
         ));
     }
     if let Some((line, vertices)) = filled_polyline {
-        lines.warnings.push(format!(
-            "{origin}:{line}: a line (`l`) of {vertices} vertices is filled in as a polygon"
+        lines.warnings.push((
+            line,
+            format!("a line (`l`) of {vertices} vertices is filled in as a polygon"),
         ));
     }
     Ok(lines)
@@ -298,15 +307,13 @@ fn check_vertex(word: &str, counts: Option<(&[usize; 3], &[usize; 3])>) -> Resul
 }
 
 impl ObjLines<'_> {
-    /// `file:line: message` for each `mtllib` whose file could not be read (`libraries`: what
+    /// The line and a message for each `mtllib` whose file could not be read (`libraries`: what
     /// became of each, in order) and for the first `usemtl` of each material that no MTL file
     /// read before it defines (tobj then uses no material).
     fn material_warnings(
         &self,
-        path: &Path,
         libraries: Vec<Result<Vec<String>, String>>,
-    ) -> Vec<String> {
-        let origin = path.display();
+    ) -> Vec<(usize, String)> {
         let mut libraries = libraries.into_iter();
         let mut defined = BTreeSet::new();
         let mut warned = BTreeSet::new();
@@ -315,17 +322,18 @@ impl ObjLines<'_> {
             match *material_line {
                 MaterialLine::Library { line } => match libraries.next() {
                     Some(Ok(names)) => defined.extend(names),
-                    Some(Err(message)) => warnings.push(format!(
-                        "{origin}:{line}: {message}; its materials are left out"
-                    )),
+                    Some(Err(message)) => {
+                        warnings.push((line, format!("{message}; its materials are left out")))
+                    }
                     None => {}
                 },
                 MaterialLine::Use { line, name } => {
                     if !defined.contains(name) && warned.insert(name) {
-                        warnings.push(format!(
-                            "{origin}:{line}: no MTL file defines the material `{name}`; \
-                             its faces get the default material"
-                        ));
+                        let message = format!(
+                            "no MTL file defines the material `{name}`; its faces get the \
+                             default material"
+                        );
+                        warnings.push((line, message));
                     }
                 }
             }
