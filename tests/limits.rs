@@ -423,3 +423,30 @@ fn sizes_are_checked_against_their_stated_maximum() {
     let out = raylab(dir.path(), &["render", "-o", "x.png"], Some("lots"));
     assert_refused(&out, "RAYLAB_MAX_MEMORY=lots: expected bytes");
 }
+
+// ---- the same limits in NFF --------------------------------------------------------------------
+
+const NFF_VIEW: &str = "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 8 8\n";
+
+fn parse_nff(text: &str) -> Result<Scene, SceneError> {
+    raylab::nff::parse_nff(text, Path::new("test.nff"), Default::default())
+}
+
+#[test]
+fn nff_shapes_past_single_precision_are_errors_at_their_keyword() {
+    let error = parse_nff(&format!("{NFF_VIEW}s 0 0 -6e19 2e19\n")).unwrap_err();
+    assert_eq!((error.line, error.column), (8, 1), "{error}");
+    assert!(
+        error.message.contains("the centre reaches [0, 0, -6e19]"),
+        "{error}"
+    );
+    let error = parse_nff(&format!("{NFF_VIEW}s 0 0 0 3e38\n")).unwrap_err();
+    assert!(error.message.contains("the sphere reaches"), "{error}");
+}
+
+#[test]
+fn an_nff_hither_below_the_near_range_clips_as_little_as_raylab_can() {
+    let text = NFF_VIEW.replace("hither 1", "hither 1e-12");
+    let scene = parse_nff(&text).unwrap();
+    assert_eq!(scene.camera.near, 1e-6);
+}

@@ -389,6 +389,12 @@ fn degenerate_shapes_are_errors_at_their_keyword() {
     assert_error(&with_head("s 0 0 0 0\n"), 9, 1, "radius must be a positive");
     assert_error(&with_head("c 0 0 0 -1 0 0 1 1\n"), 9, 1, "same sign");
     assert_error(&with_head("p 3\n0 0 0\n1 1 1\n2 2 2\n"), 9, 1, "zero area");
+    let bowtie = "p 4\n0 0 0\n1 1 0\n1 0 0\n0 1 0\n";
+    let error = assert_error(&with_head(bowtie), 9, 1, "self-intersecting");
+    assert!(!error.message.contains("collinear"), "{error}");
+    let tiny = "p 3\n0 0 0\n1e-30 0 0\n0 1e-30 0\n";
+    let error = assert_error(&with_head(tiny), 9, 1, "too small");
+    assert!(!error.message.contains("collinear"), "{error}");
     assert_error(
         &with_head("p 4\n0 0 0\n1 0 0\n1 1 0\n0 1 1\n"),
         9,
@@ -418,10 +424,10 @@ fn view_mistakes_point_at_the_value() {
     assert_error(&view("0", "1", "8 8"), 5, 7, "between 0 and 180");
     assert_error(&view("180", "1", "8 8"), 5, 7, "between 0 and 180");
     assert_error(
-        &view("45", "0", "8 8"),
+        &view("45", "-1", "8 8"),
         6,
         8,
-        "hither distance must be positive",
+        "hither distance must not be negative",
     );
     assert_error(
         &view("45", "1", "0 8"),
@@ -443,6 +449,23 @@ fn view_mistakes_point_at_the_value() {
         1,
         "second view",
     );
+}
+
+#[test]
+fn hither_0_means_no_clipping() {
+    // SPD's `lattice` writes `hither 0`, BRL-CAD's exporter `hither 0.0`.
+    for hither in ["0", "0.0"] {
+        let text = format!(
+            "v\nfrom 0 -5 0\nat 0 0 0\nup 0 0 1\nangle 45\nhither {hither}\nresolution 8 8\n\
+             s 0 0 0 1\n"
+        );
+        let scene = parse(&text).unwrap_or_else(|e| panic!("hither {hither}: {e}"));
+        let near = scene.camera.near;
+        // Eye rays start at the near distance: now close to the eye, 5 away from the look-at point.
+        assert!(near > 0.0 && near < 0.01, "hither {hither}: near {near}");
+        let document = parse_nff_document(&text, Path::new("test.nff")).unwrap();
+        assert!(document.to_nff_string().contains("\nhither 0\n"));
+    }
 }
 
 #[test]
@@ -508,6 +531,47 @@ fn comments_run_to_the_end_of_the_line_anywhere() {
     ))
     .unwrap();
     assert_eq!(scene.geometry.objects.len(), 1);
+}
+
+// ---- bytes that are not plain ASCII text --------------------------------------------------
+
+/// Loads `bytes` as an NFF file.
+fn load_bytes(bytes: &[u8]) -> Result<Scene, SceneError> {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bytes.nff");
+    std::fs::write(&path, bytes).unwrap();
+    load_nff(&path, NffLighting::Readme)
+}
+
+#[test]
+fn latin1_comments_a_byte_order_mark_and_a_dos_end_of_file_are_read() {
+    let text = with_head("s 0 0 0 1 # the unit sphere\n");
+    let cases = [
+        (
+            "a Latin-1 comment",
+            [b"# caf\xe9 cr\xe8me\n".as_slice(), text.as_bytes()].concat(),
+        ),
+        (
+            "a byte-order mark",
+            [b"\xef\xbb\xbf".as_slice(), text.as_bytes()].concat(),
+        ),
+        (
+            "a DOS end-of-file mark",
+            [text.as_bytes(), b"\x1a"].concat(),
+        ),
+    ];
+    for (what, bytes) in cases {
+        let scene = load_bytes(&bytes).unwrap_or_else(|e| panic!("{what}: {e}"));
+        assert_eq!(scene.geometry.objects.len(), 1, "{what}");
+    }
+}
+
+#[test]
+fn a_byte_that_is_not_text_outside_a_comment_is_an_error_where_it_is() {
+    let bytes = [with_head("").as_bytes(), b"# caf\xe9\ns 0 0 \xe9 1\n"].concat();
+    let error = load_bytes(&bytes).unwrap_err();
+    assert_eq!((error.line, error.column), (10, 7), "{error}");
+    assert!(error.message.contains("expected a number"), "{error}");
 }
 
 // ---- robustness and speed --------------------------------------------------------------------

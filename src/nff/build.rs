@@ -12,6 +12,7 @@ use super::document::{Fill, Item, NffDocument, PatchVertex, View};
 use super::lighting::NffLighting;
 use crate::camera::{Camera, CameraSpec};
 use crate::light::Light;
+use crate::limits;
 use crate::material::{Color, Material};
 use crate::mesh::Mesh;
 use crate::scene::Scene;
@@ -118,7 +119,11 @@ impl NffDocument {
                 } => cone(*base, *base_radius, *apex, *apex_radius),
                 Item::Polygon(vertices) => polygon(vertices),
             };
-            scene.add_object(shape.map_err(at)?, None, material);
+            let shape = shape.map_err(at)?;
+            if let Some(bounds) = shape.bounds() {
+                limits::check_bounds(&format!("the {}", shape.name()), &bounds).map_err(at)?;
+            }
+            scene.add_object(shape, None, material);
         }
         for (material, mut mesh) in patches {
             mesh.material = material;
@@ -139,8 +144,28 @@ fn camera_spec(view: &View) -> Result<CameraSpec, String> {
         look_at: single(view.at, "look-at point")?,
         up: single(view.up, "up vector")?,
         view_angle: vertical.to_degrees() as f32,
-        near: view.hither as f32,
+        near: near(view) as f32,
     })
+}
+
+/// The fraction of the way from the eye to the look-at point where the image plane goes for
+/// `hither 0`: close enough to the eye to clip nothing a scene shows.
+const NO_CLIPPING_NEAR: f64 = 1e-3;
+
+/// raylab's near distance, where its eye rays start: `hither`, or for `hither 0` (no clipping)
+/// close to the eye, as raylab's near distance must be positive. Since hither only clips, it is
+/// moved into [`limits::NEAR_RANGE`] rather than refused (an eye at the look-at point is for the
+/// camera to report).
+fn near(view: &View) -> f64 {
+    let near = if view.hither > 0.0 {
+        view.hither
+    } else {
+        NO_CLIPPING_NEAR * view.from.distance(view.at)
+    };
+    near.clamp(
+        f64::from(*limits::NEAR_RANGE.start()),
+        f64::from(*limits::NEAR_RANGE.end()),
+    )
 }
 
 /// The material of an `f`: `Ks` weighs the highlight and the reflected ray, `T` the refracted
@@ -222,12 +247,13 @@ fn add_patch(mesh: &mut Mesh, vertices: &[PatchVertex]) -> Result<(), String> {
     Ok(())
 }
 
-/// `v` in single precision, which raylab renders in; `what` names it in the error.
+/// `v` in single precision, which raylab renders in, within ±[`limits::MAX_COORDINATE`];
+/// `what` names it in the error.
 fn single(v: DVec3, what: &str) -> Result<Vec3, String> {
     let single = v.as_vec3();
-    if single.is_finite() {
+    if limits::within_range(single) {
         Ok(single)
     } else {
-        Err(format!("the {what} {v} is too large for single precision"))
+        Err(limits::out_of_range_message(&format!("the {what}"), single))
     }
 }

@@ -28,7 +28,7 @@ pub struct View {
     pub up: DVec3,
     /// Field of view in degrees, edge to edge across the image's width.
     pub angle: f64,
-    /// Distance from the eye to the near clipping plane.
+    /// Distance from the eye to the near clipping plane; 0 for none.
     pub hither: f64,
     /// Image width and height in pixels.
     pub resolution: [u32; 2],

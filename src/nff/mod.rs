@@ -17,14 +17,15 @@ pub use build::{BuildError, Part, SPD_MAX_DEPTH};
 pub use document::{Fill, Item, NffDocument, NffLight, PatchVertex, PrimitiveCounts, View};
 pub use lighting::NffLighting;
 
-use crate::scene::{Scene, SceneError, Source};
+use crate::scene::{Scene, SceneError, Source, ascii_text};
 use parse::Locations;
 
-/// Reads the NFF file at `path`.
+/// Reads the NFF file at `path`. NFF is ASCII: a comment may hold any byte, and a byte-order
+/// mark at the start or a DOS end-of-file mark (^Z) at the end is skipped.
 pub fn load_nff(path: &Path, lighting: NffLighting) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path)
+    let bytes = std::fs::read(path)
         .map_err(|e| SceneError::whole_file(path, format!("cannot read the scene file: {e}")))?;
-    parse_nff(&text, path, lighting)
+    parse_nff(&ascii_text(&bytes), path, lighting)
 }
 
 /// Reads a scene from NFF text; `origin` names it in error messages.

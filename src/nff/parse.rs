@@ -246,10 +246,11 @@ impl<'a> Entity<'_, 'a> {
         }
         self.expect_word("hither")?;
         let (hither, token) = self.number_token("the hither distance")?;
-        if hither <= 0.0 {
+        // 0 means no clipping: SPD's `lattice` and BRL-CAD's exporter write it.
+        if hither < 0.0 {
             return Err(self.out_of_range(
                 token,
-                format!("the hither distance must be positive, got {hither}"),
+                format!("the hither distance must not be negative, got {hither}"),
             ));
         }
         self.expect_word("resolution")?;

@@ -16,7 +16,7 @@ use super::file::{
     TransformStepFile, WrapFile,
 };
 use super::files::SceneFiles;
-use super::obj::load_obj;
+use super::obj::{ObjError, load_obj};
 use super::values::{ColorValue, Direction, Exact, NonNegative, TexCoord, Vector};
 use crate::camera::{Camera, CameraError, CameraSpec};
 use crate::light::Light;
@@ -88,6 +88,7 @@ pub(crate) fn build_scene(
         materials,
         names,
         geometry: Geometry::default(),
+        warnings,
     };
     for object in file.objects {
         builder.add_object(object)?;
@@ -100,7 +101,7 @@ pub(crate) fn build_scene(
         material_names: builder.names,
         textures,
         geometry: builder.geometry,
-        warnings,
+        warnings: builder.warnings,
     })
 }
 
@@ -392,6 +393,8 @@ struct GeometryBuilder<'a> {
     /// The materials' names, index for index.
     names: Vec<String>,
     geometry: Geometry,
+    /// What the OBJ files hold that is worth a warning (`file:line: message`).
+    warnings: Vec<String>,
 }
 
 impl GeometryBuilder<'_> {
@@ -582,7 +585,16 @@ impl GeometryBuilder<'_> {
                 format!("cannot load OBJ file `{path}`: {message}"),
             )
         };
-        let contents = load_obj(&path, self.files).map_err(fail)?;
+        let contents = load_obj(&path, self.files, material.is_none()).map_err(|e| match e {
+            ObjError::At(error) => error,
+            ObjError::Whole(message) => fail(message),
+        })?;
+        // A file used twice warns once.
+        for warning in contents.warnings {
+            if !self.warnings.contains(&warning) {
+                self.warnings.push(warning);
+            }
+        }
         let first_mtl = self.materials.len();
         let mut mtl_count = 0;
         if material.is_none() && contents.parts.iter().any(|p| p.mtl_material.is_some()) {

@@ -11,15 +11,17 @@ use super::Scene;
 use super::build::build_scene;
 use super::error::{SceneError, Source};
 use super::file::{OBJECT_KEYS, SceneFile};
-use super::files::SceneFiles;
+use super::files::{SceneFiles, utf8_text};
 use super::retag::retag_document;
 use crate::memory::{self, Bytes};
 
-/// Reads the scene file at `path`. Texture and OBJ file names are relative to its folder.
+/// Reads the scene file at `path`, UTF-8 text (a byte-order mark or a DOS end-of-file mark is
+/// skipped). Texture and OBJ file names are relative to its folder.
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path)
+    let bytes = std::fs::read(path)
         .map_err(|e| SceneError::whole_file(path, format!("cannot read the scene file: {e}")))?;
-    parse_scene(&text, path, path.parent().unwrap_or(Path::new("")))
+    let text = utf8_text(&bytes, path)?;
+    parse_scene(text, path, path.parent().unwrap_or(Path::new("")))
 }
 
 /// Reads a scene from `text`. `origin` names it in error messages; texture and OBJ file names

@@ -68,6 +68,12 @@ impl Polygon {
                 "polygon is too large to work with: its extent is {extent}"
             ));
         }
+        // Below this, the squares of its sizes are smaller than single precision holds.
+        if extent != Vec3::ZERO && extent.length_squared() < f32::MIN_POSITIVE {
+            return Err(format!(
+                "polygon is too small to work with: its extent is {extent}"
+            ));
+        }
         // Newell's method on coordinates scaled to the polygon's size, so nothing overflows.
         let centre = bounds.min + extent * 0.5;
         let scaled = |v: Vec3| (v - centre) / size;
@@ -78,7 +84,16 @@ impl Polygon {
             .sum::<Vec3>();
         let normal = match double_area_vector.try_normalize() {
             Some(n) if double_area_vector.length() > MIN_RELATIVE_DOUBLE_AREA => n,
-            _ => return Err("polygon has zero area: its vertices are collinear".to_string()),
+            _ => {
+                let points: Vec<Vec3> = vertices.iter().map(|&v| scaled(v)).collect();
+                return Err(if spans_an_area(&points) {
+                    "polygon is self-intersecting: its edges cross so that the areas of its \
+                     parts cancel out"
+                } else {
+                    "polygon has zero area: its vertices are collinear"
+                }
+                .to_string());
+            }
         };
         // The plane through the vertices' mean offset along the normal, in scaled units.
         let scaled_offset = |v: Vec3| normal.dot(scaled(v));
@@ -184,6 +199,20 @@ impl Polygon {
     }
 }
 
+/// Whether the points (scaled to a size of about 1) do not all lie on one line: some triangle of
+/// the first point, the point farthest from it and another point has an area.
+fn spans_an_area(points: &[Vec3]) -> bool {
+    let first = points[0];
+    let farthest = points
+        .iter()
+        .map(|&p| p - first)
+        .max_by(|a, b| a.length_squared().total_cmp(&b.length_squared()))
+        .unwrap_or(Vec3::ZERO);
+    points
+        .iter()
+        .any(|&p| farthest.cross(p - first).length() > MIN_RELATIVE_DOUBLE_AREA)
+}
+
 impl ProjectedEdge {
     fn new(start: Vec2, end: Vec2) -> Self {
         let dy = end.y - start.y;
@@ -209,14 +238,17 @@ mod tests {
     use crate::shapes::test_support::{assert_near, hit_in_world};
     use crate::transform::TransformStep;
 
-    fn unit_square() -> Polygon {
-        Polygon::new(vec![
+    fn unit_square_vertices() -> [Vec3; 4] {
+        [
             Vec3::new(0.0, 0.0, 0.0),
             Vec3::new(1.0, 0.0, 0.0),
             Vec3::new(1.0, 1.0, 0.0),
             Vec3::new(0.0, 1.0, 0.0),
-        ])
-        .unwrap()
+        ]
+    }
+
+    fn unit_square() -> Polygon {
+        Polygon::new(unit_square_vertices().to_vec()).unwrap()
     }
 
     /// An L in the plane z = 1: the 2×2 square at the origin without its top-right 1×1 quarter.
@@ -393,6 +425,30 @@ mod tests {
         assert!(err(vec![Vec3::ZERO, Vec3::X, Vec3::X * 2.0]).contains("zero area"));
         assert!(err(vec![Vec3::ZERO, Vec3::X, Vec3::ONE, Vec3::Y * 0.5]).contains("one plane"));
         assert!(err(vec![Vec3::ONE; 3]).contains("zero area"));
+    }
+
+    #[test]
+    fn a_bowtie_is_self_intersecting_not_collinear() {
+        // Two triangles of equal area meeting at (0.5, 0.5), one clockwise, one not.
+        let bowtie = vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+        ];
+        let error = Polygon::new(bowtie).unwrap_err();
+        assert!(error.contains("self-intersecting"), "{error}");
+        assert!(!error.contains("collinear"), "{error}");
+    }
+
+    #[test]
+    fn a_polygon_too_small_for_single_precision_says_so() {
+        let tiny = unit_square_vertices().map(|v| v * 1e-30).to_vec();
+        let error = Polygon::new(tiny).unwrap_err();
+        assert!(error.contains("too small"), "{error}");
+        // Small but workable.
+        let small = unit_square_vertices().map(|v| v * 1e-15).to_vec();
+        assert!(Polygon::new(small).is_ok());
     }
 
     #[test]

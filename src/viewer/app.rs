@@ -119,6 +119,7 @@ impl App {
                 open_field,
                 save_field,
                 load_error: None,
+                load_warnings: Vec::new(),
                 control_error: None,
                 message: None,
                 square: options.size.is_some_and(|(w, h)| w == h),
@@ -265,6 +266,10 @@ impl App {
         }
         self.file_controls = Some(file_controls);
         self.panel.load_error = None;
+        for warning in &loaded.scene.warnings {
+            eprintln!("warning: {warning}");
+        }
+        self.panel.load_warnings = loaded.scene.warnings.clone();
         self.panel.scene_name = loaded.name();
         self.panel.current_path = loaded.path.clone();
         self.panel.light_count = loaded.scene.lights.len();

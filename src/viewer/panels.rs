@@ -24,6 +24,8 @@ pub struct PanelState {
     pub save_field: String,
     /// Why the last scene did not load (`file:line:column: message`).
     pub load_error: Option<String>,
+    /// What the reader of the scene shown accepted but warns about (`file:line: message`).
+    pub load_warnings: Vec<String>,
     /// Why the controls cannot be rendered as they are.
     pub control_error: Option<String>,
     /// The last thing the viewer did worth saying (saved, printed).
@@ -77,6 +79,12 @@ fn scene_section(ui: &mut egui::Ui, state: &mut PanelState, actions: &mut Vec<Ac
             if let Some(e) = &state.load_error {
                 ui.colored_label(Color32::from_rgb(255, 90, 90), e);
                 ui.label("(showing the last good scene)");
+            }
+            for warning in &state.load_warnings {
+                ui.colored_label(
+                    Color32::from_rgb(255, 200, 80),
+                    format!("warning: {warning}"),
+                );
             }
             ui.horizontal(|ui| {
                 let field = ui.add(
