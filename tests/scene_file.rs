@@ -215,6 +215,12 @@ fresnel = true
 [materials.blue]
 color = [0, 0, 1]
 
+[materials.stripy]
+texture = "stripes"
+
+[materials.tiled]
+texture = "tiles"
+
 [[objects]]
 type = "sphere"
 center = [0, 1, 0]
@@ -296,8 +302,11 @@ fn full_feature_file_scales_light_colours_and_normalises_directions() {
 #[test]
 fn full_feature_file_numbers_materials_and_textures_by_name() {
     let scene = parse(FULL).unwrap_or_else(|e| panic!("{e}"));
-    // Default material first, then by name: blue, red. Textures by name: checks, stripes, tiles.
-    assert_eq!(scene.materials.len(), 3);
+    // Default material first, then by name: blue, red, stripy, tiled. Textures by name: checks,
+    // stripes, tiles.
+    assert_eq!(scene.materials.len(), 5);
+    let texture_of = |m: usize| scene.materials[m].texture;
+    assert_eq!((texture_of(3), texture_of(4)), (Some(1), Some(2)));
     assert_eq!(
         scene.materials[DEFAULT_MATERIAL as usize],
         Material::default()
@@ -380,7 +389,7 @@ fn full_feature_file_turns_triangles_meshes_and_obj_files_into_meshes() {
     assert_eq!(meshes[1].material, DEFAULT_MATERIAL);
     // A `material` key overrides the OBJ's MTL materials, which are then not added.
     assert!(meshes[2..].iter().all(|m| m.material == 1));
-    assert_eq!(scene.materials.len(), 3);
+    assert_eq!(scene.materials.len(), 5);
 }
 
 #[test]
