@@ -1,5 +1,5 @@
 //! Where a scene's texture and OBJ files come from: a folder on disk (relative to the scene
-//! file), or the files built into the binary for the built-in scenes.
+//! file), or files held in memory (those built into the binary for the built-in scenes).
 
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
@@ -9,11 +9,12 @@ use std::path::{Path, PathBuf};
 pub enum SceneFiles<'a> {
     /// Files on disk; names are relative to this folder.
     Folder(&'a Path),
-    /// Files compiled into the binary, by the name the built-in scene uses.
-    Builtin(&'static [(&'static str, &'static [u8])]),
+    /// Files held in memory (compiled into the binary for the built-in scenes), by the name
+    /// the scene uses.
+    Builtin(&'a [(&'a str, &'a [u8])]),
 }
 
-impl SceneFiles<'_> {
+impl<'a> SceneFiles<'a> {
     /// The path that `name` stands for, for messages and for finding files next to it.
     pub fn path(&self, name: &str) -> PathBuf {
         match self {
@@ -23,7 +24,7 @@ impl SceneFiles<'_> {
     }
 
     /// The bytes of the file at `path` (as returned by [`Self::path`] or a path beside it).
-    pub fn read(&self, path: &Path) -> Result<Cow<'static, [u8]>, String> {
+    pub fn read(&self, path: &Path) -> Result<Cow<'a, [u8]>, String> {
         match self {
             SceneFiles::Folder(_) => std::fs::read(path)
                 .map(Cow::Owned)
