@@ -11,7 +11,7 @@ use raylab::bvh::Bvh;
 use raylab::inspect::trace_ray_tree;
 use raylab::nff::{NffDocument, NffLighting, parse_nff_document};
 use raylab::progressive::render_image;
-use raylab::scene::{Scene, SceneFiles, parse_scene_with};
+use raylab::scene::{Scene, SceneError, SceneFiles, parse_scene_with};
 use raylab::whitted::Tracer;
 
 const TETRA_OBJ: &[u8] = include_bytes!("../../assets/models/tetra.obj");
@@ -81,7 +81,8 @@ pub fn nff(data: &[u8]) -> Result<(), String> {
     Ok(())
 }
 
-fn read_nff(text: &str) -> Result<NffDocument, raylab::scene::SceneError> {
+/// Reads NFF text into a document, named `fuzz.nff` in its errors.
+fn read_nff(text: &str) -> Result<NffDocument, SceneError> {
     parse_nff_document(text, Path::new("fuzz.nff"))
 }
 
@@ -97,7 +98,11 @@ fn assert_reads_back(document: &NffDocument) {
     let rewritten = reread.to_nff_string();
     let words = |text: &str| text.split_whitespace().map(str::to_owned).collect();
     let (first, second): (Vec<String>, Vec<String>) = (words(&written), words(&rewritten));
-    assert_eq!(first.len(), second.len(), "{written}\nreads back as\n{rewritten}");
+    assert_eq!(
+        first.len(),
+        second.len(),
+        "{written}\nreads back as\n{rewritten}"
+    );
     for (a, b) in first.iter().zip(&second) {
         assert!(
             a == b || same_but_rounding(a, b),
@@ -130,5 +135,8 @@ fn render_tiny(mut scene: Scene) {
     let (pixels, _) = render_image(&tracer);
     assert_eq!(pixels.len(), 4 * 3);
     let tree = trace_ray_tree(&tracer, 2, 1);
-    assert!(!tree.nodes.is_empty(), "a ray tree holds at least the eye ray");
+    assert!(
+        !tree.nodes.is_empty(),
+        "a ray tree holds at least the eye ray"
+    );
 }
