@@ -1,6 +1,6 @@
 //! Where a scene's texture and OBJ files come from: a folder on disk (relative to the scene
-//! file), or the files built into the binary for the built-in scenes; and how the bytes of a
-//! text file (a scene, NFF, OBJ or MTL file) become text.
+//! file), or files held in memory (those built into the binary for the built-in scenes); and
+//! how the bytes of a text file (a scene, NFF, OBJ or MTL file) become text.
 
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
@@ -12,11 +12,12 @@ use super::error::{SceneError, Source};
 pub enum SceneFiles<'a> {
     /// Files on disk; names are relative to this folder.
     Folder(&'a Path),
-    /// Files compiled into the binary, by the name the built-in scene uses.
-    Builtin(&'static [(&'static str, &'static [u8])]),
+    /// Files held in memory (compiled into the binary for the built-in scenes), by the name
+    /// the scene uses.
+    Builtin(&'a [(&'a str, &'a [u8])]),
 }
 
-impl SceneFiles<'_> {
+impl<'a> SceneFiles<'a> {
     /// The path that `name` stands for, for messages and for finding files next to it.
     pub fn path(&self, name: &str) -> PathBuf {
         match self {
@@ -26,7 +27,7 @@ impl SceneFiles<'_> {
     }
 
     /// The bytes of the file at `path` (as returned by [`Self::path`] or a path beside it).
-    pub fn read(&self, path: &Path) -> Result<Cow<'static, [u8]>, String> {
+    pub fn read(&self, path: &Path) -> Result<Cow<'a, [u8]>, String> {
         match self {
             SceneFiles::Folder(_) => std::fs::read(path)
                 .map(Cow::Owned)
@@ -60,13 +61,13 @@ fn without_marks(bytes: &[u8]) -> &[u8] {
 /// byte-order mark at the start and ^Z marks at the end are dropped, and each byte that is not
 /// UTF-8 (a Latin-1 `é` in a comment) becomes one U+FFFD, so that it is one character in its
 /// column and a reader that meets it outside a comment reports it there.
-pub(crate) fn ascii_text(bytes: &[u8]) -> Cow<'_, str> {
+pub fn ascii_text(bytes: &[u8]) -> Cow<'_, str> {
     String::from_utf8_lossy(without_marks(bytes))
 }
 
 /// The text of a TOML file, which must be UTF-8: a byte-order mark at the start and ^Z marks at
 /// the end are dropped; a byte that is not UTF-8 is an error at its line and column.
-pub(crate) fn utf8_text<'a>(bytes: &'a [u8], origin: &Path) -> Result<&'a str, SceneError> {
+pub fn utf8_text<'a>(bytes: &'a [u8], origin: &Path) -> Result<&'a str, SceneError> {
     let bytes = without_marks(bytes);
     std::str::from_utf8(bytes).map_err(|e| {
         let text = String::from_utf8_lossy(bytes);

@@ -18,7 +18,7 @@ pub use builtin::{DEFAULT_SCENE_TEXT, default_scene};
 pub use error::SceneError;
 pub(crate) use error::Source;
 pub use files::SceneFiles;
-pub(crate) use files::ascii_text;
+pub use files::{ascii_text, utf8_text};
 pub use load::{load_scene, parse_scene, parse_scene_with};
 pub use load_any::{load_any, load_any_with};
 

@@ -1,0 +1,142 @@
+//! What the fuzz targets do with an input, as plain functions of its bytes: read it with one of
+//! raylab's readers and, when it reads, render a tiny image of the scene and trace the ray tree
+//! of one pixel. A reader's error is a fine outcome (returned as its message); a panic, a hang
+//! or a runaway allocation is a bug. The fuzz targets (`fuzz/fuzz_targets/`) call these, and so
+//! does the replay of the kept corpus (`tests/fuzz_corpus.rs`), so this file uses raylab and
+//! std alone.
+
+use std::path::Path;
+
+use raylab::bvh::Bvh;
+use raylab::inspect::trace_ray_tree;
+use raylab::nff::{NffDocument, NffLighting, parse_nff_document};
+use raylab::progressive::render_image;
+use raylab::scene::{Scene, SceneError, SceneFiles, ascii_text, parse_scene_with, utf8_text};
+use raylab::whitted::Tracer;
+
+const TETRA_OBJ: &[u8] = include_bytes!("../../assets/models/tetra.obj");
+const TETRA_MTL: &[u8] = include_bytes!("../../assets/models/tetra.mtl");
+const GRID_PNG: &[u8] = include_bytes!("../../assets/textures/grid.png");
+
+/// The files a fuzzed TOML scene may name: the shipped scenes' models and textures, by the
+/// names the shipped scenes use. The large ones (the torus, the bricks) are played by the small
+/// ones, so that every shipped scene loads, and renders fast.
+const SCENE_FILES: &[(&str, &[u8])] = &[
+    ("../models/tetra.obj", TETRA_OBJ),
+    ("../models/tetra.mtl", TETRA_MTL),
+    ("../models/torus.obj", TETRA_OBJ),
+    ("../textures/grid.png", GRID_PNG),
+    ("../textures/bricks.png", GRID_PNG),
+];
+
+/// The scene the `obj` target loads its input in, as a scene file's `type = "obj"` object.
+const OBJ_SCENE: &str = r#"
+[camera]
+eye = [0, 1.5, 4]
+look_at = [0, 0, 0]
+
+[[lights]]
+type = "point"
+position = [2, 5, 4]
+
+[[objects]]
+type = "obj"
+file = "model.obj"
+"#;
+
+/// Reads `data` as a TOML scene file, which may name [`SCENE_FILES`], and renders it.
+pub fn toml_scene(data: &[u8]) -> Result<(), String> {
+    let origin = Path::new("fuzz.toml");
+    let text = utf8_text(data, origin).map_err(|e| e.to_string())?;
+    let files = SceneFiles::Builtin(SCENE_FILES);
+    let scene = parse_scene_with(text, origin, files).map_err(|e| e.to_string())?;
+    render_tiny(scene);
+    Ok(())
+}
+
+/// Reads `data` as an OBJ file (its MTL file `tetra.mtl` beside it) the way a scene file's
+/// `type = "obj"` object loads one, and renders it.
+pub fn obj(data: &[u8]) -> Result<(), String> {
+    let files = [("model.obj", data), ("tetra.mtl", TETRA_MTL)];
+    let scene = parse_scene_with(
+        OBJ_SCENE,
+        Path::new("fuzz-obj.toml"),
+        SceneFiles::Builtin(&files),
+    )
+    .map_err(|e| e.to_string())?;
+    render_tiny(scene);
+    Ok(())
+}
+
+/// Reads `data` as an NFF file, checks that the document written back as NFF reads back the
+/// same, builds the scene and renders it.
+pub fn nff(data: &[u8]) -> Result<(), String> {
+    let text = ascii_text(data);
+    let document = read_nff(&text).map_err(|e| e.to_string())?;
+    assert_reads_back(&document);
+    let scene = document
+        .to_scene(NffLighting::default())
+        .map_err(|e| e.to_string())?;
+    render_tiny(scene);
+    Ok(())
+}
+
+/// Reads NFF text into a document, named `fuzz.nff` in its errors.
+fn read_nff(text: &str) -> Result<NffDocument, SceneError> {
+    parse_nff_document(text, Path::new("fuzz.nff"))
+}
+
+/// Writes `document` as NFF and reads it back. The writer rounds numbers to six significant
+/// digits, as C's `%g` does, so the first reading back equals `document` only up to that
+/// rounding: the two written texts hold the same words, and their numbers differ by at most
+/// the rounding. Numbers once rounded stay as they are, so the second reading back equals the
+/// first exactly.
+fn assert_reads_back(document: &NffDocument) {
+    let written = document.to_nff_string();
+    let reread = read_nff(&written)
+        .unwrap_or_else(|e| panic!("the NFF raylab wrote does not read back: {e}\n{written}"));
+    let rewritten = reread.to_nff_string();
+    let words = |text: &str| text.split_whitespace().map(str::to_owned).collect();
+    let (first, second): (Vec<String>, Vec<String>) = (words(&written), words(&rewritten));
+    assert_eq!(
+        first.len(),
+        second.len(),
+        "{written}\nreads back as\n{rewritten}"
+    );
+    for (a, b) in first.iter().zip(&second) {
+        assert!(
+            a == b || same_but_rounding(a, b),
+            "`{a}` reads back as `{b}`:\n{written}\nreads back as\n{rewritten}"
+        );
+    }
+    let third = read_nff(&rewritten)
+        .unwrap_or_else(|e| panic!("the NFF raylab wrote does not read back: {e}\n{rewritten}"));
+    assert_eq!(third, reread, "{rewritten}");
+}
+
+/// Whether the numbers `a` and `b` differ by no more than `%g`'s rounding (half a unit in the
+/// sixth significant digit; double precision is coarser than that near zero).
+fn same_but_rounding(a: &str, b: &str) -> bool {
+    match (a.parse::<f64>(), b.parse::<f64>()) {
+        (Ok(a), Ok(b)) => (a - b).abs() <= 5e-6 * a.abs().max(b.abs()) + f64::MIN_POSITIVE,
+        _ => false,
+    }
+}
+
+/// Renders `scene` as a 4 × 3 image at one sample per pixel, through the BVH and the
+/// progressive renderer, and traces the ray tree of one pixel with the inspector: little work,
+/// but all of it the renderer's own.
+fn render_tiny(mut scene: Scene) {
+    let settings = &mut scene.settings;
+    (settings.width, settings.height) = (4, 3);
+    (settings.samples, settings.block_size) = (1, 2);
+    let bvh = Bvh::build(&scene.geometry);
+    let tracer = Tracer::new(&scene, &bvh);
+    let (pixels, _) = render_image(&tracer);
+    assert_eq!(pixels.len(), 4 * 3);
+    let tree = trace_ray_tree(&tracer, 2, 1);
+    assert!(
+        !tree.nodes.is_empty(),
+        "a ray tree holds at least the eye ray"
+    );
+}

@@ -1,0 +1,83 @@
+//! The fuzz targets' code (`fuzz/src/harness.rs`) run as ordinary tests, without nightly or
+//! cargo-fuzz: the inputs kept in `fuzz/regressions/TARGET/` must each be read or refused with
+//! an error, never panic; and the files the fuzz corpora are seeded from must read and render.
+
+#[path = "../fuzz/src/harness.rs"]
+mod harness;
+
+use std::panic::catch_unwind;
+use std::path::{Path, PathBuf};
+
+/// What a fuzz target does with one input.
+type Target = fn(&[u8]) -> Result<(), String>;
+
+/// The files in `folder` (relative to the repository) whose names end in `extension` ("" for
+/// all), sorted.
+fn files(folder: &str, extension: &str) -> Vec<PathBuf> {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join(folder);
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&folder)
+        .unwrap_or_else(|e| panic!("{}: {e}", folder.display()))
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.to_string_lossy().ends_with(extension))
+        .collect();
+    files.sort();
+    assert!(!files.is_empty(), "{} holds no inputs", folder.display());
+    files
+}
+
+/// Runs every input kept for the fuzz target `name` through `target`.
+fn replay(name: &str, target: Target) {
+    for path in files(&format!("fuzz/regressions/{name}"), "") {
+        let input = std::fs::read(&path).unwrap();
+        let outcome = catch_unwind(|| target(&input));
+        assert!(outcome.is_ok(), "{name}: {} panics", path.display());
+    }
+}
+
+/// Runs every file of `folder` ending in `extension` through `target`, which must read it.
+fn read_all(folder: &str, extension: &str, target: Target) {
+    for path in files(folder, extension) {
+        let input = std::fs::read(&path).unwrap();
+        if let Err(message) = target(&input) {
+            panic!("{}: {message}", path.display());
+        }
+    }
+}
+
+#[test]
+fn the_kept_toml_scenes_read_or_fail_cleanly() {
+    replay("toml_scene", harness::toml_scene);
+}
+
+#[test]
+fn the_kept_nff_files_read_or_fail_cleanly() {
+    replay("nff", harness::nff);
+}
+
+#[test]
+fn the_kept_obj_files_read_or_fail_cleanly() {
+    replay("obj", harness::obj);
+}
+
+#[test]
+fn the_shipped_scenes_read_and_render_with_the_fuzz_targets_files() {
+    read_all("assets/scenes", ".toml", harness::toml_scene);
+}
+
+#[test]
+fn the_tests_nff_files_read_back_the_same_and_render() {
+    read_all("tests/nff", ".nff", harness::nff);
+}
+
+#[test]
+fn the_shipped_models_read_and_render() {
+    read_all("assets/models", ".obj", harness::obj);
+}
+
+#[test]
+fn a_broken_input_is_an_error_with_its_place() {
+    let message = harness::toml_scene(b"[camera]\neye = 1\n").unwrap_err();
+    assert!(message.starts_with("fuzz.toml:2:7:"), "{message}");
+    let message = harness::obj(b"f 1 2 3\n").unwrap_err();
+    assert!(message.contains("model.obj"), "{message}");
+}
