@@ -72,7 +72,9 @@ pub fn load_obj(path: &Path, files: SceneFiles, uses_mtl: bool) -> Result<ObjCon
         let loaded = files
             .read(&path)
             .and_then(|bytes| {
-                tobj::load_mtl_buf(&mut ascii_text(&bytes).as_bytes()).map_err(|e| e.to_string())
+                let text = ascii_text(&bytes);
+                check_mtl(&text)?;
+                tobj::load_mtl_buf(&mut text.as_bytes()).map_err(|e| e.to_string())
             })
             .map_err(|e| format!("cannot read the MTL file `{}`: {e}", path.display()));
         libraries.borrow_mut().push(match &loaded {
@@ -120,6 +122,20 @@ pub fn load_obj(path: &Path, files: SceneFiles, uses_mtl: bool) -> Result<ObjCon
             .map(|(line, message)| format!("{origin}:{line}: {message}"))
             .collect(),
     })
+}
+
+/// Refuses, naming the line, what tobj would panic on in an MTL file's text: a colour (`Ka`,
+/// `Kd`, `Ks`, `Ke`) of fewer than three numbers.
+fn check_mtl(text: &str) -> Result<(), String> {
+    for (index, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        if let Some(key @ ("Ka" | "Kd" | "Ks" | "Ke")) = words.next()
+            && words.count() < 3
+        {
+            return Err(format!("line {}: `{key}` needs three numbers", index + 1));
+        }
+    }
+    Ok(())
 }
 
 /// What the first look at an OBJ file's lines found.
@@ -381,6 +397,16 @@ fn mtl_material(mtl: &tobj::Material) -> Material {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn mtl_colours_of_fewer_than_three_numbers_are_refused_at_their_line() {
+        assert_eq!(
+            check_mtl("newmtl red\nKd 1 0 0\nKs\n"),
+            Err("line 3: `Ks` needs three numbers".to_string())
+        );
+        assert!(check_mtl("newmtl red\n  Ka 0.1 0.2\n").is_err());
+        assert!(check_mtl("newmtl red\nKd 1 0 0\nKs 1 1 1 # more\nNs 10\n").is_ok());
+    }
 
     #[test]
     fn mtl_values_map_onto_the_shading_model() {
