@@ -397,6 +397,17 @@ fn most_threads() -> usize {
     4 * std::thread::available_parallelism().map_or(1, |n| n.get())
 }
 
+/// A bench of one tiny scene, run once.
+const SMALL_BENCH: [&str; 7] = [
+    "bench",
+    "--scenes",
+    "spd:tetra:1",
+    "--size",
+    "8",
+    "--repeat",
+    "1",
+];
+
 #[test]
 fn threads_past_four_per_core_are_refused_by_every_command() {
     let dir = tempfile::tempdir().unwrap();
@@ -404,15 +415,7 @@ fn threads_past_four_per_core_are_refused_by_every_command() {
     let too_many = (most_threads() + 1).to_string();
     let cases: [&[&str]; 4] = [
         &["render", "--width", "8", "--height", "8", "-o", "a.png"],
-        &[
-            "bench",
-            "--scenes",
-            "spd:tetra:1",
-            "--size",
-            "8",
-            "--repeat",
-            "1",
-        ],
+        &SMALL_BENCH,
         &["view", "--exit-when-done"],
         &["--exit-when-done"],
     ];
@@ -482,15 +485,7 @@ fn a_closed_standard_output_ends_every_command_quietly() {
         &inspect,
         &[&inspect[..], &["--json"][..]].concat(),
         &["render", "--width", "8", "--height", "8", "-o", "a.png"],
-        &[
-            "bench",
-            "--scenes",
-            "spd:tetra:1",
-            "--size",
-            "8",
-            "--repeat",
-            "1",
-        ],
+        &SMALL_BENCH,
     ];
     for args in cases {
         let out = raylab_into_a_closed_pipe(args, dir.path());

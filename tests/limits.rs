@@ -325,25 +325,27 @@ fn big_texture_scene(dir: &Path, used: bool) {
     std::fs::write(dir.join("scene.toml"), scene).unwrap();
 }
 
+/// Renders `scene.toml` as a small image.
+const RENDER_SCENE: [&str; 8] = [
+    "render",
+    "scene.toml",
+    "-o",
+    "out.png",
+    "--width",
+    "8",
+    "--height",
+    "8",
+];
+
 #[test]
 fn a_texture_larger_than_the_memory_is_refused_before_it_is_decoded() {
     let dir = tempfile::tempdir().unwrap();
     big_texture_scene(dir.path(), true);
-    let args = [
-        "render",
-        "scene.toml",
-        "-o",
-        "out.png",
-        "--width",
-        "8",
-        "--height",
-        "8",
-    ];
-    let out = raylab(dir.path(), &args, Some("32M"));
+    let out = raylab(dir.path(), &RENDER_SCENE, Some("32M"));
     assert_refused(&out, "the 4000×4000 image would take about 64.0 MB");
     assert_refused(&out, "more than the 33.6 MB of memory available");
     // Three bytes a texel: 48 MB for the texels and 16 MB while decoding fit in 80 MB.
-    let out = raylab(dir.path(), &args, Some("80M"));
+    let out = raylab(dir.path(), &RENDER_SCENE, Some("80M"));
     assert!(
         out.status.success(),
         "{}",
@@ -355,17 +357,7 @@ fn a_texture_larger_than_the_memory_is_refused_before_it_is_decoded() {
 fn a_texture_no_material_uses_is_not_loaded() {
     let dir = tempfile::tempdir().unwrap();
     big_texture_scene(dir.path(), false);
-    let args = [
-        "render",
-        "scene.toml",
-        "-o",
-        "out.png",
-        "--width",
-        "8",
-        "--height",
-        "8",
-    ];
-    let out = raylab(dir.path(), &args, Some("32M"));
+    let out = raylab(dir.path(), &RENDER_SCENE, Some("32M"));
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
     assert!(
