@@ -6,7 +6,7 @@ mod common;
 
 use std::hint::black_box;
 
-use common::Rng;
+use common::random::{Rng, direction, in_cube};
 use criterion::{Criterion, criterion_group, criterion_main};
 use glam::Vec3;
 use raylab::ray::Ray;
@@ -16,11 +16,11 @@ use raylab::shapes::{
 
 /// 256 rays from a sphere of radius 4 around the origin towards points near it.
 fn rays_at_origin() -> Vec<Ray> {
-    let mut rng = Rng(7);
+    let mut rng = Rng::with_seed(7);
     (0..256)
         .map(|_| {
-            let from = rng.direction() * 4.0;
-            Ray::new(from, rng.vec(-0.8, 0.8) - from)
+            let from = direction(&mut rng) * 4.0;
+            Ray::new(from, in_cube(&mut rng, -0.8, 0.8) - from)
         })
         .collect()
 }

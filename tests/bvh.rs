@@ -1,8 +1,11 @@
 //! The BVH must return exactly what testing every primitive returns.
 
+mod common;
+
 use std::collections::BTreeSet;
 use std::ops::ControlFlow;
 
+use common::random::{Rng, in_cube, in_range};
 use glam::Vec3;
 use proptest::prelude::*;
 use raylab::bvh::Bvh;
@@ -14,40 +17,21 @@ use raylab::ray::Ray;
 use raylab::shapes::{Plane, Shape, Sphere};
 use raylab::transform::{Transform, TransformStep};
 
-/// A small deterministic generator, so a failure reproduces.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f32 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.next()
-    }
-    fn vec(&mut self, lo: f32, hi: f32) -> Vec3 {
-        Vec3::new(self.range(lo, hi), self.range(lo, hi), self.range(lo, hi))
-    }
-}
-
 fn random_scene(seed: u64, spheres: usize, triangles: usize, planes: usize) -> Geometry {
-    let mut rng = Rng(seed);
+    let mut rng = Rng::with_seed(seed);
     let mut g = Geometry::default();
     for i in 0..spheres {
         let sphere = Shape::Sphere(Sphere {
-            center: rng.vec(-10.0, 10.0),
-            radius: rng.range(0.05, 1.5),
+            center: in_cube(&mut rng, -10.0, 10.0),
+            radius: in_range(&mut rng, 0.05, 1.5),
         });
         // Every third sphere is squashed and turned, to exercise transformed bounds.
         let transform = (i % 3 == 0).then(|| {
             Transform::from_steps(&[
-                TransformStep::Scale(rng.vec(0.3, 2.0)),
+                TransformStep::Scale(in_cube(&mut rng, 0.3, 2.0)),
                 TransformStep::Rotate {
-                    axis: rng.vec(-1.0, 1.0) + Vec3::splat(0.01),
-                    degrees: rng.range(0.0, 360.0),
+                    axis: in_cube(&mut rng, -1.0, 1.0) + Vec3::splat(0.01),
+                    degrees: in_range(&mut rng, 0.0, 360.0),
                 },
             ])
             .unwrap()
@@ -61,8 +45,8 @@ fn random_scene(seed: u64, spheres: usize, triangles: usize, planes: usize) -> G
     for _ in 0..planes {
         g.objects.push(Object {
             shape: Shape::Plane(Plane {
-                point: rng.vec(-12.0, 12.0),
-                normal: (rng.vec(-1.0, 1.0) + Vec3::splat(1e-3)).normalize(),
+                point: in_cube(&mut rng, -12.0, 12.0),
+                normal: (in_cube(&mut rng, -1.0, 1.0) + Vec3::splat(1e-3)).normalize(),
             }),
             transform: None,
             material: 0,
@@ -70,9 +54,12 @@ fn random_scene(seed: u64, spheres: usize, triangles: usize, planes: usize) -> G
     }
     let mut mesh = Mesh::default();
     for i in 0..triangles as u32 {
-        let c = rng.vec(-10.0, 10.0);
-        mesh.positions
-            .extend([c, c + rng.vec(-2.0, 2.0), c + rng.vec(-2.0, 2.0)]);
+        let c = in_cube(&mut rng, -10.0, 10.0);
+        mesh.positions.extend([
+            c,
+            c + in_cube(&mut rng, -2.0, 2.0),
+            c + in_cube(&mut rng, -2.0, 2.0),
+        ]);
         mesh.faces.push([3 * i, 3 * i + 1, 3 * i + 2]);
     }
     g.add_mesh(mesh);
@@ -91,20 +78,22 @@ fn brute_force(g: &Geometry, ray: &Ray) -> Option<Hit> {
 }
 
 fn random_ray(rng: &mut Rng) -> Ray {
-    let origin = rng.vec(-15.0, 15.0);
-    let target = rng.vec(-10.0, 10.0);
-    Ray::new(origin, (target - origin) * rng.range(0.2, 3.0))
+    let origin = in_cube(rng, -15.0, 15.0);
+    let target = in_cube(rng, -10.0, 10.0);
+    Ray::new(origin, (target - origin) * in_range(rng, 0.2, 3.0))
 }
 
-fn assert_same_closest(g: &Geometry, bvh: &Bvh, ray: &Ray) {
+/// Checks that the BVH finds the brute force's closest hit for `ray`; whether there is one.
+fn assert_same_closest(g: &Geometry, bvh: &Bvh, ray: &Ray) -> bool {
     let expected = brute_force(g, ray);
     let got = bvh.closest_hit(g, ray, 0.0, f32::INFINITY);
     match (expected, got) {
-        (None, None) => {}
+        (None, None) => false,
         (Some(e), Some(h)) => {
             assert_eq!(e.t, h.t, "ray {ray:?}");
             // Ties go to the primitive first in the scene, as in the brute force.
             assert_eq!(e.prim, h.prim, "ray {ray:?}");
+            true
         }
         _ => panic!("brute force {expected:?} but BVH {got:?} for {ray:?}"),
     }
@@ -115,10 +104,12 @@ fn closest_hit_equals_brute_force_on_random_scenes() {
     for seed in 0..12 {
         let g = random_scene(seed, 40 + 30 * seed as usize, 200, (seed % 3) as usize);
         let bvh = Bvh::build(&g);
-        let mut rng = Rng(seed + 1000);
-        for _ in 0..1000 {
-            assert_same_closest(&g, &bvh, &random_ray(&mut rng));
-        }
+        let mut rng = Rng::with_seed(seed + 1000);
+        let hits = (0..1000)
+            .filter(|_| assert_same_closest(&g, &bvh, &random_ray(&mut rng)))
+            .count();
+        // Agreeing on misses proves nothing: at least a tenth of the rays, aimed into the scene, hit.
+        assert!(hits >= 100, "only {hits} of 1000 rays hit (seed {seed})");
     }
 }
 
@@ -126,10 +117,11 @@ fn closest_hit_equals_brute_force_on_random_scenes() {
 fn any_hit_visits_exactly_the_primitives_on_the_segment() {
     let g = random_scene(7, 150, 300, 2);
     let bvh = Bvh::build(&g);
-    let mut rng = Rng(99);
+    let mut rng = Rng::with_seed(99);
+    let mut rays_with_hits = 0;
     for _ in 0..2000 {
         let ray = random_ray(&mut rng);
-        let t_max = rng.range(0.1, 2.0);
+        let t_max = in_range(&mut rng, 0.1, 2.0);
         let expected: BTreeSet<PrimId> = g
             .prim_ids()
             .filter(|&id| g.intersect(id, &ray, 0.0, t_max).is_some())
@@ -140,20 +132,46 @@ fn any_hit_visits_exactly_the_primitives_on_the_segment() {
             ControlFlow::Continue(())
         });
         assert_eq!(got, expected);
+        rays_with_hits += usize::from(!got.is_empty());
     }
+    // Segments that meet nothing agree trivially: at least a tenth must meet something.
+    assert!(
+        rays_with_hits >= 200,
+        "only {rays_with_hits} of 2000 segments hit"
+    );
 }
 
 #[test]
 fn any_hit_stops_when_asked() {
-    let g = random_scene(3, 300, 0, 0);
-    let bvh = Bvh::build(&g);
+    let mut g = random_scene(3, 300, 0, 0);
+    // And ten balls in a row along the ray, so that it meets at least ten primitives.
     let ray = Ray::new(Vec3::new(-20.0, 0.0, 0.0), Vec3::X);
-    let mut calls = 0;
-    bvh.any_hit(&g, &ray, 0.0, f32::INFINITY, |_| {
-        calls += 1;
-        ControlFlow::Break(())
-    });
-    assert!(calls <= 1);
+    for i in 0..10 {
+        g.objects.push(Object {
+            shape: Shape::Sphere(Sphere {
+                center: Vec3::new(2.0 * i as f32 - 9.0, 0.0, 0.0),
+                radius: 0.5,
+            }),
+            transform: None,
+            material: 0,
+        });
+    }
+    let bvh = Bvh::build(&g);
+    let on_the_ray = g
+        .prim_ids()
+        .filter(|&id| g.intersect(id, &ray, 0.0, f32::INFINITY).is_some())
+        .count();
+    assert!(on_the_ray >= 10, "{on_the_ray} primitives on the ray");
+    let calls_until = |answer: ControlFlow<()>| {
+        let mut calls = 0;
+        bvh.any_hit(&g, &ray, 0.0, f32::INFINITY, |_| {
+            calls += 1;
+            answer
+        });
+        calls
+    };
+    assert_eq!(calls_until(ControlFlow::Continue(())), on_the_ray);
+    assert_eq!(calls_until(ControlFlow::Break(())), 1);
 }
 
 #[test]
@@ -188,7 +206,7 @@ fn tree_is_shallow_and_covers_every_primitive_once() {
 
 #[test]
 fn ties_go_to_the_primitive_first_in_the_scene() {
-    // Many copies of one sphere: every ray that hits one hits all at the same t.
+    // Many copies of one sphere: every ray hits all of them at the same t.
     let mut g = Geometry::default();
     for _ in 0..50 {
         g.objects.push(Object {
@@ -201,13 +219,13 @@ fn ties_go_to_the_primitive_first_in_the_scene() {
         });
     }
     let bvh = Bvh::build(&g);
-    let mut rng = Rng(5);
+    let mut rng = Rng::with_seed(5);
     for _ in 0..200 {
-        let origin = rng.vec(-5.0, 5.0) + Vec3::splat(6.0);
-        let ray = Ray::new(origin, rng.vec(-0.5, 0.5) - origin);
-        if let Some(hit) = bvh.closest_hit(&g, &ray, 0.0, f32::INFINITY) {
-            assert_eq!(hit.prim, PrimId::object(0), "ray {ray:?}");
-        }
+        let origin = in_cube(&mut rng, -5.0, 5.0) + Vec3::splat(6.0);
+        // Aimed at a point inside the spheres (at most √0.75 from their centre): a hit.
+        let ray = Ray::new(origin, in_cube(&mut rng, -0.5, 0.5) - origin);
+        let hit = bvh.closest_hit(&g, &ray, 0.0, f32::INFINITY);
+        assert_eq!(hit.map(|h| h.prim), Some(PrimId::object(0)), "ray {ray:?}");
     }
 }
 
@@ -252,7 +270,7 @@ proptest! {
     fn closest_hit_equals_brute_force_for_any_scene(seed in 0u64..1_000_000, n in 1usize..120) {
         let g = random_scene(seed, n, n * 2, (seed % 2) as usize);
         let bvh = Bvh::build(&g);
-        let mut rng = Rng(seed ^ 0xdead_beef);
+        let mut rng = Rng::with_seed(seed ^ 0xdead_beef);
         for _ in 0..64 {
             assert_same_closest(&g, &bvh, &random_ray(&mut rng));
         }
@@ -262,8 +280,8 @@ proptest! {
     fn packets_get_the_single_ray_hits_from_any_eye(seed in 0u64..1_000_000, n in 1usize..200) {
         let g = random_scene(seed, n, n * 3, (seed % 2) as usize);
         let bvh = Bvh::build(&g);
-        let mut rng = Rng(seed ^ 0x5eed);
-        let camera = camera_at(rng.vec(-30.0, 30.0));
+        let mut rng = Rng::with_seed(seed ^ 0x5eed);
+        let camera = camera_at(in_cube(&mut rng, -30.0, 30.0));
         let rays = eye_rays_in_tiles(&camera, 24, 16);
         assert_packets_equal_single_rays(&g, &bvh, &rays, PACKET_SIZE);
     }
@@ -314,8 +332,8 @@ fn packets_of_eye_rays_get_the_single_ray_hits() {
     for seed in 0..6 {
         let g = random_scene(seed, 60, 400, (seed % 3) as usize);
         let bvh = Bvh::build(&g);
-        let mut rng = Rng(seed + 77);
-        let camera = camera_at(rng.vec(-12.0, 12.0) + Vec3::new(0.0, 0.0, 24.0));
+        let mut rng = Rng::with_seed(seed + 77);
+        let camera = camera_at(in_cube(&mut rng, -12.0, 12.0) + Vec3::new(0.0, 0.0, 24.0));
         let rays = eye_rays_in_tiles(&camera, 96, 72);
         assert!(
             rays.iter()
@@ -332,7 +350,7 @@ fn packets_of_eye_rays_get_the_single_ray_hits() {
 fn packets_of_incoherent_and_axis_parallel_rays_get_the_single_ray_hits() {
     let g = random_scene(3, 120, 600, 1);
     let bvh = Bvh::build(&g);
-    let mut rng = Rng(99);
+    let mut rng = Rng::with_seed(99);
     // Directions of every sign: the packet has no bounds to cull with.
     let random: Vec<Ray> = (0..4096).map(|_| random_ray(&mut rng)).collect();
     assert_packets_equal_single_rays(&g, &bvh, &random, PACKET_SIZE);

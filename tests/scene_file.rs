@@ -6,7 +6,8 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::fuzz::{Rng, mutate};
+use common::fuzz::mutate;
+use common::random::Rng;
 use glam::{Vec2, Vec3};
 use raylab::light::Light;
 use raylab::material::{Color, Material};
@@ -908,7 +909,7 @@ const ALPHABET: &[char] = &[
 
 #[test]
 fn mutated_scene_files_never_panic() {
-    let mut rng = Rng(0x5EED_CAFE_F00D_1234);
+    let mut rng = Rng::with_seed(0x5EED_CAFE_F00D_1234);
     let mut originals: Vec<String> = std::fs::read_dir(scenes_dir())
         .unwrap()
         .map(|entry| entry.unwrap().path())
@@ -920,7 +921,7 @@ fn mutated_scene_files_never_panic() {
     originals.push(FULL.to_string());
     let (mut parsed, mut rejected) = (0, 0);
     for _ in 0..20_000 {
-        let original = &originals[rng.below(originals.len())];
+        let original = &originals[rng.usize(..originals.len())];
         let text = mutate(original, &mut rng, ALPHABET);
         let outcome = std::panic::catch_unwind(|| {
             parse_scene(&text, Path::new("fuzz.toml"), &scenes_dir()).map(|_| ())

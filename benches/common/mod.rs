@@ -1,4 +1,5 @@
-//! What the benchmarks share: a small deterministic random generator, and ray sets.
+//! What the benchmarks share: the tests' seeded random numbers (the same every run, so every run
+//! measures the same work), and ray sets.
 
 #![allow(dead_code)] // each benchmark uses a different part
 
@@ -6,34 +7,10 @@ use glam::Vec3;
 use raylab::ray::Ray;
 use raylab::scene::Scene;
 
-/// A linear congruential generator: the same numbers on every machine, so every run measures
-/// the same work.
-pub struct Rng(pub u64);
+#[path = "../../tests/common/random.rs"]
+pub mod random;
 
-impl Rng {
-    /// A number in [0, 1).
-    pub fn next(&mut self) -> f32 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 40) as f32 / (1u64 << 24) as f32
-    }
-
-    pub fn vec(&mut self, lo: f32, hi: f32) -> Vec3 {
-        Vec3::new(self.next(), self.next(), self.next()) * (hi - lo) + Vec3::splat(lo)
-    }
-
-    /// A direction spread evenly over the sphere.
-    pub fn direction(&mut self) -> Vec3 {
-        loop {
-            let v = self.vec(-1.0, 1.0);
-            if v.length_squared() <= 1.0 && v.length_squared() > 1e-6 {
-                return v.normalize();
-            }
-        }
-    }
-}
+use random::{Rng, direction};
 
 /// The scene's eye rays through a `size × size` grid of pixel centres: coherent rays.
 pub fn camera_rays(scene: &Scene, size: u32) -> Vec<Ray> {
@@ -65,11 +42,11 @@ pub fn in_tiles(rays: &[Ray], size: u32) -> Vec<Ray> {
 
 /// `n` rays from random points in the box `[lo, hi]` in random directions: incoherent rays.
 pub fn random_rays(n: usize, lo: Vec3, hi: Vec3, seed: u64) -> Vec<Ray> {
-    let mut rng = Rng(seed);
+    let mut rng = Rng::with_seed(seed);
     (0..n)
         .map(|_| {
-            let p = lo + (hi - lo) * Vec3::new(rng.next(), rng.next(), rng.next());
-            Ray::new(p, rng.direction())
+            let p = lo + (hi - lo) * Vec3::new(rng.f32(), rng.f32(), rng.f32());
+            Ray::new(p, direction(&mut rng))
         })
         .collect()
 }

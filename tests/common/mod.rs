@@ -1,8 +1,10 @@
-//! What several test binaries share: scenes built in code, and seeded mutations of texts.
+//! What several test binaries share: scenes built in code, seeded random numbers, and seeded
+//! mutations of texts.
 
 #![allow(dead_code)] // each test binary uses a different part
 
 pub mod fuzz;
+pub mod random;
 
 use glam::Vec3;
 use raylab::camera::{Camera, CameraSpec};
