@@ -1,11 +1,10 @@
 //! The NFF reader end to end: every entity becomes the expected part of a `Scene`, SPD's own
 //! files load, every kind of mistake is reported at its line and column, no mutation of a file
-//! makes the reader panic, and large files parse fast.
+//! makes the reader panic, and large files parse whole (how fast: `cargo bench --bench nff`).
 
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 use common::fuzz::mutate;
 use common::random::Rng;
@@ -625,16 +624,13 @@ fn the_document_survives_a_round_trip_through_text() {
 }
 
 #[test]
-fn tens_of_thousands_of_primitives_parse_in_well_under_a_second() {
+fn tens_of_thousands_of_primitives_parse_into_as_many_objects() {
     let document = Database::Rings.generate(12).unwrap();
     assert!(document.primitive_counts().total() > 39_000);
     let text = document.to_nff_string();
-    let start = Instant::now();
     let scene = parse_nff(&text, Path::new("rings-12.nff"), NffLighting::Readme).unwrap();
-    let elapsed = start.elapsed();
     assert_eq!(
         scene.geometry.objects.len(),
         document.primitive_counts().total()
     );
-    assert!(elapsed.as_secs_f64() < 0.5, "{elapsed:?}");
 }

@@ -46,23 +46,34 @@ mod tests {
 
     #[test]
     fn saving_the_file_calls_back_and_other_files_do_not() {
+        use std::sync::Arc;
+        use std::sync::atomic::{AtomicBool, Ordering::SeqCst};
+
         let dir = tempfile::tempdir().unwrap();
         let scene = dir.path().join("scene.toml");
         std::fs::write(&scene, "a").unwrap();
+        // Each call back says whether the scene file had been touched yet.
+        let touched = Arc::new(AtomicBool::new(false));
         let (sender, receiver) = mpsc::channel();
+        let seen = touched.clone();
         let _watcher = SceneWatcher::new(&scene, move || {
-            let _ = sender.send(());
+            let _ = sender.send(seen.load(SeqCst));
         })
         .unwrap();
-        std::fs::write(dir.path().join("other.toml"), "b").unwrap();
-        assert!(receiver.recv_timeout(Duration::from_millis(300)).is_err());
+        // Other files first. The watcher's thread takes the folder's changes in order, so a call
+        // back for them would come before the scene file's and (unless that thread lags behind
+        // all twenty writes) say that the scene file was not touched yet.
+        for i in 0..20 {
+            std::fs::write(dir.path().join(format!("other-{i}.toml")), "b").unwrap();
+        }
+        touched.store(true, SeqCst);
         // Written in place, then replaced by a rename as many editors do.
         std::fs::write(&scene, "c").unwrap();
-        assert!(receiver.recv_timeout(Duration::from_secs(5)).is_ok());
+        assert_eq!(receiver.recv_timeout(Duration::from_secs(5)), Ok(true));
         while receiver.try_recv().is_ok() {}
         let temp = dir.path().join(".scene.toml.swp");
         std::fs::write(&temp, "d").unwrap();
         std::fs::rename(&temp, &scene).unwrap();
-        assert!(receiver.recv_timeout(Duration::from_secs(5)).is_ok());
+        assert_eq!(receiver.recv_timeout(Duration::from_secs(5)), Ok(true));
     }
 }
