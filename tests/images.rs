@@ -3,7 +3,8 @@
 //! that absorbs floating-point differences between machines but not a changed picture.
 //!
 //! To update the references after an intended change of the pictures:
-//! `RAYLAB_BLESS=1 cargo test --test images`, then look at every file before committing.
+//! `RAYLAB_BLESS=1 cargo test --test images` writes them and fails (a blessing run never passes);
+//! look at every file, commit them, and run the tests again without `RAYLAB_BLESS`.
 
 use std::path::{Path, PathBuf};
 
@@ -19,8 +20,9 @@ const SIZE: (u32, u32) = (160, 120);
 /// The size of the SPD scenes' pictures: square, as SPD renders them.
 const SPD_SIZE: (u32, u32) = (128, 128);
 
-fn reference_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/reference/{name}.png"))
+/// Where the reference pictures live.
+fn reference_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference")
 }
 
 fn render_small(mut scene: Scene, (width, height): (u32, u32)) -> Vec<u8> {
@@ -48,26 +50,52 @@ fn difference(a: &[u8], b: &[u8]) -> (f64, f64) {
     (mean, far as f64 / (a.len() / 3) as f64)
 }
 
-fn check(name: &str, scene: Scene, size: (u32, u32)) {
-    let image = render_small(scene, size);
-    let path = reference_path(name);
-    if std::env::var_os("RAYLAB_BLESS").is_some() {
-        let linear: Vec<_> = image
-            .chunks(3)
-            .map(|c| glam::Vec3::from_array([c[0], c[1], c[2]].map(srgb_decode)))
+/// Renders each named scene at `size` and compares it with its reference picture; with
+/// `RAYLAB_BLESS` set, writes the references instead, then fails.
+fn check(size: (u32, u32), scenes: Vec<(String, Scene)>) {
+    let pictures: Vec<(String, Vec<u8>)> = scenes
+        .into_iter()
+        .map(|(name, scene)| (name, render_small(scene, size)))
+        .collect();
+    let bless = std::env::var_os("RAYLAB_BLESS").is_some();
+    check_pictures(&reference_dir(), size, &pictures, bless);
+}
+
+/// Compares each named 8-bit picture of `size` with `dir/NAME.png`, or with `bless`, writes them
+/// all there and then fails: a blessed picture is looked at by a person, not compared with itself.
+fn check_pictures(dir: &Path, size: (u32, u32), pictures: &[(String, Vec<u8>)], bless: bool) {
+    let path = |name: &str| dir.join(format!("{name}.png"));
+    if bless {
+        for (name, image) in pictures {
+            let linear: Vec<_> = image
+                .chunks(3)
+                .map(|c| glam::Vec3::from_array([c[0], c[1], c[2]].map(srgb_decode)))
+                .collect();
+            save_image(&path(name), size.0, size.1, &linear).unwrap();
+        }
+        let written: Vec<String> = pictures
+            .iter()
+            .map(|(name, _)| path(name).display().to_string())
             .collect();
-        save_image(&path, size.0, size.1, &linear).unwrap();
+        panic!(
+            "RAYLAB_BLESS is set, so nothing was compared: wrote {}; look at each, then run the \
+             tests again without RAYLAB_BLESS",
+            written.join(", ")
+        );
     }
-    let reference = image::open(&path)
-        .unwrap_or_else(|e| panic!("{}: {e} (RAYLAB_BLESS=1 makes it)", path.display()))
-        .to_rgb8();
-    assert_eq!(reference.dimensions(), size, "{name}");
-    let (mean, far) = difference(&image, reference.as_raw());
-    assert!(
-        mean < 1.0 && far < 0.005,
-        "{name}: mean difference {mean:.3} levels, {:.2}% of pixels far off",
-        far * 100.0
-    );
+    for (name, image) in pictures {
+        let path = path(name);
+        let reference = image::open(&path)
+            .unwrap_or_else(|e| panic!("{}: {e} (RAYLAB_BLESS=1 makes it)", path.display()))
+            .to_rgb8();
+        assert_eq!(reference.dimensions(), size, "{name}");
+        let (mean, far) = difference(image, reference.as_raw());
+        assert!(
+            mean < 1.0 && far < 0.005,
+            "{name}: mean difference {mean:.3} levels, {:.2}% of pixels far off",
+            far * 100.0
+        );
+    }
 }
 
 /// Inverse of the 8-bit sRGB encoding, so that blessing writes exactly the rendered bytes.
@@ -82,16 +110,18 @@ fn shipped(name: &str) -> Scene {
 
 #[test]
 fn default_scene_matches_its_reference() {
-    check("default", default_scene().unwrap(), SIZE);
+    check(SIZE, vec![("default".into(), default_scene().unwrap())]);
 }
 
 #[test]
 fn teaching_scenes_match_their_references() {
-    for name in [
+    let names = [
         "shadows", "mirrors", "glass", "textures", "meshes", "quadrics",
-    ] {
-        check(name, shipped(name), SIZE);
-    }
+    ];
+    check(
+        SIZE,
+        names.map(|name| (name.to_string(), shipped(name))).into(),
+    );
 }
 
 #[test]
@@ -109,7 +139,7 @@ fn the_comparison_notices_a_changed_picture() {
 
 #[test]
 fn spd_scenes_match_their_references() {
-    for name in [
+    let names = [
         "spd:balls:3",
         "spd:gears:3",
         "spd:mount:5",
@@ -117,16 +147,18 @@ fn spd_scenes_match_their_references() {
         "spd:teapot:6",
         "spd:tetra:5",
         "spd:tree:8",
-    ] {
+    ];
+    let scenes = names.map(|name| {
         let scene = load_any(name).unwrap_or_else(|e| panic!("{e}"));
-        check(&name.replace(':', "-"), scene, SPD_SIZE);
-    }
+        (name.replace(':', "-"), scene)
+    });
+    check(SPD_SIZE, scenes.into());
 }
 
 #[test]
 fn povray_lighting_matches_its_reference() {
     let scene = load_any_with("spd:mount:5", NffLighting::Povray).unwrap();
-    check("spd-mount-5-povray", scene, SPD_SIZE);
+    check(SPD_SIZE, vec![("spd-mount-5-povray".into(), scene)]);
 }
 
 #[test]
@@ -143,4 +175,26 @@ fn an_spd_file_looks_like_the_generated_scene() {
         mean < 1.0 && far < 0.005,
         "{mean:.3} levels, {far:.4} far off"
     );
+}
+
+#[test]
+fn blessing_writes_the_references_then_fails() {
+    let dir = tempfile::tempdir().unwrap();
+    let pictures = vec![(
+        "default".to_string(),
+        render_small(default_scene().unwrap(), SIZE),
+    )];
+    let blessing = std::panic::catch_unwind(|| check_pictures(dir.path(), SIZE, &pictures, true));
+    let message = *blessing
+        .expect_err("a blessing run fails")
+        .downcast::<String>()
+        .unwrap();
+    assert!(message.contains("RAYLAB_BLESS"), "{message}");
+    assert!(message.contains("default.png"), "{message}");
+    // What it wrote is the render, byte for byte, so the next run compares it and passes.
+    let written = image::open(dir.path().join("default.png"))
+        .unwrap()
+        .to_rgb8();
+    assert_eq!(written.as_raw(), &pictures[0].1);
+    check_pictures(dir.path(), SIZE, &pictures, false);
 }
