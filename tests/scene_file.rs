@@ -8,9 +8,11 @@ use std::path::{Path, PathBuf};
 
 use common::fuzz::{Rng, mutate};
 use glam::{Vec2, Vec3};
+use raylab::formats::SceneError;
+use raylab::formats::toml::{DEFAULT_MATERIAL, load_scene, parse_scene};
 use raylab::light::Light;
 use raylab::material::{Color, Material};
-use raylab::scene::{DEFAULT_MATERIAL, Scene, SceneError, load_scene, parse_scene};
+use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::Shape;
 use raylab::texture::{Texture, Wrap};

@@ -13,8 +13,8 @@ use std::ops::Range;
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 
-use super::error::{SceneError, Source};
 use super::file::OBJECT_KEYS;
+use crate::formats::{SceneError, Source};
 
 /// The key that says what kind of light, texture or object a table describes.
 const TAG: &str = "type";
