@@ -165,7 +165,7 @@ fn build_settings(render: RenderFile, source: Source) -> Result<RenderSettings, 
     apply(s, render.ambient, |s, v| s.ambient = v.0, source)?;
     apply(s, render.shadows, |s, v| s.shadows = v, source)?;
     apply(s, render.reflections, |s, v| s.reflections = v, source)?;
-    apply(s, render.refractions, |s, v| s.refractions = v, source)?;
+    apply(s, render.transmission, |s, v| s.transmission = v, source)?;
     apply(s, render.textures, |s, v| s.textures = v, source)?;
     Ok(settings)
 }
