@@ -1,5 +1,6 @@
 //! raylab: a Whitted ray tracer after Hill & Kelley's lecture (ch. 12). The data flows one way:
-//! scene file → [`scene::Scene`] → [`bvh::Bvh`] → [`whitted`] tracer → [`film::Film`] → image.
+//! scene file ([`formats`]) → [`scene::Scene`] → [`bvh::Bvh`] → [`whitted`] tracer →
+//! [`film::Film`] → image.
 //! Nothing here knows about windows or GPUs.
 
 pub mod aabb;
