@@ -1,11 +1,13 @@
 //! raylab: a Whitted ray tracer after Hill & Kelley's lecture (ch. 12). The data flows one way:
-//! scene file → [`scene::Scene`] → [`bvh::Bvh`] → [`whitted`] tracer → [`film::Film`] → image.
+//! scene file ([`formats`]) → [`scene::Scene`] → [`bvh::Bvh`] → [`whitted`] tracer →
+//! [`film::Film`] → image.
 //! Nothing here knows about windows or GPUs.
 
 pub mod aabb;
 pub mod bvh;
 pub mod camera;
 pub mod film;
+pub mod formats;
 pub mod inspect;
 pub mod large_mesh;
 pub mod light;
@@ -13,7 +15,6 @@ pub mod limits;
 pub mod material;
 pub mod memory;
 pub mod mesh;
-pub mod nff;
 pub mod output;
 pub mod primitive;
 pub mod progressive;
@@ -22,7 +23,6 @@ pub mod scene;
 pub mod settings;
 pub mod shadow_cache;
 pub mod shapes;
-pub mod spd;
 pub mod stats;
 pub mod texture;
 pub mod transform;

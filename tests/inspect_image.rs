@@ -7,9 +7,10 @@ use std::path::Path;
 
 use glam::{Vec2, Vec3};
 use raylab::bvh::Bvh;
+use raylab::formats::toml::{default_scene, load_scene};
 use raylab::inspect::{eye_ray, object_ids, trace_ray_tree};
 use raylab::progressive;
-use raylab::scene::{Scene, default_scene, load_scene};
+use raylab::scene::Scene;
 use raylab::whitted::Tracer;
 
 fn close(a: Vec3, b: Vec3, tolerance: f32) -> bool {

@@ -14,10 +14,11 @@ use std::time::{Duration, Instant};
 use glam::Vec3;
 use raylab::bvh::Bvh;
 use raylab::camera::{Camera, CameraSpec};
+use raylab::formats::image::to_srgb8;
+use raylab::formats::toml::{default_scene, load_scene};
 use raylab::inspect::{DebugView, RayKind, RayTree, trace_ray_tree};
-use raylab::output::to_srgb8;
 use raylab::progressive;
-use raylab::scene::{Scene, default_scene, load_scene};
+use raylab::scene::Scene;
 use raylab::whitted::Tracer;
 
 /// One viewer at a time: they share two cores, and parallel `xvfb-run -a` can race for a display.

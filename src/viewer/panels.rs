@@ -234,7 +234,7 @@ fn tracing_section(
             ui.horizontal_wrapped(|ui| {
                 ui.checkbox(&mut s.shadows, "shadows");
                 ui.checkbox(&mut s.reflections, "reflections");
-                ui.checkbox(&mut s.refractions, "refraction");
+                ui.checkbox(&mut s.transmission, "transmission");
                 ui.checkbox(&mut s.textures, "textures");
             });
         });

@@ -8,7 +8,9 @@ use std::time::{Duration, Instant};
 use glam::Vec3;
 use raylab::aabb::Aabb;
 use raylab::bvh::Bvh;
-use raylab::scene::{self, Scene};
+use raylab::formats::load_any;
+use raylab::formats::toml::{default_scene, load_scene};
+use raylab::scene::Scene;
 
 /// A scene ready to trace, with where it came from.
 pub struct LoadedScene {
@@ -39,10 +41,10 @@ pub fn load(path: Option<&Path>) -> Result<LoadedScene, String> {
     let start = Instant::now();
     let scene = match path {
         Some(path) => match path.to_str() {
-            Some(name) => scene::load_any(name),
-            None => scene::load_scene(path),
+            Some(name) => load_any(name),
+            None => load_scene(path),
         },
-        None => scene::default_scene(),
+        None => default_scene(),
     }
     .map_err(|e| e.to_string())?;
     let bvh = Bvh::build(&scene.geometry);

@@ -7,14 +7,17 @@
 //! line. Instead the parsed document, which keeps every value's position, is rewritten into
 //! serde's externally tagged form, `{ material = "red", shape = { sphere = { radius = 2 } } }`,
 //! which serde reads without buffering, positions and all.
+//!
+//! Keys that have been renamed are given their new names here too, so that older scene files
+//! still load.
 
 use std::ops::Range;
 
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 
-use super::error::{SceneError, Source};
 use super::file::OBJECT_KEYS;
+use crate::formats::{SceneError, Source};
 
 /// The key that says what kind of light, texture or object a table describes.
 const TAG: &str = "type";
@@ -22,14 +25,20 @@ const TAG: &str = "type";
 /// The key [`super::file::ObjectFile`] reads an object's shape from.
 const SHAPE_KEY: &str = "shape";
 
-/// Rewrites `[[lights]]`, `[textures.*]` and `[[objects]]` in place. Values of the wrong TOML
-/// type are left alone for serde to report. Returns the positions of the keys that went into
+/// Keys of `[render]` that older scene files write under another name: (old, new).
+const OLD_RENDER_KEYS: [(&str, &str); 1] = [("refractions", "transmission")];
+
+/// Rewrites `[[lights]]`, `[textures.*]` and `[[objects]]` in place, and renames the old keys
+/// of `[render]`. Values of the wrong TOML type are left alone for serde to report. Returns the positions of the keys that went into
 /// objects' shapes: serde, knowing only the shape's keys, reports an unknown one without
 /// mentioning [`OBJECT_KEYS`], and the caller adds them.
 pub(crate) fn retag_document(
     root: &mut DeTable<'_>,
     source: Source,
 ) -> Result<Vec<Range<usize>>, SceneError> {
+    if let Some(DeValue::Table(render)) = root.get_mut("render").map(Spanned::get_mut) {
+        rename_old_keys(render, &OLD_RENDER_KEYS, source)?;
+    }
     if let Some(DeValue::Array(lights)) = root.get_mut("lights").map(Spanned::get_mut) {
         for light in lights.iter_mut() {
             retag(light, source, "light", Kind::Default("point"))?;
@@ -47,6 +56,28 @@ pub(crate) fn retag_document(
         }
     }
     Ok(shape_keys)
+}
+
+/// Gives each `old` key of `table` its `new` name, keeping its position; an old key beside its
+/// new name is an error there.
+fn rename_old_keys(
+    table: &mut DeTable<'_>,
+    renamed: &[(&str, &'static str)],
+    source: Source,
+) -> Result<(), SceneError> {
+    for &(old, new) in renamed {
+        let Some((key, value)) = table.remove_entry(old) else {
+            continue;
+        };
+        if table.contains_key(new) {
+            return Err(source.error(
+                key.span(),
+                format!("`{old}` is the old name of `{new}`, which is set too; keep one"),
+            ));
+        }
+        table.insert(Spanned::new(key.span(), new.into()), value);
+    }
+    Ok(())
 }
 
 /// What a table without a `type` is.

@@ -3,22 +3,23 @@
 
 use std::path::Path;
 
-use super::files::SceneFiles;
 use super::load::parse_scene_with;
-use super::{Scene, SceneError};
+use crate::formats::SceneError;
+use crate::formats::SceneFiles;
+use crate::scene::Scene;
 
 /// The default scene's text, as in `assets/scenes/default.toml`.
-pub const DEFAULT_SCENE_TEXT: &str = include_str!("../../assets/scenes/default.toml");
+pub const DEFAULT_SCENE_TEXT: &str = include_str!("../../../assets/scenes/default.toml");
 
 /// The files the default scene names, by the names it uses for them.
 const DEFAULT_SCENE_FILES: &[(&str, &[u8])] = &[
     (
         "../textures/bricks.png",
-        include_bytes!("../../assets/textures/bricks.png"),
+        include_bytes!("../../../assets/textures/bricks.png"),
     ),
     (
         "../models/torus.obj",
-        include_bytes!("../../assets/models/torus.obj"),
+        include_bytes!("../../../assets/models/torus.obj"),
     ),
 ];
 

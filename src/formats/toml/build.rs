@@ -9,21 +9,21 @@ use std::sync::Arc;
 use glam::{Vec2, Vec3};
 use toml::Spanned;
 
-use super::Scene;
-use super::error::{SceneError, Source};
 use super::file::{
     CameraFile, LightFile, MaterialFile, ObjectFile, RenderFile, SceneFile, ShapeFile, TextureFile,
     TransformStepFile, WrapFile,
 };
-use super::files::SceneFiles;
-use super::obj::{ObjError, load_obj};
 use super::values::{ColorValue, Direction, Exact, NonNegative, TexCoord, Vector};
 use crate::camera::{Camera, CameraError, CameraSpec};
+use crate::formats::SceneFiles;
+use crate::formats::obj::{ObjError, load_obj};
+use crate::formats::{SceneError, Source};
 use crate::light::Light;
 use crate::limits;
 use crate::material::{Color, Material};
 use crate::mesh::{Mesh, MeshError};
 use crate::primitive::{Geometry, Object};
+use crate::scene::Scene;
 use crate::settings::RenderSettings;
 use crate::shapes::{
     Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder, Triangle,
@@ -165,7 +165,7 @@ fn build_settings(render: RenderFile, source: Source) -> Result<RenderSettings, 
     apply(s, render.ambient, |s, v| s.ambient = v.0, source)?;
     apply(s, render.shadows, |s, v| s.shadows = v, source)?;
     apply(s, render.reflections, |s, v| s.reflections = v, source)?;
-    apply(s, render.refractions, |s, v| s.refractions = v, source)?;
+    apply(s, render.transmission, |s, v| s.transmission = v, source)?;
     apply(s, render.textures, |s, v| s.textures = v, source)?;
     Ok(settings)
 }

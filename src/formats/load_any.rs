@@ -4,9 +4,11 @@
 
 use std::path::Path;
 
-use super::{Scene, SceneError, load_scene};
-use crate::nff::{NffLighting, load_nff};
-use crate::spd::{SCENE_PREFIX, load_spd};
+use super::SceneError;
+use super::nff::{NffLighting, load_nff};
+use super::spd::{SCENE_PREFIX, load_spd};
+use super::toml::load_scene;
+use crate::scene::Scene;
 
 /// Reads the scene `name` names, NFF lights as bright as the SPD readme suggests.
 pub fn load_any(name: &str) -> Result<Scene, SceneError> {

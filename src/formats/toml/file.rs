@@ -50,7 +50,8 @@ pub struct RenderFile {
     pub ambient: Option<Spanned<ColorValue>>,
     pub shadows: Option<Spanned<bool>>,
     pub reflections: Option<Spanned<bool>>,
-    pub refractions: Option<Spanned<bool>>,
+    /// Older files call it `refractions` (see [`super::retag`]).
+    pub transmission: Option<Spanned<bool>>,
     pub textures: Option<Spanned<bool>>,
 }
 

@@ -9,7 +9,7 @@ use glam::DVec3;
 
 use super::document::{Fill, Item, NffDocument, NffLight, PatchVertex, View};
 use super::tokens::{Token, Tokens};
-use crate::scene::{SceneError, Source};
+use crate::formats::{SceneError, Source};
 use crate::settings::MAX_IMAGE_SIDE;
 
 /// Where the parts of a document were written, for errors found when it is built.

@@ -4,7 +4,7 @@
 
 use glam::{DMat3, DVec3};
 
-use crate::nff::{Fill, Item, NffDocument, NffLight, View};
+use crate::formats::nff::{Fill, Item, NffDocument, NffLight, View};
 
 /// The background of every database.
 const SKY_BLUE: DVec3 = DVec3::new(0.078, 0.361, 0.753);

@@ -8,7 +8,7 @@ use std::f64::consts::TAU;
 use glam::{DMat3, DVec3};
 
 use super::conventions::{Surface, axis_rotation, document};
-use crate::nff::{Item, NffDocument};
+use crate::formats::nff::{Item, NffDocument};
 
 /// Fractal dimension of the surface, between 2 and 3: how rough it is.
 const FRACTAL_DIMENSION: f64 = 2.2;

@@ -7,7 +7,7 @@ use std::f64::consts::{PI, TAU};
 use glam::{DMat3, DVec3};
 
 use super::conventions::{Surface, document};
-use crate::nff::{Item, NffDocument};
+use crate::formats::nff::{Item, NffDocument};
 
 const TEETH: usize = 36;
 /// Outer radius of the teeth relative to the gear's full radius: a little short, so meshing

@@ -18,8 +18,9 @@ use std::fmt;
 use std::path::Path;
 use std::str::FromStr;
 
-use crate::nff::{NffDocument, NffLighting};
-use crate::scene::{Scene, SceneError};
+use crate::formats::SceneError;
+use crate::formats::nff::{NffDocument, NffLighting};
+use crate::scene::Scene;
 
 /// The prefix of built-in SPD scene names.
 pub const SCENE_PREFIX: &str = "spd:";

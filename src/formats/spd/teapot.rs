@@ -7,7 +7,7 @@ use glam::DVec3;
 
 use super::conventions::{Surface, document};
 use super::teapot_patches::{CONTROL_POINTS, PATCHES};
-use crate::nff::{Item, NffDocument, PatchVertex};
+use crate::formats::nff::{Item, NffDocument, PatchVertex};
 
 /// How close to the Z axis a vertex must be to sit on a cusp.
 const CUSP_TOLERANCE: f64 = 0.0001;

@@ -5,7 +5,7 @@
 use glam::{DMat3, DVec3};
 
 use super::conventions::{Surface, axis_rotation, document};
-use crate::nff::{Item, NffDocument};
+use crate::formats::nff::{Item, NffDocument};
 
 /// Each child's radius relative to its parent's.
 const CHILD_SCALE: f64 = 1.0 / 3.0;

@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::conventions::{Surface, document};
-use crate::nff::{Item, NffDocument};
+use crate::formats::nff::{Item, NffDocument};
 
 pub(super) fn tetra(size: u32) -> NffDocument {
     let mut doc = document(

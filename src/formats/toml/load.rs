@@ -7,13 +7,13 @@ use std::path::Path;
 use serde::Deserialize;
 use toml::de::DeTable;
 
-use super::Scene;
 use super::build::build_scene;
-use super::error::{SceneError, Source};
 use super::file::{OBJECT_KEYS, SceneFile};
-use super::files::{SceneFiles, utf8_text};
 use super::retag::retag_document;
+use crate::formats::{SceneError, Source};
+use crate::formats::{SceneFiles, utf8_text};
 use crate::memory::{self, Bytes};
+use crate::scene::Scene;
 
 /// Reads the scene file at `path`, UTF-8 text (a byte-order mark or a DOS end-of-file mark is
 /// skipped). Texture and OBJ file names are relative to its folder.

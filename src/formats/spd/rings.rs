@@ -7,7 +7,7 @@ use std::f64::consts::{PI, TAU};
 use glam::{DMat3, DVec3};
 
 use super::conventions::{Surface, document};
-use crate::nff::{Item, NffDocument};
+use crate::formats::nff::{Item, NffDocument};
 
 /// Radius of the cylinders and spheres.
 const RADIUS: f64 = 0.07412;

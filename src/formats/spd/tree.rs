@@ -5,7 +5,7 @@
 use glam::{DAffine3, DVec3};
 
 use super::conventions::{Surface, document};
-use crate::nff::{Item, NffDocument};
+use crate::formats::nff::{Item, NffDocument};
 
 /// Angle from the parent branch, and contraction of length, of the two child branches.
 const BRANCH_ANGLE: [f64; 2] = [40.0, 25.0];

@@ -17,7 +17,8 @@ pub use build::{BuildError, Part, SPD_MAX_DEPTH};
 pub use document::{Fill, Item, NffDocument, NffLight, PatchVertex, PrimitiveCounts, View};
 pub use lighting::NffLighting;
 
-use crate::scene::{Scene, SceneError, Source, ascii_text};
+use crate::formats::{SceneError, Source, ascii_text};
+use crate::scene::Scene;
 use parse::Locations;
 
 /// Reads the NFF file at `path`. NFF is ASCII: a comment may hold any byte, and a byte-order
