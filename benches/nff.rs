@@ -6,8 +6,8 @@ use std::hint::black_box;
 use std::path::Path;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use raylab::nff::{NffLighting, parse_nff};
-use raylab::spd::Database;
+use raylab::formats::nff::{NffLighting, parse_nff};
+use raylab::formats::spd::Database;
 
 fn nff(c: &mut Criterion) {
     let text = Database::Rings

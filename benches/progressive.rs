@@ -8,8 +8,8 @@ use std::time::{Duration, Instant};
 use criterion::{Criterion, criterion_group, criterion_main};
 use raylab::bvh::Bvh;
 use raylab::film::Film;
+use raylab::formats::toml::default_scene;
 use raylab::progressive::{self, RenderControl};
-use raylab::scene::default_scene;
 use raylab::whitted::Tracer;
 
 fn cancel(c: &mut Criterion) {
