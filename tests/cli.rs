@@ -674,3 +674,102 @@ fn a_signal_during_the_save_leaves_no_temporary_file() {
         }
     }
 }
+
+/// The options that override a scene's settings, shared by `render`, `inspect` and `view`.
+const OVERRIDES: [&str; 7] = [
+    "--width",
+    "--height",
+    "--size",
+    "--max-depth",
+    "--min-weight",
+    "--block-size",
+    "--samples",
+];
+
+#[test]
+fn render_inspect_and_view_take_the_same_setting_overrides() {
+    let dir = tempfile::tempdir().unwrap();
+    for args in [
+        &["render", "--help"][..],
+        &["inspect", "--help"],
+        &["view", "--help"],
+        &["--help"],
+    ] {
+        let out = raylab(args, dir.path());
+        assert!(out.status.success(), "{args:?}: {}", stderr(&out));
+        let help = String::from_utf8_lossy(&out.stdout);
+        for option in OVERRIDES {
+            assert!(help.contains(option), "{args:?} lacks {option}: {help}");
+        }
+    }
+}
+
+#[test]
+fn render_takes_a_size_as_the_viewer_does() {
+    let dir = tempfile::tempdir().unwrap();
+    for (size, expected) in [("40", (40, 40)), ("30x20", (30, 20))] {
+        let out = raylab(&["render", "-o", "out.png", "--size", size], dir.path());
+        assert!(out.status.success(), "--size {size}: {}", stderr(&out));
+        let image = image::open(dir.path().join("out.png")).unwrap();
+        assert_eq!((image.width(), image.height()), expected, "--size {size}");
+    }
+}
+
+#[test]
+fn inspect_takes_a_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let inside = raylab(&["inspect", "--size", "8", "--pixel", "7,7"], dir.path());
+    assert!(inside.status.success(), "{}", stderr(&inside));
+    let outside = raylab(&["inspect", "--size", "8", "--pixel", "8,0"], dir.path());
+    assert!(!outside.status.success());
+    assert!(
+        stderr(&outside).contains("outside the 8×8 image"),
+        "{}",
+        stderr(&outside)
+    );
+}
+
+#[test]
+fn a_size_with_a_width_or_height_is_refused_by_every_command() {
+    let dir = tempfile::tempdir().unwrap();
+    for command in [
+        &["render", "-o", "a.png"][..],
+        &["inspect", "--pixel", "1,1"],
+        &["view"],
+    ] {
+        for side in ["--width", "--height"] {
+            let mut args = command.to_vec();
+            args.extend(["--size", "8", side, "4"]);
+            let out = raylab(&args, dir.path());
+            assert_eq!(out.status.code(), Some(2), "{args:?}");
+            let err = stderr(&out);
+            assert!(
+                err.contains("--size") && err.contains("cannot be used with"),
+                "{args:?}: {err}"
+            );
+        }
+    }
+    assert!(!dir.path().join("a.png").exists());
+}
+
+#[test]
+fn the_viewer_says_which_overrides_it_cannot_take() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: [(&[&str], &str); 3] = [
+        (&["view", "--width", "64"], "--width and --height together"),
+        (&["view", "--height", "64"], "--width and --height together"),
+        (&["--min-weight", "0.1"], "Tracing panel"),
+    ];
+    for (args, message) in cases {
+        let out = Command::new(env!("CARGO_BIN_EXE_raylab"))
+            .args(args)
+            .current_dir(dir.path())
+            .env_remove("DISPLAY")
+            .env_remove("WAYLAND_DISPLAY")
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(1), "{args:?}");
+        let err = stderr(&out);
+        assert!(err.contains(message), "{args:?}: {err}");
+    }
+}

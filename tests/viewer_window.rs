@@ -294,6 +294,24 @@ fn the_window_shows_the_default_scene_as_the_cpu_renders_it() {
 }
 
 #[test]
+fn the_viewer_takes_a_width_and_height_as_render_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let Some((run, _)) = run_to_screenshot(
+        dir.path(),
+        &["view", "--width", "72", "--height", "48", "--stats"],
+    ) else {
+        return;
+    };
+    assert!(
+        run.stderr.contains("block size 1 at 72×48"),
+        "{}",
+        run.stderr
+    );
+    let (_, _, w, h) = image_rect(&run.stdout);
+    assert!((w / h - 1.5).abs() < 0.02, "shown at {w}×{h}");
+}
+
+#[test]
 fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
     let dir = tempfile::tempdir().unwrap();
     let saved = dir.path().join("saved.png");

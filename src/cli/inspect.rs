@@ -8,7 +8,7 @@ use raylab::formats::nff::NffLighting;
 use raylab::inspect::trace_ray_tree;
 use raylab::whitted::Tracer;
 
-use super::render::SettingsOverrides;
+use super::overrides::SettingsOverrides;
 
 #[derive(Args, Debug)]
 pub struct InspectArgs {

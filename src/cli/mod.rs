@@ -1,11 +1,12 @@
 //! The command line: its arguments (clap) and the subcommands, and what they share: loading
-//! a scene, the `--threads` limit, writing to standard output, and removing unfinished files
-//! when a signal stops the program.
+//! a scene, the overrides of its settings (`overrides`), the `--threads` limit, writing to
+//! standard output, and removing unfinished files when a signal stops the program.
 
 mod bench;
 mod bench_report;
 mod generate;
 mod inspect;
+mod overrides;
 mod render;
 mod view;
 

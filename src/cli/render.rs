@@ -17,6 +17,8 @@ use raylab::settings::RenderSettings;
 use raylab::stats::RenderStats;
 use raylab::whitted::{RAY_BUDGET, Tracer};
 
+use super::overrides::SettingsOverrides;
+
 #[derive(Args, Debug)]
 pub struct RenderArgs {
     /// Scene: a .toml or .nff file, or a built-in SPD scene `spd:NAME[:SIZE]` (balls, gears,
@@ -41,43 +43,6 @@ pub struct RenderArgs {
     /// ambient light, as SPD's POV-Ray exporter writes them).
     #[arg(long, default_value_t = NffLighting::default())]
     nff_lights: NffLighting,
-}
-
-/// Render settings that the command line can override.
-#[derive(Args, Debug, Default)]
-pub struct SettingsOverrides {
-    /// Image width in pixels.
-    #[arg(long)]
-    width: Option<u32>,
-    /// Image height in pixels.
-    #[arg(long)]
-    height: Option<u32>,
-    /// Deepest level of the ray tree (the eye ray is depth 1).
-    #[arg(long)]
-    max_depth: Option<u32>,
-    /// Adaptive depth control: skip branches whose weight is below this (0 = off).
-    #[arg(long)]
-    min_weight: Option<f32>,
-    /// Starting block size of progressive refinement (power of two, 1 to 64).
-    #[arg(long)]
-    block_size: Option<u32>,
-    /// Samples per pixel (more than 1 anti-aliases).
-    #[arg(long)]
-    samples: Option<u32>,
-}
-
-impl SettingsOverrides {
-    /// Applies the overrides and checks the result.
-    pub fn apply(&self, settings: &mut RenderSettings) -> Result<(), String> {
-        let s = settings;
-        s.width = self.width.unwrap_or(s.width);
-        s.height = self.height.unwrap_or(s.height);
-        s.max_depth = self.max_depth.unwrap_or(s.max_depth);
-        s.min_weight = self.min_weight.unwrap_or(s.min_weight);
-        s.block_size = self.block_size.unwrap_or(s.block_size);
-        s.samples = self.samples.unwrap_or(s.samples);
-        s.validate()
-    }
 }
 
 pub fn run(args: RenderArgs) -> Result<(), String> {

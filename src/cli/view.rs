@@ -6,6 +6,7 @@ use clap::Args;
 use raylab::inspect::DebugView;
 use raylab::output::check_writable;
 
+use super::overrides::{SettingsOverrides, parse_size};
 use crate::viewer::{self, Options, Script};
 
 #[derive(Args, Debug)]
@@ -13,18 +14,9 @@ pub struct ViewArgs {
     /// Scene to open: a .toml or .nff file, or spd:NAME[:SIZE]; the built-in default scene when
     /// left out.
     scene: Option<PathBuf>,
-    /// Image size: N for N×N, or WIDTHxHEIGHT (default: the scene's).
-    #[arg(long, value_name = "N|WxH", value_parser = parse_size)]
-    size: Option<(u32, u32)>,
-    /// Starting block size of progressive refinement (power of two, 1 to 64).
-    #[arg(long)]
-    block_size: Option<u32>,
-    /// Deepest level of the ray tree (the eye ray is depth 1).
-    #[arg(long)]
-    max_depth: Option<u32>,
-    /// Samples per pixel (more than 1 anti-aliases after block size 1).
-    #[arg(long)]
-    samples: Option<u32>,
+    /// Overrides of the scene's render settings.
+    #[command(flatten)]
+    overrides: SettingsOverrides,
     /// What the image shows: shaded, normals, depth, uv, object, material, tree-depth, rays or
     /// bvh-cost (switchable in the Tracing panel).
     #[arg(long, value_name = "NAME", default_value = "shaded", value_parser = |s: &str| s.parse::<DebugView>())]
@@ -60,20 +52,6 @@ pub struct ViewArgs {
     max_fps: f32,
 }
 
-/// `N` or `WxH` (also `W×H`), each side at least 1.
-fn parse_size(text: &str) -> Result<(u32, u32), String> {
-    let side = |s: &str| match s.trim().parse::<u32>() {
-        Ok(n) if n >= 1 => Ok(n),
-        _ => Err(format!(
-            "`{s}` is not a size (use N or WIDTHxHEIGHT, e.g. 512 or 640x480)"
-        )),
-    };
-    match text.split_once(['x', 'X', '×']) {
-        Some((w, h)) => Ok((side(w)?, side(h)?)),
-        None => side(text).map(|n| (n, n)),
-    }
-}
-
 pub fn run(args: ViewArgs) -> Result<(), String> {
     let threads = super::thread_count(args.threads)?;
     if let Some(path) = &args.screenshot {
@@ -82,12 +60,25 @@ pub fn run(args: ViewArgs) -> Result<(), String> {
         }
         check_writable(path).map_err(|e| format!("{}: {e}", path.display()))?;
     }
+    let overrides = &args.overrides;
+    // The viewer takes a whole size (a scene's own is known only once it has loaded), and sets
+    // the weight threshold in its Tracing panel.
+    let size = match overrides.size() {
+        (Some(width), Some(height)) => Some((width, height)),
+        (None, None) => None,
+        _ => return Err("the viewer takes --width and --height together, or --size".into()),
+    };
+    if overrides.min_weight.is_some() {
+        return Err(
+            "the viewer sets --min-weight in its Tracing panel, not on the command line".into(),
+        );
+    }
     viewer::run(Options {
         scene: args.scene,
-        size: args.size,
-        block_size: args.block_size,
-        max_depth: args.max_depth,
-        samples: args.samples,
+        size,
+        block_size: overrides.block_size,
+        max_depth: overrides.max_depth,
+        samples: overrides.samples,
         view: args.view,
         threads,
         window: args.window.unwrap_or((1100, 720)),
@@ -98,18 +89,4 @@ pub fn run(args: ViewArgs) -> Result<(), String> {
         script: args.script.unwrap_or_default(),
         max_fps: args.max_fps,
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn sizes_are_n_or_w_by_h() {
-        assert_eq!(parse_size("512"), Ok((512, 512)));
-        assert_eq!(parse_size("640x480"), Ok((640, 480)));
-        assert_eq!(parse_size("640×480"), Ok((640, 480)));
-        assert!(parse_size("0").is_err());
-        assert!(parse_size("12xq").unwrap_err().contains("`q`"));
-    }
 }
