@@ -1,6 +1,6 @@
 //! The viewer's window and event loop (winit): the app's state, opening the window and its GPU,
 //! loading and watching scenes, and the events (window, loader, watcher). A frame is drawn in
-//! [`super::frame`]; while the tracer works (or a key is held) frames come at a steady rate,
+//! [`crate::viewer::frame`]; while the tracer works (or a key is held) frames come at a steady rate,
 //! otherwise the loop sleeps until an event arrives.
 
 use std::path::PathBuf;
@@ -13,22 +13,22 @@ use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoopProxy};
 use winit::window::{Window, WindowId};
 
 use super::Options;
-use super::action::Action;
-use super::controls::Controls;
-use super::gpu::Gpu;
-use super::inspection::Inspection;
-use super::layout::PixelRect;
-use super::overlay::Overlay;
-use super::painter::Painter;
-use super::panels::PanelState;
-use super::rendering::Rendering;
-use super::scene_source::{self, LoadedScene};
-use super::surface::WindowSurface;
-use super::synthetic::SyntheticInput;
-use super::timing::Timing;
-use super::upload::Uploader;
-use super::watch::SceneWatcher;
-use super::worker::Worker;
+use crate::viewer::frame::timing::Timing;
+use crate::viewer::gpu::device::Gpu;
+use crate::viewer::gpu::painter::Painter;
+use crate::viewer::gpu::surface::WindowSurface;
+use crate::viewer::gpu::upload::Uploader;
+use crate::viewer::input::action::Action;
+use crate::viewer::input::synthetic::SyntheticInput;
+use crate::viewer::scene::controls::Controls;
+use crate::viewer::scene::source::{self, LoadedScene};
+use crate::viewer::scene::watch::SceneWatcher;
+use crate::viewer::tracing::picked_pixel::Inspection;
+use crate::viewer::tracing::rendering::Rendering;
+use crate::viewer::tracing::worker::Worker;
+use crate::viewer::ui::layout::PixelRect;
+use crate::viewer::ui::overlay::Overlay;
+use crate::viewer::ui::panels::PanelState;
 
 /// What other threads tell the event loop.
 pub enum UserEvent {
@@ -212,9 +212,9 @@ impl App {
             });
         }
         self.requested = path.clone();
-        self.panel.scene_files = scene_source::scene_files_beside(path.as_deref());
+        self.panel.scene_files = source::scene_files_beside(path.as_deref());
         let (proxy, generation) = (self.proxy.clone(), self.generation);
-        scene_source::spawn_load(path, move |result| {
+        source::spawn_load(path, move |result| {
             let result = result.map(Box::new);
             let _ = proxy.send_event(UserEvent::Loaded { generation, result });
         });

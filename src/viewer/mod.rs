@@ -4,47 +4,21 @@
 //! settings (any change restarts refinement). Only the binary knows about it; the data still
 //! flows one way: scene file → scene → BVH → tracer → film → texture → window.
 
-mod action;
 mod app;
-mod apply;
-mod controls;
 mod frame;
 mod gpu;
 mod input;
-#[cfg(test)]
-mod input_harness;
-mod inspection;
-mod inspector;
-mod inspector_thread;
-mod layout;
-mod legend_bar;
-mod navigation;
-mod overlay;
-mod painter;
-mod panels;
-mod pick;
-mod quad;
-mod rendering;
 mod save;
-mod scene_source;
-mod screenshot;
-mod script;
-mod status;
-mod surface;
-mod swatch;
-mod synthetic;
-mod timing;
-mod upload;
-mod watch;
-mod worker;
-mod working_scene;
+mod scene;
+mod tracing;
+mod ui;
 
 use std::path::PathBuf;
 
 use raylab::inspect::DebugView;
 use winit::event_loop::EventLoop;
 
-pub use script::Script;
+pub use input::script::Script;
 
 /// How the viewer starts.
 pub struct Options {

@@ -11,7 +11,7 @@ use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::whitted::Tracer;
 
-use super::scene_source::LoadedScene;
+use crate::viewer::scene::source::LoadedScene;
 
 /// What the controls change in a scene before it is traced.
 #[derive(Clone, Debug)]

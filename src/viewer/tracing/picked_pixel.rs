@@ -1,16 +1,16 @@
 //! The inspection: the picked pixel, its ray tree and, once a node is hovered, the object seen
 //! at every pixel (to highlight that object), on the scene as the controls show it. They are
-//! traced on the inspector's thread ([`super::inspector_thread`]): the window never waits, it
+//! traced on the inspector's thread ([`super::ray_tree_thread`]): the window never waits, it
 //! asks and takes the answers when they arrive; a camera or scene change keeps the pixel and
 //! traces it again.
 
 use std::sync::Arc;
 use std::time::Duration;
 
-use super::controls::Controls;
-use super::inspector_thread::{Answer, InspectorThread, ObjectIds, Request, TracedTree};
-use super::scene_source::LoadedScene;
+use super::ray_tree_thread::{Answer, InspectorThread, ObjectIds, Request, TracedTree};
 use super::working_scene::TraceSetup;
+use crate::viewer::scene::controls::Controls;
+use crate::viewer::scene::source::LoadedScene;
 
 /// The picked pixel and what is known of it.
 pub struct Inspection {
@@ -207,7 +207,7 @@ mod tests {
     use raylab::whitted::Tracer;
 
     use super::*;
-    use crate::viewer::scene_source;
+    use crate::viewer::scene::source;
 
     /// Syncs until the inspector has answered.
     fn settle(inspection: &mut Inspection, scene: &Arc<LoadedScene>, controls: &Controls) {
@@ -227,7 +227,7 @@ mod tests {
 
     #[test]
     fn a_pick_is_traced_again_when_the_camera_moves_and_dropped_outside_the_image() {
-        let scene = Arc::new(scene_source::load(None).unwrap());
+        let scene = Arc::new(source::load(None).unwrap());
         let mut controls = Controls::from_scene(&scene.scene);
         (controls.settings.width, controls.settings.height) = (32, 32);
         let mut inspection = Inspection::start(1, || {}).unwrap();

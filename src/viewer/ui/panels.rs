@@ -7,9 +7,9 @@ use egui::{Color32, DragValue, Slider};
 use raylab::inspect::{DebugView, Legend};
 use raylab::settings::{MAX_BLOCK_SIZE, MAX_DEPTH_LIMIT, MAX_SAMPLES};
 
-use super::action::Action;
-use super::controls::Controls;
 use super::legend_bar;
+use crate::viewer::input::action::Action;
+use crate::viewer::scene::controls::Controls;
 
 /// Everything the side panel shows or edits besides the controls.
 pub struct PanelState {

@@ -10,8 +10,8 @@ use raylab::aabb::Aabb;
 use raylab::camera::Camera;
 use raylab::inspect::{RayKind, RayTree};
 
-use super::inspection::Inspection;
-use super::inspector_thread::ObjectIds;
+use crate::viewer::tracing::picked_pixel::Inspection;
+use crate::viewer::tracing::ray_tree_thread::ObjectIds;
 
 /// How a projected ray is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -223,7 +223,7 @@ mod tests {
     use raylab::whitted::Tracer;
 
     use super::*;
-    use crate::viewer::scene_source;
+    use crate::viewer::scene::source;
 
     #[test]
     fn each_kind_has_its_own_colour_and_only_shadow_rays_are_dashed() {
@@ -247,7 +247,7 @@ mod tests {
 
     #[test]
     fn the_eye_ray_lands_on_its_pixel_and_blocked_shadow_rays_are_marked() {
-        let mut loaded = scene_source::load(None).unwrap();
+        let mut loaded = source::load(None).unwrap();
         let size = 32;
         (loaded.scene.settings.width, loaded.scene.settings.height) = (size, size);
         let tracer = Tracer::new(&loaded.scene, &loaded.bvh);

@@ -14,8 +14,8 @@ use raylab::inspect::Legend;
 use raylab::progressive::{self, RenderControl};
 use raylab::stats::PassStats;
 
-use super::scene_source::LoadedScene;
 use super::working_scene::{TraceSetup, WorkingScene};
+use crate::viewer::scene::source::LoadedScene;
 
 /// One render: a scene seen with a camera and settings, into a film.
 pub struct Job {
@@ -204,7 +204,7 @@ mod tests {
     use std::time::Duration;
 
     use super::*;
-    use crate::viewer::scene_source;
+    use crate::viewer::scene::source;
 
     fn job(scene: &Arc<LoadedScene>, size: u32) -> Job {
         let mut settings = scene.scene.settings.clone();
@@ -241,7 +241,7 @@ mod tests {
 
     #[test]
     fn a_job_renders_every_pass_into_its_film() {
-        let scene = Arc::new(scene_source::load(None).unwrap());
+        let scene = Arc::new(source::load(None).unwrap());
         let worker = Worker::start(2).unwrap();
         let j = job(&scene, 32);
         let (film, report, control) = (j.film.clone(), j.report.clone(), j.control.clone());
@@ -258,7 +258,7 @@ mod tests {
 
     #[test]
     fn a_cancelled_job_stops_and_the_next_one_runs() {
-        let scene = Arc::new(scene_source::load(None).unwrap());
+        let scene = Arc::new(source::load(None).unwrap());
         let worker = Worker::start(1).unwrap();
         let first = job(&scene, 1024);
         let (first_control, first_report) = (first.control.clone(), first.report.clone());
@@ -273,8 +273,8 @@ mod tests {
 
     #[test]
     fn a_failing_tracer_is_reported_and_the_worker_goes_on() {
-        let good = Arc::new(scene_source::load(None).unwrap());
-        let mut broken = scene_source::load(None).unwrap();
+        let good = Arc::new(source::load(None).unwrap());
+        let mut broken = source::load(None).unwrap();
         // An object whose material does not exist makes the tracer index out of bounds.
         for object in &mut broken.scene.geometry.objects {
             object.material = 9999;

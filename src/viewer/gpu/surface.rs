@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use winit::window::Window;
 
-use super::gpu::Gpu;
+use super::device::Gpu;
 
 /// What became of a request for the next frame's texture.
 pub enum Acquired {

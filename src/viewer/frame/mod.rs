@@ -3,22 +3,24 @@
 //! uploaded if it changed, the frame drawn and presented, the screenshot and exit when the
 //! script is done, and when the next frame is due.
 
+pub mod timing;
+
 use std::time::{Duration, Instant};
 
 use winit::event_loop::ActiveEventLoop;
 
-use super::action::Action;
 use super::app::App;
-use super::input::{self, ImageArea};
-use super::inspector;
-use super::layout::{PixelRect, letterbox};
-use super::overlay;
-use super::painter::FrameContent;
-use super::panels;
-use super::screenshot;
-use super::surface::Acquired;
-use super::upload::write_texture;
-use super::worker::Outcome;
+use crate::viewer::gpu::painter::FrameContent;
+use crate::viewer::gpu::screenshot;
+use crate::viewer::gpu::surface::Acquired;
+use crate::viewer::gpu::upload::write_texture;
+use crate::viewer::input::action::Action;
+use crate::viewer::input::mouse_and_keys::{self, ImageArea};
+use crate::viewer::tracing::worker::Outcome;
+use crate::viewer::ui::layout::{PixelRect, letterbox};
+use crate::viewer::ui::overlay;
+use crate::viewer::ui::panels;
+use crate::viewer::ui::ray_tree_panel;
 
 impl App {
     /// The panels, the status line and the image area; returns the actions and where the image
@@ -36,7 +38,7 @@ impl App {
                 legend.as_ref(),
             ));
         }
-        actions.extend(inspector::show(ui, &mut self.inspection));
+        actions.extend(ray_tree_panel::show(ui, &mut self.inspection));
         if self.inspection.hovered.is_some() {
             self.inspection.want_object_ids();
         }
@@ -76,12 +78,12 @@ impl App {
                 pixels_per_point: ppp,
                 image_size,
             };
-            actions.extend(input::actions(ui.ctx(), &response, &area, seconds));
+            actions.extend(mouse_and_keys::actions(ui.ctx(), &response, &area, seconds));
         });
         (actions, shown)
     }
 
-    pub(super) fn redraw(&mut self, event_loop: &ActiveEventLoop) {
+    pub fn redraw(&mut self, event_loop: &ActiveEventLoop) {
         let now = Instant::now();
         let dt = now - self.last_frame;
         self.last_frame = now;
@@ -206,7 +208,7 @@ impl App {
         // The next frame: soon while something moves, else when egui or an event asks.
         let animating = tracing
             || self.loading
-            || input::flying(&ctx)
+            || mouse_and_keys::flying(&ctx)
             || !self.options.script.is_done()
             || !self.synthetic.is_empty();
         let egui_delay = output

@@ -25,11 +25,11 @@ pub fn surface_point(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::viewer::scene_source;
+    use crate::viewer::scene::source;
 
     #[test]
     fn the_centre_of_the_image_hits_what_the_camera_looks_at() {
-        let loaded = scene_source::load(None).unwrap();
+        let loaded = source::load(None).unwrap();
         let camera = loaded.scene.camera;
         let size = (64, 48);
         let centre =
@@ -41,7 +41,7 @@ mod tests {
 
     #[test]
     fn a_ray_into_the_sky_hits_nothing() {
-        let loaded = scene_source::load(None).unwrap();
+        let loaded = source::load(None).unwrap();
         let camera = loaded.scene.camera;
         // The top-left corner of a very wide view looks up past everything.
         let mut spec = camera.spec;

@@ -7,15 +7,15 @@ use std::path::PathBuf;
 use raylab::camera::Camera;
 
 use super::action::Action;
-use super::app::App;
-use super::inspector;
-use super::layout::{PixelRect, window_point};
 use super::navigation;
 use super::pick;
-use super::save;
+use crate::viewer::app::App;
+use crate::viewer::save;
+use crate::viewer::ui::layout::{PixelRect, window_point};
+use crate::viewer::ui::ray_tree_panel;
 
 impl App {
-    pub(super) fn apply(&mut self, action: Action, shown: PixelRect) {
+    pub fn apply(&mut self, action: Action, shown: PixelRect) {
         let bounds = self.scene.as_ref().map(|s| s.bounds);
         match action {
             Action::Open(path) => {
@@ -117,7 +117,7 @@ impl App {
         match (&self.inspection.tree, &self.inspection.error) {
             (_, Some(e)) => println!("tree: error: {e}"),
             (Some(traced), None) => {
-                for line in inspector::heading_lines(&traced.tree) {
+                for line in ray_tree_panel::heading_lines(&traced.tree) {
                     println!("tree: {line}");
                 }
             }

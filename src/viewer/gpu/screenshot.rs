@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use super::gpu::Gpu;
+use super::device::Gpu;
 use super::painter::{FrameContent, Painter};
 
 /// Paints `content` offscreen at `size` and saves it as a PNG at `path`.

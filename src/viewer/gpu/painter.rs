@@ -1,9 +1,9 @@
 //! One frame on the GPU: clear, the image quad in its letterboxed rectangle, then egui's panels on
 //! top, into any target texture (the window's surface, or an offscreen copy for a screenshot).
 
-use super::gpu::Gpu;
-use super::layout::PixelRect;
+use super::device::Gpu;
 use super::quad::QuadRenderer;
+use crate::viewer::ui::layout::PixelRect;
 
 /// The colour of the bars around the image.
 const BACKGROUND: wgpu::Color = wgpu::Color {

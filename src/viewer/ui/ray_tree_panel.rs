@@ -7,9 +7,9 @@ use egui::{Color32, RichText};
 use glam::{Vec2, Vec3};
 use raylab::inspect::{RayKind, RayNode, RayTree, ShadowRay, StopReason};
 
-use super::action::Action;
-use super::inspection::Inspection;
 use super::swatch::swatch;
+use crate::viewer::input::action::Action;
+use crate::viewer::tracing::picked_pixel::Inspection;
 
 /// A ray kind as the panel names it.
 pub fn kind_name(kind: RayKind) -> &'static str {
@@ -223,11 +223,11 @@ mod tests {
     use raylab::whitted::Tracer;
 
     use super::*;
-    use crate::viewer::scene_source;
+    use crate::viewer::scene::source;
 
     #[test]
     fn the_headings_follow_the_tree_indented_by_depth() {
-        let mut loaded = scene_source::load(None).unwrap();
+        let mut loaded = source::load(None).unwrap();
         (loaded.scene.settings.width, loaded.scene.settings.height) = (24, 24);
         let tracer = Tracer::new(&loaded.scene, &loaded.bvh);
         let trees = (0..24).flat_map(|y| (0..24).map(move |x| (x, y)));

@@ -8,26 +8,26 @@ use std::time::Instant;
 use raylab::film::Film;
 use raylab::progressive::{Progress, RenderControl};
 
-use super::app::App;
-use super::controls::Controls;
-use super::scene_source::LoadedScene;
-use super::status::{RenderStatus, status_line};
-use super::timing::Timing;
 use super::worker::{Job, JobReport, Outcome};
+use crate::viewer::app::App;
+use crate::viewer::frame::timing::Timing;
+use crate::viewer::scene::controls::Controls;
+use crate::viewer::scene::source::LoadedScene;
+use crate::viewer::ui::status::{RenderStatus, status_line};
 
 /// The render in progress (or the last one), and what of it has reached the screen.
-pub(super) struct Rendering {
-    pub(super) scene: Arc<LoadedScene>,
-    pub(super) controls: Controls,
-    pub(super) film: Arc<Film>,
-    pub(super) control: Arc<RenderControl>,
-    pub(super) report: Arc<JobReport>,
+pub struct Rendering {
+    pub scene: Arc<LoadedScene>,
+    pub controls: Controls,
+    pub film: Arc<Film>,
+    pub control: Arc<RenderControl>,
+    pub report: Arc<JobReport>,
     /// When the change that started it was made.
-    pub(super) changed_at: Instant,
-    pub(super) first_image_shown: bool,
-    pub(super) block_one_shown: bool,
+    pub changed_at: Instant,
+    pub first_image_shown: bool,
+    pub block_one_shown: bool,
     /// The last pass is on screen (or the render failed): nothing more will come.
-    pub(super) settled: bool,
+    pub settled: bool,
 }
 
 impl Rendering {
@@ -37,7 +37,7 @@ impl Rendering {
     }
 
     /// Notes what a frame just put on screen: the film as it was at `progress`.
-    pub(super) fn shown(&mut self, progress: Progress, timing: &mut Timing) {
+    pub fn shown(&mut self, progress: Progress, timing: &mut Timing) {
         let after = self.changed_at.elapsed();
         if !self.first_image_shown && (progress.pass >= 1 || progress.finished) {
             self.first_image_shown = true;
@@ -56,7 +56,7 @@ impl Rendering {
 
 impl App {
     /// Restarts refinement if the scene or the controls differ from what is being rendered.
-    pub(super) fn sync_render(&mut self, changed_at: Instant) {
+    pub fn sync_render(&mut self, changed_at: Instant) {
         let (Some(scene), Some(controls)) = (&self.scene, &self.controls) else {
             return;
         };
@@ -123,7 +123,7 @@ impl App {
     }
 
     /// Keeps the inspector on the current scene and controls, and takes what it traced.
-    pub(super) fn sync_inspection(&mut self) {
+    pub fn sync_inspection(&mut self) {
         let (Some(scene), Some(controls)) = (&self.scene, &self.controls) else {
             return;
         };
@@ -136,7 +136,7 @@ impl App {
 
     /// Refinement of the current scene and controls is over and on screen, no scene is loading,
     /// the inspector has traced its pixel and the window has the size it was last given.
-    pub(super) fn idle(&self) -> bool {
+    pub fn idle(&self) -> bool {
         // A resize the window system made but the surface has not caught up with yet.
         let resizing = self.gfx.as_ref().is_some_and(|g| {
             let size = g.window.inner_size();
@@ -154,7 +154,7 @@ impl App {
         !self.loading && !resizing && settled && !inspecting
     }
 
-    pub(super) fn status(&self) -> String {
+    pub fn status(&self) -> String {
         let Some(r) = &self.rendering else {
             return if self.loading {
                 "loading…"

@@ -56,8 +56,8 @@ mod tests {
     use egui::pos2;
 
     use super::*;
-    use crate::viewer::action::Action;
-    use crate::viewer::input_harness::Harness;
+    use crate::viewer::input::action::Action;
+    use crate::viewer::input::harness::Harness;
 
     #[test]
     fn a_synthetic_click_is_a_click_on_the_image() {

@@ -8,7 +8,7 @@ use raylab::inspect::DebugView;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 
-use super::working_scene::TraceSetup;
+use crate::viewer::tracing::working_scene::TraceSetup;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Controls {

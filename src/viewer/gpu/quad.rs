@@ -2,7 +2,7 @@
 //! passes show as fat pixels), drawn on two triangles by `shaders/quad.wgsl` into the letterboxed
 //! image rectangle, set as the render pass's viewport.
 
-use super::layout::PixelRect;
+use crate::viewer::ui::layout::PixelRect;
 
 /// The image texture and the bind group that samples it.
 struct ImageTexture {
@@ -23,7 +23,7 @@ impl QuadRenderer {
     pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> QuadRenderer {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("quad.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/quad.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../../../shaders/quad.wgsl").into()),
         });
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("image"),
@@ -161,10 +161,10 @@ impl QuadRenderer {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::viewer::gpu::Gpu;
-    use crate::viewer::layout::letterbox;
-    use crate::viewer::screenshot::read_texture;
-    use crate::viewer::upload::write_texture;
+    use crate::viewer::gpu::device::Gpu;
+    use crate::viewer::gpu::screenshot::read_texture;
+    use crate::viewer::gpu::upload::write_texture;
+    use crate::viewer::ui::layout::letterbox;
 
     const CLEAR: [u8; 4] = [0, 0, 255, 255];
 

@@ -1,11 +1,11 @@
 //! A test harness for the viewer's input: feeds egui frames of events over an image area and
-//! collects the [`Action`]s that [`input::actions`] makes of them.
+//! collects the [`Action`]s that [`mouse_and_keys::actions`] makes of them.
 
 use egui::{Event, Pos2, vec2};
 
 use super::action::Action;
-use super::input::{self, ImageArea};
-use super::layout::PixelRect;
+use super::mouse_and_keys::{self, ImageArea};
+use crate::viewer::ui::layout::PixelRect;
 
 /// Feeds egui frames of events (each frame 1/60 s after the last) over a 100×100 image area
 /// showing a 10×10 image, and collects the actions.
@@ -44,7 +44,7 @@ impl Harness {
                 pixels_per_point: 1.0,
                 image_size: (10, 10),
             };
-            actions = input::actions(ui.ctx(), &response, &area, 0.5);
+            actions = mouse_and_keys::actions(ui.ctx(), &response, &area, 0.5);
         });
         // Nothing is painted here.
         output.textures_delta.clear();

@@ -12,9 +12,9 @@ use std::time::{Duration, Instant};
 use raylab::camera::Camera;
 use raylab::inspect::{self, RayTree};
 
-use super::scene_source::LoadedScene;
 use super::worker::{low_priority_pool, panic_message};
 use super::working_scene::{TraceSetup, WorkingScene};
+use crate::viewer::scene::source::LoadedScene;
 
 /// A traced ray tree and the view it was traced in.
 pub struct TracedTree {

@@ -8,7 +8,7 @@ use egui::{Key, Modifiers, MouseWheelUnit, PointerButton};
 use glam::Vec3;
 
 use super::action::Action;
-use super::layout::{PixelRect, image_pixel, image_point};
+use crate::viewer::ui::layout::{PixelRect, image_pixel, image_point};
 
 /// Degrees of orbit per point of drag.
 const ORBIT_DEGREES_PER_POINT: f32 = 0.3;
@@ -161,7 +161,7 @@ mod tests {
     use egui::{Event, Pos2, TouchPhase, pos2, vec2};
 
     use super::*;
-    use crate::viewer::input_harness::Harness;
+    use crate::viewer::input::harness::Harness;
 
     fn key(key: Key, pressed: bool, modifiers: Modifiers) -> Event {
         Event::Key {
