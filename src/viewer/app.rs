@@ -23,7 +23,7 @@ use crate::viewer::input::synthetic::SyntheticInput;
 use crate::viewer::scene::controls::Controls;
 use crate::viewer::scene::source::{self, LoadedScene};
 use crate::viewer::scene::watch::SceneWatcher;
-use crate::viewer::tracing::picked_pixel::Inspection;
+use crate::viewer::tracing::picked_pixel::PickedPixel;
 use crate::viewer::tracing::rendering::Rendering;
 use crate::viewer::tracing::worker::Worker;
 use crate::viewer::ui::layout::PixelRect;
@@ -39,8 +39,8 @@ pub enum UserEvent {
     },
     /// The watched scene file changed on disk.
     SceneFileChanged,
-    /// The inspector has traced what it was asked.
-    Inspected,
+    /// The ray tree thread has traced what it was asked.
+    RayTreeTraced,
 }
 
 /// The window and what draws into it.
@@ -68,7 +68,7 @@ pub struct App {
     pub(super) uploader: Uploader,
     pub(super) panel: PanelState,
     /// The picked pixel's ray tree, and what is drawn of it over the image.
-    pub(super) inspection: Inspection,
+    pub(super) picked: PickedPixel,
     pub(super) overlay: Overlay,
     /// Scripted clicks on their way to egui.
     pub(super) synthetic: SyntheticInput,
@@ -92,8 +92,8 @@ impl App {
     pub fn new(options: Options, proxy: EventLoopProxy<UserEvent>) -> Result<App, String> {
         let worker = Worker::start(options.threads)?;
         let wake = proxy.clone();
-        let inspection = Inspection::start(options.threads, move || {
-            let _ = wake.send_event(UserEvent::Inspected);
+        let picked = PickedPixel::start(options.threads, move || {
+            let _ = wake.send_event(UserEvent::RayTreeTraced);
         })?;
         let timing = Timing::new(options.stats);
         let save_field = options.save_path.display().to_string();
@@ -126,7 +126,7 @@ impl App {
                 light_count: 0,
                 max_side: 2048,
             },
-            inspection,
+            picked,
             overlay: Overlay::default(),
             synthetic: SyntheticInput::default(),
             requested: None,
@@ -305,7 +305,7 @@ impl ApplicationHandler<UserEvent> for App {
                 self.loaded(event_loop, result);
             }
             UserEvent::Loaded { .. } => {}
-            UserEvent::Inspected => {}
+            UserEvent::RayTreeTraced => {}
             UserEvent::SceneFileChanged => {
                 if self.requested.is_some() {
                     let path = self.requested.clone();

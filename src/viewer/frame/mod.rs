@@ -38,9 +38,9 @@ impl App {
                 legend.as_ref(),
             ));
         }
-        actions.extend(ray_tree_panel::show(ui, &mut self.inspection));
-        if self.inspection.hovered.is_some() {
-            self.inspection.want_object_ids();
+        actions.extend(ray_tree_panel::show(ui, &mut self.picked));
+        if self.picked.hovered.is_some() {
+            self.picked.want_object_ids();
         }
         let ppp = ui.ctx().pixels_per_point();
         let image_size = self
@@ -63,8 +63,7 @@ impl App {
                 egui::vec2(shown.width / ppp, shown.height / ppp),
             );
             let far = self.scene.as_ref().map_or(1.0, |s| overlay::far(s.bounds));
-            self.overlay
-                .paint(ui, &self.inspection, image, image_size, far);
+            self.overlay.paint(ui, &self.picked, image, image_size, far);
             if self.rendering.is_none() {
                 let text = self
                     .panel
@@ -90,7 +89,7 @@ impl App {
         let Some(gfx) = &mut self.gfx else { return };
         let mut raw_input = gfx.egui_state.take_egui_input(&gfx.window);
         self.synthetic.play(&mut raw_input.events);
-        for time in self.inspection.receive() {
+        for time in self.picked.receive() {
             if self.timing.enabled() {
                 eprintln!("stats: {time}");
             }
@@ -108,12 +107,12 @@ impl App {
             self.apply(action, shown);
         }
         self.sync_render(now);
-        self.sync_inspection();
-        // The script sees what this frame's input started (a click's inspection, say).
+        self.sync_picked_pixel();
+        // The script sees what this frame's input started (a click's picked, say).
         if let Some(action) = self.options.script.next(self.idle(), self.loads) {
             self.apply(action, shown);
             self.sync_render(now);
-            self.sync_inspection();
+            self.sync_picked_pixel();
         }
         let idle = self.idle();
 

@@ -23,11 +23,11 @@ pub enum Action {
     ResetCamera,
     /// Make the surface point under this image point (pixels, y down) the orbit centre.
     PickCentre { x: f32, y: f32 },
-    /// Show the ray tree of image pixel (x, y) (y down) in the inspector.
-    Inspect { x: u32, y: u32 },
-    /// Close the inspector.
-    CloseInspector,
-    /// Print the inspector's node headings on the terminal (scripts only).
+    /// Show the ray tree of image pixel (x, y) (y down) in the ray tree panel.
+    PickPixel { x: u32, y: u32 },
+    /// Close the ray tree panel and forget the picked pixel.
+    CloseRayTree,
+    /// Print the ray tree panel's node headings on the terminal (scripts only).
     PrintTree,
     /// A left click at the centre of image pixel (x, y), sent as the pointer events of a real
     /// mouse (scripts only).

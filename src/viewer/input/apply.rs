@@ -1,5 +1,5 @@
 //! Carrying out [`Action`]s: navigation moves the camera (through [`navigation`]), picking sets
-//! the orbit centre, inspecting picks the inspector's pixel, and the scene, save and print
+//! the orbit centre, picking a pixel shows its ray tree, and the scene, save and print
 //! actions do what they say.
 
 use std::path::PathBuf;
@@ -39,8 +39,8 @@ impl App {
                 }
             }
             Action::PickCentre { x, y } => self.pick_centre(x, y),
-            Action::Inspect { x, y } => self.inspection.pick((x, y)),
-            Action::CloseInspector => self.inspection.close(),
+            Action::PickPixel { x, y } => self.picked.pick((x, y)),
+            Action::CloseRayTree => self.picked.close(),
             Action::PrintTree => self.print_tree(),
             Action::Click { x, y } => self.click(x, y, shown),
             Action::SetView(view) => {
@@ -112,9 +112,9 @@ impl App {
         self.synthetic.click(egui::pos2(px / ppp, py / ppp));
     }
 
-    /// Prints the inspector's headings, one line each, after `tree: `.
+    /// Prints the ray tree panel's headings, one line each, after `tree: `.
     fn print_tree(&self) {
-        match (&self.inspection.tree, &self.inspection.error) {
+        match (&self.picked.tree, &self.picked.error) {
             (_, Some(e)) => println!("tree: error: {e}"),
             (Some(traced), None) => {
                 for line in ray_tree_panel::heading_lines(&traced.tree) {

@@ -1,7 +1,7 @@
 //! Mouse and keyboard navigation over the image, the conventions people know: left-drag orbits,
 //! right- or middle-drag pans, the wheel dollies, W/A/S/D/Q/E fly, F frames the scene,
 //! double-click sets the orbit centre; Ctrl+S saves and C prints the camera. A click that is not
-//! a drag (or the key I) inspects the pixel under the cursor, Esc closes the inspector. Turns one
+//! a drag (or the key I) picks the pixel under the cursor (its ray tree is shown), Esc closes the tree. Turns one
 //! frame's egui input into [`Action`]s.
 
 use egui::{Key, Modifiers, MouseWheelUnit, PointerButton};
@@ -90,7 +90,7 @@ pub fn actions(
             pos.y * ppp,
         )
     {
-        actions.push(Action::Inspect { x, y });
+        actions.push(Action::PickPixel { x, y });
     }
     if response.hovered() {
         let steps = ctx.input(|i| {
@@ -144,7 +144,7 @@ fn key_actions(ctx: &egui::Context, seconds: f32) -> Vec<Action> {
             actions.push(Action::PrintCamera);
         }
         if i.consume_key(Modifiers::NONE, Key::Escape) {
-            actions.push(Action::CloseInspector);
+            actions.push(Action::CloseRayTree);
         }
         actions
     })
@@ -254,7 +254,7 @@ mod tests {
     fn a_click_inspects_the_pixel_under_the_cursor_and_so_does_the_key_i() {
         let mut h = Harness::new();
         let actions = h.frames(click(pos2(55.0, 25.0)));
-        assert_eq!(actions, vec![Action::Inspect { x: 5, y: 2 }]);
+        assert_eq!(actions, vec![Action::PickPixel { x: 5, y: 2 }]);
         let actions = h.frames(vec![
             vec![Event::PointerMoved(pos2(99.0, 0.0))],
             vec![key(Key::I, true, Modifiers::NONE)],
@@ -262,7 +262,7 @@ mod tests {
         ]);
         assert_eq!(
             actions,
-            vec![Action::Inspect { x: 9, y: 0 }, Action::CloseInspector]
+            vec![Action::PickPixel { x: 9, y: 0 }, Action::CloseRayTree]
         );
     }
 
@@ -279,7 +279,11 @@ mod tests {
             .partition(|a| matches!(a, Action::PickCentre { .. }));
         assert_eq!(centre, vec![Action::PickCentre { x: 5.5, y: 2.5 }]);
         assert!(!inspect.is_empty());
-        assert!(inspect.iter().all(|a| *a == Action::Inspect { x: 5, y: 2 }));
+        assert!(
+            inspect
+                .iter()
+                .all(|a| *a == Action::PickPixel { x: 5, y: 2 })
+        );
     }
 
     #[test]

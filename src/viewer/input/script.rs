@@ -12,7 +12,7 @@
 //! - `resize WIDTH HEIGHT`: asks for a new window size (logical pixels);
 //! - `pick X Y`: inspects image pixel (X, Y) (from the top left); `click X Y`: a left click at the
 //!   centre of that pixel, through the window's input like a mouse's; `close-inspector`;
-//!   `print-tree`: prints the inspector's node headings on the terminal;
+//!   `print-tree`: prints the ray tree panel's node headings on the terminal;
 //! - `view NAME`: shows a debug view (`shaded`, `normals`, `depth`, …).
 
 use std::collections::VecDeque;
@@ -167,13 +167,13 @@ fn parse_step(step: &str) -> Result<Step, String> {
             }
             let (x, y) = (n[0] as u32, n[1] as u32);
             once(match command {
-                "pick" => Action::Inspect { x, y },
+                "pick" => Action::PickPixel { x, y },
                 _ => Action::Click { x, y },
             })
         }
         "view" if args.len() == 1 => once(Action::SetView(args[0].parse::<DebugView>()?)),
         "view" => return Err("takes one view name".into()),
-        "close-inspector" if args.is_empty() => once(Action::CloseInspector),
+        "close-inspector" if args.is_empty() => once(Action::CloseRayTree),
         "print-tree" if args.is_empty() => once(Action::PrintTree),
         "dolly" => once(Action::Dolly(count(numbers()?, 1, 0)?[0])),
         "resize" => {
@@ -265,10 +265,10 @@ mod tests {
                     width: 300,
                     height: 200
                 },
-                Action::Inspect { x: 3, y: 0 },
+                Action::PickPixel { x: 3, y: 0 },
                 Action::Click { x: 0, y: 7 },
                 Action::PrintTree,
-                Action::CloseInspector,
+                Action::CloseRayTree,
                 Action::SetView(DebugView::BvhCost),
             ]
         );

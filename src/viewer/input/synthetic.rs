@@ -72,7 +72,7 @@ mod tests {
             assert!(!events.contains(&Event::PointerGone));
             actions.extend(h.frame(events));
         }
-        assert_eq!(actions, vec![Action::Inspect { x: 3, y: 7 }]);
+        assert_eq!(actions, vec![Action::PickPixel { x: 3, y: 7 }]);
         let mut events = vec![Event::PointerGone];
         input.play(&mut events);
         assert_eq!(

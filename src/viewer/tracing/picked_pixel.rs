@@ -1,19 +1,19 @@
-//! The inspection: the picked pixel, its ray tree and, once a node is hovered, the object seen
+//! The picked pixel: the pixel whose ray tree is shown, that tree and, once a node is hovered, the object seen
 //! at every pixel (to highlight that object), on the scene as the controls show it. They are
-//! traced on the inspector's thread ([`super::ray_tree_thread`]): the window never waits, it
+//! traced on the ray tree thread ([`super::ray_tree_thread`]): the window never waits, it
 //! asks and takes the answers when they arrive; a camera or scene change keeps the pixel and
 //! traces it again.
 
 use std::sync::Arc;
 use std::time::Duration;
 
-use super::ray_tree_thread::{Answer, InspectorThread, ObjectIds, Request, TracedTree};
+use super::ray_tree_thread::{Answer, ObjectIds, RayTreeThread, Request, TracedTree};
 use super::working_scene::TraceSetup;
 use crate::viewer::scene::controls::Controls;
 use crate::viewer::scene::source::LoadedScene;
 
 /// The picked pixel and what is known of it.
-pub struct Inspection {
+pub struct PickedPixel {
     pub pixel: Option<(u32, u32)>,
     /// The newest tree (it may be of the previous camera while the new one is traced).
     pub tree: Option<TracedTree>,
@@ -31,15 +31,15 @@ pub struct Inspection {
     tree_key: u64,
     ids_key: Option<u64>,
     ids_asked: Option<u64>,
-    thread: InspectorThread,
+    thread: RayTreeThread,
 }
 
-impl Inspection {
+impl PickedPixel {
     /// Starts the thread (with `threads` threads for the object ids, 0: one per core);
     /// `wake` tells the window an answer has come.
-    pub fn start(threads: usize, wake: impl Fn() + Send + 'static) -> Result<Inspection, String> {
-        let thread = InspectorThread::start(threads, wake)?;
-        Ok(Inspection {
+    pub fn start(threads: usize, wake: impl Fn() + Send + 'static) -> Result<PickedPixel, String> {
+        let thread = RayTreeThread::start(threads, wake)?;
+        Ok(PickedPixel {
             pixel: None,
             tree: None,
             error: None,
@@ -209,15 +209,15 @@ mod tests {
     use super::*;
     use crate::viewer::scene::source;
 
-    /// Syncs until the inspector has answered.
-    fn settle(inspection: &mut Inspection, scene: &Arc<LoadedScene>, controls: &Controls) {
+    /// Syncs until the ray tree thread has answered.
+    fn settle(picked: &mut PickedPixel, scene: &Arc<LoadedScene>, controls: &Controls) {
         let start = Instant::now();
         loop {
-            inspection.receive();
-            inspection
+            picked.receive();
+            picked
                 .sync(scene, controls, controls.setup(4096).ok())
                 .unwrap();
-            if !inspection.busy() {
+            if !picked.busy() {
                 return;
             }
             assert!(start.elapsed() < Duration::from_secs(60), "no answer");
@@ -230,12 +230,12 @@ mod tests {
         let scene = Arc::new(source::load(None).unwrap());
         let mut controls = Controls::from_scene(&scene.scene);
         (controls.settings.width, controls.settings.height) = (32, 32);
-        let mut inspection = Inspection::start(1, || {}).unwrap();
-        inspection.pick((5, 7));
+        let mut picked = PickedPixel::start(1, || {}).unwrap();
+        picked.pick((5, 7));
         for eye_shift in [Vec3::ZERO, Vec3::X] {
             controls.camera.eye += eye_shift;
-            settle(&mut inspection, &scene, &controls);
-            let traced = inspection.tree.as_ref().expect("a tree");
+            settle(&mut picked, &scene, &controls);
+            let traced = picked.tree.as_ref().expect("a tree");
             assert_eq!(traced.camera.spec, controls.camera);
             // The same tree as the library's for that pixel of that view.
             let mut expected = scene.scene.clone();
@@ -244,28 +244,28 @@ mod tests {
             let tracer = Tracer::new(&expected, &scene.bvh);
             assert_eq!(traced.tree, inspect::trace_ray_tree(&tracer, 5, 7));
         }
-        inspection.want_object_ids();
+        picked.want_object_ids();
         let start = Instant::now();
-        while inspection.current_object_ids().is_none() {
-            settle(&mut inspection, &scene, &controls);
+        while picked.current_object_ids().is_none() {
+            settle(&mut picked, &scene, &controls);
             std::thread::sleep(Duration::from_millis(1));
             assert!(start.elapsed() < Duration::from_secs(60), "no ids");
         }
-        let ids = inspection.current_object_ids().unwrap();
+        let ids = picked.current_object_ids().unwrap();
         assert_eq!(ids.ids.len(), 32 * 32);
-        let eye_ray = &inspection.tree.as_ref().unwrap().tree.nodes[0];
+        let eye_ray = &picked.tree.as_ref().unwrap().tree.nodes[0];
         let seen = eye_ray.hit.as_ref().map_or(u32::MAX, |h| h.object);
         assert_eq!(ids.ids[7 * 32 + 5], seen);
         // Another pixel of the same view keeps the ids; another view needs its own.
-        inspection.pick((6, 7));
-        settle(&mut inspection, &scene, &controls);
-        assert!(inspection.current_object_ids().is_some());
+        picked.pick((6, 7));
+        settle(&mut picked, &scene, &controls);
+        assert!(picked.current_object_ids().is_some());
         controls.camera.eye += Vec3::Y;
-        settle(&mut inspection, &scene, &controls);
-        assert!(inspection.current_object_ids().is_none());
+        settle(&mut picked, &scene, &controls);
+        assert!(picked.current_object_ids().is_none());
         controls.settings.width = 4;
-        let dropped = inspection.sync(&scene, &controls, controls.setup(4096).ok());
+        let dropped = picked.sync(&scene, &controls, controls.setup(4096).ok());
         assert!(dropped.unwrap_err().contains("outside the 4×32 image"));
-        assert_eq!(inspection.pixel, None);
+        assert_eq!(picked.pixel, None);
     }
 }

@@ -1,4 +1,4 @@
-//! The inspector's background thread: it traces the ray tree of a pixel, or the object seen at
+//! The ray tree thread: it traces the ray tree of a pixel, or the object seen at
 //! every pixel, on its own copy of the scene (made at the first request, updated in place after),
 //! and finds the object ids on a pool of lowered priority so that the window and the render go
 //! first. Requests carry a key; object ids asked for a view that has since changed are skipped.
@@ -27,7 +27,7 @@ pub struct TracedTree {
 
 /// The object seen at each pixel (row-major, top row first; `u32::MAX` for none).
 pub struct ObjectIds {
-    /// The inspection's key of the view they were traced for.
+    /// The picked pixel's key of the view they were traced for.
     pub key: u64,
     pub ids: Vec<u32>,
     pub size: (u32, u32),
@@ -51,27 +51,27 @@ pub enum Answer {
 }
 
 /// The window's end of the thread.
-pub struct InspectorThread {
+pub struct RayTreeThread {
     requests: Sender<Request>,
     answers: Receiver<Answer>,
     /// The newest request's key.
     latest: Arc<AtomicU64>,
 }
 
-impl InspectorThread {
+impl RayTreeThread {
     /// Starts the thread (with `threads` threads for the object ids, 0: one per core);
-    /// `wake` tells the window an answer has come. The thread ends with its `InspectorThread`.
+    /// `wake` tells the window an answer has come. The thread ends with its `RayTreeThread`.
     pub fn start(threads: usize, wake: impl Fn() + Send + 'static) -> Result<Self, String> {
-        let pool = low_priority_pool(threads, "inspector")?;
+        let pool = low_priority_pool(threads, "ray-tree")?;
         let (requests, inbox) = mpsc::channel();
         let (outbox, answers) = mpsc::channel();
         let latest = Arc::new(AtomicU64::new(0));
         let newest = latest.clone();
         std::thread::Builder::new()
-            .name("inspector".into())
+            .name("ray-tree".into())
             .spawn(move || run(&pool, &inbox, &outbox, &newest, wake))
-            .map_err(|e| format!("cannot start the inspector: {e}"))?;
-        Ok(InspectorThread {
+            .map_err(|e| format!("cannot start the ray tree thread: {e}"))?;
+        Ok(RayTreeThread {
             requests,
             answers,
             latest,
@@ -83,7 +83,7 @@ impl InspectorThread {
         self.latest.store(request.key, Ordering::Relaxed);
         self.requests
             .send(request)
-            .map_err(|_| "the inspector has stopped".to_string())
+            .map_err(|_| "the ray tree thread has stopped".to_string())
     }
 
     /// The next answer that came, if any.

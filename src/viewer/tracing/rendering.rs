@@ -123,12 +123,12 @@ impl App {
     }
 
     /// Keeps the inspector on the current scene and controls, and takes what it traced.
-    pub fn sync_inspection(&mut self) {
+    pub fn sync_picked_pixel(&mut self) {
         let (Some(scene), Some(controls)) = (&self.scene, &self.controls) else {
             return;
         };
         let setup = controls.setup(self.panel.max_side).ok();
-        if let Err(e) = self.inspection.sync(scene, controls, setup) {
+        if let Err(e) = self.picked.sync(scene, controls, setup) {
             eprintln!("{e}");
             self.panel.message = Some(e);
         }
@@ -150,7 +150,7 @@ impl App {
             }
             _ => false,
         };
-        let inspecting = self.inspection.busy() || !self.synthetic.is_empty();
+        let inspecting = self.picked.busy() || !self.synthetic.is_empty();
         !self.loading && !resizing && settled && !inspecting
     }
 

@@ -1,4 +1,4 @@
-//! What the inspector draws over the image (with egui's painter, on top of the image quad): the
+//! The picked pixel's ray tree as drawn over the image (with egui's painter, on top of the image quad): the
 //! picked pixel's ray tree, each ray projected through the camera as a line coloured by its kind
 //! (eye white, reflected cyan, transmitted orange, shadow rays dashed yellow, or red with a cross
 //! where they are blocked), the picked pixel framed, and a translucent mask over the object of
@@ -10,7 +10,7 @@ use raylab::aabb::Aabb;
 use raylab::camera::Camera;
 use raylab::inspect::{RayKind, RayTree};
 
-use crate::viewer::tracing::picked_pixel::Inspection;
+use crate::viewer::tracing::picked_pixel::PickedPixel;
 use crate::viewer::tracing::ray_tree_thread::ObjectIds;
 
 /// How a projected ray is drawn.
@@ -126,12 +126,12 @@ pub struct Overlay {
 }
 
 impl Overlay {
-    /// Paints the inspection over `image` (the image's rectangle, in points) of a `size` image;
+    /// Paints the picked pixel's ray tree over `image` (the image's rectangle, in points) of a `size` image;
     /// `far` is how far a ray that missed is drawn.
     pub fn paint(
         &mut self,
         ui: &egui::Ui,
-        inspection: &Inspection,
+        picked: &PickedPixel,
         image: Rect,
         size: (u32, u32),
         far: f32,
@@ -142,7 +142,7 @@ impl Overlay {
             image.height() / size.1.max(1) as f32,
         );
         let to_screen = |p: Vec2| image.min + vec2(p.x * scale.x, p.y * scale.y);
-        if let (Some(object), Some(ids)) = (inspection.hovered, inspection.current_object_ids())
+        if let (Some(object), Some(ids)) = (picked.hovered, picked.current_object_ids())
             && ids.size == size
         {
             let stale = self
@@ -162,10 +162,10 @@ impl Overlay {
                 painter.image(texture.id(), image, uv, Color32::WHITE);
             }
         }
-        let (Some(traced), Some((x, y))) = (&inspection.tree, inspection.pixel) else {
+        let (Some(traced), Some((x, y))) = (&picked.tree, picked.pixel) else {
             return;
         };
-        if !inspection.show_overlay || traced.size != size {
+        if !picked.show_overlay || traced.size != size {
             return;
         }
         for s in segments(&traced.tree, &traced.camera, size, far) {

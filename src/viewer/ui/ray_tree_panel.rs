@@ -1,4 +1,4 @@
-//! The inspector panel: the ray tree of the picked pixel as nested collapsing headings, one per
+//! The ray tree panel: the ray tree of the picked pixel as nested collapsing headings, one per
 //! ray (its kind, depth and what it hit), each with the ray's numbers, its shadow rays, the
 //! colours it gathered and where and why its branch stopped. Hovering a heading highlights the
 //! object it hit in the image. `print-tree` prints the same headings.
@@ -9,7 +9,7 @@ use raylab::inspect::{RayKind, RayNode, RayTree, ShadowRay, StopReason};
 
 use super::swatch::swatch;
 use crate::viewer::input::action::Action;
-use crate::viewer::tracing::picked_pixel::Inspection;
+use crate::viewer::tracing::picked_pixel::PickedPixel;
 
 /// A ray kind as the panel names it.
 pub fn kind_name(kind: RayKind) -> &'static str {
@@ -58,10 +58,10 @@ pub fn heading_lines(tree: &RayTree) -> Vec<String> {
 }
 
 /// Shows the panel (when a pixel is picked); returns what its buttons asked for.
-pub fn show(ui: &mut egui::Ui, inspection: &mut Inspection) -> Vec<Action> {
+pub fn show(ui: &mut egui::Ui, picked: &mut PickedPixel) -> Vec<Action> {
     let mut actions = Vec::new();
-    inspection.hovered = None;
-    let Some((x, y)) = inspection.pixel else {
+    picked.hovered = None;
+    let Some((x, y)) = picked.pixel else {
         return actions;
     };
     egui::Panel::right("inspector")
@@ -71,14 +71,14 @@ pub fn show(ui: &mut egui::Ui, inspection: &mut Inspection) -> Vec<Action> {
             ui.horizontal(|ui| {
                 ui.heading(format!("Pixel ({x}, {y})"));
                 if ui.button("Close").on_hover_text("Esc").clicked() {
-                    actions.push(Action::CloseInspector);
+                    actions.push(Action::CloseRayTree);
                 }
             });
-            ui.checkbox(&mut inspection.show_overlay, "draw the rays over the image");
-            if let Some(e) = &inspection.error {
+            ui.checkbox(&mut picked.show_overlay, "draw the rays over the image");
+            if let Some(e) = &picked.error {
                 ui.colored_label(Color32::from_rgb(255, 120, 80), e);
             }
-            let Some(traced) = &inspection.tree else {
+            let Some(traced) = &picked.tree else {
                 ui.label("tracing…");
                 return;
             };
@@ -92,7 +92,7 @@ pub fn show(ui: &mut egui::Ui, inspection: &mut Inspection) -> Vec<Action> {
                 tree.nodes.len(),
                 traced.time.as_secs_f64() * 1e3
             );
-            if let Some(ids) = inspection.current_object_ids() {
+            if let Some(ids) = picked.current_object_ids() {
                 let ms = ids.time.as_secs_f64() * 1e3;
                 timing += &format!("; objects of the image in {ms:.0} ms");
             }
@@ -103,7 +103,7 @@ pub fn show(ui: &mut egui::Ui, inspection: &mut Inspection) -> Vec<Action> {
                     node_ui(ui, tree, 0, &mut hovered);
                 }
             });
-            inspection.hovered = hovered;
+            picked.hovered = hovered;
         });
     actions
 }
