@@ -1,8 +1,8 @@
 //! Mouse and keyboard navigation over the image, the conventions people know: left-drag orbits,
 //! right- or middle-drag pans, the wheel dollies, W/A/S/D/Q/E fly, F frames the scene,
 //! double-click sets the orbit centre; Ctrl+S saves and C prints the camera. A click that is not
-//! a drag (or the key I) picks the pixel under the cursor (its ray tree is shown), Esc closes the tree. Turns one
-//! frame's egui input into [`Action`]s.
+//! a drag (or the key I) picks the pixel under the cursor (its ray tree is shown), Esc closes the
+//! tree. Turns one frame's egui input into [`Action`]s.
 
 use egui::{Key, Modifiers, MouseWheelUnit, PointerButton};
 use glam::Vec3;

@@ -1,8 +1,8 @@
-//! The picked pixel: the pixel whose ray tree is shown, that tree and, once a node is hovered, the object seen
-//! at every pixel (to highlight that object), on the scene as the controls show it. They are
-//! traced on the ray tree thread ([`super::ray_tree_thread`]): the window never waits, it
-//! asks and takes the answers when they arrive; a camera or scene change keeps the pixel and
-//! traces it again.
+//! The picked pixel: the pixel whose ray tree is shown, that tree and, once a node is hovered,
+//! the object seen at every pixel (to highlight that object), on the scene as the controls show
+//! it. They are traced on the ray tree thread ([`super::ray_tree_thread`]): the window never
+//! waits, it asks and takes the answers when they arrive; a camera or scene change keeps the
+//! pixel and traces it again.
 
 use std::sync::Arc;
 use std::time::Duration;

@@ -1,7 +1,7 @@
 //! The scene as the controls show it: a copy of a loaded scene given the controls' camera,
-//! settings, light intensity and debug view. The threads that trace (the render worker, the ray tree thread) each
-//! keep one, copied once per loaded scene and updated in place for each job, so that moving the
-//! camera copies no geometry.
+//! settings, light intensity and debug view. The threads that trace (the render worker, the ray
+//! tree thread) each keep one, copied once per loaded scene and updated in place for each job, so
+//! that moving the camera copies no geometry.
 
 use std::sync::Arc;
 

@@ -1,5 +1,5 @@
-//! The picked pixel's ray tree as drawn over the image (with egui's painter, on top of the image quad): the
-//! picked pixel's ray tree, each ray projected through the camera as a line coloured by its kind
+//! The picked pixel's ray tree drawn over the image (with egui's painter, on top of the image
+//! quad): each ray projected through the camera as a line coloured by its kind
 //! (eye white, reflected cyan, transmitted orange, shadow rays dashed yellow, or red with a cross
 //! where they are blocked), the picked pixel framed, and a translucent mask over the object of
 //! the hovered node.
@@ -126,8 +126,8 @@ pub struct Overlay {
 }
 
 impl Overlay {
-    /// Paints the picked pixel's ray tree over `image` (the image's rectangle, in points) of a `size` image;
-    /// `far` is how far a ray that missed is drawn.
+    /// Paints the picked pixel's ray tree over `image` (the image's rectangle, in points) of a
+    /// `size` image; `far` is how far a ray that missed is drawn.
     pub fn paint(
         &mut self,
         ui: &egui::Ui,
