@@ -62,8 +62,5 @@ pub fn run(options: Options) -> Result<(), String> {
     event_loop
         .run_app(&mut app)
         .map_err(|e| format!("the window's event loop failed: {e}"))?;
-    match app.error.take() {
-        Some(e) => Err(e),
-        None => Ok(()),
-    }
+    app.result()
 }

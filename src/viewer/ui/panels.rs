@@ -9,39 +9,29 @@ use raylab::settings::{MAX_BLOCK_SIZE, MAX_DEPTH_LIMIT, MAX_SAMPLES};
 
 use super::legend_bar;
 use crate::viewer::input::action::Action;
+use crate::viewer::scene::SceneInfo;
 use crate::viewer::scene::controls::Controls;
 
-/// Everything the side panel shows or edits besides the controls.
+/// What the side panel keeps besides the scene and the controls.
 pub struct PanelState {
-    /// The scene being shown, by name.
-    pub scene_name: String,
-    /// The scene files beside the current one.
-    pub scene_files: Vec<PathBuf>,
-    pub current_path: Option<PathBuf>,
     /// The path typed in the "open" field.
     pub open_field: String,
     /// Where Save writes the image (the camera goes beside it).
     pub save_field: String,
-    /// Why the last scene did not load (`file:line:column: message`).
-    pub load_error: Option<String>,
-    /// What the reader of the scene shown accepted but warns about (`file:line: message`).
-    pub load_warnings: Vec<String>,
-    /// Why the controls cannot be rendered as they are.
-    pub control_error: Option<String>,
     /// The last thing the viewer did worth saying (saved, printed).
     pub message: Option<String>,
     /// Width and height are kept equal.
     pub square: bool,
-    pub light_count: usize,
     /// Largest image side the GPU takes.
     pub max_side: u32,
 }
 
-/// Shows the side panel (with the colour bar of the view being rendered, if it has one);
-/// returns what its buttons asked for.
+/// Shows the side panel for `scene` (with the colour bar of the view being rendered, if it has
+/// one); returns what its buttons asked for.
 pub fn side_panel(
     ui: &mut egui::Ui,
     controls: &mut Controls,
+    scene: &SceneInfo<'_>,
     state: &mut PanelState,
     legend: Option<&Legend>,
 ) -> Vec<Action> {
@@ -51,36 +41,41 @@ pub fn side_panel(
         .default_size(300.0)
         .show(ui, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
-                scene_section(ui, state, &mut actions);
+                scene_section(ui, scene, state, &mut actions);
                 camera_section(ui, controls, &mut actions);
                 tracing_section(ui, controls, state, legend);
-                lights_section(ui, controls, state);
+                lights_section(ui, controls, scene.scene.scene.lights.len());
                 save_section(ui, state, &mut actions);
             });
         });
     actions
 }
 
-/// Shows the status line (and any error) at the bottom.
-pub fn status_bar(ui: &mut egui::Ui, line: &str, state: &PanelState) {
+/// Shows the status line (and why the controls cannot be rendered, if so) at the bottom.
+pub fn status_bar(ui: &mut egui::Ui, line: &str, control_error: Option<&str>) {
     egui::Panel::bottom("status").show(ui, |ui| {
-        if let Some(e) = &state.control_error {
+        if let Some(e) = control_error {
             ui.colored_label(Color32::from_rgb(255, 120, 80), e);
         }
         ui.label(egui::RichText::new(line).monospace());
     });
 }
 
-fn scene_section(ui: &mut egui::Ui, state: &mut PanelState, actions: &mut Vec<Action>) {
+fn scene_section(
+    ui: &mut egui::Ui,
+    scene: &SceneInfo<'_>,
+    state: &mut PanelState,
+    actions: &mut Vec<Action>,
+) {
     egui::CollapsingHeader::new("Scene")
         .default_open(true)
         .show(ui, |ui| {
-            ui.label(&state.scene_name);
-            if let Some(e) = &state.load_error {
+            ui.label(scene.scene.name());
+            if let Some(e) = scene.load_error {
                 ui.colored_label(Color32::from_rgb(255, 90, 90), e);
                 ui.label("(showing the last good scene)");
             }
-            for warning in &state.load_warnings {
+            for warning in &scene.scene.scene.warnings {
                 ui.colored_label(
                     Color32::from_rgb(255, 200, 80),
                     format!("warning: {warning}"),
@@ -100,8 +95,8 @@ fn scene_section(ui: &mut egui::Ui, state: &mut PanelState, actions: &mut Vec<Ac
             if ui.button("Built-in default scene").clicked() {
                 actions.push(Action::Open(None));
             }
-            for file in &state.scene_files {
-                let current = state.current_path.as_deref() == Some(file.as_path());
+            for file in scene.files_beside {
+                let current = scene.scene.path.as_deref() == Some(file.as_path());
                 let name = file_name(file);
                 if ui.selectable_label(current, name).clicked() && !current {
                     actions.push(Action::Open(Some(file.clone())));
@@ -240,12 +235,12 @@ fn tracing_section(
         });
 }
 
-fn lights_section(ui: &mut egui::Ui, controls: &mut Controls, state: &PanelState) {
+fn lights_section(ui: &mut egui::Ui, controls: &mut Controls, light_count: usize) {
     egui::CollapsingHeader::new("Lights")
         .default_open(true)
         .show(ui, |ui| {
             ui.add(Slider::new(&mut controls.light_scale, 0.0..=4.0).text("intensity"));
-            ui.label(format!("{} lights in the scene", state.light_count));
+            ui.label(format!("{light_count} lights in the scene"));
         });
 }
 
