@@ -3,6 +3,16 @@
 //! drawn by wgpu on a textured quad every frame, and egui panels change the camera and the
 //! settings (any change restarts refinement). Only the binary knows about it; the data still
 //! flows one way: scene file → scene → BVH → tracer → film → texture → window.
+//!
+//! Its rooms, each owning one part of the [`app::App`]:
+//! - `gpu/`: the window's GPU (wgpu): device, surface, image quad, upload, painting, screenshots;
+//! - `ui/`: what egui shows: side panel, status line, ray tree panel, overlay, legend, layout;
+//! - `input/`: mouse, keys and the script, the [`input::action::Action`]s they make, and carrying
+//!   them out (navigation, picking);
+//! - `scene/`: loading and watching scene files, the scene's state and the user's controls;
+//! - `tracing/`: the render worker, the render in progress and the picked pixel's ray tree thread;
+//! - `frame/`: one frame (update, then paint) and when the next one comes;
+//! - `app.rs` the event loop, `save.rs` the image and camera written to files.
 
 mod app;
 mod frame;
