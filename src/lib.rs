@@ -5,6 +5,7 @@
 pub mod aabb;
 pub mod bvh;
 pub mod camera;
+pub mod color;
 pub mod film;
 pub mod inspect;
 pub mod large_mesh;

@@ -14,8 +14,7 @@ use std::sync::{Mutex, MutexGuard, PoisonError};
 use image::codecs::pnm::{PnmEncoder, PnmSubtype, SampleEncoding};
 use image::{DynamicImage, ImageFormat, Rgb32FImage, RgbImage};
 
-use crate::material::Color;
-use crate::texture::linear_to_srgb;
+use crate::color::{Color, to_srgb8};
 
 /// The image formats raylab writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -84,17 +83,6 @@ impl std::fmt::Display for OutputError {
 }
 
 impl std::error::Error for OutputError {}
-
-/// 8-bit sRGB pixels of a linear image.
-pub fn to_srgb8(pixels: &[Color]) -> Vec<u8> {
-    pixels
-        .iter()
-        .flat_map(|c| {
-            c.to_array()
-                .map(|v| (linear_to_srgb(v) * 255.0).round() as u8)
-        })
-        .collect()
-}
 
 /// Checks, before the long work that makes it, that an image can be saved at `path`: its
 /// extension names a format raylab writes, and [`check_writable`] passes.
@@ -309,6 +297,7 @@ fn link_target(path: &Path) -> io::Result<PathBuf> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::color::linear_to_srgb;
 
     fn gradient(w: u32, h: u32) -> Vec<Color> {
         (0..w * h)

@@ -19,9 +19,9 @@ use arrayvec::ArrayVec;
 use rayon::prelude::*;
 
 use crate::bvh::packet::PACKET_SIZE;
+use crate::color::Color;
 use crate::film::Film;
 use crate::inspect::view_colors;
-use crate::material::Color;
 use crate::ray::Ray;
 use crate::stats::{PassStats, RayCounts, RenderStats, SharedRayCounts};
 use crate::whitted::Tracer;

@@ -8,8 +8,9 @@
 use std::path::{Path, PathBuf};
 
 use raylab::bvh::Bvh;
+use raylab::color::to_srgb8;
 use raylab::nff::NffLighting;
-use raylab::output::{save_image, to_srgb8};
+use raylab::output::save_image;
 use raylab::progressive;
 use raylab::scene::{Scene, default_scene, load_any, load_any_with, load_scene};
 use raylab::whitted::Tracer;
@@ -72,7 +73,7 @@ fn check(name: &str, scene: Scene, size: (u32, u32)) {
 
 /// Inverse of the 8-bit sRGB encoding, so that blessing writes exactly the rendered bytes.
 fn srgb_decode(v: u8) -> f32 {
-    raylab::texture::srgb_to_linear(v as f32 / 255.0)
+    raylab::color::srgb_to_linear(v as f32 / 255.0)
 }
 
 fn shipped(name: &str) -> Scene {

@@ -5,8 +5,8 @@
 use glam::Vec3;
 
 use crate::aabb::Aabb;
-use crate::material::Color;
-use crate::texture::srgb_to_linear;
+use crate::color::Color;
+use crate::color::srgb_to_linear;
 use crate::whitted::Tracer;
 
 /// Colours sampled along a legend's bar.

@@ -12,7 +12,7 @@ use glam::Vec3;
 
 use super::ray_tree::{RayKind, StopReason};
 use crate::bvh::cost::TraversalCost;
-use crate::material::Color;
+use crate::color::Color;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::Ray;
 

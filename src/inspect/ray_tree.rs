@@ -6,7 +6,7 @@
 use glam::{Vec2, Vec3};
 use serde::Serialize;
 
-use crate::material::Color;
+use crate::color::Color;
 
 /// Why a ray was traced.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]

@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use super::observer::{ShadowEvent, TreeObserver};
 use super::ray_tree::{Blocker, Cut, NodeHit, RayKind, RayNode, RayTree, ShadowRay, StopReason};
 use crate::bvh::cost::TraversalCost;
-use crate::material::Color;
+use crate::color::Color;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::Ray;
 use crate::scene::Scene;

@@ -12,7 +12,7 @@ use super::legend::{
 use super::observer::TreeObserver;
 use super::ray_tree::RayKind;
 use crate::bvh::cost::{BvhCost, TraversalCost};
-use crate::material::Color;
+use crate::color::Color;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::progressive::hash;
 use crate::ray::Ray;

@@ -252,7 +252,7 @@ mod tests {
         assert!(
             film.pixels()
                 .iter()
-                .any(|c| *c != raylab::material::Color::ZERO)
+                .any(|c| *c != raylab::color::Color::ZERO)
         );
     }
 

@@ -7,8 +7,9 @@ use std::ops::ControlFlow;
 use glam::Vec3;
 
 use super::{Tracer, reflect};
+use crate::color::Color;
 use crate::inspect::{ShadowEvent, TreeObserver};
-use crate::material::{Color, Material};
+use crate::material::Material;
 use crate::primitive::{Hit, PrimId, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
 use crate::shadow_cache;

@@ -16,8 +16,9 @@ pub use scattering::{Scattering, reflect, refract, scattering};
 
 use crate::bvh::Bvh;
 use crate::bvh::packet::PACKET_SIZE;
+use crate::color::Color;
 use crate::inspect::{DebugView, RayKind, StopReason, TreeObserver};
-use crate::material::{Color, Material};
+use crate::material::Material;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
 use crate::scene::Scene;
