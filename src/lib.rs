@@ -19,6 +19,7 @@ pub mod output;
 pub mod primitive;
 pub mod progressive;
 pub mod ray;
+pub mod sampling;
 pub mod scene;
 pub mod settings;
 pub mod shadow_cache;

@@ -14,8 +14,8 @@ use super::ray_tree::RayKind;
 use crate::bvh::cost::{BvhCost, TraversalCost};
 use crate::color::Color;
 use crate::primitive::{Hit, SurfacePoint};
-use crate::progressive::hash;
 use crate::ray::Ray;
+use crate::sampling::hash;
 use crate::stats::RayCounts;
 use crate::whitted::{EYE_RAY_T_MIN, Tracer};
 
