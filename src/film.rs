@@ -71,7 +71,7 @@ impl Film {
         }
     }
 
-    /// Marks the image as changed (once per row or pass, not per pixel).
+    /// Marks the image as changed (the renderer calls it once per band of rows, not per pixel).
     pub fn touch(&self) {
         self.version.fetch_add(1, Ordering::Release);
     }

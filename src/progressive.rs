@@ -7,13 +7,15 @@
 //! Each pixel sample is what the tracer's view shows ([`crate::inspect::view_colors`]): the
 //! shaded colour, or a debug view, refined by the same passes.
 //!
-//! Passes run on all of rayon's threads, band by band of 8 rows, each band tile by tile of 8 × 8
+//! Passes run on all of rayon's threads, band by band of 8 rows of the pass's grid (8 rows of
+//! `b × b` blocks, so 8·b rows of pixels in block pass `b`), each band tile by tile of 8 × 8
 //! traced pixels whose eye rays are traced together ([`crate::bvh::packet`]). They report their
-//! progress as they go, and stop within a band when cancelled from another thread.
+//! progress and statistics ([`PassStats`], [`RenderStats`]) as they go, and stop at the next
+//! band when cancelled from another thread.
 
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use arrayvec::ArrayVec;
 use rayon::prelude::*;
@@ -24,7 +26,7 @@ use crate::film::Film;
 use crate::inspect::view_colors;
 use crate::ray::Ray;
 use crate::sampling::jitter;
-use crate::stats::{PassStats, RayCounts, RenderStats, SharedRayCounts};
+use crate::stats::{RayCounts, SharedRayCounts};
 use crate::whitted::Tracer;
 
 /// One pass of refinement.
@@ -43,6 +45,31 @@ pub fn passes(block_size: u32, samples: u32) -> Vec<Pass> {
         .map(Pass::Block)
         .chain((1..samples).map(Pass::Sample))
         .collect()
+}
+
+/// What one pass of progressive rendering did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PassStats {
+    pub pass: Pass,
+    /// Pixels traced (not painted) in this pass.
+    pub pixels: u64,
+    pub rays: RayCounts,
+    pub time: Duration,
+}
+
+/// A whole render.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RenderStats {
+    pub passes: Vec<PassStats>,
+    pub rays: RayCounts,
+    pub time: Duration,
+}
+
+impl RenderStats {
+    /// Millions of rays per second over the whole render.
+    pub fn mrays_per_second(&self) -> f64 {
+        self.rays.total() as f64 / self.time.as_secs_f64().max(1e-9) / 1e6
+    }
 }
 
 /// Traced pixels per side of a tile: a tile's eye rays go through the BVH as one packet of

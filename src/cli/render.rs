@@ -12,9 +12,8 @@ use raylab::inspect::DebugView;
 use raylab::memory;
 use raylab::nff::NffLighting;
 use raylab::output::{check_image_path, save_image};
-use raylab::progressive::{self, RenderControl};
+use raylab::progressive::{self, RenderControl, RenderStats};
 use raylab::settings::RenderSettings;
-use raylab::stats::RenderStats;
 use raylab::whitted::{RAY_BUDGET, Tracer};
 
 #[derive(Args, Debug)]

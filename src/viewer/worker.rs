@@ -11,8 +11,7 @@ use std::time::Instant;
 
 use raylab::film::Film;
 use raylab::inspect::Legend;
-use raylab::progressive::{self, RenderControl};
-use raylab::stats::PassStats;
+use raylab::progressive::{self, PassStats, RenderControl};
 
 use super::scene_source::LoadedScene;
 use super::working_scene::{TraceSetup, WorkingScene};
