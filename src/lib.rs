@@ -22,7 +22,6 @@ pub mod ray;
 pub mod sampling;
 pub mod scene;
 pub mod settings;
-pub mod shadow_cache;
 pub mod shapes;
 pub mod spd;
 pub mod stats;

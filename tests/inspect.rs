@@ -7,13 +7,13 @@ use glam::Vec3;
 use raylab::bvh::Bvh;
 use raylab::camera::{Camera, CameraSpec};
 use raylab::color::Color;
-use raylab::inspect::{RayKind, RayTree, StopReason, trace_ray_tree};
+use raylab::inspect::{RayTree, trace_ray_tree};
 use raylab::light::Light;
 use raylab::material::Material;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::{Plane, Shape, Sphere};
-use raylab::whitted::Tracer;
+use raylab::whitted::{RayKind, StopReason, Tracer};
 
 /// The side of the hand-built scenes' images: odd, so the centre pixel looks straight ahead.
 const SIDE: u32 = 11;

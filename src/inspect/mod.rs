@@ -4,7 +4,6 @@
 
 mod debug_view;
 mod legend;
-mod observer;
 mod ray_tree;
 mod recorder;
 mod tree_text;
@@ -14,7 +13,6 @@ pub use debug_view::{DebugView, max_rays};
 pub use legend::{
     BVH_COST_MAX, Legend, depth_grey, depth_range, heat, log_position, tree_depth_position,
 };
-pub use observer::{ShadowEvent, TreeObserver};
-pub use ray_tree::{Blocker, Cut, NodeHit, RayKind, RayNode, RayTree, ShadowRay, StopReason};
+pub use ray_tree::{Blocker, Cut, NodeHit, RayNode, RayTree, ShadowRay};
 pub use recorder::{eye_ray, object_ids, trace_ray_tree};
 pub use view_color::{MISS_COLOR, id_color, view_colors};

@@ -4,15 +4,14 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::observer::{ShadowEvent, TreeObserver};
-use super::ray_tree::{Blocker, Cut, NodeHit, RayKind, RayNode, RayTree, ShadowRay, StopReason};
+use super::ray_tree::{Blocker, Cut, NodeHit, RayNode, RayTree, ShadowRay};
 use crate::bvh::cost::TraversalCost;
 use crate::color::Color;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::Ray;
 use crate::scene::Scene;
 use crate::stats::RayCounts;
-use crate::whitted::{EYE_RAY_T_MIN, Tracer};
+use crate::whitted::{EYE_RAY_T_MIN, RayKind, ShadowEvent, StopReason, Tracer, TreeObserver};
 
 /// The ray tree of pixel (x, y) of the scene's `width × height` image (y from the top): the
 /// eye ray through the pixel's centre, as the first pass of [`crate::progressive::render`]

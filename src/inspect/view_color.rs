@@ -9,15 +9,13 @@ use super::debug_view::{DebugView, max_rays};
 use super::legend::{
     BVH_COST_MAX, depth_grey, depth_range, heat, log_position, tree_depth_position,
 };
-use super::observer::TreeObserver;
-use super::ray_tree::RayKind;
 use crate::bvh::cost::{BvhCost, TraversalCost};
 use crate::color::Color;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::Ray;
 use crate::sampling::hash;
 use crate::stats::RayCounts;
-use crate::whitted::{EYE_RAY_T_MIN, Tracer};
+use crate::whitted::{EYE_RAY_T_MIN, RayKind, Tracer, TreeObserver};
 
 /// What a pixel whose eye ray misses shows in every view but the shaded one.
 pub const MISS_COLOR: Color = Color::ZERO;

@@ -6,13 +6,12 @@ use std::ops::ControlFlow;
 
 use glam::Vec3;
 
-use super::{Tracer, reflect};
+use super::shadow_cache;
+use super::{ShadowEvent, Tracer, TreeObserver, reflect};
 use crate::color::Color;
-use crate::inspect::{ShadowEvent, TreeObserver};
 use crate::material::Material;
 use crate::primitive::{Hit, PrimId, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
-use crate::shadow_cache;
 use crate::stats::RayCounts;
 
 impl Tracer<'_> {
@@ -83,7 +82,7 @@ impl Tracer<'_> {
     }
 
     /// [`Self::transmittance`] along the shadow ray `ray` towards light `light`, trying the
-    /// light's last blocker on this thread first (see [`crate::shadow_cache`]) unless the
+    /// light's last blocker on this thread first (see [`super::shadow_cache`]) unless the
     /// observer says not to. With an observer that records blockers, also every primitive the
     /// search met, with its tint.
     fn light_transmittance<O: TreeObserver>(

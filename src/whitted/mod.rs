@@ -5,19 +5,25 @@
 //! `max_depth` is reached, the branch's weight falls below `min_weight` (adaptive depth
 //! control), or the tree has used up its [`RAY_BUDGET`].
 //!
-//! The tracing functions are generic over a [`TreeObserver`] that hears the tree as it grows.
-//! The renderer passes `()`, which compiles away; the inspector records the tree with the very
-//! same code.
+//! Shadow rays try first the primitive that last blocked the same light on the same thread
+//! (the shadow cache of Haines and Greenberg, `shadow_cache`).
+//!
+//! The tracing functions are generic over a [`TreeObserver`] that hears the tree
+//! as it grows. The renderer passes `()`, which compiles away; the inspector
+//! ([`crate::inspect`]) records the tree with the very same code.
 
 mod lighting;
+mod observer;
 mod scattering;
+mod shadow_cache;
 
+pub use observer::{RayKind, ShadowEvent, StopReason, TreeObserver};
 pub use scattering::{Scattering, reflect, refract, scattering};
 
 use crate::bvh::Bvh;
 use crate::bvh::packet::PACKET_SIZE;
 use crate::color::Color;
-use crate::inspect::{DebugView, RayKind, StopReason, TreeObserver};
+use crate::inspect::DebugView;
 use crate::material::Material;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
