@@ -214,7 +214,7 @@ fn sized(scene: &Scene, size: u32, camera: CameraSpec) -> (Scene, Bvh) {
 /// `view` of the scene rendered on the CPU at `size × size` with `camera`, as sRGB bytes.
 fn cpu_render_view(scene: &Scene, size: u32, camera: CameraSpec, view: DebugView) -> Vec<u8> {
     let (scene, bvh) = sized(scene, size, camera);
-    let (pixels, _) = progressive::render_image(&Tracer::new(&scene, &bvh).with_view(view));
+    let (pixels, _) = progressive::render_image_with(&Tracer::new(&scene, &bvh), &view);
     to_srgb8(&pixels)
 }
 

@@ -6,6 +6,7 @@ use rayon::prelude::*;
 
 use super::ray_tree::{Blocker, Cut, NodeHit, RayNode, RayTree, ShadowRay};
 use crate::bvh::cost::TraversalCost;
+use crate::camera::PIXEL_CENTRE;
 use crate::color::Color;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::Ray;
@@ -37,13 +38,12 @@ pub fn trace_ray_tree(tracer: &Tracer, x: u32, y: u32) -> RayTree {
     }
 }
 
-/// The eye ray through the centre of pixel (x, y), y from the top, as the renderer builds it.
-pub fn eye_ray(tracer: &Tracer, x: u32, y: u32) -> Ray {
+/// The eye ray through the centre of pixel (x, y) of the scene's image, y from the top, as the
+/// renderer builds it.
+fn eye_ray(tracer: &Tracer, x: u32, y: u32) -> Ray {
     let settings = &tracer.scene.settings;
-    let (width, height) = (settings.width, settings.height);
-    let r = (height - y) as f32 - 0.5;
-    let c = x as f32 + 0.5;
-    tracer.scene.camera.ray(r, c, height, width)
+    let size = (settings.width, settings.height);
+    tracer.scene.camera.eye_ray((x, y), PIXEL_CENTRE, size)
 }
 
 /// Per pixel (row-major, top row first) the object id ([`crate::primitive::Geometry::object_id`])

@@ -142,7 +142,7 @@ fn run(pool: &rayon::ThreadPool, inbox: &Receiver<Job>) {
         }
         let rendered = std::panic::catch_unwind(AssertUnwindSafe(|| {
             pool.install(|| {
-                progressive::render(&tracer, &job.film, &job.control, |pass| {
+                progressive::render(&tracer, &job.setup.view, &job.film, &job.control, |pass| {
                     job.report.push_pass(pass)
                 })
             })

@@ -23,7 +23,6 @@ pub use scattering::{Scattering, reflect, refract, scattering};
 use crate::bvh::Bvh;
 use crate::bvh::packet::PACKET_SIZE;
 use crate::color::Color;
-use crate::inspect::DebugView;
 use crate::material::Material;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
@@ -41,27 +40,16 @@ pub const EYE_RAY_T_MIN: f32 = 1.0;
 /// depth first, and counted in [`RayCounts::over_budget`].
 pub const RAY_BUDGET: u64 = 1024;
 
-/// A scene and its BVH, ready to trace, and what the rendered image shows.
+/// A scene and its BVH, ready to trace.
 #[derive(Clone, Copy)]
 pub struct Tracer<'a> {
     pub scene: &'a Scene,
     pub bvh: &'a Bvh,
-    /// What [`crate::progressive`] renders: the shaded image or a debug view.
-    pub view: DebugView,
 }
 
 impl<'a> Tracer<'a> {
     pub fn new(scene: &'a Scene, bvh: &'a Bvh) -> Self {
-        Tracer {
-            scene,
-            bvh,
-            view: DebugView::Shaded,
-        }
-    }
-
-    /// The same tracer rendering `view`.
-    pub fn with_view(self, view: DebugView) -> Self {
-        Tracer { view, ..self }
+        Tracer { scene, bvh }
     }
 
     /// The closest hit along `ray` beyond `t_min`.
