@@ -1,5 +1,27 @@
 //! raylab: a Whitted ray tracer after Hill & Kelley's lecture (ch. 12). The data flows one way:
-//! scene file → [`scene::Scene`] → [`bvh::Bvh`] → [`whitted`] tracer → [`film::Film`] → image.
+//!
+//! ```text
+//! scene file → Scene → Bvh → whitted tracer → progressive renderer → Film → image file
+//!                                   ↑                   ↑
+//!                                   └────── inspect ────┘  (ray trees, debug views)
+//! ```
+//!
+//! and the modules depend on each other in that order only, each on those before it:
+//!
+//! - Basics: [`color`] (linear RGB and its 8-bit sRGB encoding), [`ray`], [`aabb`],
+//!   [`transform`], [`limits`], [`memory`], [`camera`] (the one place a pixel becomes an eye
+//!   ray) and [`sampling`] (where a pixel's samples lie).
+//! - The scene: [`shapes`], [`mesh`], [`primitive`], [`material`], [`texture`], [`light`],
+//!   [`settings`] and [`scene::Scene`], which the scene readers build from TOML, OBJ, NFF and
+//!   SPD files (or [`large_mesh`] generates, for benchmarks).
+//! - Tracing: [`bvh::Bvh`] finds what a ray hits; [`whitted`] builds each eye ray's ray tree,
+//!   counts its rays ([`stats`]) and tells a [`whitted::TreeObserver`] what it does.
+//! - Rendering: [`progressive`] refines the image pass after pass on all cores into a
+//!   [`film::Film`], each pixel sample coloured by a [`progressive::Shader`] (the shaded image
+//!   is [`progressive::Shaded`]); the image writers save it.
+//! - Looking inside: [`inspect`] records one pixel's ray tree with a tree observer and renders
+//!   debug views as shaders of the same renderer. Nothing above depends on it.
+//!
 //! Nothing here knows about windows or GPUs.
 
 pub mod aabb;
