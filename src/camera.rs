@@ -151,6 +151,7 @@ impl Camera {
     /// [`PIXEL_CENTRE`] is the centre). This is [`Self::ray`] at `r = (height − y) − offset.1`
     /// and `c = x + offset.0`, and the one place where a pixel becomes an eye ray: the renderer,
     /// the inspector and the viewer's picking all call it.
+    #[inline]
     pub fn eye_ray(
         &self,
         (x, y): (u32, u32),

@@ -171,7 +171,7 @@ impl RenderControl {
 /// size), pass after pass, calling `on_pass` after each. Runs on the current rayon thread pool.
 pub fn render(
     tracer: &Tracer,
-    shader: &impl Shader,
+    shader: &dyn Shader,
     film: &Film,
     control: &RenderControl,
     mut on_pass: impl FnMut(&PassStats),
@@ -196,7 +196,7 @@ pub fn render(
 /// Runs one pass over the whole image.
 pub fn render_pass(
     tracer: &Tracer,
-    shader: &impl Shader,
+    shader: &dyn Shader,
     film: &Film,
     control: &RenderControl,
     pass: Pass,
@@ -303,7 +303,7 @@ impl PassGrid {
 /// Returns how many it traced.
 fn trace_tile(
     tracer: &Tracer,
-    shader: &impl Shader,
+    shader: &dyn Shader,
     film: &Film,
     grid: &PassGrid,
     rows: &Range<u32>,
@@ -338,7 +338,7 @@ pub fn render_image(tracer: &Tracer) -> (Vec<Color>, RenderStats) {
 }
 
 /// [`render_image`] of what `shader` shows.
-pub fn render_image_with(tracer: &Tracer, shader: &impl Shader) -> (Vec<Color>, RenderStats) {
+pub fn render_image_with(tracer: &Tracer, shader: &dyn Shader) -> (Vec<Color>, RenderStats) {
     let settings = &tracer.scene.settings;
     let film = Film::new(settings.width, settings.height);
     let control = RenderControl::default();

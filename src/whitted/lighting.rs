@@ -74,8 +74,8 @@ impl Tracer<'_> {
 
     /// The fraction of light that reaches the origin of the shadow ray `ray` from light `light`
     /// ([`Self::transmittance_and_blocker`]), trying the light's last blocker on this thread
-    /// first (see [`super::shadow_cache`]) unless the observer says not to. With an observer that records blockers, also every primitive the
-    /// search met, with its tint.
+    /// first (see [`super::shadow_cache`]) unless the observer says not to. With an observer that
+    /// records blockers, also every primitive the search met, with its tint.
     fn light_transmittance<O: TreeObserver>(
         &self,
         light: usize,
@@ -107,7 +107,8 @@ impl Tracer<'_> {
 
     /// The transmittance along `ray` up to `distance`: zero if an opaque object is in between,
     /// otherwise the product of the transparent blockers' tints (`transparency × colour`, once
-    /// per object); and the opaque primitive that ended the search, if one did. `on_blocker` hears of each primitive met, with its tint.
+    /// per object); and the opaque primitive that ended the search, if one did. `on_blocker`
+    /// hears of each primitive met, with its tint.
     fn transmittance_and_blocker(
         &self,
         ray: &Ray,
