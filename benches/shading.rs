@@ -5,8 +5,8 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use raylab::bvh::Bvh;
+use raylab::formats::toml::default_scene;
 use raylab::progressive;
-use raylab::scene::default_scene;
 use raylab::stats::RayCounts;
 use raylab::whitted::Tracer;
 

@@ -78,14 +78,71 @@ impl Aabb {
         ]
     }
 
-    /// Slab test: the entry distance of a ray into the box within `[t_min, t_max]`, if any.
-    /// `inv_dir` is `1 / dir` per component (infinities allowed).
+    /// The slab test, axis by axis: where the ray `origin + t·dir` crosses the box's two planes
+    /// on each axis, as the distances `(near, far)` at which it enters and leaves that slab.
+    /// `inv_dir` is `1 / dir` per component: a ray parallel to a slab gets ±∞ there (and NaN
+    /// when it lies in one of its planes). The ray is inside the box where it is inside all
+    /// three slabs, from the largest `near` to the smallest `far` ([`Self::entry`]).
     #[inline(always)]
-    pub fn hit(&self, origin: Vec3, inv_dir: Vec3, t_min: f32, t_max: f32) -> Option<f32> {
+    pub fn slabs(&self, origin: Vec3, inv_dir: Vec3) -> (Vec3, Vec3) {
         let t0 = (self.min - origin) * inv_dir;
         let t1 = (self.max - origin) * inv_dir;
-        let near = t0.min(t1).max_element().max(t_min);
-        let far = t0.max(t1).min_element().min(t_max);
+        (t0.min(t1), t0.max(t1))
+    }
+
+    /// The slab test: the distance at which the ray enters the box within `[t_min, t_max]`
+    /// (`t_min` for a ray that starts inside), or `None` if it misses the box there. See
+    /// [`Self::slabs`] for `inv_dir`.
+    #[inline(always)]
+    pub fn entry(&self, origin: Vec3, inv_dir: Vec3, t_min: f32, t_max: f32) -> Option<f32> {
+        let (near, far) = self.slabs(origin, inv_dir);
+        let near = near.max_element().max(t_min);
+        let far = far.min_element().min(t_max);
         (near <= far).then_some(near)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit_box() -> Aabb {
+        Aabb::new(Vec3::ZERO, Vec3::ONE)
+    }
+
+    #[test]
+    fn slabs_are_ordered_whichever_way_the_ray_goes() {
+        let origin = Vec3::new(-1.0, 0.5, 3.0);
+        let inv_dir = Vec3::new(1.0, 1.0, -0.5);
+        let (near, far) = unit_box().slabs(origin, inv_dir);
+        assert_eq!(near, Vec3::new(1.0, -0.5, 1.0));
+        assert_eq!(far, Vec3::new(2.0, 0.5, 1.5));
+    }
+
+    #[test]
+    fn entry_is_where_the_ray_is_inside_all_three_slabs() {
+        let b = unit_box();
+        let towards = |dir: Vec3| dir.recip();
+        // From outside, straight in: enters at x = 0.
+        let origin = Vec3::new(-2.0, 0.5, 0.5);
+        assert_eq!(
+            b.entry(origin, towards(Vec3::X), 0.0, f32::INFINITY),
+            Some(2.0)
+        );
+        // The same ray stopped short of the box, or turned away from it.
+        assert_eq!(b.entry(origin, towards(Vec3::X), 0.0, 1.5), None);
+        assert_eq!(b.entry(origin, towards(-Vec3::X), 0.0, f32::INFINITY), None);
+        // Parallel to the y and z slabs and outside the y one.
+        let beside = Vec3::new(-2.0, 1.5, 0.5);
+        assert_eq!(b.entry(beside, towards(Vec3::X), 0.0, f32::INFINITY), None);
+        // From inside: "entered" at t_min.
+        let inside = Vec3::splat(0.5);
+        assert_eq!(b.entry(inside, towards(Vec3::Y), 0.25, 9.0), Some(0.25));
+        // Diagonally, entering where the last slab is entered.
+        let diagonal = Vec3::new(-1.0, -1.5, 0.5);
+        assert_eq!(
+            b.entry(diagonal, towards(Vec3::new(1.0, 1.0, 0.0)), 0.0, 9.0),
+            Some(1.5)
+        );
     }
 }

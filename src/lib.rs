@@ -9,16 +9,16 @@
 //! and the modules depend on each other in that order only, each on those before it:
 //!
 //! - Basics: [`color`] (linear RGB and its 8-bit sRGB encoding), [`ray`], [`aabb`],
-//!   [`transform`], [`limits`], [`memory`], [`camera`] (the one place a pixel becomes an eye
-//!   ray) and [`sampling`] (where a pixel's samples lie).
+//!   [`transform`], [`limits`], [`memory`], [`output`] (writing files safely), [`camera`] (the
+//!   one place a pixel becomes an eye ray) and [`sampling`] (where a pixel's samples lie).
 //! - The scene: [`shapes`], [`mesh`], [`primitive`], [`material`], [`texture`], [`light`],
-//!   [`settings`] and [`scene::Scene`], which the scene readers build from TOML, OBJ, NFF and
-//!   SPD files (or [`large_mesh`] generates, for benchmarks).
+//!   [`settings`] and [`scene::Scene`], which [`formats`] reads from TOML, OBJ, NFF and SPD
+//!   files (or [`large_mesh`] generates, for benchmarks).
 //! - Tracing: [`bvh::Bvh`] finds what a ray hits; [`whitted`] builds each eye ray's ray tree,
 //!   counts its rays ([`stats`]) and tells a [`whitted::TreeObserver`] what it does.
 //! - Rendering: [`progressive`] refines the image pass after pass on all cores into a
 //!   [`film::Film`], each pixel sample coloured by a [`progressive::Shader`] (the shaded image
-//!   is [`progressive::Shaded`]); the image writers save it.
+//!   is [`progressive::Shaded`]); [`formats::image`] saves it.
 //! - Looking inside: [`inspect`] records one pixel's ray tree with a tree observer and renders
 //!   debug views as shaders of the same renderer. Nothing above depends on it.
 //!
@@ -29,6 +29,7 @@ pub mod bvh;
 pub mod camera;
 pub mod color;
 pub mod film;
+pub mod formats;
 pub mod inspect;
 pub mod large_mesh;
 pub mod light;
@@ -36,7 +37,6 @@ pub mod limits;
 pub mod material;
 pub mod memory;
 pub mod mesh;
-pub mod nff;
 pub mod output;
 pub mod primitive;
 pub mod progressive;
@@ -45,7 +45,6 @@ pub mod sampling;
 pub mod scene;
 pub mod settings;
 pub mod shapes;
-pub mod spd;
 pub mod stats;
 pub mod texture;
 pub mod transform;

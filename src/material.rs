@@ -1,9 +1,7 @@
 //! Materials: how a surface answers light, in the terms of the lecture's shading model
 //! (ambient, Lambert diffuse, Phong specular) plus mirror reflection and transparency.
 
-// Re-exported only for the scene readers (src/scene, src/nff), which import it from here
-// until they move; everything else imports `crate::color::Color`.
-pub use crate::color::Color;
+use crate::color::Color;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {

@@ -30,7 +30,8 @@ pub struct RenderSettings {
     pub ambient: Color,
     pub shadows: bool,
     pub reflections: bool,
-    pub refractions: bool,
+    /// Whether transmitted rays are traced (through transparent objects, `kt > 0`).
+    pub transmission: bool,
     pub textures: bool,
 }
 
@@ -47,7 +48,7 @@ impl Default for RenderSettings {
             ambient: Color::splat(0.2),
             shadows: true,
             reflections: true,
-            refractions: true,
+            transmission: true,
             textures: true,
         }
     }

@@ -9,10 +9,12 @@ use std::path::{Path, PathBuf};
 
 use raylab::bvh::Bvh;
 use raylab::color::to_srgb8;
-use raylab::nff::NffLighting;
-use raylab::output::save_image;
+use raylab::formats::image::save_image;
+use raylab::formats::nff::NffLighting;
+use raylab::formats::toml::{default_scene, load_scene};
+use raylab::formats::{load_any, load_any_with};
 use raylab::progressive;
-use raylab::scene::{Scene, default_scene, load_any, load_any_with, load_scene};
+use raylab::scene::Scene;
 use raylab::whitted::Tracer;
 
 /// The size of the teaching scenes' pictures.

@@ -8,9 +8,10 @@ use std::path::Path;
 use glam::{Vec2, Vec3};
 use raylab::bvh::Bvh;
 use raylab::camera::PIXEL_CENTRE;
+use raylab::formats::toml::{default_scene, load_scene};
 use raylab::inspect::{object_ids, trace_ray_tree};
 use raylab::progressive;
-use raylab::scene::{Scene, default_scene, load_scene};
+use raylab::scene::Scene;
 use raylab::whitted::Tracer;
 
 fn close(a: Vec3, b: Vec3, tolerance: f32) -> bool {

@@ -6,10 +6,12 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 use raylab::bvh::Bvh;
+use raylab::formats::SceneError;
+use raylab::formats::toml::parse_scene;
 use raylab::inspect::trace_ray_tree;
 use raylab::light::Light;
 use raylab::progressive::render_image;
-use raylab::scene::{Scene, SceneError, parse_scene};
+use raylab::scene::Scene;
 use raylab::whitted::{RAY_BUDGET, StopReason, Tracer};
 
 fn parse(text: &str) -> Result<Scene, SceneError> {
@@ -256,7 +258,7 @@ fn an_exploding_ray_tree_stops_at_the_ray_budget() {
 
 #[test]
 fn ordinary_trees_never_reach_the_budget() {
-    let scene = raylab::scene::default_scene().unwrap();
+    let scene = raylab::formats::toml::default_scene().unwrap();
     let bvh = Bvh::build(&scene.geometry);
     let mut scene = scene.clone();
     scene.settings.width = 64;
@@ -421,7 +423,7 @@ fn sizes_are_checked_against_their_stated_maximum() {
 const NFF_VIEW: &str = "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 8 8\n";
 
 fn parse_nff(text: &str) -> Result<Scene, SceneError> {
-    raylab::nff::parse_nff(text, Path::new("test.nff"), Default::default())
+    raylab::formats::nff::parse_nff(text, Path::new("test.nff"), Default::default())
 }
 
 #[test]

@@ -9,11 +9,13 @@ use std::time::Instant;
 
 use common::fuzz::{Rng, mutate};
 use glam::Vec3;
+use raylab::formats::nff::{NffLighting, SPD_MAX_DEPTH, load_nff, parse_nff, parse_nff_document};
+use raylab::formats::spd::Database;
+use raylab::formats::toml::DEFAULT_MATERIAL;
+use raylab::formats::{SceneError, load_any, load_any_with};
 use raylab::light::Light;
-use raylab::nff::{NffLighting, SPD_MAX_DEPTH, load_nff, parse_nff, parse_nff_document};
-use raylab::scene::{DEFAULT_MATERIAL, Scene, SceneError, load_any, load_any_with};
+use raylab::scene::Scene;
 use raylab::shapes::Shape;
-use raylab::spd::Database;
 
 /// A file with every entity, one of each form.
 const EVERY_ENTITY: &str = "\

@@ -8,9 +8,12 @@ use std::path::{Path, PathBuf};
 
 use common::fuzz::{Rng, mutate};
 use glam::{Vec2, Vec3};
+use raylab::color::Color;
+use raylab::formats::SceneError;
+use raylab::formats::toml::{DEFAULT_MATERIAL, load_scene, parse_scene};
 use raylab::light::Light;
-use raylab::material::{Color, Material};
-use raylab::scene::{DEFAULT_MATERIAL, Scene, SceneError, load_scene, parse_scene};
+use raylab::material::Material;
+use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::Shape;
 use raylab::texture::{Texture, Wrap};
@@ -162,7 +165,7 @@ background = [0.1, 0.2, 0.3]
 ambient = [0.3, 0.3, 0.3]
 shadows = false
 reflections = false
-refractions = false
+transmission = false
 textures = false
 
 [camera]
@@ -269,7 +272,7 @@ fn full_feature_file_sets_every_setting() {
             ambient: Color::splat(0.3),
             shadows: false,
             reflections: false,
-            refractions: false,
+            transmission: false,
             textures: false,
         }
     );
@@ -279,6 +282,22 @@ fn full_feature_file_sets_every_setting() {
         (Vec3::new(0.0, 2.0, 8.0), Vec3::Y)
     );
     assert_eq!((spec.view_angle, spec.near), (30.0, 0.5));
+}
+
+#[test]
+fn transmission_is_also_read_under_its_old_name_refractions() {
+    for key in ["transmission", "refractions"] {
+        let scene = parse(&format!("[render]\n{key} = false\n")).unwrap();
+        assert!(!scene.settings.transmission, "{key}");
+    }
+    assert!(parse("").unwrap().settings.transmission);
+    // Both names at once is one setting given twice.
+    assert_error(
+        "[render]\ntransmission = false\nrefractions = true\n",
+        3,
+        1,
+        "`refractions` is the old name of `transmission`",
+    );
 }
 
 #[test]

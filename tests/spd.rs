@@ -5,9 +5,9 @@
 use std::path::Path;
 
 use glam::DVec3;
-use raylab::nff::{Item, NffDocument, NffLighting, PrimitiveCounts, parse_nff_document};
-use raylab::scene::load_any;
-use raylab::spd::{Database, load_spd, parse_scene_name};
+use raylab::formats::load_any;
+use raylab::formats::nff::{Item, NffDocument, NffLighting, PrimitiveCounts, parse_nff_document};
+use raylab::formats::spd::{Database, load_spd, parse_scene_name};
 
 fn counts(spheres: usize, cones: usize, polygons: usize, patches: usize) -> PrimitiveCounts {
     PrimitiveCounts {
@@ -120,7 +120,7 @@ fn small_generated_files_equal_the_spd_files_kept_with_the_tests() {
     }
 }
 
-fn view(database: Database) -> raylab::nff::View {
+fn view(database: Database) -> raylab::formats::nff::View {
     database.generate(1).unwrap().view.unwrap()
 }
 

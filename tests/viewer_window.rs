@@ -14,9 +14,10 @@ use glam::Vec3;
 use raylab::bvh::Bvh;
 use raylab::camera::{Camera, CameraSpec};
 use raylab::color::to_srgb8;
+use raylab::formats::toml::{default_scene, load_scene};
 use raylab::inspect::{DebugView, RayTree, trace_ray_tree};
 use raylab::progressive;
-use raylab::scene::{Scene, default_scene, load_scene};
+use raylab::scene::Scene;
 use raylab::whitted::{RayKind, Tracer};
 
 /// One viewer at a time: they share two cores, and parallel `xvfb-run -a` can race for a display.

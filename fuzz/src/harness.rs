@@ -8,10 +8,12 @@
 use std::path::Path;
 
 use raylab::bvh::Bvh;
+use raylab::formats::nff::{NffDocument, NffLighting, parse_nff_document};
+use raylab::formats::toml::parse_scene_with;
+use raylab::formats::{SceneError, SceneFiles, ascii_text, utf8_text};
 use raylab::inspect::trace_ray_tree;
-use raylab::nff::{NffDocument, NffLighting, parse_nff_document};
 use raylab::progressive::render_image;
-use raylab::scene::{Scene, SceneError, SceneFiles, ascii_text, parse_scene_with, utf8_text};
+use raylab::scene::Scene;
 use raylab::whitted::Tracer;
 
 const TETRA_OBJ: &[u8] = include_bytes!("../../assets/models/tetra.obj");

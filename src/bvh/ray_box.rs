@@ -1,9 +1,10 @@
-//! The ray–box test of the traversal: the slab test for one box, and for a node's four child
-//! boxes at once, one per SIMD lane.
+//! The ray–box test of the traversal: the slab test ([`Aabb::entry`]) for one box, and the
+//! same test for a node's four child boxes at once, one per SIMD lane.
 
 use glam::{Vec3, Vec4};
 
 use super::Node;
+use crate::aabb::Aabb;
 use crate::ray::Ray;
 
 /// A ray prepared for box tests: its origin and inverse direction. 24 bytes, so that a packet's
@@ -22,20 +23,21 @@ impl RayBoxTest {
         }
     }
 
-    /// Entry distance into the node's box within `[t_min, t_max]`, or +∞ for a miss (the slab
-    /// test: the ray is inside the box where it is inside all three slabs).
+    /// Entry distance into the node's box within `[t_min, t_max]`, or +∞ for a miss: the slab
+    /// test of [`Aabb::entry`].
     #[inline(always)]
     pub(super) fn enter(&self, node: &Node, t_min: f32, t_max: f32) -> f32 {
-        let t0 = (Vec3::from(node.min) - self.origin) * self.inv_dir;
-        let t1 = (Vec3::from(node.max) - self.origin) * self.inv_dir;
-        let near = t0.min(t1).max_element().max(t_min);
-        let far = t0.max(t1).min_element().min(t_max);
-        if near <= far { near } else { f32::INFINITY }
+        Aabb::new(node.min.into(), node.max.into())
+            .entry(self.origin, self.inv_dir, t_min, t_max)
+            .unwrap_or(f32::INFINITY)
     }
 
     /// [`Self::enter`] for four boxes at once, one per SIMD lane, with the same arithmetic in
     /// the same order, so each lane's answer is exactly the one-box answer: the entry
-    /// distances, and a bit mask of the boxes entered (bit k for box k).
+    /// distances, and a bit mask of the boxes entered (bit k for box k). It is written out
+    /// rather than built on [`Aabb::slabs`] because it runs the other way round: that goes
+    /// through one box's three axes, this through one axis of four boxes at a time (the hot
+    /// loop of the traversal, where the four boxes' coordinates are rearranged into lanes once).
     #[inline(always)]
     pub(super) fn enter4(&self, nodes: &[Node], t_min: f32, t_max: f32) -> (Vec4, u32) {
         let (mins, maxs) = boxes_by_axis(nodes);
@@ -114,4 +116,51 @@ fn boxes_by_axis(nodes: &[Node]) -> ([Vec4; 3], [Vec4; 3]) {
         [0, 1, 2].map(|axis| lanes(axis, |node| node.min)),
         [0, 1, 2].map(|axis| lanes(axis, |node| node.max)),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn four_boxes_at_once_answer_as_one_box_at_a_time() {
+        let node = |min: [f32; 3], max: [f32; 3]| Node {
+            min,
+            first: 0,
+            max,
+            count: 1,
+        };
+        let nodes = [
+            node([0.0, 0.0, 0.0], [1.0, 1.0, 1.0]),
+            node([2.0, -1.0, 0.0], [3.0, 0.0, 1.0]),
+            node([-1.0, -1.0, -1.0], [-0.5, 5.0, 2.0]),
+            node([0.0, 1.0, 0.0], [1.0, 2.0, 1.0]),
+        ];
+        let rays = [
+            Ray::new(Vec3::new(-5.0, 0.5, 0.5), Vec3::X),
+            // From inside the first box, up into the fourth.
+            Ray::new(Vec3::splat(0.5), Vec3::Y),
+            Ray::new(Vec3::new(2.5, -5.0, 0.5), Vec3::Y),
+            Ray::new(Vec3::splat(-5.0), Vec3::ONE),
+            // In the plane y = 0 of the first two boxes' faces.
+            Ray::new(Vec3::new(-5.0, 0.0, 0.5), Vec3::X),
+            Ray::new(Vec3::new(0.5, 1.5, 5.0), -Vec3::Z),
+            Ray::new(Vec3::new(9.0, 9.0, 9.0), Vec3::X),
+        ];
+        let mut entered = 0;
+        for ray in rays {
+            let test = RayBoxTest::new(&ray);
+            let (t, mask) = test.enter4(&nodes, 0.0, 100.0);
+            for (k, node) in nodes.iter().enumerate() {
+                let one = test.enter(node, 0.0, 100.0);
+                let hit = one != f32::INFINITY;
+                assert_eq!(mask >> k & 1 == 1, hit, "box {k}, {ray:?}");
+                if hit {
+                    assert_eq!(t[k].to_bits(), one.to_bits(), "box {k}, {ray:?}");
+                    entered += 1;
+                }
+            }
+        }
+        assert!(entered >= 6, "the rays enter boxes: {entered}");
+    }
 }

@@ -12,10 +12,12 @@ use std::time::{Duration, Instant};
 
 use clap::Args;
 use raylab::bvh::Bvh;
+use raylab::formats::load_any;
+use raylab::formats::toml::default_scene;
 use raylab::large_mesh::{bumpy_sphere_scene, check_bumpy_triangles};
 use raylab::output::{check_writable, write_atomically};
 use raylab::progressive;
-use raylab::scene::{Scene, default_scene, load_any};
+use raylab::scene::Scene;
 use raylab::whitted::Tracer;
 
 use super::bench_report::{self, BenchResult};

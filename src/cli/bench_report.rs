@@ -64,7 +64,7 @@ pub fn write_header(out: &mut impl Write, scaling: bool) -> io::Result<()> {
         "eye",
         "shadow",
         "reflect",
-        "refract",
+        "transmit",
         "Mrays/s"
     )?;
     if scaling {

@@ -3,8 +3,8 @@
 use std::path::{Path, PathBuf};
 
 use clap::Args;
+use raylab::formats::spd::Database;
 use raylab::output::write_atomically;
-use raylab::spd::Database;
 
 #[derive(Args, Debug)]
 pub struct GenArgs {

@@ -4,8 +4,8 @@ use std::io::Write;
 
 use clap::Args;
 use raylab::bvh::Bvh;
+use raylab::formats::nff::NffLighting;
 use raylab::inspect::trace_ray_tree;
-use raylab::nff::NffLighting;
 use raylab::whitted::Tracer;
 
 use super::render::SettingsOverrides;

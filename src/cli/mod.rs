@@ -12,8 +12,10 @@ mod view;
 use std::io::{self, BufWriter, StdoutLock, Write};
 
 use clap::{Parser, Subcommand};
-use raylab::nff::NffLighting;
-use raylab::scene::{self, Scene};
+use raylab::formats::load_any_with;
+use raylab::formats::nff::NffLighting;
+use raylab::formats::toml::default_scene;
+use raylab::scene::Scene;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -65,8 +67,8 @@ pub fn run(cli: Cli) -> Result<(), String> {
 /// NFF and SPD scenes.
 fn load_scene(name: Option<&str>, lighting: NffLighting) -> Result<Scene, String> {
     let scene = match name {
-        Some(name) => scene::load_any_with(name, lighting),
-        None => scene::default_scene(),
+        Some(name) => load_any_with(name, lighting),
+        None => default_scene(),
     }
     .map_err(|e| e.to_string())?;
     for warning in &scene.warnings {

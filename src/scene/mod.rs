@@ -1,26 +1,6 @@
-//! The scene: everything a render needs, as plain data. It is read from a TOML scene file
-//! ([`load_scene`], [`parse_scene`]), from any scene raylab knows ([`load_any`]: TOML, NFF or a
-//! built-in SPD scene) or made by code, and read by the BVH builder and the tracer.
-
-mod build;
-mod builtin;
-mod error;
-mod file;
-mod files;
-mod load;
-mod load_any;
-mod obj;
-mod retag;
-mod values;
-
-pub use build::DEFAULT_MATERIAL;
-pub use builtin::{DEFAULT_SCENE_TEXT, default_scene};
-pub use error::SceneError;
-pub(crate) use error::Source;
-pub use files::SceneFiles;
-pub use files::{ascii_text, utf8_text};
-pub use load::{load_scene, parse_scene, parse_scene_with};
-pub use load_any::{load_any, load_any_with};
+//! The scene: everything a render needs, as plain data, read by the BVH builder and the tracer.
+//! It is made by code or read from a file by one of the [`crate::formats`] (TOML, NFF, a
+//! built-in SPD scene), which depend on it; it knows none of them.
 
 use crate::camera::Camera;
 use crate::light::Light;
@@ -37,8 +17,8 @@ pub struct Scene {
     pub camera: Camera,
     pub lights: Vec<Light>,
     pub materials: Vec<Material>,
-    /// The materials' names, index for index: the scene file's names, "default" for
-    /// [`DEFAULT_MATERIAL`], "nff #k" for NFF fills, "#k" for materials added by code.
+    /// The materials' names, index for index: the scene file's names, "default" for the TOML
+    /// reader's default material, "nff #k" for NFF fills, "#k" for materials added by code.
     pub material_names: Vec<String>,
     pub textures: Vec<Texture>,
     pub geometry: Geometry,

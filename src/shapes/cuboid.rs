@@ -31,34 +31,34 @@ impl Cuboid {
         Ok(Cuboid { min, max })
     }
 
-    /// Slab test, keeping track of which face the ray enters and leaves by. A ray from inside
-    /// hits the face it leaves by.
+    /// The slab test ([`Aabb::slabs`]), keeping track of which face the ray enters and leaves
+    /// by. A ray from inside hits the face it leaves by.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
+        let inv_dir = ray.dir.recip();
+        let (near, far) = self.bounds().slabs(ray.origin, inv_dir);
         let mut enter = (f32::NEG_INFINITY, 0);
         let mut exit = (f32::INFINITY, 0);
         for axis in 0..3 {
-            let (origin, dir) = (ray.origin[axis], ray.dir[axis]);
-            let (low, high) = (self.min[axis], self.max[axis]);
-            if dir == 0.0 {
-                if origin < low || origin > high {
-                    return None; // parallel to this slab and outside it
+            if !inv_dir[axis].is_finite() {
+                // Parallel to this slab: inside it everywhere, or nowhere.
+                let origin = ray.origin[axis];
+                if origin < self.min[axis] || origin > self.max[axis] {
+                    return None;
                 }
                 continue;
             }
-            let inv_dir = 1.0 / dir;
-            let (t_low, t_high) = ((low - origin) * inv_dir, (high - origin) * inv_dir);
             let face = 2 * axis as u32;
-            let (t_in, face_in, t_out, face_out) = if dir > 0.0 {
-                (t_low, face, t_high, face + 1)
+            let (face_in, face_out) = if inv_dir[axis] > 0.0 {
+                (face, face + 1)
             } else {
-                (t_high, face + 1, t_low, face)
+                (face + 1, face)
             };
-            if t_in > enter.0 {
-                enter = (t_in, face_in);
+            if near[axis] > enter.0 {
+                enter = (near[axis], face_in);
             }
-            if t_out < exit.0 {
-                exit = (t_out, face_out);
+            if far[axis] < exit.0 {
+                exit = (far[axis], face_out);
             }
         }
         if enter.0 > exit.0 {

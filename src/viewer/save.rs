@@ -6,7 +6,8 @@ use std::path::{Path, PathBuf};
 
 use raylab::camera::CameraSpec;
 use raylab::film::Film;
-use raylab::output::{save_image, write_atomically};
+use raylab::formats::image::save_image;
+use raylab::output::write_atomically;
 
 /// The camera as a scene file's `[camera]` table. Numbers are written in full (Rust's shortest
 /// round-tripping form), so reading the snippet back gives exactly this camera.

@@ -266,7 +266,7 @@ impl<'a> Tracer<'a> {
         let settings = &self.scene.settings;
         let enabled = match kind {
             RayKind::Reflected => settings.reflections,
-            _ => settings.refractions,
+            _ => settings.transmission,
         };
         let reason = if !enabled {
             StopReason::Disabled

@@ -92,7 +92,7 @@ pub enum StopReason {
     MinWeight,
     /// Past the critical angle: no transmitted ray (its share goes to the reflected one).
     TotalInternalReflection,
-    /// Reflections or refractions are switched off in the settings.
+    /// Reflected or transmitted rays are switched off in the settings.
     Disabled,
     /// The eye ray's tree has used up its [`crate::whitted::RAY_BUDGET`].
     RayBudget,

@@ -1,0 +1,33 @@
+//! The one entry point for every scene raylab reads, for the command line and the viewer alike:
+//! a built-in SPD scene by name (`spd:balls`, `spd:tree:6`), an NFF file (by its `.nff`
+//! extension), or a TOML scene file.
+
+use std::path::Path;
+
+use super::SceneError;
+use super::nff::{NffLighting, load_nff};
+use super::spd::{SCENE_PREFIX, load_spd};
+use super::toml::load_scene;
+use crate::scene::Scene;
+
+/// Reads the scene `name` names, NFF lights as bright as the SPD readme suggests.
+pub fn load_any(name: &str) -> Result<Scene, SceneError> {
+    load_any_with(name, NffLighting::default())
+}
+
+/// Reads the scene `name` names; `lighting` sets the brightness of NFF and SPD scenes' lights
+/// (TOML scenes say their own).
+pub fn load_any_with(name: &str, lighting: NffLighting) -> Result<Scene, SceneError> {
+    if name.starts_with(SCENE_PREFIX) {
+        return load_spd(name, lighting);
+    }
+    let path = Path::new(name);
+    if path
+        .extension()
+        .is_some_and(|ext| ext.eq_ignore_ascii_case("nff"))
+    {
+        load_nff(path, lighting)
+    } else {
+        load_scene(path)
+    }
+}

@@ -1,0 +1,622 @@
+//! Turning the schema into a [`Scene`]: defaults filled in, names resolved to indices, the
+//! checks that need more than one value, and textures and OBJ files loaded from disk. Every
+//! error points at the value it is about.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::ops::Range;
+use std::sync::Arc;
+
+use glam::{Vec2, Vec3};
+use toml::Spanned;
+
+use super::file::{
+    CameraFile, LightFile, MaterialFile, ObjectFile, RenderFile, SceneFile, ShapeFile, TextureFile,
+    TransformStepFile, WrapFile,
+};
+use super::values::{ColorValue, Direction, Exact, NonNegative, TexCoord, Vector};
+use crate::camera::{Camera, CameraError, CameraSpec};
+use crate::color::Color;
+use crate::formats::SceneFiles;
+use crate::formats::obj::{ObjError, load_obj};
+use crate::formats::{SceneError, Source};
+use crate::light::Light;
+use crate::limits;
+use crate::material::Material;
+use crate::mesh::{Mesh, MeshError};
+use crate::primitive::{Geometry, Object};
+use crate::scene::Scene;
+use crate::settings::RenderSettings;
+use crate::shapes::{
+    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder, Triangle,
+};
+use crate::texture::{Texture, TextureImage, Wrap};
+use crate::transform::{Transform, TransformStep};
+
+/// Index of the material of objects that name none: `Material::default()`. The named materials
+/// follow it in name order.
+pub const DEFAULT_MATERIAL: u32 = 0;
+
+/// Default colours and sizes of checkerboards.
+const CHECKER_A: Color = Color::splat(0.9);
+const CHECKER_B: Color = Color::splat(0.1);
+const CHECKER_SIZE: f32 = 1.0;
+const CHECKER_UV_COUNT: f32 = 8.0;
+
+/// Builds the scene. File names are looked up in `files`.
+pub(crate) fn build_scene(
+    file: SceneFile,
+    source: Source,
+    files: SceneFiles,
+) -> Result<Scene, SceneError> {
+    let settings = build_settings(file.render, source)?;
+    let camera = build_camera(file.camera, source)?;
+    let lights = file.lights.into_iter().map(build_light).collect();
+
+    let texture_names = Names::new("texture", file.textures.keys(), 0);
+    let material_names = Names::new("material", file.materials.keys(), DEFAULT_MATERIAL + 1);
+    let mut names = vec!["default".to_string()];
+    names.extend(file.materials.keys().cloned());
+    let mut materials = vec![Material::default()];
+    for material in file.materials.into_values() {
+        materials.push(build_material(material, &texture_names, source)?);
+    }
+
+    // Only the textures a material uses are loaded (an image can be large), renumbered in
+    // name order.
+    let used: BTreeSet<u32> = materials.iter().filter_map(|m| m.texture).collect();
+    for material in &mut materials {
+        if let Some(t) = &mut material.texture {
+            *t = used.range(..*t).count() as u32;
+        }
+    }
+    let mut warnings = Vec::new();
+    let mut textures = Vec::new();
+    for (index, (name, texture)) in file.textures.into_iter().enumerate() {
+        if used.contains(&(index as u32)) {
+            textures.push(build_texture(texture, source, files)?);
+        } else {
+            warnings.push(format!(
+                "{}: texture `{name}` is not used by any material, so it is not loaded",
+                source.origin.display()
+            ));
+        }
+    }
+
+    let mut builder = GeometryBuilder {
+        source,
+        files,
+        material_names,
+        materials,
+        names,
+        geometry: Geometry::default(),
+        warnings,
+    };
+    for object in file.objects {
+        builder.add_object(object)?;
+    }
+    Ok(Scene {
+        settings,
+        camera,
+        lights,
+        materials: builder.materials,
+        material_names: builder.names,
+        textures,
+        geometry: builder.geometry,
+        warnings: builder.warnings,
+    })
+}
+
+/// The names a file gives textures or materials, and the indices they stand for.
+struct Names {
+    /// What is named, for messages.
+    what: &'static str,
+    indices: BTreeMap<String, u32>,
+}
+
+impl Names {
+    /// Numbers `names` in order from `first`.
+    fn new<'a>(what: &'static str, names: impl Iterator<Item = &'a String>, first: u32) -> Self {
+        let indices = names.cloned().zip(first..).collect();
+        Names { what, indices }
+    }
+
+    fn resolve(&self, name: &Spanned<String>, source: Source) -> Result<u32, SceneError> {
+        self.indices.get(name.get_ref()).copied().ok_or_else(|| {
+            let expected = if self.indices.is_empty() {
+                format!("the scene defines no {}s", self.what)
+            } else {
+                let known: Vec<String> = self.indices.keys().map(|n| format!("`{n}`")).collect();
+                format!("expected one of {}", known.join(", "))
+            };
+            source.error(
+                name.span(),
+                format!("unknown {} `{}`; {expected}", self.what, name.get_ref()),
+            )
+        })
+    }
+}
+
+/// Applies the `[render]` keys one at a time, checking the settings after each, so that an
+/// out-of-range value is reported at its own key.
+fn build_settings(render: RenderFile, source: Source) -> Result<RenderSettings, SceneError> {
+    fn apply<T>(
+        settings: &mut RenderSettings,
+        value: Option<Spanned<T>>,
+        set: fn(&mut RenderSettings, T),
+        source: Source,
+    ) -> Result<(), SceneError> {
+        if let Some(value) = value {
+            let span = value.span();
+            set(settings, value.into_inner());
+            settings
+                .validate()
+                .map_err(|message| source.error(span, message))?;
+        }
+        Ok(())
+    }
+    let mut settings = RenderSettings::default();
+    let s = &mut settings;
+    apply(s, render.width, |s, v| s.width = v, source)?;
+    apply(s, render.height, |s, v| s.height = v, source)?;
+    apply(s, render.max_depth, |s, v| s.max_depth = v, source)?;
+    apply(s, render.min_weight, |s, v| s.min_weight = v, source)?;
+    apply(s, render.block_size, |s, v| s.block_size = v, source)?;
+    apply(s, render.samples, |s, v| s.samples = v, source)?;
+    apply(s, render.background, |s, v| s.background = v.0, source)?;
+    apply(s, render.ambient, |s, v| s.ambient = v.0, source)?;
+    apply(s, render.shadows, |s, v| s.shadows = v, source)?;
+    apply(s, render.reflections, |s, v| s.reflections = v, source)?;
+    apply(s, render.transmission, |s, v| s.transmission = v, source)?;
+    apply(s, render.textures, |s, v| s.textures = v, source)?;
+    Ok(settings)
+}
+
+/// The camera; an error points at the key it is about, or at `[camera]` when that key was
+/// left to its default.
+fn build_camera(camera: Option<Spanned<CameraFile>>, source: Source) -> Result<Camera, SceneError> {
+    let (table_span, file) = match camera {
+        Some(camera) => (camera.span(), camera.into_inner()),
+        None => (0..0, CameraFile::default()),
+    };
+    let default = CameraSpec::default();
+    let vector =
+        |v: &Option<Spanned<Vector>>, default| v.as_ref().map_or(default, |v| v.get_ref().0);
+    let number = |x: &Option<Spanned<f32>>, default| x.as_ref().map_or(default, |x| *x.get_ref());
+    let spec = CameraSpec {
+        eye: vector(&file.eye, default.eye),
+        look_at: vector(&file.look_at, default.look_at),
+        up: vector(&file.up, default.up),
+        view_angle: number(&file.view_angle, default.view_angle),
+        near: number(&file.near, default.near),
+    };
+    Camera::new(spec).map_err(|error| {
+        let key_span = match error {
+            CameraError::EyeAtLookAt => file.look_at.or(file.eye).map(|k| k.span()),
+            CameraError::Eye(_) => file.eye.map(|k| k.span()),
+            CameraError::LookAt(_) => file.look_at.map(|k| k.span()),
+            CameraError::UpParallelToView => file.up.map(|k| k.span()),
+            CameraError::ViewAngle(_) => file.view_angle.map(|k| k.span()),
+            CameraError::Near(_) => file.near.map(|k| k.span()),
+        };
+        source.error(key_span.unwrap_or(table_span), error.to_string())
+    })
+}
+
+fn build_light(light: LightFile) -> Light {
+    let color = |color: Option<ColorValue>, intensity: Option<NonNegative>| {
+        color.map_or(Color::ONE, |c| c.0) * intensity.map_or(1.0, |i| i.0)
+    };
+    match light {
+        LightFile::Point {
+            position,
+            color: c,
+            intensity,
+        } => Light::Point {
+            position: position.0,
+            color: color(c, intensity),
+        },
+        LightFile::Directional {
+            direction,
+            color: c,
+            intensity,
+        } => Light::Directional {
+            direction: direction.0,
+            color: color(c, intensity),
+        },
+    }
+}
+
+fn build_texture(
+    texture: TextureFile,
+    source: Source,
+    files: SceneFiles,
+) -> Result<Texture, SceneError> {
+    let color = |c: Option<ColorValue>, default| c.map_or(default, |c| c.0);
+    Ok(match texture {
+        TextureFile::Checker3d { a, b, size } => Texture::Checker3d {
+            a: color(a, CHECKER_A),
+            b: color(b, CHECKER_B),
+            size: size.map_or(CHECKER_SIZE, |s| s.0),
+        },
+        TextureFile::CheckerUv {
+            a,
+            b,
+            u_count,
+            v_count,
+        } => Texture::CheckerUv {
+            a: color(a, CHECKER_A),
+            b: color(b, CHECKER_B),
+            u_count: u_count.map_or(CHECKER_UV_COUNT, |n| n.0),
+            v_count: v_count.map_or(CHECKER_UV_COUNT, |n| n.0),
+        },
+        TextureFile::Image { file, wrap, scale } => {
+            let path = files.path(file.get_ref());
+            let fail = |message: String| {
+                let path = path.display();
+                source.error(
+                    file.span(),
+                    format!("cannot load texture image `{path}`: {message}"),
+                )
+            };
+            let bytes = files.read(&path).map_err(fail)?;
+            let image = TextureImage::from_bytes(&bytes).map_err(fail)?;
+            if image.width == 0 || image.height == 0 {
+                return Err(fail("the image has no pixels".into()));
+            }
+            Texture::Image {
+                image: Arc::new(image),
+                wrap: match wrap {
+                    None | Some(WrapFile::Repeat) => Wrap::Repeat,
+                    Some(WrapFile::Clamp) => Wrap::Clamp,
+                },
+                scale: scale.map_or(Vec2::ONE, |Exact([u, v])| Vec2::new(u.0, v.0)),
+            }
+        }
+    })
+}
+
+fn build_material(
+    material: MaterialFile,
+    textures: &Names,
+    source: Source,
+) -> Result<Material, SceneError> {
+    let default = Material::default();
+    Ok(Material {
+        color: material.color.map_or(default.color, |c| c.0),
+        texture: material
+            .texture
+            .map(|name| textures.resolve(&name, source))
+            .transpose()?,
+        ambient: material.ambient.map_or(default.ambient, |x| x.0),
+        diffuse: material.diffuse.map_or(default.diffuse, |x| x.0),
+        specular: material.specular.map_or(default.specular, |x| x.0),
+        specular_color: material
+            .specular_color
+            .map_or(default.specular_color, |c| c.0),
+        shininess: material.shininess.map_or(default.shininess, |x| x.0),
+        reflectivity: material.reflectivity.map_or(default.reflectivity, |x| x.0),
+        transparency: material.transparency.map_or(default.transparency, |x| x.0),
+        ior: material.ior.map_or(default.ior, |x| x.0),
+        fresnel: material.fresnel.unwrap_or(default.fresnel),
+    })
+}
+
+/// The transform of `transform = [ … ]`; `None` for an empty list.
+fn build_transform(
+    steps: Spanned<Vec<TransformStepFile>>,
+    source: Source,
+) -> Result<Option<Transform>, SceneError> {
+    let span = steps.span();
+    let steps: Vec<TransformStep> = steps
+        .into_inner()
+        .into_iter()
+        .map(|step| match step {
+            TransformStepFile::Translate(t) => TransformStep::Translate(t.0),
+            TransformStepFile::Rotate { axis, degrees } => TransformStep::Rotate {
+                axis: axis.0,
+                degrees: degrees.0,
+            },
+            TransformStepFile::Scale(s) => TransformStep::Scale(s.0),
+        })
+        .collect();
+    if steps.is_empty() {
+        return Ok(None);
+    }
+    let transform =
+        Transform::from_steps(&steps).map_err(|e| source.error(span.clone(), e.to_string()))?;
+    // Steps that are each fine can still multiply out past what single precision holds, or to
+    // something too small to invert.
+    if !transform.world_from_object.is_finite() {
+        return Err(source.error(
+            span,
+            "the transform's steps multiply out past the largest single-precision number",
+        ));
+    }
+    if !transform.object_from_world.is_finite() {
+        return Err(source.error(span, "the transform squashes the object too flat to invert"));
+    }
+    Ok(Some(transform))
+}
+
+/// A mesh of one triangle.
+fn triangle_mesh(
+    vertices: [Vector; 3],
+    normals: Option<Exact<Direction, 3>>,
+    uvs: Option<Exact<TexCoord, 3>>,
+) -> Result<Mesh, String> {
+    let positions = vertices.map(|v| v.0);
+    if Triangle::new(positions, 0).double_area() <= 0.0 {
+        return Err("the triangle's vertices lie on one line, so it has no area".into());
+    }
+    Ok(Mesh {
+        positions: positions.to_vec(),
+        normals: normals.map_or(Vec::new(), |n| n.0.map(|n| n.0).to_vec()),
+        uvs: uvs.map_or(Vec::new(), |uv| uv.0.map(|uv| uv.0).to_vec()),
+        faces: vec![[0, 1, 2]],
+        material: DEFAULT_MATERIAL,
+    })
+}
+
+/// Where the parts of a mesh are in the file, to point a [`MeshError`] at.
+struct MeshSpans {
+    whole: Range<usize>,
+    faces: Range<usize>,
+    normals: Range<usize>,
+    uvs: Range<usize>,
+}
+
+impl MeshSpans {
+    fn all(span: Range<usize>) -> Self {
+        MeshSpans {
+            whole: span.clone(),
+            faces: span.clone(),
+            normals: span.clone(),
+            uvs: span,
+        }
+    }
+
+    fn of(&self, error: &MeshError) -> Range<usize> {
+        match error {
+            MeshError::IndexOutOfRange { .. } => self.faces.clone(),
+            MeshError::NormalCount { .. } => self.normals.clone(),
+            MeshError::UvCount { .. } => self.uvs.clone(),
+            MeshError::NotFinite | MeshError::OutOfRange(_) => self.whole.clone(),
+        }
+    }
+}
+
+/// Collects the objects' geometry, and the materials OBJ files bring along.
+struct GeometryBuilder<'a> {
+    source: Source<'a>,
+    files: SceneFiles<'a>,
+    material_names: Names,
+    materials: Vec<Material>,
+    /// The materials' names, index for index.
+    names: Vec<String>,
+    geometry: Geometry,
+    /// What the OBJ files hold that is worth a warning (`file:line: message`).
+    warnings: Vec<String>,
+}
+
+impl GeometryBuilder<'_> {
+    /// Adds one object. A shape's arm hands the result of the shape's constructor, a
+    /// `Result<Shape, String>`, to [`Self::add_shape`] with the position to blame, e.g.
+    /// `ShapeFile::Cuboid { min, max } => self.add_shape(Cuboid::new(min.0, max.0)
+    /// .map(Shape::Cuboid), span, material, transform)`.
+    fn add_object(&mut self, object: ObjectFile) -> Result<(), SceneError> {
+        let source = self.source;
+        let material = object
+            .material
+            .map(|name| self.material_names.resolve(&name, source))
+            .transpose()?;
+        let transform = match object.transform {
+            Some(steps) => build_transform(steps, source)?,
+            None => None,
+        };
+        let span = object.shape.span();
+        match object.shape.into_inner() {
+            ShapeFile::Sphere { center, radius } => {
+                let radius_span = radius.as_ref().map_or(span, |r| r.span());
+                let center = center.map_or(Vec3::ZERO, |c| c.0);
+                let radius = radius.map_or(1.0, |r| *r.get_ref());
+                let shape = Sphere::new(center, radius).map(Shape::Sphere);
+                self.add_shape(shape, radius_span, material, transform)
+            }
+            ShapeFile::Plane { point, normal } => {
+                let plane = Plane {
+                    point: point.map_or(Vec3::ZERO, |p| p.0),
+                    normal: normal.map_or(Vec3::Y, |n| n.0),
+                };
+                self.add_shape(Ok(Shape::Plane(plane)), span, material, transform)
+            }
+            ShapeFile::Triangle {
+                vertices,
+                normals,
+                uvs,
+            } => {
+                let vertices_span = vertices.span();
+                let mesh = triangle_mesh(vertices.into_inner().0, normals, uvs)
+                    .map_err(|message| source.error(vertices_span.clone(), message))?;
+                let material = material.unwrap_or(DEFAULT_MATERIAL);
+                self.add_mesh(mesh, material, transform, &MeshSpans::all(vertices_span))
+            }
+            ShapeFile::Mesh {
+                positions,
+                faces,
+                normals,
+                uvs,
+            } => {
+                let spans = MeshSpans {
+                    whole: span.clone(),
+                    faces: faces.span(),
+                    normals: normals.as_ref().map_or(span.clone(), |n| n.span()),
+                    uvs: uvs.as_ref().map_or(span.clone(), |uv| uv.span()),
+                };
+                let mesh = Mesh {
+                    positions: positions.iter().map(|p| p.0).collect(),
+                    normals: normals
+                        .map_or(Vec::new(), |n| n.get_ref().iter().map(|n| n.0).collect()),
+                    uvs: uvs.map_or(Vec::new(), |uv| {
+                        uv.get_ref().iter().map(|uv| uv.0).collect()
+                    }),
+                    faces: faces.into_inner().into_iter().map(|f| f.0).collect(),
+                    material: DEFAULT_MATERIAL,
+                };
+                let material = material.unwrap_or(DEFAULT_MATERIAL);
+                self.add_mesh(mesh, material, transform, &spans)
+            }
+            ShapeFile::Obj { file } => self.add_obj(file, material, transform),
+            ShapeFile::Polygon { vertices } => {
+                let vertices = vertices.iter().map(|v| v.0).collect();
+                let shape = Polygon::new(vertices).map(Shape::Polygon);
+                self.add_shape(shape, span, material, transform)
+            }
+            ShapeFile::Box { min, max } => {
+                let shape = Cuboid::new(min.0, max.0).map(Shape::Cuboid);
+                self.add_shape(shape, span, material, transform)
+            }
+            ShapeFile::Cylinder {
+                base,
+                top,
+                radius,
+                capped,
+            } => {
+                let radius = radius.unwrap_or(1.0);
+                let shape = TaperedCylinder::new(
+                    base.map_or(Vec3::ZERO, |v| v.0),
+                    top.map_or(Vec3::Y, |v| v.0),
+                    radius,
+                    radius,
+                    capped.unwrap_or(true),
+                );
+                self.add_shape(shape.map(Shape::TaperedCylinder), span, material, transform)
+            }
+            ShapeFile::Cone {
+                base,
+                top,
+                base_radius,
+                top_radius,
+                capped,
+            } => {
+                let shape = TaperedCylinder::new(
+                    base.map_or(Vec3::ZERO, |v| v.0),
+                    top.map_or(Vec3::Y, |v| v.0),
+                    base_radius.unwrap_or(1.0),
+                    top_radius.unwrap_or(0.0),
+                    capped.unwrap_or(true),
+                );
+                self.add_shape(shape.map(Shape::TaperedCylinder), span, material, transform)
+            }
+            ShapeFile::Ellipsoid { center, radii } => {
+                let shape = Ellipsoid::new(center.map_or(Vec3::ZERO, |v| v.0), radii.0);
+                self.add_shape(shape.map(Shape::Ellipsoid), span, material, transform)
+            }
+            ShapeFile::Paraboloid {
+                vertex,
+                radius,
+                height,
+                capped,
+            } => {
+                let shape = Paraboloid::new(
+                    vertex.map_or(Vec3::ZERO, |v| v.0),
+                    radius.unwrap_or(1.0),
+                    height.unwrap_or(1.0),
+                    capped.unwrap_or(false),
+                );
+                self.add_shape(shape.map(Shape::Paraboloid), span, material, transform)
+            }
+        }
+    }
+
+    /// Adds an analytic shape made by a constructor; the constructor's error, or the shape
+    /// reaching past [`limits::MAX_COORDINATE`], is reported at `span`.
+    fn add_shape(
+        &mut self,
+        shape: Result<Shape, String>,
+        span: Range<usize>,
+        material: Option<u32>,
+        transform: Option<Transform>,
+    ) -> Result<(), SceneError> {
+        let shape = shape.map_err(|message| self.source.error(span.clone(), message))?;
+        if let Some(bounds) = shape.bounds() {
+            let bounds = transform.map_or(bounds, |t| t.bounds_to_world(&bounds));
+            limits::check_bounds(&format!("the {}", shape.name()), &bounds)
+                .map_err(|message| self.source.error(span, message))?;
+        }
+        self.geometry.objects.push(Object {
+            shape,
+            transform,
+            material: material.unwrap_or(DEFAULT_MATERIAL),
+        });
+        Ok(())
+    }
+
+    /// Moves a mesh into the world, checks it and adds it.
+    fn add_mesh(
+        &mut self,
+        mut mesh: Mesh,
+        material: u32,
+        transform: Option<Transform>,
+        spans: &MeshSpans,
+    ) -> Result<(), SceneError> {
+        mesh.material = material;
+        if let Some(transform) = &transform {
+            mesh.transform(transform);
+        }
+        mesh.validate()
+            .map_err(|e| self.source.error(spans.of(&e), e.to_string()))?;
+        self.geometry.add_mesh(mesh);
+        Ok(())
+    }
+
+    /// Adds each part of an OBJ file as a mesh. Without a `material` key, parts use their MTL
+    /// materials, which are added to the scene's.
+    fn add_obj(
+        &mut self,
+        file: Spanned<String>,
+        material: Option<u32>,
+        transform: Option<Transform>,
+    ) -> Result<(), SceneError> {
+        let path = self.files.path(file.get_ref());
+        let source = self.source;
+        let fail = |message: String| {
+            let path = path.display();
+            source.error(
+                file.span(),
+                format!("cannot load OBJ file `{path}`: {message}"),
+            )
+        };
+        let contents = load_obj(&path, self.files, material.is_none()).map_err(|e| match e {
+            ObjError::At(error) => error,
+            ObjError::Whole(message) => fail(message),
+        })?;
+        // A file used twice warns once.
+        for warning in contents.warnings {
+            if !self.warnings.contains(&warning) {
+                self.warnings.push(warning);
+            }
+        }
+        let first_mtl = self.materials.len();
+        let mut mtl_count = 0;
+        if material.is_none() && contents.parts.iter().any(|p| p.mtl_material.is_some()) {
+            let mtl = contents
+                .materials
+                .map_err(|e| fail(format!("its MTL materials: {e}")))?;
+            mtl_count = mtl.len();
+            let obj_name = file.get_ref();
+            self.names
+                .extend((0..mtl_count).map(|i| format!("{obj_name} MTL #{i}")));
+            self.materials.extend(mtl);
+        }
+        for part in contents.parts {
+            let part_material = material.unwrap_or_else(|| match part.mtl_material {
+                Some(i) if i < mtl_count => (first_mtl + i) as u32,
+                _ => DEFAULT_MATERIAL,
+            });
+            let spans = MeshSpans::all(file.span());
+            self.add_mesh(part.mesh, part_material, transform, &spans)
+                .map_err(|e| fail(e.message))?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,219 @@
+//! The scene file's schema: the tables and keys serde reads from the TOML, before names are
+//! resolved and defaults filled in (see [`super::build`]). Every table denies unknown keys, so a
+//! misspelt key is an error rather than a silently ignored line.
+//!
+//! Lights, textures and objects say what kind they are with `type = "…"`. The file writes that
+//! tag inside the table; [`super::retag`] moves it outside before serde reads the document, so
+//! the kinds here are ordinary (externally tagged) serde enums: adding a kind is adding a
+//! variant.
+
+use std::collections::BTreeMap;
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use super::values::{
+    ColorValue, Direction, Exact, Finite, Fraction, NonNegative, Positive, ScaleFactors, TexCoord,
+    Vector,
+};
+
+/// The whole file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    #[serde(default)]
+    pub render: RenderFile,
+    pub camera: Option<Spanned<CameraFile>>,
+    #[serde(default)]
+    pub lights: Vec<LightFile>,
+    /// By name; the scene's textures are numbered in name order.
+    #[serde(default)]
+    pub textures: BTreeMap<String, TextureFile>,
+    /// By name; the scene's materials are numbered in name order, after the default material.
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialFile>,
+    #[serde(default)]
+    pub objects: Vec<ObjectFile>,
+}
+
+/// `[render]`: the fields of [`crate::settings::RenderSettings`], each optional.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RenderFile {
+    pub width: Option<Spanned<u32>>,
+    pub height: Option<Spanned<u32>>,
+    pub max_depth: Option<Spanned<u32>>,
+    pub min_weight: Option<Spanned<f32>>,
+    pub block_size: Option<Spanned<u32>>,
+    pub samples: Option<Spanned<u32>>,
+    pub background: Option<Spanned<ColorValue>>,
+    pub ambient: Option<Spanned<ColorValue>>,
+    pub shadows: Option<Spanned<bool>>,
+    pub reflections: Option<Spanned<bool>>,
+    /// Older files call it `refractions` (see [`super::retag`]).
+    pub transmission: Option<Spanned<bool>>,
+    pub textures: Option<Spanned<bool>>,
+}
+
+/// `[camera]`: the fields of [`crate::camera::CameraSpec`], each optional.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraFile {
+    pub eye: Option<Spanned<Vector>>,
+    pub look_at: Option<Spanned<Vector>>,
+    pub up: Option<Spanned<Vector>>,
+    /// Vertical, in degrees.
+    pub view_angle: Option<Spanned<f32>>,
+    pub near: Option<Spanned<f32>>,
+}
+
+/// `[[lights]]`: `intensity` multiplies `color`.
+#[derive(Debug, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum LightFile {
+    Point {
+        position: Vector,
+        color: Option<ColorValue>,
+        intensity: Option<NonNegative>,
+    },
+    Directional {
+        /// Towards the light.
+        direction: Direction,
+        color: Option<ColorValue>,
+        intensity: Option<NonNegative>,
+    },
+}
+
+/// `[textures.NAME]`.
+#[derive(Debug, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum TextureFile {
+    Checker3d {
+        a: Option<ColorValue>,
+        b: Option<ColorValue>,
+        size: Option<Positive>,
+    },
+    CheckerUv {
+        a: Option<ColorValue>,
+        b: Option<ColorValue>,
+        u_count: Option<Positive>,
+        v_count: Option<Positive>,
+    },
+    Image {
+        /// PNG or JPEG, relative to the scene file's folder.
+        file: Spanned<String>,
+        wrap: Option<WrapFile>,
+        /// `[su, sv]`: how many times the image repeats across texture space.
+        scale: Option<Exact<Positive, 2>>,
+    },
+}
+
+/// `wrap = "repeat" | "clamp"`.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WrapFile {
+    Repeat,
+    Clamp,
+}
+
+/// `[materials.NAME]`: the fields of [`crate::material::Material`], each optional.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialFile {
+    pub color: Option<ColorValue>,
+    /// A name from `[textures]`.
+    pub texture: Option<Spanned<String>>,
+    pub ambient: Option<NonNegative>,
+    pub diffuse: Option<NonNegative>,
+    pub specular: Option<NonNegative>,
+    pub specular_color: Option<ColorValue>,
+    pub shininess: Option<NonNegative>,
+    pub reflectivity: Option<Fraction>,
+    pub transparency: Option<Fraction>,
+    pub ior: Option<Positive>,
+    pub fresnel: Option<bool>,
+}
+
+/// `[[objects]]`: a shape with a material and a placement.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectFile {
+    /// A name from `[materials]`; the default material when absent.
+    pub material: Option<Spanned<String>>,
+    /// Steps applied in file order.
+    pub transform: Option<Spanned<Vec<TransformStepFile>>>,
+    /// Every other key of the object's table, tagged with its `type` (see [`super::retag`]).
+    pub shape: Spanned<ShapeFile>,
+}
+
+/// The keys of [`ObjectFile`] that the file writes next to the shape's own keys.
+pub const OBJECT_KEYS: [&str; 2] = ["material", "transform"];
+
+/// One step of `transform = [ … ]`.
+#[derive(Debug, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum TransformStepFile {
+    Translate(Vector),
+    Rotate { axis: Direction, degrees: Finite },
+    Scale(ScaleFactors),
+}
+
+/// The shape of an object, by its `type`.
+#[derive(Debug, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum ShapeFile {
+    Sphere {
+        center: Option<Vector>,
+        radius: Option<Spanned<f32>>,
+    },
+    Plane {
+        point: Option<Vector>,
+        /// Towards the plane's front.
+        normal: Option<Direction>,
+    },
+    Triangle {
+        vertices: Spanned<Exact<Vector, 3>>,
+        normals: Option<Exact<Direction, 3>>,
+        uvs: Option<Exact<TexCoord, 3>>,
+    },
+    /// A mesh written out in the file.
+    Mesh {
+        positions: Vec<Vector>,
+        /// Vertex indices, counted from 0.
+        faces: Spanned<Vec<Exact<u32, 3>>>,
+        normals: Option<Spanned<Vec<Direction>>>,
+        uvs: Option<Spanned<Vec<TexCoord>>>,
+    },
+    /// A Wavefront OBJ file, relative to the scene file's folder.
+    Obj { file: Spanned<String> },
+    /// A planar polygon, convex or concave, counter-clockwise seen from its front.
+    Polygon { vertices: Vec<Vector> },
+    /// An axis-aligned box (turn it with a transform).
+    Box { min: Vector, max: Vector },
+    /// A cylinder from `base` to `top`.
+    Cylinder {
+        base: Option<Vector>,
+        top: Option<Vector>,
+        radius: Option<f32>,
+        capped: Option<bool>,
+    },
+    /// A cone, or a truncated cone when both radii are positive.
+    Cone {
+        base: Option<Vector>,
+        top: Option<Vector>,
+        base_radius: Option<f32>,
+        top_radius: Option<f32>,
+        capped: Option<bool>,
+    },
+    Ellipsoid {
+        center: Option<Vector>,
+        radii: Vector,
+    },
+    /// A paraboloid opening towards +y from `vertex`, `radius` wide at `height`.
+    Paraboloid {
+        vertex: Option<Vector>,
+        radius: Option<f32>,
+        height: Option<f32>,
+        capped: Option<bool>,
+    },
+}

@@ -1,0 +1,59 @@
+//! Reading a scene: the file's text is parsed as TOML, its type tags are moved where serde
+//! wants them ([`super::retag`]), serde reads the schema ([`super::file`]) and the schema is
+//! built into a [`Scene`] ([`super::build`]).
+
+use std::path::Path;
+
+use serde::Deserialize;
+use toml::de::DeTable;
+
+use super::build::build_scene;
+use super::file::{OBJECT_KEYS, SceneFile};
+use super::retag::retag_document;
+use crate::formats::{SceneError, Source};
+use crate::formats::{SceneFiles, utf8_text};
+use crate::memory::{self, Bytes};
+use crate::scene::Scene;
+
+/// Reads the scene file at `path`, UTF-8 text (a byte-order mark or a DOS end-of-file mark is
+/// skipped). Texture and OBJ file names are relative to its folder.
+pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| SceneError::whole_file(path, format!("cannot read the scene file: {e}")))?;
+    let text = utf8_text(&bytes, path)?;
+    parse_scene(text, path, path.parent().unwrap_or(Path::new("")))
+}
+
+/// Reads a scene from `text`. `origin` names it in error messages; texture and OBJ file names
+/// are relative to `base_dir`.
+pub fn parse_scene(text: &str, origin: &Path, base_dir: &Path) -> Result<Scene, SceneError> {
+    parse_scene_with(text, origin, SceneFiles::Folder(base_dir))
+}
+
+/// Memory the TOML reader takes per byte of the file, at most (measured: about 40, for files
+/// of many small tables, such as a million lights).
+const PARSE_BYTES_PER_BYTE: u64 = 48;
+
+/// Reads a scene from `text`, taking the files it names from `files`.
+pub fn parse_scene_with(text: &str, origin: &Path, files: SceneFiles) -> Result<Scene, SceneError> {
+    let size = text.len() as u64;
+    memory::check(
+        &format!("reading this {} file", Bytes(size)),
+        size * PARSE_BYTES_PER_BYTE,
+    )
+    .map_err(|message| SceneError::whole_file(origin, message))?;
+    let source = Source { origin, text };
+    let mut document = DeTable::parse(text).map_err(|e| source.toml_error(&e))?;
+    let shape_keys = retag_document(document.get_mut(), source)?;
+    let file = SceneFile::deserialize(toml::de::Deserializer::from(document)).map_err(|e| {
+        let mut error = source.toml_error(&e);
+        // An error placed on a shape's key is about an unknown key, and serde listed only the
+        // shape's own keys as known.
+        if e.span().is_some_and(|span| shape_keys.contains(&span)) {
+            let common: Vec<String> = OBJECT_KEYS.iter().map(|k| format!("`{k}`")).collect();
+            error.message += &format!("; every object also takes {}", common.join(" and "));
+        }
+        error
+    })?;
+    build_scene(file, source, files)
+}
