@@ -8,10 +8,11 @@ use std::path::{Path, PathBuf};
 
 use common::fuzz::{Rng, mutate};
 use glam::{Vec2, Vec3};
+use raylab::color::Color;
 use raylab::formats::SceneError;
 use raylab::formats::toml::{DEFAULT_MATERIAL, load_scene, parse_scene};
 use raylab::light::Light;
-use raylab::material::{Color, Material};
+use raylab::material::Material;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::Shape;

@@ -4,15 +4,15 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::observer::{ShadowEvent, TreeObserver};
-use super::ray_tree::{Blocker, Cut, NodeHit, RayKind, RayNode, RayTree, ShadowRay, StopReason};
+use super::ray_tree::{Blocker, Cut, NodeHit, RayNode, RayTree, ShadowRay};
 use crate::bvh::cost::TraversalCost;
-use crate::material::Color;
+use crate::camera::PIXEL_CENTRE;
+use crate::color::Color;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::Ray;
 use crate::scene::Scene;
 use crate::stats::RayCounts;
-use crate::whitted::{EYE_RAY_T_MIN, Tracer};
+use crate::whitted::{EYE_RAY_T_MIN, RayKind, ShadowEvent, StopReason, Tracer, TreeObserver};
 
 /// The ray tree of pixel (x, y) of the scene's `width × height` image (y from the top): the
 /// eye ray through the pixel's centre, as the first pass of [`crate::progressive::render`]
@@ -38,13 +38,12 @@ pub fn trace_ray_tree(tracer: &Tracer, x: u32, y: u32) -> RayTree {
     }
 }
 
-/// The eye ray through the centre of pixel (x, y), y from the top, as the renderer builds it.
-pub fn eye_ray(tracer: &Tracer, x: u32, y: u32) -> Ray {
+/// The eye ray through the centre of pixel (x, y) of the scene's image, y from the top, as the
+/// renderer builds it.
+fn eye_ray(tracer: &Tracer, x: u32, y: u32) -> Ray {
     let settings = &tracer.scene.settings;
-    let (width, height) = (settings.width, settings.height);
-    let r = (height - y) as f32 - 0.5;
-    let c = x as f32 + 0.5;
-    tracer.scene.camera.ray(r, c, height, width)
+    let size = (settings.width, settings.height);
+    tracer.scene.camera.eye_ray((x, y), PIXEL_CENTRE, size)
 }
 
 /// Per pixel (row-major, top row first) the object id ([`crate::primitive::Geometry::object_id`])

@@ -6,8 +6,9 @@ pub mod fuzz;
 
 use glam::Vec3;
 use raylab::camera::{Camera, CameraSpec};
+use raylab::color::Color;
 use raylab::light::Light;
-use raylab::material::{Color, Material};
+use raylab::material::Material;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::{Plane, Shape, Sphere};

@@ -5,13 +5,8 @@
 
 use std::sync::Arc;
 
+use raylab::color::srgb8 as srgb_byte;
 use raylab::film::Film;
-use raylab::texture::linear_to_srgb;
-
-/// The library's conversion of one linear channel to an sRGB byte.
-fn srgb_byte(v: f32) -> u8 {
-    (linear_to_srgb(v) * 255.0).round() as u8
-}
 
 /// Bucket of a linear value in [0, 1): its bit pattern without the lowest bits. Each bucket is
 /// 1/128 of an octave wide, narrower than the gap between two byte thresholds, so it holds at
@@ -130,7 +125,7 @@ pub fn write_texture(queue: &wgpu::Queue, texture: &wgpu::Texture, rgba: &[u8]) 
 
 #[cfg(test)]
 mod tests {
-    use raylab::material::Color;
+    use raylab::color::Color;
 
     use super::*;
 

@@ -16,8 +16,10 @@ pub fn surface_point(
     (width, height): (u32, u32),
     (x, y): (f32, f32),
 ) -> Option<Vec3> {
-    // The camera counts rows from the bottom.
-    let ray = camera.ray(height as f32 - y, x, height, width);
+    // The pixel under (x, y) and the point within it: the same ray as `height − y`, `x`.
+    let pixel = (x.floor(), y.floor());
+    let offset = (x - pixel.0, y - pixel.1);
+    let ray = camera.eye_ray((pixel.0 as u32, pixel.1 as u32), offset, (width, height));
     let hit = Tracer::new(scene, bvh).closest_hit(&ray, EYE_RAY_T_MIN)?;
     Some(ray.origin + ray.dir * hit.t)
 }

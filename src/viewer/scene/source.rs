@@ -5,7 +5,6 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use glam::Vec3;
 use raylab::aabb::Aabb;
 use raylab::bvh::Bvh;
 use raylab::formats::load_any;
@@ -48,9 +47,7 @@ pub fn load(path: Option<&Path>) -> Result<LoadedScene, String> {
     }
     .map_err(|e| e.to_string())?;
     let bvh = Bvh::build(&scene.geometry);
-    let bounds = bvh.nodes.first().map_or(Aabb::EMPTY, |root| {
-        Aabb::new(Vec3::from(root.min), Vec3::from(root.max))
-    });
+    let bounds = bvh.bounds().unwrap_or(Aabb::EMPTY);
     Ok(LoadedScene {
         scene,
         bvh,

@@ -11,8 +11,7 @@ use std::time::Instant;
 
 use raylab::film::Film;
 use raylab::inspect::Legend;
-use raylab::progressive::{self, RenderControl};
-use raylab::stats::PassStats;
+use raylab::progressive::{self, PassStats, RenderControl};
 
 use super::working_scene::{TraceSetup, WorkingScene};
 use crate::viewer::scene::source::LoadedScene;
@@ -143,7 +142,7 @@ fn run(pool: &rayon::ThreadPool, inbox: &Receiver<Job>) {
         }
         let rendered = std::panic::catch_unwind(AssertUnwindSafe(|| {
             pool.install(|| {
-                progressive::render(&tracer, &job.film, &job.control, |pass| {
+                progressive::render(&tracer, &job.setup.view, &job.film, &job.control, |pass| {
                     job.report.push_pass(pass)
                 })
             })
@@ -252,7 +251,7 @@ mod tests {
         assert!(
             film.pixels()
                 .iter()
-                .any(|c| *c != raylab::material::Color::ZERO)
+                .any(|c| *c != raylab::color::Color::ZERO)
         );
     }
 

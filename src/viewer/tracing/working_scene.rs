@@ -51,6 +51,6 @@ impl WorkingScene {
             .iter()
             .map(|l| l.scaled(setup.light_scale))
             .collect();
-        Tracer::new(scene, &loaded.bvh).with_view(setup.view)
+        Tracer::new(scene, &loaded.bvh)
     }
 }

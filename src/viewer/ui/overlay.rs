@@ -8,7 +8,8 @@ use egui::{Color32, Pos2, Rect, Shape, Stroke, TextureHandle, TextureOptions, po
 use glam::Vec2;
 use raylab::aabb::Aabb;
 use raylab::camera::Camera;
-use raylab::inspect::{RayKind, RayTree};
+use raylab::inspect::RayTree;
+use raylab::whitted::RayKind;
 
 use crate::viewer::tracing::picked_pixel::PickedPixel;
 use crate::viewer::tracing::ray_tree_thread::ObjectIds;

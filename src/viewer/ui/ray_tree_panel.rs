@@ -5,7 +5,8 @@
 
 use egui::{Color32, RichText};
 use glam::{Vec2, Vec3};
-use raylab::inspect::{RayKind, RayNode, RayTree, ShadowRay, StopReason};
+use raylab::inspect::{RayNode, RayTree, ShadowRay};
+use raylab::whitted::{RayKind, StopReason};
 
 use super::swatch::swatch;
 use crate::viewer::input::action::Action;

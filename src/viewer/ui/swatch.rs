@@ -2,8 +2,7 @@
 //! encodes them), and a swatch with its numbers.
 
 use egui::{Color32, RichText};
-use raylab::formats::image::to_srgb8;
-use raylab::material::Color;
+use raylab::color::{Color, to_srgb8};
 
 /// `c` (linear RGB, clamped to [0, 1]) as egui draws it.
 pub fn color32(c: Color) -> Color32 {

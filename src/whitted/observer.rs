@@ -1,18 +1,19 @@
-//! What the Whitted tracer tells an observer while it builds a ray tree: each ray it starts, what
-//! the ray hit, its shadow rays, its local colour, the branches it cut and the colour it
-//! returned. The tracer is generic over the observer; the renderer's observer is `()`, whose
-//! methods are empty and `#[inline(always)]`, so the normal path compiles to the tracer without
-//! any of this. The inspector's observer ([`super::recorder`]) records the tree; the debug views'
+//! What the Whitted tracer tells an observer while it builds a ray tree: each ray it starts
+//! ([`RayKind`]), what the ray hit, its shadow rays ([`ShadowEvent`]), its local colour, the
+//! branches it cut and why ([`StopReason`]) and the colour it returned. The tracer is generic
+//! over the observer; the renderer's observer is `()`, whose methods are empty and
+//! `#[inline(always)]`, so the normal path compiles to the tracer without any of this. The
+//! inspector's observer ([`crate::inspect::trace_ray_tree`]) records the tree; the debug views'
 //! observers count depth, rays and BVH cost.
 //!
 //! The observer is also the traversal's [`TraversalCost`], so one value sees every BVH walk of
 //! the tree.
 
 use glam::Vec3;
+use serde::Serialize;
 
-use super::ray_tree::{RayKind, StopReason};
 use crate::bvh::cost::TraversalCost;
-use crate::material::Color;
+use crate::color::Color;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::Ray;
 
@@ -35,7 +36,8 @@ pub struct ShadowEvent<'a> {
 pub trait TreeObserver: TraversalCost {
     /// Whether shadow rays must report every blocker (the shadow cache must be off then).
     const RECORDS_BLOCKERS: bool = false;
-    /// Whether shadow rays may try the thread's last blocker first ([`crate::shadow_cache`]).
+    /// Whether shadow rays may try the thread's last blocker first (the shadow cache, see
+    /// [`crate::whitted`]).
     /// The answer is the same either way, but what the search meets and costs then depends on
     /// the pixels traced before on the thread; observers that report those turn it off.
     const USES_SHADOW_CACHE: bool = true;
@@ -68,3 +70,30 @@ pub trait TreeObserver: TraversalCost {
 
 /// Observes nothing: the renderer's tracer.
 impl TreeObserver for () {}
+
+/// Why a ray was traced.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RayKind {
+    Eye,
+    Reflected,
+    Transmitted,
+}
+
+/// Why a branch of the tree ends.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StopReason {
+    /// The ray left the scene.
+    Miss,
+    /// The ray is at `max_depth`: its reflected and transmitted rays are not traced.
+    MaxDepth,
+    /// The child's weight is below `min_weight` (adaptive depth control).
+    MinWeight,
+    /// Past the critical angle: no transmitted ray (its share goes to the reflected one).
+    TotalInternalReflection,
+    /// Reflected or transmitted rays are switched off in the settings.
+    Disabled,
+    /// The eye ray's tree has used up its [`crate::whitted::RAY_BUDGET`].
+    RayBudget,
+}
