@@ -169,6 +169,34 @@ impl RenderControl {
 
 /// Renders `tracer`'s scene as `shader` shows it into `film` (which must have the settings'
 /// size), pass after pass, calling `on_pass` after each. Runs on the current rayon thread pool.
+///
+/// ```
+/// use raylab::bvh::Bvh;
+/// use raylab::film::Film;
+/// use raylab::formats::load_any;
+/// use raylab::progressive::{Pass, RenderControl, Shaded, render};
+/// use raylab::whitted::Tracer;
+///
+/// let mut scene = load_any("assets/scenes/default.toml")?;
+/// scene.settings.width = 64;
+/// scene.settings.height = 48;
+/// scene.settings.block_size = 16;
+/// let bvh = Bvh::build(&scene.geometry);
+/// let tracer = Tracer::new(&scene, &bvh);
+/// let film = Film::new(64, 48);
+///
+/// let mut block_sizes = Vec::new();
+/// let stats = render(&tracer, &Shaded, &film, &RenderControl::default(), |pass| {
+///     block_sizes.push(pass.pass) // a viewer would show the film here
+/// })
+/// .expect("only another thread holding the control can cancel it");
+///
+/// // Coarse first, refined down to one pixel; every pixel traced exactly once.
+/// let expected = [16, 8, 4, 2, 1].map(Pass::Block);
+/// assert_eq!(block_sizes, expected);
+/// assert_eq!(stats.rays.primary, 64 * 48);
+/// # Ok::<(), raylab::formats::SceneError>(())
+/// ```
 pub fn render(
     tracer: &Tracer,
     shader: &dyn Shader,

@@ -18,6 +18,23 @@ use crate::whitted::{EYE_RAY_T_MIN, RayKind, ShadowEvent, StopReason, Tracer, Tr
 /// eye ray through the pixel's centre, as the first pass of [`crate::progressive::render`]
 /// traces it, so `tree.color` is the rendered pixel at one sample per pixel. A pixel outside
 /// the image is clamped to its edge.
+///
+/// ```
+/// use raylab::bvh::Bvh;
+/// use raylab::formats::load_any;
+/// use raylab::inspect::trace_ray_tree;
+/// use raylab::whitted::{RayKind, Tracer};
+///
+/// let scene = load_any("assets/scenes/glass.toml")?;
+/// let bvh = Bvh::build(&scene.geometry);
+/// let tree = trace_ray_tree(&Tracer::new(&scene, &bvh), 320, 240); // the middle pixel
+///
+/// // The root is the eye ray; through the glass ball the tree grows transmitted rays.
+/// assert_eq!(tree.nodes[0].kind, RayKind::Eye);
+/// assert!(tree.nodes.iter().any(|node| node.kind == RayKind::Transmitted));
+/// println!("{}", tree.to_text());
+/// # Ok::<(), raylab::formats::SceneError>(())
+/// ```
 pub fn trace_ray_tree(tracer: &Tracer, x: u32, y: u32) -> RayTree {
     let settings = &tracer.scene.settings;
     let (x, y) = (
