@@ -9,7 +9,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use raylab::bvh::Bvh;
 use raylab::film::Film;
 use raylab::formats::toml::default_scene;
-use raylab::progressive::{self, RenderControl};
+use raylab::progressive::{self, RenderControl, Shaded};
 use raylab::whitted::Tracer;
 
 fn cancel(c: &mut Criterion) {
@@ -41,7 +41,7 @@ fn cancel(c: &mut Criterion) {
                         control.cancel();
                         Instant::now()
                     });
-                    let result = progressive::render(&tracer, &film, &control, |_| {});
+                    let result = progressive::render(&tracer, &Shaded, &film, &control, |_| {});
                     let stopped = Instant::now();
                     assert!(result.is_err(), "the render was cancelled");
                     total += stopped.saturating_duration_since(canceller.join().unwrap());

@@ -77,6 +77,9 @@ impl std::fmt::Display for CameraError {
 
 impl std::error::Error for CameraError {}
 
+/// The centre of a pixel, as the offset within it that [`Camera::eye_ray`] takes.
+pub const PIXEL_CENTRE: (f32, f32) = (0.5, 0.5);
+
 /// A camera ready to shoot rays: the eye and the orthonormal axes `u` (right), `v` (up) and `n`
 /// (from the look-at point back towards the eye), with the image plane's half sizes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -141,6 +144,24 @@ impl Camera {
     /// The eye ray `eye + dir_rc·t` through the point (r, c) of the image plane, reached at t = 1.
     pub fn ray(&self, r: f32, c: f32, n_rows: u32, n_cols: u32) -> Ray {
         Ray::new(self.eye, self.dir_rc(r, c, n_rows, n_cols))
+    }
+
+    /// The eye ray through the point `offset` of pixel (x, y) of a `width × height` image: x
+    /// from the left, y from the top (like the offset within the pixel, which is in [0, 1)²;
+    /// [`PIXEL_CENTRE`] is the centre). This is [`Self::ray`] at `r = (height − y) − offset.1`
+    /// and `c = x + offset.0`, and the one place where a pixel becomes an eye ray: the renderer,
+    /// the inspector and the viewer's picking all call it.
+    #[inline]
+    pub fn eye_ray(
+        &self,
+        (x, y): (u32, u32),
+        offset: (f32, f32),
+        (width, height): (u32, u32),
+    ) -> Ray {
+        // The lecture counts rows from the bottom of the image.
+        let r = (height - y) as f32 - offset.1;
+        let c = x as f32 + offset.0;
+        self.ray(r, c, height, width)
     }
 
     /// Where the world point lands on the `width × height` image: x from the left, y from the

@@ -3,8 +3,7 @@
 
 use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
 
-use crate::material::Color;
-use crate::texture::linear_to_srgb;
+use crate::color::Color;
 
 /// A `width × height` image, row 0 at the top. Each channel is an `f32` stored in an atomic, so
 /// threads can write pixels while others read without locks; a reader may see a pixel from
@@ -72,7 +71,7 @@ impl Film {
         }
     }
 
-    /// Marks the image as changed (once per row or pass, not per pixel).
+    /// Marks the image as changed (the renderer calls it once per band of rows, not per pixel).
     pub fn touch(&self) {
         self.version.fetch_add(1, Ordering::Release);
     }
@@ -86,19 +85,6 @@ impl Film {
         (0..self.height)
             .flat_map(|y| (0..self.width).map(move |x| (x, y)))
             .map(|(x, y)| self.get(x, y))
-            .collect()
-    }
-
-    /// The image as 8-bit sRGB with opaque alpha, row by row (for PNG files and textures).
-    pub fn to_srgba8(&self) -> Vec<u8> {
-        self.pixels()
-            .into_iter()
-            .flat_map(|c| {
-                let [r, g, b] = c
-                    .to_array()
-                    .map(|v| (linear_to_srgb(v) * 255.0).round() as u8);
-                [r, g, b, 255]
-            })
             .collect()
     }
 }

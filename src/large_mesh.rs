@@ -7,8 +7,9 @@ use std::f32::consts::PI;
 use glam::{Vec2, Vec3};
 
 use crate::camera::{Camera, CameraSpec};
+use crate::color::Color;
 use crate::light::Light;
-use crate::material::{Color, Material};
+use crate::material::Material;
 use crate::mesh::Mesh;
 use crate::scene::Scene;
 use crate::settings::RenderSettings;

@@ -1,11 +1,33 @@
 //! raylab: a Whitted ray tracer after Hill & Kelley's lecture (ch. 12). The data flows one way:
-//! scene file ([`formats`]) → [`scene::Scene`] → [`bvh::Bvh`] → [`whitted`] tracer →
-//! [`film::Film`] → image.
+//!
+//! ```text
+//! scene file → Scene → Bvh → whitted tracer → progressive renderer → Film → image file
+//!                                   ↑                   ↑
+//!                                   └────── inspect ────┘  (ray trees, debug views)
+//! ```
+//!
+//! and the modules depend on each other in that order only, each on those before it:
+//!
+//! - Basics: [`color`] (linear RGB and its 8-bit sRGB encoding), [`ray`], [`aabb`],
+//!   [`transform`], [`limits`], [`memory`], [`output`] (writing files safely), [`camera`] (the
+//!   one place a pixel becomes an eye ray) and [`sampling`] (where a pixel's samples lie).
+//! - The scene: [`shapes`], [`mesh`], [`primitive`], [`material`], [`texture`], [`light`],
+//!   [`settings`] and [`scene::Scene`], which [`formats`] reads from TOML, OBJ, NFF and SPD
+//!   files (or [`large_mesh`] generates, for benchmarks).
+//! - Tracing: [`bvh::Bvh`] finds what a ray hits; [`whitted`] builds each eye ray's ray tree,
+//!   counts its rays ([`stats`]) and tells a [`whitted::TreeObserver`] what it does.
+//! - Rendering: [`progressive`] refines the image pass after pass on all cores into a
+//!   [`film::Film`], each pixel sample coloured by a [`progressive::Shader`] (the shaded image
+//!   is [`progressive::Shaded`]); [`formats::image`] saves it.
+//! - Looking inside: [`inspect`] records one pixel's ray tree with a tree observer and renders
+//!   debug views as shaders of the same renderer. Nothing above depends on it.
+//!
 //! Nothing here knows about windows or GPUs.
 
 pub mod aabb;
 pub mod bvh;
 pub mod camera;
+pub mod color;
 pub mod film;
 pub mod formats;
 pub mod inspect;
@@ -19,9 +41,9 @@ pub mod output;
 pub mod primitive;
 pub mod progressive;
 pub mod ray;
+pub mod sampling;
 pub mod scene;
 pub mod settings;
-pub mod shadow_cache;
 pub mod shapes;
 pub mod stats;
 pub mod texture;

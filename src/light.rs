@@ -2,7 +2,7 @@
 
 use glam::Vec3;
 
-use crate::material::Color;
+use crate::color::Color;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Light {

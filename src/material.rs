@@ -1,10 +1,7 @@
 //! Materials: how a surface answers light, in the terms of the lecture's shading model
 //! (ambient, Lambert diffuse, Phong specular) plus mirror reflection and transparency.
 
-use glam::Vec3;
-
-/// Linear RGB.
-pub type Color = Vec3;
+use crate::color::Color;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {

@@ -4,27 +4,51 @@
 //! coarser pass traced, so all passes together trace every pixel once. After block size 1,
 //! optional passes add one jittered sample per pixel each (anti-aliasing).
 //!
-//! Each pixel sample is what the tracer's view shows ([`crate::inspect::view_colors`]): the
-//! shaded colour, or a debug view, refined by the same passes.
+//! Each pixel sample is what the caller's [`Shader`] makes of its eye ray: the Whitted colour
+//! ([`Shaded`]), or another view of the scene (the inspector's debug views implement
+//! [`Shader`] too), refined by the same passes.
 //!
-//! Passes run on all of rayon's threads, band by band of 8 rows, each band tile by tile of 8 × 8
+//! Passes run on all of rayon's threads, band by band of 8 rows of the pass's grid (8 rows of
+//! `b × b` blocks, so 8·b rows of pixels in block pass `b`), each band tile by tile of 8 × 8
 //! traced pixels whose eye rays are traced together ([`crate::bvh::packet`]). They report their
-//! progress as they go, and stop within a band when cancelled from another thread.
+//! progress and statistics ([`PassStats`], [`RenderStats`]) as they go, and stop at the next
+//! band when cancelled from another thread.
 
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use arrayvec::ArrayVec;
 use rayon::prelude::*;
 
 use crate::bvh::packet::PACKET_SIZE;
+use crate::camera::PIXEL_CENTRE;
+use crate::color::Color;
 use crate::film::Film;
-use crate::inspect::view_colors;
-use crate::material::Color;
 use crate::ray::Ray;
-use crate::stats::{PassStats, RayCounts, RenderStats, SharedRayCounts};
+use crate::sampling::jitter;
+use crate::stats::{RayCounts, SharedRayCounts};
 use crate::whitted::Tracer;
+
+/// What the renderer writes for the pixel samples whose eye rays it traces: the shaded image
+/// ([`Shaded`]) or another view of the scene.
+pub trait Shader: Sync {
+    /// The colours of the neighbouring eye rays `rays` (up to [`PACKET_SIZE`]), into `colors`,
+    /// counting the rays traced into `counts`.
+    fn shade(&self, tracer: &Tracer, rays: &[Ray], colors: &mut [Color], counts: &mut RayCounts);
+}
+
+/// The shaded image: the Whitted colour of each eye ray, the eye rays traced as one packet
+/// ([`Tracer::trace_eye_packet`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Shaded;
+
+impl Shader for Shaded {
+    #[inline]
+    fn shade(&self, tracer: &Tracer, rays: &[Ray], colors: &mut [Color], counts: &mut RayCounts) {
+        tracer.trace_eye_packet(rays, colors, counts);
+    }
+}
 
 /// One pass of refinement.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -42,6 +66,31 @@ pub fn passes(block_size: u32, samples: u32) -> Vec<Pass> {
         .map(Pass::Block)
         .chain((1..samples).map(Pass::Sample))
         .collect()
+}
+
+/// What one pass of progressive rendering did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PassStats {
+    pub pass: Pass,
+    /// Pixels traced (not painted) in this pass.
+    pub pixels: u64,
+    pub rays: RayCounts,
+    pub time: Duration,
+}
+
+/// A whole render.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RenderStats {
+    pub passes: Vec<PassStats>,
+    pub rays: RayCounts,
+    pub time: Duration,
+}
+
+impl RenderStats {
+    /// Millions of rays per second over the whole render.
+    pub fn mrays_per_second(&self) -> f64 {
+        self.rays.total() as f64 / self.time.as_secs_f64().max(1e-9) / 1e6
+    }
 }
 
 /// Traced pixels per side of a tile: a tile's eye rays go through the BVH as one packet of
@@ -118,10 +167,39 @@ impl RenderControl {
     }
 }
 
-/// Renders `tracer`'s scene into `film` (which must have the settings' size), pass after pass,
-/// calling `on_pass` after each. Runs on the current rayon thread pool.
+/// Renders `tracer`'s scene as `shader` shows it into `film` (which must have the settings'
+/// size), pass after pass, calling `on_pass` after each. Runs on the current rayon thread pool.
+///
+/// ```
+/// use raylab::bvh::Bvh;
+/// use raylab::film::Film;
+/// use raylab::formats::load_any;
+/// use raylab::progressive::{Pass, RenderControl, Shaded, render};
+/// use raylab::whitted::Tracer;
+///
+/// let mut scene = load_any("assets/scenes/default.toml")?;
+/// scene.settings.width = 64;
+/// scene.settings.height = 48;
+/// scene.settings.block_size = 16;
+/// let bvh = Bvh::build(&scene.geometry);
+/// let tracer = Tracer::new(&scene, &bvh);
+/// let film = Film::new(64, 48);
+///
+/// let mut block_sizes = Vec::new();
+/// let stats = render(&tracer, &Shaded, &film, &RenderControl::default(), |pass| {
+///     block_sizes.push(pass.pass) // a viewer would show the film here
+/// })
+/// .expect("only another thread holding the control can cancel it");
+///
+/// // Coarse first, refined down to one pixel; every pixel traced exactly once.
+/// let expected = [16, 8, 4, 2, 1].map(Pass::Block);
+/// assert_eq!(block_sizes, expected);
+/// assert_eq!(stats.rays.primary, 64 * 48);
+/// # Ok::<(), raylab::formats::SceneError>(())
+/// ```
 pub fn render(
     tracer: &Tracer,
+    shader: &dyn Shader,
     film: &Film,
     control: &RenderControl,
     mut on_pass: impl FnMut(&PassStats),
@@ -133,7 +211,7 @@ pub fn render(
     let mut stats = RenderStats::default();
     for (i, &pass) in plan.iter().enumerate() {
         control.pass.store(i as u32, Ordering::Relaxed);
-        let pass_stats = render_pass(tracer, film, control, pass, settings.block_size)?;
+        let pass_stats = render_pass(tracer, shader, film, control, pass, settings.block_size)?;
         stats.rays += pass_stats.rays;
         stats.passes.push(pass_stats);
         on_pass(&pass_stats);
@@ -146,6 +224,7 @@ pub fn render(
 /// Runs one pass over the whole image.
 pub fn render_pass(
     tracer: &Tracer,
+    shader: &dyn Shader,
     film: &Film,
     control: &RenderControl,
     pass: Pass,
@@ -184,7 +263,15 @@ pub fn render_pass(
                 .step_by(TILE as usize)
                 .map(|c| {
                     let tile_columns = c..(c + TILE).min(columns);
-                    trace_tile(tracer, film, &grid, &band_rows, tile_columns, &mut counts)
+                    trace_tile(
+                        tracer,
+                        shader,
+                        film,
+                        &grid,
+                        &band_rows,
+                        tile_columns,
+                        &mut counts,
+                    )
                 })
                 .sum();
             control.rays.add(&counts);
@@ -231,7 +318,7 @@ impl PassGrid {
             })
             .filter_map(|(x, y)| match self.pass {
                 Pass::Block(b) if traces_pixel(b, self.start_block, x, y) => {
-                    Some((x, y, (0.5, 0.5), 0))
+                    Some((x, y, PIXEL_CENTRE, 0))
                 }
                 Pass::Block(_) => None,
                 Pass::Sample(k) => Some((x, y, jitter(x, y, k), k)),
@@ -244,6 +331,7 @@ impl PassGrid {
 /// Returns how many it traced.
 fn trace_tile(
     tracer: &Tracer,
+    shader: &dyn Shader,
     film: &Film,
     grid: &PassGrid,
     rows: &Range<u32>,
@@ -255,14 +343,12 @@ fn trace_tile(
     let mut samples: ArrayVec<(u32, u32, u32), PACKET_SIZE> = ArrayVec::new();
     let mut rays: ArrayVec<Ray, PACKET_SIZE> = ArrayVec::new();
     for (x, y, offset, sample) in grid.samples(rows, columns) {
-        let r = (height - y) as f32 - offset.1;
-        let c = x as f32 + offset.0;
-        rays.push(camera.ray(r, c, height, width));
+        rays.push(camera.eye_ray((x, y), offset, (width, height)));
         samples.push((x, y, sample));
     }
     let mut colors = [Color::ZERO; PACKET_SIZE];
     let colors = &mut colors[..rays.len()];
-    view_colors(tracer, &rays, colors, counts);
+    shader.shade(tracer, &rays, colors, counts);
     for (&(x, y, sample), &color) in samples.iter().zip(colors.iter()) {
         if sample == 0 {
             film.fill_block(x, y, grid.step, color);
@@ -274,27 +360,17 @@ fn trace_tile(
     rays.len() as u64
 }
 
-/// A deterministic sub-pixel offset in [0, 1)² for sample `k` of pixel (x, y), so a render is
-/// reproducible whatever the thread count.
-pub fn jitter(x: u32, y: u32, k: u32) -> (f32, f32) {
-    let h = hash(x ^ hash(y ^ hash(k)));
-    let to_unit = |v: u32| (v >> 8) as f32 / (1u32 << 24) as f32;
-    (to_unit(h), to_unit(hash(h)))
-}
-
-/// A 32-bit integer hash (PCG output permutation).
-pub fn hash(v: u32) -> u32 {
-    let state = v.wrapping_mul(747796405).wrapping_add(2891336453);
-    let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277803737);
-    (word >> 22) ^ word
-}
-
-/// Renders the whole image in one go (no progressive display), returning its pixels.
+/// Renders the whole shaded image in one go (no progressive display), returning its pixels.
 pub fn render_image(tracer: &Tracer) -> (Vec<Color>, RenderStats) {
+    render_image_with(tracer, &Shaded)
+}
+
+/// [`render_image`] of what `shader` shows.
+pub fn render_image_with(tracer: &Tracer, shader: &dyn Shader) -> (Vec<Color>, RenderStats) {
     let settings = &tracer.scene.settings;
     let film = Film::new(settings.width, settings.height);
     let control = RenderControl::default();
-    let stats = render(tracer, &film, &control, |_| {}).unwrap_or_else(|Cancelled| {
+    let stats = render(tracer, shader, &film, &control, |_| {}).unwrap_or_else(|Cancelled| {
         unreachable!("nobody else holds this render's control, so it cannot be cancelled")
     });
     (film.pixels(), stats)

@@ -1,7 +1,7 @@
 //! Render settings: image size, the ray tree's limits, progressive refinement and the switches
 //! that turn parts of the shading off (for teaching and for the viewer).
 
-use crate::material::Color;
+use crate::color::Color;
 
 /// Largest starting block size.
 pub const MAX_BLOCK_SIZE: u32 = 64;

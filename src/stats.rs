@@ -1,10 +1,10 @@
-//! Render statistics: rays traced by kind, and the time each pass took.
+//! Ray counts: the rays the tracer traces, by kind, counted as it goes ([`RayCounts`]) and
+//! summed across threads ([`SharedRayCounts`]).
 
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::time::Duration;
 
 /// Rays traced, by kind. Each worker counts into its own and adds it to the shared total once
-/// per row, so counting costs nothing per ray.
+/// per band of rows it traced ([`crate::progressive`]), so counting costs nothing per ray.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RayCounts {
     /// Eye rays, one per pixel sample.
@@ -81,30 +81,5 @@ impl SharedRayCounts {
             transmitted: self.transmitted.load(Ordering::Relaxed),
             over_budget: self.over_budget.load(Ordering::Relaxed),
         }
-    }
-}
-
-/// What one pass of progressive rendering did.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PassStats {
-    pub pass: crate::progressive::Pass,
-    /// Pixels traced (not painted) in this pass.
-    pub pixels: u64,
-    pub rays: RayCounts,
-    pub time: Duration,
-}
-
-/// A whole render.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct RenderStats {
-    pub passes: Vec<PassStats>,
-    pub rays: RayCounts,
-    pub time: Duration,
-}
-
-impl RenderStats {
-    /// Millions of rays per second over the whole render.
-    pub fn mrays_per_second(&self) -> f64 {
-        self.rays.total() as f64 / self.time.as_secs_f64().max(1e-9) / 1e6
     }
 }

@@ -47,10 +47,6 @@ impl std::fmt::Display for TransformError {
 }
 
 impl Transform {
-    pub fn identity() -> Self {
-        Transform::from_affine(Affine3A::IDENTITY)
-    }
-
     fn from_affine(world_from_object: Affine3A) -> Self {
         let object_from_world = world_from_object.inverse();
         Transform {
@@ -84,10 +80,6 @@ impl Transform {
         Ok(Transform::from_affine(m))
     }
 
-    pub fn is_identity(&self) -> bool {
-        self.world_from_object == Affine3A::IDENTITY
-    }
-
     /// The ray in object space. The direction is not renormalised, so `t` means the same point in
     /// both spaces.
     #[inline]
@@ -100,10 +92,6 @@ impl Transform {
 
     pub fn point_to_world(&self, p: Vec3) -> Vec3 {
         self.world_from_object.transform_point3(p)
-    }
-
-    pub fn point_to_object(&self, p: Vec3) -> Vec3 {
-        self.object_from_world.transform_point3(p)
     }
 
     /// An object-space normal in world space, unit length.

@@ -2,7 +2,7 @@
 //! `dir_rc = −N·n + W(2c/nCols − 1)·u + H(2r/nRows − 1)·v`.
 
 use glam::Vec3;
-use raylab::camera::{Camera, CameraError, CameraSpec};
+use raylab::camera::{Camera, CameraError, CameraSpec, PIXEL_CENTRE};
 
 fn close(a: Vec3, b: Vec3) -> bool {
     (a - b).length() < 1e-5
@@ -88,6 +88,28 @@ fn the_image_plane_is_reached_at_t_equal_one() {
         // On the plane at distance N in front of the eye, perpendicular to n.
         assert!(((p - cam.eye).dot(-cam.n) - cam.near).abs() < 1e-5);
     }
+}
+
+#[test]
+fn eye_rays_count_pixels_from_the_top_left_and_rows_from_the_bottom() {
+    let cam = camera(Vec3::new(1.0, 2.0, 3.0), Vec3::ZERO, Vec3::Y, 45.0, 1.0);
+    let size = (64, 48);
+    // Pixel (0, 0) is the top-left one: row r counts up from the bottom of the image plane.
+    assert_eq!(
+        cam.eye_ray((0, 0), PIXEL_CENTRE, size),
+        cam.ray(47.5, 0.5, 48, 64)
+    );
+    assert_eq!(
+        cam.eye_ray((63, 47), PIXEL_CENTRE, size),
+        cam.ray(0.5, 63.5, 48, 64)
+    );
+    // The offset is measured from the pixel's top-left corner, y down.
+    assert_eq!(
+        cam.eye_ray((10, 20), (0.25, 0.75), size),
+        cam.ray(27.25, 10.25, 48, 64)
+    );
+    let top_left = cam.eye_ray((0, 0), (0.0, 0.0), size).at(1.0);
+    assert!((top_left - cam.eye).dot(cam.u) < 0.0 && (top_left - cam.eye).dot(cam.v) > 0.0);
 }
 
 #[test]

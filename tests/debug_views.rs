@@ -5,10 +5,11 @@ mod common;
 
 use glam::Vec3;
 use raylab::bvh::Bvh;
-use raylab::camera::{Camera, CameraSpec};
-use raylab::inspect::{DebugView, MISS_COLOR, eye_ray, id_color, object_ids};
+use raylab::camera::{Camera, CameraSpec, PIXEL_CENTRE};
+use raylab::color::Color;
+use raylab::inspect::{DebugView, MISS_COLOR, id_color, object_ids};
 use raylab::large_mesh::bumpy_sphere;
-use raylab::material::{Color, Material};
+use raylab::material::Material;
 use raylab::progressive;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
@@ -37,7 +38,7 @@ fn scene_looking_down_z() -> Scene {
 
 fn render(scene: &Scene, view: DebugView) -> Vec<Color> {
     let bvh = Bvh::build(&scene.geometry);
-    progressive::render_image(&Tracer::new(scene, &bvh).with_view(view)).0
+    progressive::render_image_with(&Tracer::new(scene, &bvh), &view).0
 }
 
 #[test]
@@ -97,13 +98,11 @@ fn the_normal_view_of_a_ball_shows_its_analytic_normals() {
     let (center, radius) = (Vec3::new(0.3, -0.2, -5.0), 1.5);
     scene.add_object(Shape::Sphere(Sphere { center, radius }), None, m);
     let pixels = render(&scene, DebugView::Normals);
-    let bvh = Bvh::build(&scene.geometry);
-    let tracer = Tracer::new(&scene, &bvh);
     let mut on_ball = 0;
     for y in 0..HEIGHT {
         for x in 0..WIDTH {
             let pixel = pixels[(y * WIDTH + x) as usize];
-            let ray = eye_ray(&tracer, x, y);
+            let ray = scene.camera.eye_ray((x, y), PIXEL_CENTRE, (WIDTH, HEIGHT));
             // The nearer root of |o + t·d − c|² = r².
             let (o, d) = (ray.origin - center, ray.dir);
             let (a, b, c) = (d.dot(d), o.dot(d), o.dot(o) - radius * radius);

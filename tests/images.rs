@@ -9,7 +9,8 @@
 use std::path::{Path, PathBuf};
 
 use raylab::bvh::Bvh;
-use raylab::formats::image::{save_image, to_srgb8};
+use raylab::color::to_srgb8;
+use raylab::formats::image::save_image;
 use raylab::formats::nff::NffLighting;
 use raylab::formats::toml::{default_scene, load_scene};
 use raylab::formats::{load_any, load_any_with};
@@ -102,7 +103,7 @@ fn check_pictures(dir: &Path, size: (u32, u32), pictures: &[(String, Vec<u8>)], 
 
 /// Inverse of the 8-bit sRGB encoding, so that blessing writes exactly the rendered bytes.
 fn srgb_decode(v: u8) -> f32 {
-    raylab::texture::srgb_to_linear(v as f32 / 255.0)
+    raylab::color::srgb_to_linear(v as f32 / 255.0)
 }
 
 fn shipped(name: &str) -> Scene {

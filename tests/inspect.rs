@@ -6,13 +6,14 @@ mod common;
 use glam::Vec3;
 use raylab::bvh::Bvh;
 use raylab::camera::{Camera, CameraSpec};
-use raylab::inspect::{RayKind, RayTree, StopReason, trace_ray_tree};
+use raylab::color::Color;
+use raylab::inspect::{RayTree, trace_ray_tree};
 use raylab::light::Light;
-use raylab::material::{Color, Material};
+use raylab::material::Material;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::{Plane, Shape, Sphere};
-use raylab::whitted::Tracer;
+use raylab::whitted::{RayKind, StopReason, Tracer};
 
 /// The side of the hand-built scenes' images: odd, so the centre pixel looks straight ahead.
 const SIDE: u32 = 11;

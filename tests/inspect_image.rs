@@ -7,8 +7,9 @@ use std::path::Path;
 
 use glam::{Vec2, Vec3};
 use raylab::bvh::Bvh;
+use raylab::camera::PIXEL_CENTRE;
 use raylab::formats::toml::{default_scene, load_scene};
-use raylab::inspect::{eye_ray, object_ids, trace_ray_tree};
+use raylab::inspect::{object_ids, trace_ray_tree};
 use raylab::progressive;
 use raylab::scene::Scene;
 use raylab::whitted::Tracer;
@@ -78,10 +79,8 @@ fn object_ids_name_what_each_eye_ray_hits() {
 #[test]
 fn projecting_a_point_of_a_pixels_eye_ray_gives_the_pixels_centre() {
     let scene = common::spheres_on_a_floor(64, 48);
-    let bvh = Bvh::build(&scene.geometry);
-    let tracer = Tracer::new(&scene, &bvh);
     for (x, y) in [(0, 0), (63, 0), (10, 40), (32, 24)] {
-        let ray = eye_ray(&tracer, x, y);
+        let ray = scene.camera.eye_ray((x, y), PIXEL_CENTRE, (64, 48));
         for t in [1.0, 3.5, 20.0] {
             let p = scene.camera.project(ray.at(t), 64, 48).unwrap();
             let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);

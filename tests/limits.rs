@@ -8,11 +8,11 @@ use std::process::{Command, Output};
 use raylab::bvh::Bvh;
 use raylab::formats::SceneError;
 use raylab::formats::toml::parse_scene;
-use raylab::inspect::{StopReason, trace_ray_tree};
+use raylab::inspect::trace_ray_tree;
 use raylab::light::Light;
 use raylab::progressive::render_image;
 use raylab::scene::Scene;
-use raylab::whitted::{RAY_BUDGET, Tracer};
+use raylab::whitted::{RAY_BUDGET, StopReason, Tracer};
 
 fn parse(text: &str) -> Result<Scene, SceneError> {
     parse_scene(text, Path::new("test.toml"), Path::new("."))

@@ -5,7 +5,7 @@ mod common;
 
 use raylab::bvh::Bvh;
 use raylab::film::Film;
-use raylab::progressive::{self, Cancelled, Pass, RenderControl, passes, traces_pixel};
+use raylab::progressive::{self, Cancelled, Pass, RenderControl, Shaded, passes, traces_pixel};
 use raylab::whitted::Tracer;
 
 #[test]
@@ -83,7 +83,7 @@ fn a_coarse_pass_paints_whole_blocks_clipped_at_the_edges() {
     let tracer = Tracer::new(&scene, &bvh);
     let film = Film::new(21, 13);
     let control = RenderControl::default();
-    progressive::render_pass(&tracer, &film, &control, Pass::Block(8), 8).unwrap();
+    progressive::render_pass(&tracer, &Shaded, &film, &control, Pass::Block(8), 8).unwrap();
     // 21×13 at block 8: blocks start at x = 0, 8, 16 and y = 0, 8; the last ones are clipped.
     for y in 0..13 {
         for x in 0..21 {
@@ -131,7 +131,8 @@ fn a_render_cancelled_from_another_thread_stops_within_a_band() {
             control.cancel();
             control.pixels_traced()
         });
-        let result = progressive::render(&Tracer::new(&scene, &bvh), &film, &control, |_| {});
+        let result =
+            progressive::render(&Tracer::new(&scene, &bvh), &Shaded, &film, &control, |_| {});
         (result, canceller.join().unwrap())
     });
     assert_eq!(result.unwrap_err(), Cancelled);
@@ -153,9 +154,15 @@ fn progress_is_visible_while_a_render_runs() {
     let control = RenderControl::default();
     let film = Film::new(64, 64);
     let mut seen = Vec::new();
-    progressive::render(&Tracer::new(&scene, &bvh), &film, &control, |pass| {
-        seen.push((pass.pass, control.progress()));
-    })
+    progressive::render(
+        &Tracer::new(&scene, &bvh),
+        &Shaded,
+        &film,
+        &control,
+        |pass| {
+            seen.push((pass.pass, control.progress()));
+        },
+    )
     .unwrap();
     let blocks: Vec<u32> = seen.iter().map(|(_, p)| p.block_size).collect();
     assert_eq!(blocks, vec![16, 8, 4, 2, 1]);

@@ -5,8 +5,9 @@ mod common;
 
 use glam::Vec3;
 use raylab::bvh::Bvh;
+use raylab::color::Color;
 use raylab::light::Light;
-use raylab::material::{Color, Material};
+use raylab::material::Material;
 use raylab::progressive;
 use raylab::ray::Ray;
 use raylab::scene::Scene;

@@ -14,12 +14,12 @@ use std::time::{Duration, Instant};
 use glam::Vec3;
 use raylab::bvh::Bvh;
 use raylab::camera::{Camera, CameraSpec};
-use raylab::formats::image::to_srgb8;
+use raylab::color::to_srgb8;
 use raylab::formats::toml::{default_scene, load_scene};
-use raylab::inspect::{DebugView, RayKind, RayTree, trace_ray_tree};
+use raylab::inspect::{DebugView, RayTree, trace_ray_tree};
 use raylab::progressive;
 use raylab::scene::Scene;
-use raylab::whitted::Tracer;
+use raylab::whitted::{RayKind, Tracer};
 
 /// One viewer at a time: they share two cores, and parallel `xvfb-run -a` can race for a display.
 static DISPLAY_LOCK: Mutex<()> = Mutex::new(());
@@ -229,7 +229,7 @@ fn sized(scene: &Scene, size: u32, camera: CameraSpec) -> (Scene, Bvh) {
 /// `view` of the scene rendered on the CPU at `size × size` with `camera`, as sRGB bytes.
 fn cpu_render_view(scene: &Scene, size: u32, camera: CameraSpec, view: DebugView) -> Vec<u8> {
     let (scene, bvh) = sized(scene, size, camera);
-    let (pixels, _) = progressive::render_image(&Tracer::new(&scene, &bvh).with_view(view));
+    let (pixels, _) = progressive::render_image_with(&Tracer::new(&scene, &bvh), &view);
     to_srgb8(&pixels)
 }
 

@@ -176,7 +176,8 @@ fn leaf(extent: &Extent, first: usize, count: usize) -> Node {
 fn subtree(prims: &mut [BuildPrim], first: usize, extent: Extent, depth: usize) -> Vec<Node> {
     // A binary tree over n primitives has at most 2n − 1 nodes. Reserving them all only takes
     // address space: the memory behind it is used as nodes are written, so the array never
-    // moves while it grows, and trimming it afterwards is cheap.
+    // moves while it grows. The binary tree only lives until it is widened, so the unused
+    // reserve is never trimmed.
     let mut nodes = Vec::with_capacity(2 * prims.len() - 1);
     nodes.push(leaf(&extent, first, prims.len()));
     let mut builder = SubtreeBuilder {

@@ -12,6 +12,7 @@ mod ray_box;
 mod traverse;
 mod widen;
 
+use crate::aabb::Aabb;
 use crate::primitive::PrimId;
 
 /// Children per interior node of the finished tree.
@@ -63,6 +64,12 @@ impl Bvh {
     pub fn memory_bytes(&self) -> usize {
         self.nodes.capacity() * std::mem::size_of::<Node>()
             + (self.prims.capacity() + self.unbounded.capacity()) * std::mem::size_of::<PrimId>()
+    }
+
+    /// The box around all bounded primitives (the root's), `None` when there are none.
+    pub fn bounds(&self) -> Option<Aabb> {
+        let root = self.nodes.first()?;
+        Some(Aabb::new(root.min.into(), root.max.into()))
     }
 
     /// Depth of the tree (0 when empty), for statistics and tests.

@@ -12,9 +12,8 @@ use raylab::formats::image::{check_image_path, save_image};
 use raylab::formats::nff::NffLighting;
 use raylab::inspect::DebugView;
 use raylab::memory;
-use raylab::progressive::{self, RenderControl};
+use raylab::progressive::{self, RenderControl, RenderStats};
 use raylab::settings::RenderSettings;
-use raylab::stats::RenderStats;
 use raylab::whitted::{RAY_BUDGET, Tracer};
 
 use super::overrides::SettingsOverrides;
@@ -65,7 +64,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     let settings = &scene.settings;
     let film = Film::new(width, height);
     let control = RenderControl::default();
-    let tracer = Tracer::new(&scene, &bvh).with_view(args.view);
+    let tracer = Tracer::new(&scene, &bvh);
     let legend = args.view.legend(&tracer);
     let legend_path = args.output.with_extension("legend.png");
     if legend.is_some() {
@@ -74,8 +73,9 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     let total = u64::from(width) * u64::from(height) * u64::from(settings.samples);
     let bar = progress_bar(total);
     let stats = std::thread::scope(|s| {
-        let render =
-            s.spawn(|| pool.install(|| progressive::render(&tracer, &film, &control, |_| {})));
+        let render = s.spawn(|| {
+            pool.install(|| progressive::render(&tracer, &args.view, &film, &control, |_| {}))
+        });
         while !render.is_finished() {
             bar.set_position(control.pixels_traced());
             std::thread::sleep(Duration::from_millis(50));

@@ -8,9 +8,8 @@ use std::path::{Path, PathBuf};
 use image::codecs::pnm::{PnmEncoder, PnmSubtype, SampleEncoding};
 use image::{DynamicImage, ImageFormat, Rgb32FImage, RgbImage};
 
-use crate::material::Color;
+use crate::color::{Color, to_srgb8};
 use crate::output::{check_writable, write_atomically};
-use crate::texture::linear_to_srgb;
 
 /// The image formats raylab writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -80,17 +79,6 @@ impl std::fmt::Display for OutputError {
 
 impl std::error::Error for OutputError {}
 
-/// 8-bit sRGB pixels of a linear image.
-pub fn to_srgb8(pixels: &[Color]) -> Vec<u8> {
-    pixels
-        .iter()
-        .flat_map(|c| {
-            c.to_array()
-                .map(|v| (linear_to_srgb(v) * 255.0).round() as u8)
-        })
-        .collect()
-}
-
 /// Checks, before the long work that makes it, that an image can be saved at `path`: its
 /// extension names a format raylab writes, and [`check_writable`] passes.
 pub fn check_image_path(path: &Path) -> Result<OutputFormat, OutputError> {
@@ -158,6 +146,7 @@ pub fn save_image(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::color::linear_to_srgb;
 
     fn gradient(w: u32, h: u32) -> Vec<Color> {
         (0..w * h)

@@ -11,6 +11,20 @@ use super::toml::load_scene;
 use crate::scene::Scene;
 
 /// Reads the scene `name` names, NFF lights as bright as the SPD readme suggests.
+///
+/// ```
+/// use raylab::formats::load_any;
+///
+/// let balls = load_any("spd:balls:1")?; // a built-in SPD scene: 10 balls and a floor
+/// assert_eq!(balls.geometry.objects.len(), 11);
+///
+/// let default = load_any("assets/scenes/default.toml")?; // a TOML scene file
+/// assert!(!default.lights.is_empty());
+///
+/// let error = load_any("no/such/scene.toml").unwrap_err();
+/// assert!(error.to_string().contains("no/such/scene.toml"));
+/// # Ok::<(), raylab::formats::SceneError>(())
+/// ```
 pub fn load_any(name: &str) -> Result<Scene, SceneError> {
     load_any_with(name, NffLighting::default())
 }

@@ -13,7 +13,8 @@ use glam::{Vec2, Vec3};
 
 use super::error::{SceneError, Source};
 use super::files::{SceneFiles, ascii_text};
-use crate::material::{Color, Material};
+use crate::color::Color;
+use crate::material::Material;
 use crate::mesh::Mesh;
 
 /// What an OBJ file holds.

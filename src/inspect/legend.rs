@@ -4,9 +4,8 @@
 
 use glam::Vec3;
 
-use crate::aabb::Aabb;
-use crate::material::Color;
-use crate::texture::srgb_to_linear;
+use crate::color::Color;
+use crate::color::srgb_to_linear;
 use crate::whitted::Tracer;
 
 /// Colours sampled along a legend's bar.
@@ -181,11 +180,11 @@ pub fn depth_range(tracer: &Tracer) -> (f32, f32) {
     let camera = &tracer.scene.camera;
     let to_look_at = (camera.spec.look_at - camera.eye).length();
     let fallback = (camera.near, 2.0 * to_look_at.max(camera.near));
-    let Some(root) = tracer.bvh.nodes.first() else {
+    let Some(bounds) = tracer.bvh.bounds() else {
         return fallback;
     };
     let depth = |p: Vec3| (p - camera.eye).dot(-camera.n);
-    let corners = Aabb::new(root.min.into(), root.max.into()).corners();
+    let corners = bounds.corners();
     let far = corners
         .map(depth)
         .into_iter()

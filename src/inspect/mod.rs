@@ -1,10 +1,12 @@
-//! Seeing inside the tracer: the ray tree of one pixel ([`trace_ray_tree`], recorded by an
-//! observer of the Whitted tracer's own code), the object each pixel sees ([`object_ids`]),
-//! and the debug views of the whole image ([`DebugView`], rendered by [`view_colors`]).
+//! Seeing inside the tracer: the ray tree of one pixel ([`trace_ray_tree`], recorded by a
+//! [`crate::whitted::TreeObserver`] of the Whitted tracer's own code, and printed as text), the
+//! object each pixel sees ([`object_ids`]), and the debug views of the whole image
+//! ([`DebugView`], a [`crate::progressive::Shader`] that the renderer refines like the shaded
+//! image) with the [`Legend`]s that explain their colours. It builds on [`crate::whitted`] and
+//! [`crate::progressive`]; neither knows about it.
 
 mod debug_view;
 mod legend;
-mod observer;
 mod ray_tree;
 mod recorder;
 mod tree_text;
@@ -14,7 +16,6 @@ pub use debug_view::{DebugView, max_rays};
 pub use legend::{
     BVH_COST_MAX, Legend, depth_grey, depth_range, heat, log_position, tree_depth_position,
 };
-pub use observer::{ShadowEvent, TreeObserver};
-pub use ray_tree::{Blocker, Cut, NodeHit, RayKind, RayNode, RayTree, ShadowRay, StopReason};
-pub use recorder::{eye_ray, object_ids, trace_ray_tree};
-pub use view_color::{MISS_COLOR, id_color, view_colors};
+pub use ray_tree::{Blocker, Cut, NodeHit, RayNode, RayTree, ShadowRay};
+pub use recorder::{object_ids, trace_ray_tree};
+pub use view_color::{MISS_COLOR, id_color};

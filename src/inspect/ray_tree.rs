@@ -6,34 +6,8 @@
 use glam::{Vec2, Vec3};
 use serde::Serialize;
 
-use crate::material::Color;
-
-/// Why a ray was traced.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum RayKind {
-    Eye,
-    Reflected,
-    Transmitted,
-}
-
-/// Why a branch of the tree ends.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum StopReason {
-    /// The ray left the scene.
-    Miss,
-    /// The ray is at `max_depth`: its reflected and transmitted rays are not traced.
-    MaxDepth,
-    /// The child's weight is below `min_weight` (adaptive depth control).
-    MinWeight,
-    /// Past the critical angle: no transmitted ray (its share goes to the reflected one).
-    TotalInternalReflection,
-    /// Reflected or transmitted rays are switched off in the settings.
-    Disabled,
-    /// The eye ray's tree has used up its [`crate::whitted::RAY_BUDGET`].
-    RayBudget,
-}
+use crate::color::Color;
+use crate::whitted::{RayKind, StopReason};
 
 /// An object a shadow ray passed through or was stopped by.
 #[derive(Clone, Debug, PartialEq, Serialize)]

@@ -4,20 +4,37 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::observer::{ShadowEvent, TreeObserver};
-use super::ray_tree::{Blocker, Cut, NodeHit, RayKind, RayNode, RayTree, ShadowRay, StopReason};
+use super::ray_tree::{Blocker, Cut, NodeHit, RayNode, RayTree, ShadowRay};
 use crate::bvh::cost::TraversalCost;
-use crate::material::Color;
+use crate::camera::PIXEL_CENTRE;
+use crate::color::Color;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::Ray;
 use crate::scene::Scene;
 use crate::stats::RayCounts;
-use crate::whitted::{EYE_RAY_T_MIN, Tracer};
+use crate::whitted::{EYE_RAY_T_MIN, RayKind, ShadowEvent, StopReason, Tracer, TreeObserver};
 
 /// The ray tree of pixel (x, y) of the scene's `width × height` image (y from the top): the
 /// eye ray through the pixel's centre, as the first pass of [`crate::progressive::render`]
 /// traces it, so `tree.color` is the rendered pixel at one sample per pixel. A pixel outside
 /// the image is clamped to its edge.
+///
+/// ```
+/// use raylab::bvh::Bvh;
+/// use raylab::formats::load_any;
+/// use raylab::inspect::trace_ray_tree;
+/// use raylab::whitted::{RayKind, Tracer};
+///
+/// let scene = load_any("assets/scenes/glass.toml")?;
+/// let bvh = Bvh::build(&scene.geometry);
+/// let tree = trace_ray_tree(&Tracer::new(&scene, &bvh), 320, 240); // the middle pixel
+///
+/// // The root is the eye ray; through the glass ball the tree grows transmitted rays.
+/// assert_eq!(tree.nodes[0].kind, RayKind::Eye);
+/// assert!(tree.nodes.iter().any(|node| node.kind == RayKind::Transmitted));
+/// println!("{}", tree.to_text());
+/// # Ok::<(), raylab::formats::SceneError>(())
+/// ```
 pub fn trace_ray_tree(tracer: &Tracer, x: u32, y: u32) -> RayTree {
     let settings = &tracer.scene.settings;
     let (x, y) = (
@@ -38,13 +55,12 @@ pub fn trace_ray_tree(tracer: &Tracer, x: u32, y: u32) -> RayTree {
     }
 }
 
-/// The eye ray through the centre of pixel (x, y), y from the top, as the renderer builds it.
-pub fn eye_ray(tracer: &Tracer, x: u32, y: u32) -> Ray {
+/// The eye ray through the centre of pixel (x, y) of the scene's image, y from the top, as the
+/// renderer builds it.
+fn eye_ray(tracer: &Tracer, x: u32, y: u32) -> Ray {
     let settings = &tracer.scene.settings;
-    let (width, height) = (settings.width, settings.height);
-    let r = (height - y) as f32 - 0.5;
-    let c = x as f32 + 0.5;
-    tracer.scene.camera.ray(r, c, height, width)
+    let size = (settings.width, settings.height);
+    tracer.scene.camera.eye_ray((x, y), PIXEL_CENTRE, size)
 }
 
 /// Per pixel (row-major, top row first) the object id ([`crate::primitive::Geometry::object_id`])

@@ -5,7 +5,8 @@ use std::fmt::Write;
 
 use glam::Vec3;
 
-use super::ray_tree::{RayKind, RayNode, RayTree, ShadowRay, StopReason};
+use super::ray_tree::{RayNode, RayTree, ShadowRay};
+use crate::whitted::{RayKind, StopReason};
 
 impl RayTree {
     /// The tree as human-readable text.

@@ -1,7 +1,7 @@
-//! The colour of one pixel sample in a debug view: what [`crate::progressive`] writes to the
-//! film for the tracer's [`DebugView`]. The first-hit views look at the eye ray's hit; the
-//! tree views trace the whole Whitted tree (the renderer's own code) with an observer that
-//! counts.
+//! The colour of one pixel sample in a debug view: a [`DebugView`] is a [`Shader`], what
+//! [`crate::progressive`] writes to the film for an eye ray. The first-hit views look at the eye
+//! ray's hit; the tree views trace the whole Whitted tree (the renderer's own code) with an
+//! observer that counts.
 
 use glam::Vec3;
 
@@ -9,35 +9,34 @@ use super::debug_view::{DebugView, max_rays};
 use super::legend::{
     BVH_COST_MAX, depth_grey, depth_range, heat, log_position, tree_depth_position,
 };
-use super::observer::TreeObserver;
-use super::ray_tree::RayKind;
 use crate::bvh::cost::{BvhCost, TraversalCost};
-use crate::material::Color;
+use crate::color::Color;
 use crate::primitive::{Hit, SurfacePoint};
-use crate::progressive::hash;
+use crate::progressive::{Shaded, Shader};
 use crate::ray::Ray;
+use crate::sampling::hash;
 use crate::stats::RayCounts;
-use crate::whitted::{EYE_RAY_T_MIN, Tracer};
+use crate::whitted::{EYE_RAY_T_MIN, RayKind, Tracer, TreeObserver};
 
 /// What a pixel whose eye ray misses shows in every view but the shaded one.
 pub const MISS_COLOR: Color = Color::ZERO;
 
-/// The colours the tracer's view gives the neighbouring eye rays `rays` (up to
-/// [`crate::bvh::packet::PACKET_SIZE`]), into `colors`. The shaded view is
-/// [`Tracer::trace_eye`] itself, with the eye rays traced as one packet
-/// ([`Tracer::trace_eye_packet`]).
-pub fn view_colors(tracer: &Tracer, rays: &[Ray], colors: &mut [Color], counts: &mut RayCounts) {
-    match tracer.view {
-        DebugView::Shaded => tracer.trace_eye_packet(rays, colors, counts),
-        view => {
-            for (ray, color) in rays.iter().zip(colors) {
-                *color = debug_color(tracer, view, ray, counts);
+/// Each view's colour of the neighbouring eye rays `rays`. The shaded view is the renderer's
+/// own [`Shaded`], with the eye rays traced as one packet.
+impl Shader for DebugView {
+    fn shade(&self, tracer: &Tracer, rays: &[Ray], colors: &mut [Color], counts: &mut RayCounts) {
+        match *self {
+            DebugView::Shaded => Shaded.shade(tracer, rays, colors, counts),
+            view => {
+                for (ray, color) in rays.iter().zip(colors) {
+                    *color = debug_color(tracer, view, ray, counts);
+                }
             }
         }
     }
 }
 
-/// [`view_colors`] of one eye ray, for the debug views.
+/// The colour of one eye ray in a debug view other than the shaded one.
 fn debug_color(tracer: &Tracer, view: DebugView, ray: &Ray, counts: &mut RayCounts) -> Color {
     let scene = tracer.scene;
     let tree_view = |tree: &TreeStats, rays: u64| match view {

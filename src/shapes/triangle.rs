@@ -32,7 +32,8 @@ pub struct ShearedRay {
     origin: Vec3,
     /// The permuted axes (x, y, z).
     axes: [usize; 3],
-    /// `(−dx/dz, −dy/dz, 1/dz)` in permuted axes.
+    /// `(dx/dz, dy/dz, 1/dz)` in permuted axes: a point's sheared (x, y) is
+    /// `(x − shear.x·z, y − shear.y·z)`, which puts the ray on the z axis.
     shear: Vec3,
 }
 

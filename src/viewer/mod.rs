@@ -3,48 +3,32 @@
 //! drawn by wgpu on a textured quad every frame, and egui panels change the camera and the
 //! settings (any change restarts refinement). Only the binary knows about it; the data still
 //! flows one way: scene file → scene → BVH → tracer → film → texture → window.
+//!
+//! Its rooms, each owning one part of the [`app::App`]:
+//! - `gpu/`: the window's GPU (wgpu): device, surface, image quad, upload, painting, screenshots;
+//! - `ui/`: what egui shows: side panel, status line, ray tree panel, overlay, legend, layout;
+//! - `input/`: mouse, keys and the script, the [`input::action::Action`]s they make, and carrying
+//!   them out (navigation, picking);
+//! - `scene/`: loading and watching scene files, the scene's state and the user's controls;
+//! - `tracing/`: the render worker, the render in progress and the picked pixel's ray tree thread;
+//! - `frame/`: one frame (update, then paint) and when the next one comes;
+//! - `app.rs` the event loop, `save.rs` the image and camera written to files.
 
-mod action;
 mod app;
-mod apply;
-mod controls;
 mod frame;
 mod gpu;
 mod input;
-#[cfg(test)]
-mod input_harness;
-mod inspection;
-mod inspector;
-mod inspector_thread;
-mod layout;
-mod legend_bar;
-mod navigation;
-mod overlay;
-mod painter;
-mod panels;
-mod pick;
-mod quad;
-mod rendering;
 mod save;
-mod scene_source;
-mod screenshot;
-mod script;
-mod status;
-mod surface;
-mod swatch;
-mod synthetic;
-mod timing;
-mod upload;
-mod watch;
-mod worker;
-mod working_scene;
+mod scene;
+mod tracing;
+mod ui;
 
 use std::path::PathBuf;
 
 use raylab::inspect::DebugView;
 use winit::event_loop::EventLoop;
 
-pub use script::Script;
+pub use input::script::Script;
 
 /// How the viewer starts.
 pub struct Options {
@@ -88,8 +72,5 @@ pub fn run(options: Options) -> Result<(), String> {
     event_loop
         .run_app(&mut app)
         .map_err(|e| format!("the window's event loop failed: {e}"))?;
-    match app.error.take() {
-        Some(e) => Err(e),
-        None => Ok(()),
-    }
+    app.result()
 }

@@ -49,7 +49,7 @@ pub fn save_view(path: &Path, film: &Film, camera: &CameraSpec) -> Result<String
 #[cfg(test)]
 mod tests {
     use glam::Vec3;
-    use raylab::material::Color;
+    use raylab::color::Color;
 
     use super::*;
 

@@ -6,12 +6,12 @@ use std::ops::ControlFlow;
 
 use glam::Vec3;
 
-use super::{Tracer, reflect};
-use crate::inspect::{ShadowEvent, TreeObserver};
-use crate::material::{Color, Material};
+use super::shadow_cache;
+use super::{ShadowEvent, Tracer, TreeObserver, reflect};
+use crate::color::Color;
+use crate::material::Material;
 use crate::primitive::{Hit, PrimId, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
-use crate::shadow_cache;
 use crate::stats::RayCounts;
 
 impl Tracer<'_> {
@@ -72,19 +72,10 @@ impl Tracer<'_> {
         color
     }
 
-    /// The fraction of light that reaches `origin` from `distance` away along `dir`: zero if
-    /// an opaque object is in between, otherwise the product of the transparent blockers'
-    /// tints (`transparency × colour`, once per object).
-    pub fn transmittance(&self, origin: Vec3, dir: Vec3, distance: f32) -> Color {
-        let ray = Ray::new(origin, dir);
-        self.transmittance_and_blocker(&ray, distance, &mut (), |_, _| {})
-            .0
-    }
-
-    /// [`Self::transmittance`] along the shadow ray `ray` towards light `light`, trying the
-    /// light's last blocker on this thread first (see [`crate::shadow_cache`]) unless the
-    /// observer says not to. With an observer that records blockers, also every primitive the
-    /// search met, with its tint.
+    /// The fraction of light that reaches the origin of the shadow ray `ray` from light `light`
+    /// ([`Self::transmittance_and_blocker`]), trying the light's last blocker on this thread
+    /// first (see [`super::shadow_cache`]) unless the observer says not to. With an observer that
+    /// records blockers, also every primitive the search met, with its tint.
     fn light_transmittance<O: TreeObserver>(
         &self,
         light: usize,
@@ -114,8 +105,10 @@ impl Tracer<'_> {
         (passed, blockers)
     }
 
-    /// The transmittance along `ray` up to `distance`, and the opaque primitive that ended the
-    /// search, if one did. `on_blocker` hears of each primitive met, with its tint.
+    /// The transmittance along `ray` up to `distance`: zero if an opaque object is in between,
+    /// otherwise the product of the transparent blockers' tints (`transparency × colour`, once
+    /// per object); and the opaque primitive that ended the search, if one did. `on_blocker`
+    /// hears of each primitive met, with its tint.
     fn transmittance_and_blocker(
         &self,
         ray: &Ray,

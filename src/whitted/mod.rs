@@ -5,19 +5,25 @@
 //! `max_depth` is reached, the branch's weight falls below `min_weight` (adaptive depth
 //! control), or the tree has used up its [`RAY_BUDGET`].
 //!
-//! The tracing functions are generic over a [`TreeObserver`] that hears the tree as it grows.
-//! The renderer passes `()`, which compiles away; the inspector records the tree with the very
-//! same code.
+//! Shadow rays try first the primitive that last blocked the same light on the same thread
+//! (the shadow cache of Haines and Greenberg, `shadow_cache`).
+//!
+//! The tracing functions are generic over a [`TreeObserver`] that hears the tree
+//! as it grows. The renderer passes `()`, which compiles away; the inspector
+//! ([`crate::inspect`]) records the tree with the very same code.
 
 mod lighting;
+mod observer;
 mod scattering;
+mod shadow_cache;
 
+pub use observer::{RayKind, ShadowEvent, StopReason, TreeObserver};
 pub use scattering::{Scattering, reflect, refract, scattering};
 
 use crate::bvh::Bvh;
 use crate::bvh::packet::PACKET_SIZE;
-use crate::inspect::{DebugView, RayKind, StopReason, TreeObserver};
-use crate::material::{Color, Material};
+use crate::color::Color;
+use crate::material::Material;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
 use crate::scene::Scene;
@@ -34,27 +40,16 @@ pub const EYE_RAY_T_MIN: f32 = 1.0;
 /// depth first, and counted in [`RayCounts::over_budget`].
 pub const RAY_BUDGET: u64 = 1024;
 
-/// A scene and its BVH, ready to trace, and what the rendered image shows.
+/// A scene and its BVH, ready to trace.
 #[derive(Clone, Copy)]
 pub struct Tracer<'a> {
     pub scene: &'a Scene,
     pub bvh: &'a Bvh,
-    /// What [`crate::progressive`] renders: the shaded image or a debug view.
-    pub view: DebugView,
 }
 
 impl<'a> Tracer<'a> {
     pub fn new(scene: &'a Scene, bvh: &'a Bvh) -> Self {
-        Tracer {
-            scene,
-            bvh,
-            view: DebugView::Shaded,
-        }
-    }
-
-    /// The same tracer rendering `view`.
-    pub fn with_view(self, view: DebugView) -> Self {
-        Tracer { view, ..self }
+        Tracer { scene, bvh }
     }
 
     /// The closest hit along `ray` beyond `t_min`.

@@ -8,8 +8,9 @@ pub mod random;
 
 use glam::Vec3;
 use raylab::camera::{Camera, CameraSpec};
+use raylab::color::Color;
 use raylab::light::Light;
-use raylab::material::{Color, Material};
+use raylab::material::Material;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::{Plane, Shape, Sphere};

@@ -15,12 +15,13 @@ use super::file::{
 };
 use super::values::{ColorValue, Direction, Exact, NonNegative, TexCoord, Vector};
 use crate::camera::{Camera, CameraError, CameraSpec};
+use crate::color::Color;
 use crate::formats::SceneFiles;
 use crate::formats::obj::{ObjError, load_obj};
 use crate::formats::{SceneError, Source};
 use crate::light::Light;
 use crate::limits;
-use crate::material::{Color, Material};
+use crate::material::Material;
 use crate::mesh::{Mesh, MeshError};
 use crate::primitive::{Geometry, Object};
 use crate::scene::Scene;

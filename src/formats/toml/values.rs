@@ -9,8 +9,8 @@ use arrayvec::ArrayVec;
 use glam::{Vec2, Vec3};
 use serde::de::{Deserialize, Deserializer, Error, IgnoredAny, SeqAccess, Visitor};
 
+use crate::color::Color;
 use crate::limits::{MAX_COORDINATE, WHY, short_vector, within_range};
-use crate::material::Color;
 
 /// An array of exactly `N` values. serde's own `[T; N]` stops reading after `N` and the TOML
 /// reader does not mind what is left, so `[0, 0, 0, 99]` would pass as three numbers; this

@@ -1,0 +1,211 @@
+//! Everything that talks to the GPU (wgpu): the device, the window's surface, the image quad and
+//! egui drawn into a frame, the film's upload into the image texture, and screenshots read back
+//! from the GPU.
+
+pub mod device;
+pub mod painter;
+pub mod quad;
+pub mod screenshot;
+pub mod surface;
+pub mod upload;
+
+use std::path::Path;
+use std::sync::Arc;
+use std::time::Instant;
+
+use raylab::progressive::Progress;
+use winit::event::WindowEvent;
+use winit::event_loop::ActiveEventLoop;
+use winit::window::Window;
+
+use self::device::Gpu;
+use self::painter::{FrameContent, Painter};
+use self::surface::{Acquired, WindowSurface};
+use self::upload::{Uploader, write_texture};
+use crate::viewer::frame::timing::Timing;
+use crate::viewer::tracing::rendering::Rendering;
+use crate::viewer::ui::layout::PixelRect;
+
+/// The window and what draws into it.
+pub struct Graphics {
+    window: Arc<Window>,
+    gpu: Gpu,
+    surface: WindowSurface,
+    painter: Painter,
+    egui_state: egui_winit::State,
+    /// What of the film the image texture shows.
+    uploader: Uploader,
+}
+
+/// What painting a frame did.
+pub struct Painted {
+    /// The frame reached the window.
+    pub presented: bool,
+    /// How far the render was when its film was read for this frame, if it was.
+    pub uploaded: Option<Progress>,
+    /// Why the screenshot could not be saved.
+    pub screenshot_error: Option<String>,
+}
+
+impl Graphics {
+    /// Opens a window of `size` (logical pixels) with its GPU, for `egui` to draw into.
+    pub fn open(
+        event_loop: &ActiveEventLoop,
+        size: (u32, u32),
+        egui: &egui::Context,
+    ) -> Result<Graphics, String> {
+        let attributes = Window::default_attributes()
+            .with_title("raylab")
+            .with_inner_size(winit::dpi::LogicalSize::new(size.0, size.1));
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .map_err(|e| format!("cannot open a window: {e}"))?,
+        );
+        let (gpu, surface) = Gpu::for_window(event_loop, window.clone())?;
+        let surface = WindowSurface::new(&gpu, surface, window.clone())?;
+        let painter = Painter::new(&gpu, surface.format());
+        let egui_state = egui_winit::State::new(
+            egui.clone(),
+            egui::ViewportId::ROOT,
+            &window,
+            Some(window.scale_factor() as f32),
+            window.theme(),
+            Some(gpu.max_texture_side() as usize),
+        );
+        Ok(Graphics {
+            window,
+            gpu,
+            surface,
+            painter,
+            egui_state,
+            uploader: Uploader::new(),
+        })
+    }
+
+    /// Largest image side the GPU takes.
+    pub fn max_side(&self) -> u32 {
+        self.gpu.max_texture_side()
+    }
+
+    pub fn window(&self) -> &Window {
+        &self.window
+    }
+
+    /// Gives a window event to egui (asking for a frame if egui wants one) and follows a resize.
+    pub fn window_event(&mut self, event: &WindowEvent) {
+        // egui asks to repaint after any event, a redraw included: that would never stop.
+        if !matches!(event, WindowEvent::RedrawRequested)
+            && self.egui_state.on_window_event(&self.window, event).repaint
+        {
+            self.window.request_redraw();
+        }
+        if let WindowEvent::Resized(size) = event {
+            self.surface.resize(size.width, size.height);
+            self.window.request_redraw();
+        }
+    }
+
+    /// The window's input since the last frame, for egui.
+    pub fn take_egui_input(&mut self) -> egui::RawInput {
+        self.egui_state.take_egui_input(&self.window)
+    }
+
+    /// The window system resized the window and the surface has not caught up yet.
+    pub fn resizing(&self) -> bool {
+        let size = self.window.inner_size();
+        self.surface.size() != (size.width, size.height)
+    }
+
+    /// Paints a frame: egui's `output` over the image (the film of `rendering`, uploaded if it
+    /// changed) shown at `shown`, presented in the window; then, if it was presented and
+    /// `screenshot` is given, saved there as a PNG.
+    pub fn paint(
+        &mut self,
+        egui: &egui::Context,
+        output: egui::FullOutput,
+        shown: PixelRect,
+        rendering: Option<&Rendering>,
+        timing: &mut Timing,
+        screenshot: Option<&Path>,
+    ) -> Painted {
+        let egui::FullOutput {
+            platform_output,
+            mut textures_delta,
+            shapes,
+            pixels_per_point,
+            ..
+        } = output;
+        self.egui_state
+            .handle_platform_output(&self.window, platform_output);
+        let primitives = egui.tessellate(shapes, pixels_per_point);
+        self.painter.set_textures(&self.gpu, &mut textures_delta);
+        let uploaded = rendering.and_then(|r| self.upload(r, timing));
+        let content = FrameContent {
+            primitives: &primitives,
+            pixels_per_point,
+            shown,
+        };
+        let mut presented = false;
+        match self.surface.acquire(&self.gpu) {
+            Acquired::Frame(frame) => {
+                self.painter.paint(&self.gpu, &frame.texture, &content);
+                self.window.pre_present_notify();
+                self.gpu.queue.present(frame);
+                presented = true;
+            }
+            Acquired::Retry => self.window.request_redraw(),
+            Acquired::Skip => {}
+        }
+        let screenshot_error = match screenshot {
+            Some(path) if presented => self.screenshot(&content, path).err(),
+            _ => None,
+        };
+        self.painter.free_textures(&mut textures_delta);
+        Painted {
+            presented,
+            uploaded,
+            screenshot_error,
+        }
+    }
+
+    /// Uploads the film if it changed; returns how far the render was when the film was read
+    /// (also once the render has ended and nothing changed since).
+    fn upload(&mut self, r: &Rendering, timing: &mut Timing) -> Option<Progress> {
+        let progress = r.control.progress();
+        let (texture, created) =
+            self.painter
+                .quad
+                .image_texture(&self.gpu.device, r.film.width(), r.film.height());
+        if created {
+            self.uploader.invalidate();
+        }
+        let start = Instant::now();
+        if let Some(rgba) = self.uploader.changed_pixels(&r.film) {
+            write_texture(&self.gpu.queue, texture, rgba);
+            timing.upload(start.elapsed());
+            Some(progress)
+        } else {
+            r.report.outcome().map(|_| progress)
+        }
+    }
+
+    /// Saves the frame as painted into `path` and says so on the terminal.
+    fn screenshot(&mut self, content: &FrameContent<'_>, path: &Path) -> Result<(), String> {
+        let size = self.surface.size();
+        let format = self.surface.format();
+        screenshot::save(&self.gpu, &mut self.painter, format, size, content, path)?;
+        let s = content.shown;
+        println!(
+            "screenshot {}: {}×{} window, image at x {} y {} size {}×{}",
+            path.display(),
+            size.0,
+            size.1,
+            s.x,
+            s.y,
+            s.width,
+            s.height
+        );
+        Ok(())
+    }
+}

@@ -1,0 +1,45 @@
+//! What the user (or a test script) asks the viewer to do, beyond editing a control: the mouse,
+//! the keys, the panels' buttons and the script all speak in [`Action`]s, and the app carries
+//! them out in one place.
+
+use std::path::PathBuf;
+
+use glam::Vec3;
+use raylab::inspect::DebugView;
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Action {
+    /// Turn around the look-at point, in degrees.
+    Orbit { yaw: f32, pitch: f32 },
+    /// Follow a cursor dragged by this many physical pixels (y down).
+    Pan { dx: f32, dy: f32 },
+    /// Wheel steps towards the look-at point (negative: away).
+    Dolly(f32),
+    /// Fly for `seconds` in the direction `motion` (x right, y up, z forward).
+    Fly { motion: Vec3, seconds: f32 },
+    /// Look at the whole scene.
+    Frame,
+    /// Back to the scene's own camera.
+    ResetCamera,
+    /// Make the surface point under this image point (pixels, y down) the orbit centre.
+    PickCentre { x: f32, y: f32 },
+    /// Show the ray tree of image pixel (x, y) (y down) in the ray tree panel.
+    PickPixel { x: u32, y: u32 },
+    /// Close the ray tree panel and forget the picked pixel.
+    CloseRayTree,
+    /// Print the ray tree panel's node headings on the terminal (scripts only).
+    PrintTree,
+    /// A left click at the centre of image pixel (x, y), sent as the pointer events of a real
+    /// mouse (scripts only).
+    Click { x: u32, y: u32 },
+    /// Show this view of the scene (restarts refinement).
+    SetView(DebugView),
+    /// Open a scene file (`None`: the built-in default scene).
+    Open(Option<PathBuf>),
+    /// Save the image and the camera snippet.
+    Save,
+    /// Print the camera snippet on the terminal.
+    PrintCamera,
+    /// Ask for a new window size, in logical pixels (scripts only).
+    ResizeWindow { width: u32, height: u32 },
+}

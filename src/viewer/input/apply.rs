@@ -1,0 +1,149 @@
+//! Carrying out [`Action`]s: navigation moves the camera (through [`navigation`]), picking a
+//! surface point sets the orbit centre, picking a pixel shows its ray tree, and the scene, save
+//! and print actions do what they say.
+
+use std::path::PathBuf;
+
+use raylab::camera::Camera;
+
+use super::action::Action;
+use super::navigation;
+use super::pick;
+use crate::viewer::app::App;
+use crate::viewer::save;
+use crate::viewer::scene::Shown;
+use crate::viewer::ui::layout::{PixelRect, window_point};
+use crate::viewer::ui::ray_tree_panel;
+
+impl App {
+    /// Carries out `action`; `shown` is where the image is in the window (physical pixels).
+    pub fn apply(&mut self, action: Action, shown: PixelRect) {
+        match action {
+            Action::Open(path) => {
+                if let Some(p) = &path {
+                    self.ui.panel.open_field = p.display().to_string();
+                }
+                self.start_load(path);
+            }
+            Action::Save => self.save(),
+            Action::ResizeWindow { width, height } => {
+                if let Some(gfx) = &self.gpu {
+                    let size = winit::dpi::LogicalSize::new(width, height);
+                    // The new size, if granted, arrives as a Resized event.
+                    let _ = gfx.window().request_inner_size(size);
+                }
+            }
+            Action::PrintCamera => {
+                if let Some(s) = self.scene.shown() {
+                    println!("{}", save::camera_snippet(&s.controls.camera));
+                    self.ui.panel.message = Some("camera printed on the terminal".into());
+                }
+            }
+            Action::PickCentre { x, y } => self.pick_centre(x, y),
+            Action::PickPixel { x, y } => self.tracing.picked.pick((x, y)),
+            Action::CloseRayTree => self.tracing.picked.close(),
+            Action::PrintTree => self.print_tree(),
+            Action::Click { x, y } => self.click(x, y, shown),
+            Action::SetView(view) => {
+                if let Some(s) = self.scene.shown_mut() {
+                    s.controls.view = view;
+                }
+            }
+            other => {
+                if let Some(s) = self.scene.shown_mut() {
+                    navigate(s, other, shown);
+                }
+            }
+        }
+    }
+
+    fn pick_centre(&mut self, x: f32, y: f32) {
+        let Some(Shown {
+            scene, controls, ..
+        }) = self.scene.shown_mut()
+        else {
+            return;
+        };
+        let Ok(camera) = Camera::new(controls.camera) else {
+            return;
+        };
+        let size = (controls.settings.width, controls.settings.height);
+        let point = pick::surface_point(&scene.scene, &scene.bvh, &camera, size, (x, y));
+        match point.and_then(|p| navigation::look_at_point(&controls.camera, p)) {
+            Some(spec) => controls.camera = spec,
+            None => self.ui.panel.message = Some("no surface under the cursor".into()),
+        }
+    }
+
+    /// A left click at the centre of image pixel (x, y), through egui like a mouse's.
+    fn click(&mut self, x: u32, y: u32, shown: PixelRect) {
+        let Some(r) = &self.tracing.rendering else {
+            return;
+        };
+        let (width, height) = (r.film.width(), r.film.height());
+        if x >= width || y >= height || shown.is_empty() {
+            self.ui.panel.message = Some(format!(
+                "cannot click pixel ({x}, {y}): it is outside the {width}×{height} image"
+            ));
+            return;
+        }
+        let (px, py) = window_point(shown, width, height, (x as f32 + 0.5, y as f32 + 0.5));
+        let ppp = self.ui.egui.pixels_per_point();
+        self.input.click(egui::pos2(px / ppp, py / ppp));
+    }
+
+    /// Prints the ray tree panel's headings, one line each, after `tree: `.
+    fn print_tree(&self) {
+        let picked = &self.tracing.picked;
+        match (&picked.tree, &picked.error) {
+            (_, Some(e)) => println!("tree: error: {e}"),
+            (Some(traced), None) => {
+                for line in ray_tree_panel::heading_lines(&traced.tree) {
+                    println!("tree: {line}");
+                }
+            }
+            (None, None) => println!("tree: none"),
+        }
+    }
+
+    /// Saves the image and the camera it was rendered with.
+    fn save(&mut self) {
+        let Some(r) = &self.tracing.rendering else {
+            return;
+        };
+        let path = PathBuf::from(self.ui.panel.save_field.trim());
+        let message = save::save_view(&path, &r.film, &r.controls.camera)
+            .unwrap_or_else(|e| format!("cannot save: {e}"));
+        println!("{message}");
+        self.ui.panel.message = Some(message);
+    }
+}
+
+/// Moves the camera of `s` as a navigation action asks; `shown` is where the image is in the
+/// window (physical pixels), for panning.
+fn navigate(s: &mut Shown, action: Action, shown: PixelRect) {
+    let (spec, bounds) = (&s.controls.camera, s.scene.bounds);
+    let size = (s.controls.settings.width, s.controls.settings.height);
+    let new = match action {
+        Action::Orbit { yaw, pitch } => Some(navigation::orbit(spec, yaw, pitch)),
+        Action::Pan { dx, dy } => {
+            let height = if shown.is_empty() {
+                size.1 as f32
+            } else {
+                shown.height
+            };
+            Some(navigation::pan(spec, dx, dy, height))
+        }
+        Action::Dolly(steps) => Some(navigation::dolly(spec, steps)),
+        Action::Fly { motion, seconds } => {
+            let distance = navigation::fly_speed(spec, bounds) * seconds;
+            Some(navigation::fly(spec, motion, distance))
+        }
+        Action::Frame => navigation::frame(spec, bounds, size.0 as f32 / size.1.max(1) as f32),
+        Action::ResetCamera => Some(s.scene.scene.camera.spec),
+        _ => None,
+    };
+    if let Some(new) = new {
+        s.controls.camera = new;
+    }
+}

@@ -1,0 +1,303 @@
+//! Scripted input, for tests and demonstrations: `--script "wait; orbit 30 10 5; wait"` drives
+//! the viewer through the same [`Action`]s as the mouse and keys. Steps, separated by `;` or new
+//! lines:
+//!
+//! - `wait`: until refinement has reached its last pass and the image is on screen;
+//! - `wait-load N`: until N scene loads (or failed loads) have finished since the start, the
+//!   first scene's included: `wait-load 2` waits for the watched file to be saved and reloaded;
+//! - `orbit YAW PITCH [FRAMES]`: degrees, spread over FRAMES frames like a drag (default 1);
+//! - `pan DX DY [FRAMES]`: pixels, likewise; `dolly STEPS`: wheel steps;
+//! - `fly X Y Z SECONDS`: as the W/A/S/D/Q/E keys; `frame`; `reset`;
+//! - `save`: the image and camera; `print-camera`; `open PATH` (`open` alone: the default scene);
+//! - `resize WIDTH HEIGHT`: asks for a new window size (logical pixels);
+//! - `pick X Y`: inspects image pixel (X, Y) (from the top left); `click X Y`: a left click at the
+//!   centre of that pixel, through the window's input like a mouse's; `close-inspector`;
+//!   `print-tree`: prints the ray tree panel's node headings on the terminal;
+//! - `view NAME`: shows a debug view (`shaded`, `normals`, `depth`, …).
+
+use std::collections::VecDeque;
+use std::path::PathBuf;
+
+use glam::Vec3;
+use raylab::inspect::DebugView;
+
+use super::action::Action;
+
+#[derive(Clone, Debug, PartialEq)]
+enum Step {
+    Wait,
+    /// Waits for this many scene loads to have finished.
+    WaitLoad(u64),
+    /// The same action on each of `frames` frames.
+    Repeat {
+        action: Action,
+        frames: u32,
+    },
+}
+
+/// A parsed script and how far it has run.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Script {
+    steps: VecDeque<Step>,
+}
+
+impl Script {
+    pub fn parse(text: &str) -> Result<Script, String> {
+        let steps = text
+            .split([';', '\n'])
+            .map(str::trim)
+            .filter(|s| !s.is_empty())
+            .map(|s| parse_step(s).map_err(|e| format!("script step `{s}`: {e}")))
+            .collect::<Result<_, _>>()?;
+        Ok(Script { steps })
+    }
+
+    pub fn is_done(&self) -> bool {
+        self.steps.is_empty()
+    }
+
+    /// This frame's action, if any. `idle` says whether refinement is over (and shown), which is
+    /// what `wait` waits for; `loads` counts the scene loads finished so far.
+    pub fn next(&mut self, idle: bool, loads: u64) -> Option<Action> {
+        loop {
+            match self.steps.front_mut()? {
+                Step::Wait if idle => {
+                    self.steps.pop_front();
+                }
+                Step::Wait => return None,
+                Step::WaitLoad(count) if loads >= *count => {
+                    self.steps.pop_front();
+                }
+                Step::WaitLoad(_) => return None,
+                Step::Repeat { action, frames } => {
+                    let action = action.clone();
+                    *frames -= 1;
+                    if *frames == 0 {
+                        self.steps.pop_front();
+                    }
+                    return Some(action);
+                }
+            }
+        }
+    }
+}
+
+fn parse_step(step: &str) -> Result<Step, String> {
+    let mut words = step.split_whitespace();
+    let command = words.next().unwrap_or_default();
+    let args: Vec<&str> = words.collect();
+    let numbers = || -> Result<Vec<f32>, String> {
+        args.iter()
+            .map(|a| {
+                a.parse::<f32>()
+                    .ok()
+                    .filter(|v| v.is_finite())
+                    .ok_or_else(|| format!("`{a}` is not a number"))
+            })
+            .collect()
+    };
+    let count = |n: Vec<f32>, needed: usize, optional: usize| -> Result<Vec<f32>, String> {
+        if n.len() < needed || n.len() > needed + optional {
+            Err(format!(
+                "takes {needed} number{}{}",
+                if needed == 1 { "" } else { "s" },
+                if optional > 0 {
+                    format!(" (and {optional} optional)")
+                } else {
+                    String::new()
+                }
+            ))
+        } else {
+            Ok(n)
+        }
+    };
+    let frames = |n: &[f32], at: usize| -> Result<u32, String> {
+        match n.get(at) {
+            None => Ok(1),
+            Some(&f) if (1.0..=10_000.0).contains(&f) && f.fract() == 0.0 => Ok(f as u32),
+            Some(f) => Err(format!("frames must be a whole number from 1, got {f}")),
+        }
+    };
+    let once = |action| Step::Repeat { action, frames: 1 };
+    let spread = |n: f32, frames: u32| n / frames as f32;
+    Ok(match command {
+        "wait" if args.is_empty() => Step::Wait,
+        "wait-load" => {
+            let n = count(numbers()?, 1, 0)?[0];
+            if !(n >= 1.0 && n.fract() == 0.0) {
+                return Err(format!("takes a whole number of loads from 1, got {n}"));
+            }
+            Step::WaitLoad(n as u64)
+        }
+        "frame" if args.is_empty() => once(Action::Frame),
+        "reset" if args.is_empty() => once(Action::ResetCamera),
+        "save" if args.is_empty() => once(Action::Save),
+        "print-camera" if args.is_empty() => once(Action::PrintCamera),
+        "open" => once(Action::Open(
+            (!args.is_empty()).then(|| PathBuf::from(args.join(" "))),
+        )),
+        "orbit" => {
+            let n = count(numbers()?, 2, 1)?;
+            let frames = frames(&n, 2)?;
+            Step::Repeat {
+                action: Action::Orbit {
+                    yaw: spread(n[0], frames),
+                    pitch: spread(n[1], frames),
+                },
+                frames,
+            }
+        }
+        "pan" => {
+            let n = count(numbers()?, 2, 1)?;
+            let frames = frames(&n, 2)?;
+            Step::Repeat {
+                action: Action::Pan {
+                    dx: spread(n[0], frames),
+                    dy: spread(n[1], frames),
+                },
+                frames,
+            }
+        }
+        "pick" | "click" => {
+            let n = count(numbers()?, 2, 0)?;
+            if n.iter()
+                .any(|&v| !(0.0..=65535.0).contains(&v) || v.fract() != 0.0)
+            {
+                return Err("pixel coordinates must be whole numbers from 0".into());
+            }
+            let (x, y) = (n[0] as u32, n[1] as u32);
+            once(match command {
+                "pick" => Action::PickPixel { x, y },
+                _ => Action::Click { x, y },
+            })
+        }
+        "view" if args.len() == 1 => once(Action::SetView(args[0].parse::<DebugView>()?)),
+        "view" => return Err("takes one view name".into()),
+        "close-inspector" if args.is_empty() => once(Action::CloseRayTree),
+        "print-tree" if args.is_empty() => once(Action::PrintTree),
+        "dolly" => once(Action::Dolly(count(numbers()?, 1, 0)?[0])),
+        "resize" => {
+            let n = count(numbers()?, 2, 0)?;
+            if n.iter()
+                .any(|&v| !(1.0..=16384.0).contains(&v) || v.fract() != 0.0)
+            {
+                return Err("sizes must be whole numbers from 1 to 16384".into());
+            }
+            once(Action::ResizeWindow {
+                width: n[0] as u32,
+                height: n[1] as u32,
+            })
+        }
+        "fly" => {
+            let n = count(numbers()?, 4, 0)?;
+            once(Action::Fly {
+                motion: Vec3::new(n[0], n[1], n[2]),
+                seconds: n[3],
+            })
+        }
+        "wait" | "frame" | "reset" | "save" | "print-camera" | "close-inspector" | "print-tree" => {
+            return Err("takes no arguments".into());
+        }
+        _ => {
+            return Err(
+                "unknown step (use wait, wait-load, orbit, pan, dolly, fly, frame, reset, \
+                 save, print-camera, open, resize, pick, click, close-inspector, print-tree, \
+                 view)"
+                    .into(),
+            );
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn steps_run_in_order_and_wait_for_refinement() {
+        let mut script = Script::parse("wait; orbit 30 -10 3\nframe;wait;print-camera").unwrap();
+        assert_eq!(script.next(false, 0), None, "waits while refining");
+        let orbit = Action::Orbit {
+            yaw: 10.0,
+            pitch: -10.0 / 3.0,
+        };
+        for _ in 0..3 {
+            assert_eq!(script.next(true, 0), Some(orbit.clone()));
+        }
+        assert_eq!(script.next(false, 0), Some(Action::Frame));
+        assert_eq!(script.next(false, 0), None);
+        assert!(!script.is_done());
+        assert_eq!(script.next(true, 0), Some(Action::PrintCamera));
+        assert!(script.is_done());
+        assert_eq!(script.next(true, 0), None);
+    }
+
+    #[test]
+    fn wait_load_waits_for_that_many_loads() {
+        let mut script = Script::parse("wait-load 2; frame").unwrap();
+        assert_eq!(script.next(true, 0), None);
+        assert_eq!(script.next(true, 1), None);
+        assert_eq!(script.next(false, 2), Some(Action::Frame));
+    }
+
+    #[test]
+    fn every_step_parses() {
+        let mut script = Script::parse(
+            "pan 10 -4; dolly -2; fly 0 0 1 0.5; reset; save; open a b.toml; open; resize 300 200;\
+             pick 3 0; click 0 7; print-tree; close-inspector; view bvh-cost",
+        )
+        .unwrap();
+        let all: Vec<_> = std::iter::from_fn(|| script.next(true, 0)).collect();
+        assert_eq!(
+            all,
+            vec![
+                Action::Pan { dx: 10.0, dy: -4.0 },
+                Action::Dolly(-2.0),
+                Action::Fly {
+                    motion: Vec3::Z,
+                    seconds: 0.5
+                },
+                Action::ResetCamera,
+                Action::Save,
+                Action::Open(Some(PathBuf::from("a b.toml"))),
+                Action::Open(None),
+                Action::ResizeWindow {
+                    width: 300,
+                    height: 200
+                },
+                Action::PickPixel { x: 3, y: 0 },
+                Action::Click { x: 0, y: 7 },
+                Action::PrintTree,
+                Action::CloseRayTree,
+                Action::SetView(DebugView::BvhCost),
+            ]
+        );
+    }
+
+    #[test]
+    fn bad_steps_say_what_is_wrong() {
+        for (text, expected) in [
+            ("jump", "unknown step"),
+            ("orbit 1", "takes 2 numbers"),
+            ("orbit 1 x", "`x` is not a number"),
+            ("orbit 1 2 0", "whole number"),
+            ("orbit 1 2 1.5", "whole number"),
+            ("wait 3", "takes no arguments"),
+            ("wait-load", "takes 1 number"),
+            ("wait-load 0", "whole number of loads"),
+            ("dolly nan", "not a number"),
+            ("resize 0 10", "whole numbers from 1"),
+            ("pick -1 2", "whole numbers from 0"),
+            ("click 1.5 2", "whole numbers from 0"),
+            ("pick 1", "takes 2 numbers"),
+            ("print-tree now", "takes no arguments"),
+            ("view", "takes one view name"),
+            ("view glossy", "unknown view"),
+        ] {
+            let err = Script::parse(text).unwrap_err();
+            assert!(err.contains(expected), "{text}: {err}");
+            assert!(err.contains(text), "{text}: {err}");
+        }
+        assert!(Script::parse("").unwrap().is_done());
+    }
+}

@@ -1,0 +1,94 @@
+//! What the user controls: the camera, the render settings, the lights' intensity and the debug
+//! view. The panels
+//! and the navigation edit a [`Controls`]; whenever it differs from the one being rendered, the
+//! app restarts refinement with it.
+
+use raylab::camera::{Camera, CameraSpec};
+use raylab::inspect::DebugView;
+use raylab::scene::Scene;
+use raylab::settings::RenderSettings;
+
+use crate::viewer::tracing::working_scene::TraceSetup;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Controls {
+    pub camera: CameraSpec,
+    pub settings: RenderSettings,
+    /// Multiplies the colour of every light of the scene.
+    pub light_scale: f32,
+    /// What the image shows: the shaded colour or a debug view.
+    pub view: DebugView,
+}
+
+impl Controls {
+    /// The scene's own camera and settings, lights as the file says.
+    pub fn from_scene(scene: &Scene) -> Controls {
+        Controls {
+            camera: scene.camera.spec,
+            settings: scene.settings.clone(),
+            light_scale: 1.0,
+            view: DebugView::Shaded,
+        }
+    }
+
+    /// What these controls change in the scene, if they are all valid; otherwise what is wrong.
+    /// `max_side` is the largest texture the GPU takes.
+    pub fn setup(&self, max_side: u32) -> Result<TraceSetup, String> {
+        self.settings.validate()?;
+        let (w, h) = (self.settings.width, self.settings.height);
+        if w > max_side || h > max_side {
+            return Err(format!(
+                "{w}×{h} is larger than this GPU's largest texture ({max_side} pixels a side)"
+            ));
+        }
+        if !(self.light_scale.is_finite() && self.light_scale >= 0.0) {
+            return Err(format!(
+                "light intensity must be zero or more, got {}",
+                self.light_scale
+            ));
+        }
+        Ok(TraceSetup {
+            camera: Camera::new(self.camera).map_err(|e| format!("camera: {e}"))?,
+            settings: self.settings.clone(),
+            light_scale: self.light_scale,
+            view: self.view,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+
+    fn controls() -> Controls {
+        let camera = Camera::new(CameraSpec::default()).unwrap();
+        Controls::from_scene(&Scene::new(RenderSettings::default(), camera))
+    }
+
+    #[test]
+    fn valid_controls_give_their_camera() {
+        let c = controls();
+        assert_eq!(c.setup(4096).unwrap().camera.spec, c.camera);
+    }
+
+    #[test]
+    fn bad_settings_cameras_and_sizes_are_reported() {
+        let mut c = controls();
+        c.camera.look_at = c.camera.eye;
+        assert!(c.setup(4096).unwrap_err().contains("camera"));
+        let mut c = controls();
+        c.camera.up = Vec3::ZERO;
+        assert!(c.setup(4096).is_err());
+        let mut c = controls();
+        c.settings.block_size = 3;
+        assert!(c.setup(4096).unwrap_err().contains("block_size"));
+        let mut c = controls();
+        c.settings.width = 5000;
+        assert!(c.setup(4096).unwrap_err().contains("largest texture"));
+        let mut c = controls();
+        c.light_scale = f32::NAN;
+        assert!(c.setup(4096).is_err());
+    }
+}

@@ -1,0 +1,279 @@
+//! The scene being shown: loading scene files (or the built-in scene) in the background, watching
+//! the file for changes, and the controls (camera, settings, lights, view) the user edits. Where
+//! the scene stands is one [`SceneState`]: loading, failed or loaded.
+
+pub mod controls;
+pub mod source;
+pub mod watch;
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use raylab::inspect::DebugView;
+use raylab::scene::Scene;
+use winit::event_loop::EventLoopProxy;
+
+use self::controls::Controls;
+use self::source::LoadedScene;
+use self::watch::SceneWatcher;
+use crate::viewer::app::UserEvent;
+
+/// The command line's overrides of a scene's settings. A size or a view the user picks later
+/// replaces them, so that it stays for the next scenes.
+pub struct Overrides {
+    pub size: Option<(u32, u32)>,
+    pub block_size: Option<u32>,
+    pub max_depth: Option<u32>,
+    pub samples: Option<u32>,
+    pub view: DebugView,
+}
+
+impl Overrides {
+    /// The scene's controls with these overrides.
+    fn controls_for(&self, scene: &Scene) -> Controls {
+        let mut c = Controls::from_scene(scene);
+        if let Some((w, h)) = self.size {
+            (c.settings.width, c.settings.height) = (w, h);
+        }
+        c.settings.block_size = self.block_size.unwrap_or(c.settings.block_size);
+        c.settings.max_depth = self.max_depth.unwrap_or(c.settings.max_depth);
+        c.settings.samples = self.samples.unwrap_or(c.settings.samples);
+        c.view = self.view;
+        c
+    }
+}
+
+/// A loaded scene and the user's controls over it.
+pub struct Shown {
+    pub scene: Arc<LoadedScene>,
+    /// What the user controls: the file's camera and settings with the overrides, then edited.
+    pub controls: Controls,
+    /// The controls as the scene file gives them (no overrides), to tell which a reloaded file
+    /// changed.
+    pub file_controls: Controls,
+}
+
+/// Where the scene stands.
+pub enum SceneState {
+    /// The first scene is loading: nothing to show yet.
+    Loading,
+    /// The last load failed (`file:line:column: message`); the last good scene, if there is one,
+    /// stays on screen.
+    Failed {
+        error: String,
+        last_good: Option<Shown>,
+    },
+    /// A scene is shown.
+    Loaded(Shown),
+}
+
+/// The shown scene as the side panel sees it.
+pub struct SceneInfo<'a> {
+    pub scene: &'a LoadedScene,
+    /// Why the last load failed, if it did.
+    pub load_error: Option<&'a str>,
+    /// The scene files beside the one asked for.
+    pub files_beside: &'a [PathBuf],
+}
+
+/// The scene, the loads that bring it and the file watched for changes.
+pub struct SceneSlot {
+    state: SceneState,
+    overrides: Overrides,
+    /// The scene file asked for last (watched even while it fails to load); `None` for the
+    /// built-in default scene.
+    requested: Option<PathBuf>,
+    /// The scene files beside the requested one, for quick switching.
+    files_beside: Vec<PathBuf>,
+    watcher: Option<SceneWatcher>,
+    /// The number of the latest load; the results of older ones are dropped.
+    generation: u64,
+    /// A load is under way.
+    loading: bool,
+    /// Scene loads finished (well or not), for the script's `wait-load`.
+    loads: u64,
+    /// Where the loader and the watcher send their news.
+    proxy: EventLoopProxy<UserEvent>,
+}
+
+impl SceneSlot {
+    /// Nothing loaded yet; `first` is the scene to load first (the default scene for `None`).
+    pub fn new(
+        first: Option<PathBuf>,
+        overrides: Overrides,
+        proxy: EventLoopProxy<UserEvent>,
+    ) -> SceneSlot {
+        SceneSlot {
+            state: SceneState::Loading,
+            overrides,
+            requested: first,
+            files_beside: Vec::new(),
+            watcher: None,
+            generation: 0,
+            loading: false,
+            loads: 0,
+            proxy,
+        }
+    }
+
+    /// The scene file asked for last (`None`: the default scene).
+    pub fn requested(&self) -> Option<PathBuf> {
+        self.requested.clone()
+    }
+
+    /// Starts loading `path` (the default scene for `None`) and watches it. The error says why
+    /// the file is not watched; the load goes ahead anyway.
+    pub fn start_load(&mut self, path: Option<PathBuf>) -> Result<(), String> {
+        self.generation += 1;
+        self.loading = true;
+        let mut watch_error = Ok(());
+        if self.requested != path || (path.is_some() && self.watcher.is_none()) {
+            // Only files are watched (not `spd:` names).
+            self.watcher = path.as_deref().filter(|p| p.is_file()).and_then(|p| {
+                let proxy = self.proxy.clone();
+                SceneWatcher::new(p, move || {
+                    let _ = proxy.send_event(UserEvent::SceneFileChanged);
+                })
+                .map_err(|e| watch_error = Err(e))
+                .ok()
+            });
+        }
+        self.requested = path.clone();
+        self.files_beside = source::scene_files_beside(path.as_deref());
+        let (proxy, generation) = (self.proxy.clone(), self.generation);
+        source::spawn_load(path, move |result| {
+            let result = result.map(Box::new);
+            let _ = proxy.send_event(UserEvent::Loaded { generation, result });
+        });
+        watch_error
+    }
+
+    /// Whether a load's result is of the latest load (older ones are dropped).
+    pub fn is_latest(&self, generation: u64) -> bool {
+        generation == self.generation
+    }
+
+    /// Takes the latest load's result: the new scene is shown, or the error kept beside the last
+    /// good scene. A reload of the same file keeps the user's camera and settings unless the
+    /// file itself changed them.
+    pub fn finish_load(
+        &mut self,
+        result: Result<Box<LoadedScene>, String>,
+    ) -> Result<Arc<LoadedScene>, String> {
+        self.loading = false;
+        self.loads += 1;
+        let last_good = match std::mem::replace(&mut self.state, SceneState::Loading) {
+            SceneState::Loading => None,
+            SceneState::Failed { last_good, .. } => last_good,
+            SceneState::Loaded(shown) => Some(shown),
+        };
+        let loaded = match result {
+            Ok(loaded) => loaded,
+            Err(error) => {
+                self.state = SceneState::Failed {
+                    error: error.clone(),
+                    last_good,
+                };
+                return Err(error);
+            }
+        };
+        // The file's own controls, to tell on the next reload what the file changed.
+        let file_controls = Controls::from_scene(&loaded.scene);
+        let with_overrides = self.overrides.controls_for(&loaded.scene);
+        let controls = match last_good {
+            Some(old) if old.scene.path == loaded.path => {
+                let mut controls = old.controls;
+                if old.file_controls.camera != file_controls.camera {
+                    controls.camera = file_controls.camera;
+                }
+                if old.file_controls.settings != file_controls.settings {
+                    controls.settings = with_overrides.settings;
+                }
+                controls
+            }
+            _ => with_overrides,
+        };
+        let scene: Arc<LoadedScene> = Arc::from(loaded);
+        self.state = SceneState::Loaded(Shown {
+            scene: scene.clone(),
+            controls,
+            file_controls,
+        });
+        Ok(scene)
+    }
+
+    /// The scene on screen (the last good one after a failed load), if any.
+    pub fn shown(&self) -> Option<&Shown> {
+        match &self.state {
+            SceneState::Loaded(shown)
+            | SceneState::Failed {
+                last_good: Some(shown),
+                ..
+            } => Some(shown),
+            _ => None,
+        }
+    }
+
+    pub fn shown_mut(&mut self) -> Option<&mut Shown> {
+        match &mut self.state {
+            SceneState::Loaded(shown)
+            | SceneState::Failed {
+                last_good: Some(shown),
+                ..
+            } => Some(shown),
+            _ => None,
+        }
+    }
+
+    /// Why the last load failed, if it did.
+    pub fn load_error(&self) -> Option<&str> {
+        match &self.state {
+            SceneState::Failed { error, .. } => Some(error),
+            _ => None,
+        }
+    }
+
+    /// What the side panel shows of the scene, and the controls it edits; `None` while no scene
+    /// is shown.
+    pub fn for_panel(&mut self) -> Option<(SceneInfo<'_>, &mut Controls)> {
+        let (shown, load_error) = match &mut self.state {
+            SceneState::Loaded(shown) => (shown, None),
+            SceneState::Failed {
+                error,
+                last_good: Some(shown),
+            } => (shown, Some(error.as_str())),
+            _ => return None,
+        };
+        let info = SceneInfo {
+            scene: &shown.scene,
+            load_error,
+            files_beside: &self.files_beside,
+        };
+        Some((info, &mut shown.controls))
+    }
+
+    /// A load is under way.
+    pub fn loading(&self) -> bool {
+        self.loading
+    }
+
+    /// Scene loads finished so far, well or not.
+    pub fn loads(&self) -> u64 {
+        self.loads
+    }
+
+    /// The shown controls are being rendered: a size the user chose, and the view, stay for the
+    /// next scenes.
+    pub fn keep_choices(&mut self) {
+        let Some(shown) = self.shown() else { return };
+        let settings = &shown.controls.settings;
+        let size = (settings.width, settings.height);
+        let file = &shown.file_controls.settings;
+        let size_chosen = (file.width, file.height) != size;
+        let view = shown.controls.view;
+        if self.overrides.size.is_some() || size_chosen {
+            self.overrides.size = Some(size);
+        }
+        self.overrides.view = view;
+    }
+}

@@ -1,0 +1,140 @@
+//! Where the viewer's scenes come from: a scene file or the built-in default scene, read and given
+//! its BVH on a background thread so the window never waits, and the scene files beside the
+//! current one for quick switching.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use raylab::aabb::Aabb;
+use raylab::bvh::Bvh;
+use raylab::formats::load_any;
+use raylab::formats::toml::{default_scene, load_scene};
+use raylab::scene::Scene;
+
+/// A scene ready to trace, with where it came from.
+pub struct LoadedScene {
+    pub scene: Scene,
+    pub bvh: Bvh,
+    /// The scene file; `None` for the built-in default scene.
+    pub path: Option<PathBuf>,
+    /// Bounds of everything bounded (planes are not), for framing and flying speed.
+    pub bounds: Aabb,
+    /// Time to read the file and build the BVH.
+    pub load_time: Duration,
+}
+
+impl LoadedScene {
+    /// A name for the window title and messages.
+    pub fn name(&self) -> String {
+        match &self.path {
+            Some(path) => path.display().to_string(),
+            None => "built-in default scene".to_string(),
+        }
+    }
+}
+
+/// Reads the scene at `path` (a TOML or NFF file, or an `spd:NAME[:SIZE]` name; the default
+/// scene for `None`) and builds its BVH. The error is the loader's message
+/// (`file:line:column: message`).
+pub fn load(path: Option<&Path>) -> Result<LoadedScene, String> {
+    let start = Instant::now();
+    let scene = match path {
+        Some(path) => match path.to_str() {
+            Some(name) => load_any(name),
+            None => load_scene(path),
+        },
+        None => default_scene(),
+    }
+    .map_err(|e| e.to_string())?;
+    let bvh = Bvh::build(&scene.geometry);
+    let bounds = bvh.bounds().unwrap_or(Aabb::EMPTY);
+    Ok(LoadedScene {
+        scene,
+        bvh,
+        path: path.map(Path::to_path_buf),
+        bounds,
+        load_time: start.elapsed(),
+    })
+}
+
+/// Loads on a new thread and hands the result to `done` there.
+pub fn spawn_load(
+    path: Option<PathBuf>,
+    done: impl FnOnce(Result<LoadedScene, String>) + Send + 'static,
+) {
+    let spawned = std::thread::Builder::new()
+        .name("scene loader".into())
+        .spawn(move || done(load(path.as_deref())));
+    if let Err(e) = spawned {
+        eprintln!("error: cannot start the scene loader thread: {e}");
+    }
+}
+
+/// The scene files (`*.toml` and `*.nff`, sorted by name) in the folder of `path`; for the
+/// built-in scene (`None`), those in `assets/scenes` under the current folder, if there is one.
+pub fn scene_files_beside(path: Option<&Path>) -> Vec<PathBuf> {
+    let folder = match path {
+        Some(p) => p.parent().map(Path::to_path_buf).unwrap_or_default(),
+        None => PathBuf::from("assets/scenes"),
+    };
+    let folder = if folder.as_os_str().is_empty() {
+        PathBuf::from(".")
+    } else {
+        folder
+    };
+    let Ok(entries) = std::fs::read_dir(&folder) else {
+        return Vec::new();
+    };
+    let mut files: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            let ext = p
+                .extension()
+                .and_then(|x| x.to_str())
+                .map(str::to_ascii_lowercase);
+            p.is_file() && matches!(ext.as_deref(), Some("toml" | "nff"))
+        })
+        .filter(|p| p.file_name().is_some_and(|n| n != "Cargo.toml"))
+        .collect();
+    files.sort();
+    files
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_scene_loads_with_finite_bounds() {
+        let loaded = load(None).unwrap();
+        assert!(loaded.path.is_none());
+        assert!(loaded.bounds.min.is_finite() && loaded.bounds.max.is_finite());
+        assert!(!loaded.scene.lights.is_empty());
+    }
+
+    #[test]
+    fn spd_names_load_too() {
+        let loaded = load(Some(Path::new("spd:balls:1"))).unwrap();
+        assert!(!loaded.scene.geometry.objects.is_empty());
+    }
+
+    #[test]
+    fn a_missing_file_is_an_error_naming_it() {
+        let err = load(Some(Path::new("/no/such/scene.toml"))).err().unwrap();
+        assert!(err.contains("/no/such/scene.toml"), "{err}");
+    }
+
+    #[test]
+    fn scene_files_are_listed_sorted_without_other_files() {
+        let dir = tempfile::tempdir().unwrap();
+        for name in ["b.toml", "a.toml", "notes.txt", "Cargo.toml", "c.NFF"] {
+            std::fs::write(dir.path().join(name), "").unwrap();
+        }
+        let files = scene_files_beside(Some(&dir.path().join("a.toml")));
+        let names: Vec<_> = files
+            .iter()
+            .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(names, ["a.toml", "b.toml", "c.NFF"]);
+    }
+}

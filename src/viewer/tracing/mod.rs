@@ -1,0 +1,163 @@
+//! The tracing behind the window: the render worker refining the image, the render in progress,
+//! the scene copies the tracing threads keep, and the picked pixel whose ray tree is traced on
+//! its own thread. [`Tracing`] keeps both in step with the shown scene and its controls.
+
+pub mod picked_pixel;
+pub mod ray_tree_thread;
+pub mod rendering;
+pub mod worker;
+pub mod working_scene;
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use raylab::film::Film;
+use raylab::progressive::{Progress, RenderControl};
+
+use self::picked_pixel::PickedPixel;
+use self::rendering::Rendering;
+use self::worker::{Job, JobReport, Outcome, Worker};
+use crate::viewer::frame::timing::Timing;
+use crate::viewer::scene::Shown;
+use crate::viewer::ui::status::{RenderStatus, status_line};
+
+/// The render and the picked pixel, each on its own threads.
+pub struct Tracing {
+    worker: Worker,
+    /// The render in progress (or the last one), once a scene is shown.
+    pub rendering: Option<Rendering>,
+    /// The pixel whose ray tree is shown.
+    pub picked: PickedPixel,
+    /// Why the controls cannot be rendered as they are.
+    pub control_error: Option<String>,
+}
+
+impl Tracing {
+    /// Starts the render worker and the ray tree thread (each with `threads` tracing threads,
+    /// 0: one per core); `wake` tells the window a ray tree has come.
+    pub fn start(threads: usize, wake: impl Fn() + Send + 'static) -> Result<Tracing, String> {
+        let worker = Worker::start(threads)?;
+        let picked = PickedPixel::start(threads, wake)?;
+        Ok(Tracing {
+            worker,
+            rendering: None,
+            picked,
+            control_error: None,
+        })
+    }
+
+    /// Restarts refinement if the scene or the controls differ from what is being rendered
+    /// (`max_side`: the largest image side the GPU takes). Returns whether it restarted with
+    /// them.
+    pub fn sync_render(&mut self, shown: &Shown, max_side: u32, changed_at: Instant) -> bool {
+        if self.rendering.as_ref().is_some_and(|r| r.renders(shown)) {
+            return false;
+        }
+        let setup = match shown.controls.setup(max_side) {
+            Ok(setup) => setup,
+            Err(e) => {
+                self.control_error = Some(e);
+                return false;
+            }
+        };
+        self.control_error = None;
+        let (width, height) = (setup.settings.width, setup.settings.height);
+        let film = match &self.rendering {
+            // The film is reused at the same size: the new render's first pass paints over
+            // every pixel, and until then the old image stays on screen.
+            Some(r) if (r.film.width(), r.film.height()) == (width, height) => r.film.clone(),
+            _ => Arc::new(Film::new(width, height)),
+        };
+        if let Some(old) = &self.rendering {
+            old.control.cancel();
+        }
+        let control = Arc::new(RenderControl::default());
+        let report = Arc::new(JobReport::new());
+        let job = Job {
+            scene: shown.scene.clone(),
+            setup,
+            film: film.clone(),
+            control: control.clone(),
+            report: report.clone(),
+        };
+        if let Err(e) = self.worker.submit(job) {
+            self.control_error = Some(e);
+        }
+        self.rendering = Some(Rendering {
+            scene: shown.scene.clone(),
+            controls: shown.controls.clone(),
+            film,
+            control,
+            report,
+            changed_at,
+            first_image_shown: false,
+            block_one_shown: false,
+            settled: false,
+        });
+        true
+    }
+
+    /// Keeps the picked pixel on the shown scene and controls; the error says why the pick was
+    /// dropped.
+    pub fn sync_picked_pixel(&mut self, shown: &Shown, max_side: u32) -> Result<(), String> {
+        let setup = shown.controls.setup(max_side).ok();
+        self.picked.sync(&shown.scene, &shown.controls, setup)
+    }
+
+    /// Refinement is under way: more passes will reach the screen.
+    pub fn refining(&self) -> bool {
+        self.rendering.as_ref().is_some_and(|r| !r.settled)
+    }
+
+    /// Refinement of `shown` is over and on screen (controls that cannot be rendered leave the
+    /// last render as the final one).
+    pub fn settled_on(&self, shown: Option<&Shown>) -> bool {
+        match (&self.rendering, shown) {
+            (Some(r), Some(shown)) => {
+                r.settled && (r.renders(shown) || self.control_error.is_some())
+            }
+            _ => false,
+        }
+    }
+
+    /// Notes what a frame just put on screen: the film as it was at `uploaded`, if it was read.
+    pub fn on_screen(&mut self, uploaded: Option<Progress>, timing: &mut Timing) {
+        if let (Some(r), Some(progress)) = (&mut self.rendering, uploaded) {
+            r.reached_screen(progress, timing);
+            if matches!(r.report.outcome(), Some(Outcome::Failed(_))) {
+                r.settled = true;
+            }
+        }
+    }
+
+    /// Stops the render (the viewer is closing).
+    pub fn cancel(&self) {
+        if let Some(r) = &self.rendering {
+            r.control.cancel();
+        }
+    }
+
+    /// The status line: the render's pass, progress and speed (`fps`: the window's frame rate),
+    /// its error, or that a scene is `loading`.
+    pub fn status(&self, loading: bool, fps: f32) -> String {
+        let Some(r) = &self.rendering else {
+            return if loading { "loading…" } else { "no scene" }.to_string();
+        };
+        let outcome = r.report.outcome();
+        if let Some(Outcome::Failed(e)) = &outcome {
+            return e.clone();
+        }
+        let pass_times: Vec<_> = r.report.passes().iter().map(|p| p.time).collect();
+        let elapsed = match outcome {
+            Some(_) if !pass_times.is_empty() => pass_times.iter().sum(),
+            _ => r.report.started.elapsed(),
+        };
+        status_line(&RenderStatus {
+            progress: r.control.progress(),
+            pass_times,
+            rays: r.control.rays(),
+            elapsed,
+            fps,
+        })
+    }
+}

@@ -1,0 +1,271 @@
+//! The picked pixel: the pixel whose ray tree is shown, that tree and, once a node is hovered,
+//! the object seen at every pixel (to highlight that object), on the scene as the controls show
+//! it. They are traced on the ray tree thread ([`super::ray_tree_thread`]): the window never
+//! waits, it asks and takes the answers when they arrive; a camera or scene change keeps the
+//! pixel and traces it again.
+
+use std::sync::Arc;
+use std::time::Duration;
+
+use super::ray_tree_thread::{Answer, ObjectIds, RayTreeThread, Request, TracedTree};
+use super::working_scene::TraceSetup;
+use crate::viewer::scene::controls::Controls;
+use crate::viewer::scene::source::LoadedScene;
+
+/// The picked pixel and what is known of it.
+pub struct PickedPixel {
+    pub pixel: Option<(u32, u32)>,
+    /// The newest tree (it may be of the previous camera while the new one is traced).
+    pub tree: Option<TracedTree>,
+    pub error: Option<String>,
+    /// The object ids of the current view, once asked for and traced.
+    pub object_ids: Option<ObjectIds>,
+    /// Draw the tree over the image.
+    pub show_overlay: bool,
+    /// The object whose node the cursor is over, this frame.
+    pub hovered: Option<u32>,
+    /// What `key` stands for: the scene and controls the pixel was last traced with.
+    traced_for: Option<(Arc<LoadedScene>, Controls, (u32, u32))>,
+    setup: Option<TraceSetup>,
+    key: u64,
+    tree_key: u64,
+    ids_key: Option<u64>,
+    ids_asked: Option<u64>,
+    thread: RayTreeThread,
+}
+
+impl PickedPixel {
+    /// Starts the thread (with `threads` threads for the object ids, 0: one per core);
+    /// `wake` tells the window an answer has come.
+    pub fn start(threads: usize, wake: impl Fn() + Send + 'static) -> Result<PickedPixel, String> {
+        let thread = RayTreeThread::start(threads, wake)?;
+        Ok(PickedPixel {
+            pixel: None,
+            tree: None,
+            error: None,
+            object_ids: None,
+            show_overlay: true,
+            hovered: None,
+            traced_for: None,
+            setup: None,
+            key: 0,
+            tree_key: 0,
+            ids_key: None,
+            ids_asked: None,
+            thread,
+        })
+    }
+
+    /// Inspects `pixel` from now on.
+    pub fn pick(&mut self, pixel: (u32, u32)) {
+        self.pixel = Some(pixel);
+    }
+
+    pub fn close(&mut self) {
+        self.pixel = None;
+        self.tree = None;
+        self.error = None;
+        self.traced_for = None;
+    }
+
+    /// Takes the answers that came (at the start of a frame, so that the frame shows them);
+    /// returns how long each took, in words.
+    pub fn receive(&mut self) -> Vec<String> {
+        let mut times = Vec::new();
+        while let Some(answer) = self.thread.answer() {
+            times.extend(self.take(answer));
+        }
+        times
+    }
+
+    /// Traces the pixel again if the scene, the controls or the pixel changed. `setup` is what
+    /// `controls` change in the scene, if they are valid. The error says why the pick was
+    /// dropped.
+    pub fn sync(
+        &mut self,
+        scene: &Arc<LoadedScene>,
+        controls: &Controls,
+        setup: Option<TraceSetup>,
+    ) -> Result<(), String> {
+        let (Some(pixel), Some(setup)) = (self.pixel, setup) else {
+            return Ok(());
+        };
+        let current = self
+            .traced_for
+            .as_ref()
+            .is_some_and(|(s, c, p)| Arc::ptr_eq(s, scene) && c == controls && *p == pixel);
+        if current {
+            return Ok(());
+        }
+        let (width, height) = (setup.settings.width, setup.settings.height);
+        if pixel.0 >= width || pixel.1 >= height {
+            self.close();
+            return Err(format!(
+                "cannot inspect pixel ({}, {}): it is outside the {width}×{height} image",
+                pixel.0, pixel.1
+            ));
+        }
+        // Another pixel of the same view keeps the view's object ids.
+        let same_view = self
+            .traced_for
+            .as_ref()
+            .is_some_and(|(s, c, _)| Arc::ptr_eq(s, scene) && c == controls);
+        let ids_current = self.ids_key == Some(self.key);
+        self.key += 1;
+        if same_view && ids_current {
+            self.ids_key = Some(self.key);
+            if let Some(ids) = &mut self.object_ids {
+                ids.key = self.key;
+            }
+        }
+        self.traced_for = Some((scene.clone(), controls.clone(), pixel));
+        self.setup = Some(setup);
+        self.send(false);
+        Ok(())
+    }
+
+    /// Asks for the object ids of the current view, unless they are known or coming.
+    pub fn want_object_ids(&mut self) {
+        if self.ids_key != Some(self.key) && self.ids_asked != Some(self.key) {
+            self.ids_asked = Some(self.key);
+            self.send(true);
+        }
+    }
+
+    /// The object ids, if they are of the current view.
+    pub fn current_object_ids(&self) -> Option<&ObjectIds> {
+        self.object_ids
+            .as_ref()
+            .filter(|_| self.ids_key == Some(self.key))
+    }
+
+    /// A tree is being traced (or is yet to be asked for) for the current pick.
+    pub fn busy(&self) -> bool {
+        let asked = self.traced_for.as_ref().map(|(_, _, pixel)| *pixel);
+        self.pixel.is_some() && (self.tree_key != self.key || asked != self.pixel)
+    }
+
+    fn send(&mut self, object_ids: bool) {
+        let (Some((scene, _, pixel)), Some(setup)) = (&self.traced_for, &self.setup) else {
+            return;
+        };
+        let request = Request {
+            key: self.key,
+            scene: scene.clone(),
+            setup: setup.clone(),
+            pixel: *pixel,
+            object_ids,
+        };
+        if let Err(e) = self.thread.ask(request) {
+            self.error = Some(e);
+        }
+    }
+
+    fn take(&mut self, answer: Answer) -> Option<String> {
+        let ms = |t: Duration| t.as_secs_f64() * 1e3;
+        match answer {
+            Answer::Tree(key, result) if key == self.key && self.pixel.is_some() => {
+                self.tree_key = key;
+                match result {
+                    Ok(traced) => {
+                        let (x, y) = traced.tree.pixel;
+                        let time = format!(
+                            "ray tree of pixel ({x}, {y}): {} rays in {:.3} ms",
+                            traced.tree.nodes.len(),
+                            ms(traced.time)
+                        );
+                        self.tree = Some(traced);
+                        self.error = None;
+                        return Some(time);
+                    }
+                    Err(e) => {
+                        self.tree = None;
+                        self.error = Some(e);
+                    }
+                }
+            }
+            Answer::Ids(key, Ok(ids)) if key == self.key => {
+                let (w, h) = ids.size;
+                let time = format!("object ids of the {w}×{h} image in {:.1} ms", ms(ids.time));
+                self.ids_key = Some(key);
+                self.object_ids = Some(ids);
+                return Some(time);
+            }
+            Answer::Ids(_, Err(e)) => self.error = Some(e),
+            _ => {}
+        }
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::time::Instant;
+
+    use glam::Vec3;
+    use raylab::inspect;
+    use raylab::whitted::Tracer;
+
+    use super::*;
+    use crate::viewer::scene::source;
+
+    /// Syncs until the ray tree thread has answered.
+    fn settle(picked: &mut PickedPixel, scene: &Arc<LoadedScene>, controls: &Controls) {
+        let start = Instant::now();
+        loop {
+            picked.receive();
+            picked
+                .sync(scene, controls, controls.setup(4096).ok())
+                .unwrap();
+            if !picked.busy() {
+                return;
+            }
+            assert!(start.elapsed() < Duration::from_secs(60), "no answer");
+            std::thread::sleep(Duration::from_millis(1));
+        }
+    }
+
+    #[test]
+    fn a_pick_is_traced_again_when_the_camera_moves_and_dropped_outside_the_image() {
+        let scene = Arc::new(source::load(None).unwrap());
+        let mut controls = Controls::from_scene(&scene.scene);
+        (controls.settings.width, controls.settings.height) = (32, 32);
+        let mut picked = PickedPixel::start(1, || {}).unwrap();
+        picked.pick((5, 7));
+        for eye_shift in [Vec3::ZERO, Vec3::X] {
+            controls.camera.eye += eye_shift;
+            settle(&mut picked, &scene, &controls);
+            let traced = picked.tree.as_ref().expect("a tree");
+            assert_eq!(traced.camera.spec, controls.camera);
+            // The same tree as the library's for that pixel of that view.
+            let mut expected = scene.scene.clone();
+            expected.settings = controls.settings.clone();
+            expected.camera = traced.camera;
+            let tracer = Tracer::new(&expected, &scene.bvh);
+            assert_eq!(traced.tree, inspect::trace_ray_tree(&tracer, 5, 7));
+        }
+        picked.want_object_ids();
+        let start = Instant::now();
+        while picked.current_object_ids().is_none() {
+            settle(&mut picked, &scene, &controls);
+            std::thread::sleep(Duration::from_millis(1));
+            assert!(start.elapsed() < Duration::from_secs(60), "no ids");
+        }
+        let ids = picked.current_object_ids().unwrap();
+        assert_eq!(ids.ids.len(), 32 * 32);
+        let eye_ray = &picked.tree.as_ref().unwrap().tree.nodes[0];
+        let seen = eye_ray.hit.as_ref().map_or(u32::MAX, |h| h.object);
+        assert_eq!(ids.ids[7 * 32 + 5], seen);
+        // Another pixel of the same view keeps the ids; another view needs its own.
+        picked.pick((6, 7));
+        settle(&mut picked, &scene, &controls);
+        assert!(picked.current_object_ids().is_some());
+        controls.camera.eye += Vec3::Y;
+        settle(&mut picked, &scene, &controls);
+        assert!(picked.current_object_ids().is_none());
+        controls.settings.width = 4;
+        let dropped = picked.sync(&scene, &controls, controls.setup(4096).ok());
+        assert!(dropped.unwrap_err().contains("outside the 4×32 image"));
+        assert_eq!(picked.pixel, None);
+    }
+}

@@ -1,0 +1,58 @@
+//! The render in progress: the scene and controls it renders, its film and report, and what of
+//! it has reached the screen.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use raylab::film::Film;
+use raylab::progressive::{Progress, RenderControl};
+
+use super::worker::JobReport;
+use crate::viewer::frame::timing::Timing;
+use crate::viewer::scene::Shown;
+use crate::viewer::scene::controls::Controls;
+use crate::viewer::scene::source::LoadedScene;
+
+/// The render in progress (or the last one), and what of it has reached the screen.
+pub struct Rendering {
+    pub scene: Arc<LoadedScene>,
+    pub controls: Controls,
+    pub film: Arc<Film>,
+    pub control: Arc<RenderControl>,
+    pub report: Arc<JobReport>,
+    /// When the change that started it was made.
+    pub changed_at: Instant,
+    pub first_image_shown: bool,
+    pub block_one_shown: bool,
+    /// The last pass is on screen (or the render failed): nothing more will come.
+    pub settled: bool,
+}
+
+impl Rendering {
+    /// Whether this renders `shown`'s scene with its controls as they are.
+    pub fn renders(&self, shown: &Shown) -> bool {
+        Arc::ptr_eq(&self.scene, &shown.scene) && self.controls == shown.controls
+    }
+
+    /// Number of block passes (the block size 1 pass is the last of them).
+    fn block_passes(&self) -> u32 {
+        self.controls.settings.block_size.max(1).ilog2() + 1
+    }
+
+    /// Notes what a frame just put on screen: the film as it was at `progress`.
+    pub fn reached_screen(&mut self, progress: Progress, timing: &mut Timing) {
+        let after = self.changed_at.elapsed();
+        if !self.first_image_shown && (progress.pass >= 1 || progress.finished) {
+            self.first_image_shown = true;
+            timing.first_image(after, self.controls.settings.block_size);
+        }
+        if !self.block_one_shown && (progress.pass >= self.block_passes() || progress.finished) {
+            self.block_one_shown = true;
+            let s = &self.controls.settings;
+            timing.block_one(after, (s.width, s.height));
+        }
+        if progress.finished {
+            self.settled = true;
+        }
+    }
+}

@@ -1,0 +1,56 @@
+//! The scene as the controls show it: a copy of a loaded scene given the controls' camera,
+//! settings, light intensity and debug view. The threads that trace (the render worker, the ray
+//! tree thread) each keep one, copied once per loaded scene and updated in place for each job, so
+//! that moving the camera copies no geometry.
+
+use std::sync::Arc;
+
+use raylab::camera::Camera;
+use raylab::inspect::DebugView;
+use raylab::scene::Scene;
+use raylab::settings::RenderSettings;
+use raylab::whitted::Tracer;
+
+use crate::viewer::scene::source::LoadedScene;
+
+/// What the controls change in a scene before it is traced.
+#[derive(Clone, Debug)]
+pub struct TraceSetup {
+    pub camera: Camera,
+    pub settings: RenderSettings,
+    /// Multiplies the colour of every light of the scene.
+    pub light_scale: f32,
+    /// What the image shows.
+    pub view: DebugView,
+}
+
+/// A thread's copy of the scene it traces.
+#[derive(Default)]
+pub struct WorkingScene {
+    copy: Option<(Arc<LoadedScene>, Scene)>,
+}
+
+impl WorkingScene {
+    /// A tracer for `loaded` as `setup` shows it.
+    pub fn tracer<'a>(&'a mut self, loaded: &Arc<LoadedScene>, setup: &TraceSetup) -> Tracer<'a> {
+        if !self
+            .copy
+            .as_ref()
+            .is_some_and(|(copied, _)| Arc::ptr_eq(copied, loaded))
+        {
+            self.copy = None;
+        }
+        let (loaded, scene) = self
+            .copy
+            .get_or_insert_with(|| (loaded.clone(), loaded.scene.clone()));
+        scene.camera = setup.camera;
+        scene.settings = setup.settings.clone();
+        scene.lights = loaded
+            .scene
+            .lights
+            .iter()
+            .map(|l| l.scaled(setup.light_scale))
+            .collect();
+        Tracer::new(scene, &loaded.bvh)
+    }
+}

@@ -1,0 +1,103 @@
+//! What the user sees besides the image (egui): the side panel, the status line, the ray tree
+//! panel, the overlay drawn over the image, the legend's colour bar, colour swatches, and where
+//! the image sits in the window.
+
+pub mod layout;
+pub mod legend_bar;
+pub mod overlay;
+pub mod panels;
+pub mod ray_tree_panel;
+pub mod status;
+pub mod swatch;
+
+use self::layout::{PixelRect, letterbox};
+use self::overlay::Overlay;
+use self::panels::PanelState;
+use crate::viewer::input::action::Action;
+use crate::viewer::input::mouse_and_keys::{self, ImageArea};
+use crate::viewer::scene::SceneSlot;
+use crate::viewer::tracing::Tracing;
+
+/// The egui side of the window: its context, the panel's own state and the overlay's texture.
+pub struct Ui {
+    pub egui: egui::Context,
+    pub panel: PanelState,
+    overlay: Overlay,
+    /// The window's size when it opens, in logical pixels.
+    pub window_size: (u32, u32),
+}
+
+impl Ui {
+    pub fn new(panel: PanelState, window_size: (u32, u32)) -> Ui {
+        Ui {
+            egui: egui::Context::default(),
+            panel,
+            overlay: Overlay::default(),
+            window_size,
+        }
+    }
+
+    /// Lays out one frame: the status line, the side panel, the ray tree panel and the image
+    /// area with the overlay over it. `seconds` is the frame's length, for flying. Returns the
+    /// actions of the frame's input and where the image goes (physical pixels).
+    pub fn show(
+        &mut self,
+        ui: &mut egui::Ui,
+        scene: &mut SceneSlot,
+        tracing: &mut Tracing,
+        status: &str,
+        seconds: f32,
+    ) -> (Vec<Action>, PixelRect) {
+        let mut actions = Vec::new();
+        panels::status_bar(ui, status, tracing.control_error.as_deref());
+        let legend = tracing.rendering.as_ref().and_then(|r| r.report.legend());
+        if let Some((info, controls)) = scene.for_panel() {
+            actions.extend(panels::side_panel(
+                ui,
+                controls,
+                &info,
+                &mut self.panel,
+                legend.as_ref(),
+            ));
+        }
+        let picked = &mut tracing.picked;
+        actions.extend(ray_tree_panel::show(ui, picked));
+        if picked.hovered.is_some() {
+            picked.want_object_ids();
+        }
+        let ppp = ui.ctx().pixels_per_point();
+        let image_size = tracing
+            .rendering
+            .as_ref()
+            .map_or((0, 0), |r| (r.film.width(), r.film.height()));
+        let far = scene.shown().map_or(1.0, |s| overlay::far(s.scene.bounds));
+        let mut shown = PixelRect::ZERO;
+        egui::CentralPanel::no_frame().show(ui, |ui| {
+            let rect = ui.available_rect_before_wrap();
+            let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
+            let area = PixelRect {
+                x: rect.min.x * ppp,
+                y: rect.min.y * ppp,
+                width: rect.width() * ppp,
+                height: rect.height() * ppp,
+            };
+            shown = letterbox(area, image_size.0, image_size.1);
+            let image = egui::Rect::from_min_size(
+                egui::pos2(shown.x / ppp, shown.y / ppp),
+                egui::vec2(shown.width / ppp, shown.height / ppp),
+            );
+            self.overlay.paint(ui, picked, image, image_size, far);
+            if tracing.rendering.is_none() {
+                let text = scene.load_error().unwrap_or("loading the scene…");
+                ui.put(rect, egui::Label::new(text));
+            }
+            let area = ImageArea {
+                shown,
+                pixels_per_point: ppp,
+                image_size,
+            };
+            actions.extend(mouse_and_keys::actions(ui.ctx(), &response, &area, seconds));
+        });
+        (actions, shown)
+    }
+}

@@ -1,0 +1,264 @@
+//! The egui panels: the side panel with the scene, camera, tracing, lights and save controls, and
+//! the status line at the bottom. Controls are edited in place; buttons become [`Action`]s.
+
+use std::path::{Path, PathBuf};
+
+use egui::{Color32, DragValue, Slider};
+use raylab::inspect::{DebugView, Legend};
+use raylab::settings::{MAX_BLOCK_SIZE, MAX_DEPTH_LIMIT, MAX_SAMPLES};
+
+use super::legend_bar;
+use crate::viewer::input::action::Action;
+use crate::viewer::scene::SceneInfo;
+use crate::viewer::scene::controls::Controls;
+
+/// What the side panel keeps besides the scene and the controls.
+pub struct PanelState {
+    /// The path typed in the "open" field.
+    pub open_field: String,
+    /// Where Save writes the image (the camera goes beside it).
+    pub save_field: String,
+    /// The last thing the viewer did worth saying (saved, printed).
+    pub message: Option<String>,
+    /// Width and height are kept equal.
+    pub square: bool,
+    /// Largest image side the GPU takes.
+    pub max_side: u32,
+}
+
+/// Shows the side panel for `scene` (with the colour bar of the view being rendered, if it has
+/// one); returns what its buttons asked for.
+pub fn side_panel(
+    ui: &mut egui::Ui,
+    controls: &mut Controls,
+    scene: &SceneInfo<'_>,
+    state: &mut PanelState,
+    legend: Option<&Legend>,
+) -> Vec<Action> {
+    let mut actions = Vec::new();
+    egui::Panel::left("controls")
+        .resizable(true)
+        .default_size(300.0)
+        .show(ui, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                scene_section(ui, scene, state, &mut actions);
+                camera_section(ui, controls, &mut actions);
+                tracing_section(ui, controls, state, legend);
+                lights_section(ui, controls, scene.scene.scene.lights.len());
+                save_section(ui, state, &mut actions);
+            });
+        });
+    actions
+}
+
+/// Shows the status line (and why the controls cannot be rendered, if so) at the bottom.
+pub fn status_bar(ui: &mut egui::Ui, line: &str, control_error: Option<&str>) {
+    egui::Panel::bottom("status").show(ui, |ui| {
+        if let Some(e) = control_error {
+            ui.colored_label(Color32::from_rgb(255, 120, 80), e);
+        }
+        ui.label(egui::RichText::new(line).monospace());
+    });
+}
+
+fn scene_section(
+    ui: &mut egui::Ui,
+    scene: &SceneInfo<'_>,
+    state: &mut PanelState,
+    actions: &mut Vec<Action>,
+) {
+    egui::CollapsingHeader::new("Scene")
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.label(scene.scene.name());
+            if let Some(e) = scene.load_error {
+                ui.colored_label(Color32::from_rgb(255, 90, 90), e);
+                ui.label("(showing the last good scene)");
+            }
+            for warning in &scene.scene.scene.warnings {
+                ui.colored_label(
+                    Color32::from_rgb(255, 200, 80),
+                    format!("warning: {warning}"),
+                );
+            }
+            ui.horizontal(|ui| {
+                let field = ui.add(
+                    egui::TextEdit::singleline(&mut state.open_field)
+                        .hint_text("scene file (.toml, .nff) or spd:NAME, or drop a file here")
+                        .desired_width(190.0),
+                );
+                let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+                if (ui.button("Open").clicked() || entered) && !state.open_field.trim().is_empty() {
+                    actions.push(Action::Open(Some(PathBuf::from(state.open_field.trim()))));
+                }
+            });
+            if ui.button("Built-in default scene").clicked() {
+                actions.push(Action::Open(None));
+            }
+            for file in scene.files_beside {
+                let current = scene.scene.path.as_deref() == Some(file.as_path());
+                let name = file_name(file);
+                if ui.selectable_label(current, name).clicked() && !current {
+                    actions.push(Action::Open(Some(file.clone())));
+                }
+            }
+        });
+}
+
+fn file_name(path: &Path) -> String {
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
+}
+
+fn vector(ui: &mut egui::Ui, label: &str, v: &mut glam::Vec3) {
+    ui.horizontal(|ui| {
+        ui.label(label);
+        for c in [&mut v.x, &mut v.y, &mut v.z] {
+            ui.add(DragValue::new(c).speed(0.02).max_decimals(3));
+        }
+    });
+}
+
+fn camera_section(ui: &mut egui::Ui, controls: &mut Controls, actions: &mut Vec<Action>) {
+    egui::CollapsingHeader::new("Camera")
+        .default_open(true)
+        .show(ui, |ui| {
+            let c = &mut controls.camera;
+            vector(ui, "eye    ", &mut c.eye);
+            vector(ui, "look at", &mut c.look_at);
+            vector(ui, "up     ", &mut c.up);
+            ui.add(Slider::new(&mut c.view_angle, 1.0..=170.0).text("view angle °"));
+            ui.horizontal(|ui| {
+                ui.label("near");
+                ui.add(
+                    DragValue::new(&mut c.near)
+                        .speed(0.01)
+                        .range(0.001..=1000.0)
+                        .max_decimals(3),
+                );
+            });
+            ui.horizontal(|ui| {
+                if ui
+                    .button("Reset")
+                    .on_hover_text("the scene's camera")
+                    .clicked()
+                {
+                    actions.push(Action::ResetCamera);
+                }
+                if ui
+                    .button("Frame (F)")
+                    .on_hover_text("look at the whole scene")
+                    .clicked()
+                {
+                    actions.push(Action::Frame);
+                }
+            });
+            ui.label(
+                egui::RichText::new(
+                    "left-drag orbit · right/middle-drag pan · wheel dolly · W/A/S/D/Q/E fly · \
+                     double-click: orbit centre · click or I: inspect the pixel · Esc: close",
+                )
+                .small(),
+            );
+        });
+}
+
+fn tracing_section(
+    ui: &mut egui::Ui,
+    controls: &mut Controls,
+    state: &mut PanelState,
+    legend: Option<&Legend>,
+) {
+    egui::CollapsingHeader::new("Tracing")
+        .default_open(true)
+        .show(ui, |ui| {
+            egui::ComboBox::from_label("view")
+                .selected_text(controls.view.name())
+                .show_ui(ui, |ui| {
+                    for view in DebugView::ALL {
+                        ui.selectable_value(&mut controls.view, view, view.name());
+                    }
+                });
+            if let Some(legend) = legend {
+                legend_bar::show(ui, legend);
+            }
+            let s = &mut controls.settings;
+            ui.add(Slider::new(&mut s.max_depth, 1..=MAX_DEPTH_LIMIT).text("max depth"));
+            ui.add(
+                Slider::new(&mut s.min_weight, 0.0..=1.0)
+                    .logarithmic(true)
+                    .smallest_positive(1e-4)
+                    .text("min weight"),
+            );
+            egui::ComboBox::from_label("starting block size")
+                .selected_text(s.block_size.to_string())
+                .show_ui(ui, |ui| {
+                    let sizes = std::iter::successors(Some(1), |b| {
+                        (b * 2 <= MAX_BLOCK_SIZE).then_some(b * 2)
+                    });
+                    for b in sizes {
+                        ui.selectable_value(&mut s.block_size, b, b.to_string());
+                    }
+                });
+            ui.horizontal(|ui| {
+                ui.label("resolution");
+                let range = 1..=state.max_side;
+                ui.add(DragValue::new(&mut s.width).range(range.clone()));
+                ui.label("×");
+                ui.add_enabled(!state.square, DragValue::new(&mut s.height).range(range));
+                ui.checkbox(&mut state.square, "N×N");
+            });
+            ui.horizontal(|ui| {
+                for n in [256, 512, 1024, 2048] {
+                    if n <= state.max_side && ui.small_button(n.to_string()).clicked() {
+                        s.width = n;
+                        s.height = n;
+                    }
+                }
+            });
+            if state.square {
+                s.height = s.width;
+            }
+            ui.add(
+                Slider::new(&mut s.samples, 1..=MAX_SAMPLES.min(256))
+                    .logarithmic(true)
+                    .text("samples per pixel"),
+            );
+            ui.horizontal_wrapped(|ui| {
+                ui.checkbox(&mut s.shadows, "shadows");
+                ui.checkbox(&mut s.reflections, "reflections");
+                ui.checkbox(&mut s.transmission, "transmission");
+                ui.checkbox(&mut s.textures, "textures");
+            });
+        });
+}
+
+fn lights_section(ui: &mut egui::Ui, controls: &mut Controls, light_count: usize) {
+    egui::CollapsingHeader::new("Lights")
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.add(Slider::new(&mut controls.light_scale, 0.0..=4.0).text("intensity"));
+            ui.label(format!("{light_count} lights in the scene"));
+        });
+}
+
+fn save_section(ui: &mut egui::Ui, state: &mut PanelState, actions: &mut Vec<Action>) {
+    egui::CollapsingHeader::new("Save")
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.add(egui::TextEdit::singleline(&mut state.save_field).desired_width(240.0));
+            ui.horizontal(|ui| {
+                if ui.button("Save image (Ctrl+S)").clicked() {
+                    actions.push(Action::Save);
+                }
+                if ui.button("Print camera (C)").clicked() {
+                    actions.push(Action::PrintCamera);
+                }
+            });
+            if let Some(m) = &state.message {
+                ui.label(m);
+            }
+        });
+}

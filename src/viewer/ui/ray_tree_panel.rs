@@ -1,0 +1,249 @@
+//! The ray tree panel: the ray tree of the picked pixel as nested collapsing headings, one per
+//! ray (its kind, depth and what it hit), each with the ray's numbers, its shadow rays, the
+//! colours it gathered and where and why its branch stopped. Hovering a heading highlights the
+//! object it hit in the image. `print-tree` prints the same headings.
+
+use egui::{Color32, RichText};
+use glam::{Vec2, Vec3};
+use raylab::inspect::{RayNode, RayTree, ShadowRay};
+use raylab::whitted::{RayKind, StopReason};
+
+use super::swatch::swatch;
+use crate::viewer::input::action::Action;
+use crate::viewer::tracing::picked_pixel::PickedPixel;
+
+/// A ray kind as the panel names it.
+pub fn kind_name(kind: RayKind) -> &'static str {
+    match kind {
+        RayKind::Eye => "eye ray",
+        RayKind::Reflected => "reflected ray",
+        RayKind::Transmitted => "transmitted ray",
+    }
+}
+
+/// Why a branch stopped, in words.
+fn stop_text(reason: StopReason) -> &'static str {
+    match reason {
+        StopReason::Miss => "missed: left the scene",
+        StopReason::MaxDepth => "depth limit (max depth)",
+        StopReason::MinWeight => "adaptive threshold (weight below min weight)",
+        StopReason::TotalInternalReflection => "total internal reflection",
+        StopReason::Disabled => "switched off in the settings",
+        StopReason::RayBudget => "ray budget of the pixel used up",
+    }
+}
+
+/// A ray's heading: its kind, its depth and what it hit.
+pub fn heading(node: &RayNode) -> String {
+    let what = match &node.hit {
+        Some(hit) => format!("{} ({})", hit.label, hit.material_name),
+        None => "miss".to_string(),
+    };
+    format!("{} · depth {}: {what}", kind_name(node.kind), node.depth)
+}
+
+/// The tree's headings in the panel's order, each indented two spaces per level.
+pub fn heading_lines(tree: &RayTree) -> Vec<String> {
+    fn walk(tree: &RayTree, index: usize, level: usize, lines: &mut Vec<String>) {
+        let node = &tree.nodes[index];
+        lines.push(format!("{}{}", "  ".repeat(level), heading(node)));
+        for &child in &node.children {
+            walk(tree, child, level + 1, lines);
+        }
+    }
+    let mut lines = Vec::new();
+    if !tree.nodes.is_empty() {
+        walk(tree, 0, 0, &mut lines);
+    }
+    lines
+}
+
+/// Shows the panel (when a pixel is picked); returns what its buttons asked for.
+pub fn show(ui: &mut egui::Ui, picked: &mut PickedPixel) -> Vec<Action> {
+    let mut actions = Vec::new();
+    picked.hovered = None;
+    let Some((x, y)) = picked.pixel else {
+        return actions;
+    };
+    egui::Panel::right("inspector")
+        .resizable(true)
+        .default_size(340.0)
+        .show(ui, |ui| {
+            ui.horizontal(|ui| {
+                ui.heading(format!("Pixel ({x}, {y})"));
+                if ui.button("Close").on_hover_text("Esc").clicked() {
+                    actions.push(Action::CloseRayTree);
+                }
+            });
+            ui.checkbox(&mut picked.show_overlay, "draw the rays over the image");
+            if let Some(e) = &picked.error {
+                ui.colored_label(Color32::from_rgb(255, 120, 80), e);
+            }
+            let Some(traced) = &picked.tree else {
+                ui.label("tracing…");
+                return;
+            };
+            let tree = &traced.tree;
+            ui.horizontal(|ui| {
+                ui.label("pixel colour");
+                swatch(ui, tree.color);
+            });
+            let mut timing = format!(
+                "{} rays, traced in {:.2} ms",
+                tree.nodes.len(),
+                traced.time.as_secs_f64() * 1e3
+            );
+            if let Some(ids) = picked.current_object_ids() {
+                let ms = ids.time.as_secs_f64() * 1e3;
+                timing += &format!("; objects of the image in {ms:.0} ms");
+            }
+            ui.label(RichText::new(timing).small());
+            let mut hovered = None;
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                if !tree.nodes.is_empty() {
+                    node_ui(ui, tree, 0, &mut hovered);
+                }
+            });
+            picked.hovered = hovered;
+        });
+    actions
+}
+
+/// One ray and, nested inside, its shadow rays and children.
+fn node_ui(ui: &mut egui::Ui, tree: &RayTree, index: usize, hovered: &mut Option<u32>) {
+    let node = &tree.nodes[index];
+    let response = egui::CollapsingHeader::new(heading(node))
+        .id_salt(("ray", index))
+        .default_open(node.depth <= 2)
+        .show(ui, |ui| {
+            egui::Grid::new(("ray fields", index))
+                .num_columns(2)
+                .show(ui, |ui| node_fields(ui, node));
+            for shadow in &node.shadows {
+                shadow_ui(ui, shadow, hovered);
+            }
+            if let Some(stop) = node.stop {
+                ui.label(format!("stopped here: {}", stop_text(stop)));
+            }
+            for cut in &node.cuts {
+                ui.label(format!(
+                    "{} not traced: {} (weight {:.4})",
+                    kind_name(cut.branch),
+                    stop_text(cut.reason),
+                    cut.weight
+                ));
+            }
+            for &child in &node.children {
+                node_ui(ui, tree, child, hovered);
+            }
+        });
+    if response.header_response.hovered() {
+        *hovered = node.hit.as_ref().map(|h| h.object);
+    }
+}
+
+fn node_fields(ui: &mut egui::Ui, node: &RayNode) {
+    let mut row = |name: &str, value: String| {
+        ui.label(name);
+        ui.label(RichText::new(value).monospace());
+        ui.end_row();
+    };
+    row("origin", vec3(node.origin));
+    row("direction", vec3(node.dir));
+    row("weight", format!("{:.4}", node.weight));
+    if let Some(hit) = &node.hit {
+        row("object", hit.label.clone());
+        row("material", hit.material_name.clone());
+        row("t", format!("{:.4}", hit.t));
+        row("point", vec3(hit.point));
+        row("normal", vec3(hit.normal));
+        row("uv", vec2(hit.uv));
+        let side = if hit.entering { "front" } else { "back" };
+        row("side", side.to_string());
+    }
+    for (name, value) in [
+        ("local colour", node.local_color),
+        ("factor", node.factor),
+        ("colour returned", node.color),
+        ("contribution", node.contribution),
+    ] {
+        ui.label(name);
+        swatch(ui, value);
+        ui.end_row();
+    }
+}
+
+fn shadow_ui(ui: &mut egui::Ui, shadow: &ShadowRay, hovered: &mut Option<u32>) {
+    let verdict = match (shadow.blocked, shadow.blockers.last()) {
+        (true, Some(b)) => format!("blocked by {}", b.label),
+        (true, None) => "blocked".to_string(),
+        (false, Some(_)) => format!("through {} objects", shadow.blockers.len()),
+        (false, None) => "reaches the light".to_string(),
+    };
+    let response =
+        egui::CollapsingHeader::new(format!("shadow ray to light {}: {verdict}", shadow.light))
+            .id_salt((
+                "shadow",
+                shadow.origin.to_array().map(f32::to_bits),
+                shadow.light,
+            ))
+            .show(ui, |ui| {
+                ui.label(format!("direction {}", vec3(shadow.dir)));
+                ui.label(format!("distance {:.4}", shadow.distance));
+                for b in &shadow.blockers {
+                    ui.label(format!(
+                        "{} at t {:.4}, light left {:.3} {:.3} {:.3}",
+                        b.label,
+                        b.t,
+                        b.transmittance_after[0],
+                        b.transmittance_after[1],
+                        b.transmittance_after[2]
+                    ));
+                }
+                ui.horizontal(|ui| {
+                    ui.label("light arriving");
+                    swatch(ui, shadow.light_color);
+                });
+            });
+    if response.header_response.hovered() {
+        *hovered = shadow.blockers.last().map(|b| b.object);
+    }
+}
+
+fn vec3(v: Vec3) -> String {
+    format!("{:.3} {:.3} {:.3}", v.x, v.y, v.z)
+}
+
+fn vec2(v: Vec2) -> String {
+    format!("{:.3} {:.3}", v.x, v.y)
+}
+
+#[cfg(test)]
+mod tests {
+    use raylab::inspect::trace_ray_tree;
+    use raylab::whitted::Tracer;
+
+    use super::*;
+    use crate::viewer::scene::source;
+
+    #[test]
+    fn the_headings_follow_the_tree_indented_by_depth() {
+        let mut loaded = source::load(None).unwrap();
+        (loaded.scene.settings.width, loaded.scene.settings.height) = (24, 24);
+        let tracer = Tracer::new(&loaded.scene, &loaded.bvh);
+        let trees = (0..24).flat_map(|y| (0..24).map(move |x| (x, y)));
+        let tree = trees
+            .map(|(x, y)| trace_ray_tree(&tracer, x, y))
+            .max_by_key(|t| t.nodes.len())
+            .unwrap();
+        assert!(tree.nodes.len() > 1);
+        let lines = heading_lines(&tree);
+        assert_eq!(lines.len(), tree.nodes.len());
+        assert!(lines[0].starts_with("eye ray · depth 1: "), "{}", lines[0]);
+        for line in &lines {
+            let indent = line.len() - line.trim_start().len();
+            let depth = indent / 2 + 1;
+            assert!(line.contains(&format!("· depth {depth}:")), "{line}");
+        }
+    }
+}
