@@ -162,7 +162,7 @@ impl QuadRenderer {
 mod tests {
     use super::*;
     use crate::viewer::gpu::device::Gpu;
-    use crate::viewer::gpu::screenshot::read_texture;
+    use crate::viewer::gpu::screenshot::{offscreen_target, read_texture};
     use crate::viewer::gpu::upload::write_texture;
     use crate::viewer::ui::layout::letterbox;
 
@@ -187,20 +187,7 @@ mod tests {
         let (texture, created) = quad.image_texture(&gpu.device, iw, ih);
         assert!(created);
         write_texture(&gpu.queue, texture, &image);
-        let target = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("target"),
-            size: wgpu::Extent3d {
-                width: tw,
-                height: th,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let target = offscreen_target(&gpu.device, "target", (tw, th), format);
         let area = PixelRect {
             x: 0.0,
             y: 0.0,

@@ -16,20 +16,7 @@ pub fn save(
     content: &FrameContent<'_>,
     path: &Path,
 ) -> Result<(), String> {
-    let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("screenshot"),
-        size: wgpu::Extent3d {
-            width: size.0.max(1),
-            height: size.1.max(1),
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
+    let texture = offscreen_target(&gpu.device, "screenshot", size, format);
     painter.paint(gpu, &texture, content);
     let rgba = read_texture(&gpu.device, &gpu.queue, &texture)?;
     image::save_buffer(
@@ -40,6 +27,29 @@ pub fn save(
         image::ColorType::Rgba8,
     )
     .map_err(|e| format!("{}: cannot save the screenshot: {e}", path.display()))
+}
+
+/// A texture to paint into off screen and read back with [`read_texture`].
+pub fn offscreen_target(
+    device: &wgpu::Device,
+    label: &str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width: width.max(1),
+            height: height.max(1),
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    })
 }
 
 /// The texture's pixels as RGBA8 rows, row 0 at the top. The texture must be 8-bit RGBA or BGRA
