@@ -5,6 +5,7 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use raylab::bvh::Bvh;
+use raylab::camera::PIXEL_CENTRE;
 use raylab::formats::toml::default_scene;
 use raylab::progressive;
 use raylab::stats::RayCounts;
@@ -17,12 +18,12 @@ fn shading(c: &mut Criterion) {
     let bvh = Bvh::build(&scene.geometry);
     let tracer = Tracer::new(&scene, &bvh);
     // A pixel on the glass sphere: reflected, refracted and shadow rays several levels deep.
-    let glass = scene.camera.ray(40.5, 66.5, 128, 128);
+    let glass = scene.camera.eye_ray((66, 87), PIXEL_CENTRE, (128, 128));
     c.bench_function("shade one pixel (glass sphere, default scene)", |b| {
         b.iter(|| tracer.trace_eye(black_box(&glass), &mut RayCounts::default()))
     });
     // A pixel on the floor: one eye ray, two shadow rays, one reflected ray.
-    let floor = scene.camera.ray(6.5, 20.5, 128, 128);
+    let floor = scene.camera.eye_ray((20, 121), PIXEL_CENTRE, (128, 128));
     c.bench_function("shade one pixel (floor, default scene)", |b| {
         b.iter(|| tracer.trace_eye(black_box(&floor), &mut RayCounts::default()))
     });

@@ -1,5 +1,6 @@
 //! Render settings: image size, the ray tree's limits, progressive refinement and the switches
-//! that turn parts of the shading off (for teaching and for the viewer).
+//! that turn parts of the shading off (for teaching and for the viewer), and the overrides of
+//! them that `render`, `inspect` and the viewer take from the command line.
 
 use crate::color::Color;
 
@@ -94,5 +95,65 @@ impl RenderSettings {
             ));
         }
         Ok(())
+    }
+}
+
+/// Changes to a scene's render settings from outside its file (the command line's `--width`,
+/// `--max-depth`, …), the same for `render`, `inspect` and the viewer. Each `None` keeps the
+/// scene's own value: a width alone keeps the scene's height.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SettingsOverrides {
+    pub width: Option<u32>,
+    pub height: Option<u32>,
+    pub max_depth: Option<u32>,
+    pub min_weight: Option<f32>,
+    pub block_size: Option<u32>,
+    pub samples: Option<u32>,
+}
+
+impl SettingsOverrides {
+    /// Applies the overrides to `settings` and checks the result.
+    pub fn apply(&self, settings: &mut RenderSettings) -> Result<(), String> {
+        let s = settings;
+        s.width = self.width.unwrap_or(s.width);
+        s.height = self.height.unwrap_or(s.height);
+        s.max_depth = self.max_depth.unwrap_or(s.max_depth);
+        s.min_weight = self.min_weight.unwrap_or(s.min_weight);
+        s.block_size = self.block_size.unwrap_or(s.block_size);
+        s.samples = self.samples.unwrap_or(s.samples);
+        s.validate()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn overrides_change_only_what_they_give() {
+        let mut settings = RenderSettings::default();
+        let overrides = SettingsOverrides {
+            width: Some(100),
+            min_weight: Some(0.5),
+            ..SettingsOverrides::default()
+        };
+        overrides.apply(&mut settings).unwrap();
+        let expected = RenderSettings {
+            width: 100,
+            min_weight: 0.5,
+            ..RenderSettings::default()
+        };
+        assert_eq!(settings, expected, "a width alone keeps the height");
+    }
+
+    #[test]
+    fn overridden_settings_are_checked() {
+        let mut settings = RenderSettings::default();
+        let overrides = SettingsOverrides {
+            block_size: Some(3),
+            ..SettingsOverrides::default()
+        };
+        let error = overrides.apply(&mut settings).unwrap_err();
+        assert!(error.contains("block_size"), "{error}");
     }
 }

@@ -10,7 +10,7 @@ use glam::Vec3;
 use proptest::prelude::*;
 use raylab::bvh::Bvh;
 use raylab::bvh::packet::PACKET_SIZE;
-use raylab::camera::{Camera, CameraSpec};
+use raylab::camera::{Camera, CameraSpec, PIXEL_CENTRE};
 use raylab::mesh::Mesh;
 use raylab::primitive::{Geometry, Hit, Object, PrimId};
 use raylab::ray::Ray;
@@ -308,7 +308,7 @@ fn eye_rays_in_tiles(camera: &Camera, width: u32, height: u32) -> Vec<Ray> {
         for tile_x in (0..width).step_by(8) {
             for y in tile_y..(tile_y + 8).min(height) {
                 for x in tile_x..(tile_x + 8).min(width) {
-                    rays.push(camera.ray(y as f32 + 0.5, x as f32 + 0.5, height, width));
+                    rays.push(camera.eye_ray((x, y), PIXEL_CENTRE, (width, height)));
                 }
             }
         }

@@ -752,24 +752,55 @@ fn a_size_with_a_width_or_height_is_refused_by_every_command() {
     assert!(!dir.path().join("a.png").exists());
 }
 
+/// `raylab ARGS` where no window can open (no display).
+fn raylab_without_display(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .args(args)
+        .current_dir(dir)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap()
+}
+
 #[test]
-fn the_viewer_says_which_overrides_it_cannot_take() {
+fn the_viewer_takes_every_override_as_render_does() {
     let dir = tempfile::tempdir().unwrap();
-    let cases: [(&[&str], &str); 3] = [
-        (&["view", "--width", "64"], "--width and --height together"),
-        (&["view", "--height", "64"], "--width and --height together"),
-        (&["--min-weight", "0.1"], "Tracing panel"),
-    ];
-    for (args, message) in cases {
-        let out = Command::new(env!("CARGO_BIN_EXE_raylab"))
-            .args(args)
-            .current_dir(dir.path())
-            .env_remove("DISPLAY")
-            .env_remove("WAYLAND_DISPLAY")
-            .output()
-            .unwrap();
+    // Taken: without a display, the viewer gets as far as opening its window.
+    for args in [
+        &["view", "--width", "64"][..],
+        &["view", "--height", "64"],
+        &["--min-weight", "0.1"],
+        &[
+            "view",
+            "--max-depth",
+            "3",
+            "--block-size",
+            "4",
+            "--samples",
+            "2",
+        ],
+    ] {
+        let out = raylab_without_display(args, dir.path());
         assert_eq!(out.status.code(), Some(1), "{args:?}");
         let err = stderr(&out);
-        assert!(err.contains(message), "{args:?}: {err}");
+        assert!(err.contains("cannot open a window"), "{args:?}: {err}");
+    }
+    // A bad one is refused before the window opens, with render's message.
+    for bad in [
+        &["--min-weight", "2"][..],
+        &["--max-depth", "0"],
+        &["--block-size", "3"],
+        &["--samples", "0"],
+    ] {
+        let view = raylab_without_display(&[&["view"][..], bad].concat(), dir.path());
+        let render = raylab(
+            &[&["render", "-o", "out.png"][..], bad].concat(),
+            dir.path(),
+        );
+        assert_eq!(view.status.code(), Some(1), "{bad:?}");
+        assert_eq!(render.status.code(), Some(1), "{bad:?}");
+        assert!(!stderr(&render).is_empty(), "{bad:?}");
+        assert_eq!(stderr(&view), stderr(&render), "{bad:?}");
     }
 }

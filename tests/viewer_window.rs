@@ -312,6 +312,51 @@ fn the_viewer_takes_a_width_and_height_as_render_does() {
 }
 
 #[test]
+fn the_viewer_takes_a_width_alone_and_a_min_weight_as_render_does() {
+    let dir = tempfile::tempdir().unwrap();
+    // A 96×64 scene whose floor reflects the ball: --width 64 alone makes it 64×64 (the file's
+    // height stays), and --min-weight 0.5 cuts the floor's reflected rays (weight 0.4).
+    let path = dir.path().join("mirror_floor.toml");
+    let text = ball_scene([0.0, 2.0, 6.0])
+        .replace("width = 64", "width = 96")
+        .replace(
+            "[[objects]]\ntype = \"plane\"\n",
+            "[materials.mirror]\nreflectivity = 0.4\n\n\
+             [[objects]]\ntype = \"plane\"\nmaterial = \"mirror\"\n",
+        );
+    std::fs::write(&path, text).unwrap();
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            path.to_str().unwrap(),
+            "--width",
+            "64",
+            "--min-weight",
+            "0.5",
+            "--stats",
+        ],
+    ) else {
+        return;
+    };
+    assert!(
+        run.stderr.contains("block size 1 at 64×64"),
+        "{}",
+        run.stderr
+    );
+    let mut scene = load_scene(&path).unwrap();
+    assert_eq!((scene.settings.width, scene.settings.height), (96, 64));
+    let rect = image_rect(&run.stdout);
+    let reflecting = cpu_render(&scene, 64, scene.camera.spec);
+    scene.settings.min_weight = 0.5;
+    let cut = cpu_render(&scene, 64, scene.camera.spec);
+    assert_eq!(mismatches(&shot, rect, 64, &cut), 0);
+    assert!(
+        mismatches(&shot, rect, 64, &reflecting) > 64 * 64 / 10,
+        "the floor's reflection is gone"
+    );
+}
+
+#[test]
 fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
     let dir = tempfile::tempdir().unwrap();
     let saved = dir.path().join("saved.png");

@@ -4,6 +4,7 @@
 #![allow(dead_code)] // each benchmark uses a different part
 
 use glam::Vec3;
+use raylab::camera::PIXEL_CENTRE;
 use raylab::ray::Ray;
 use raylab::scene::Scene;
 
@@ -17,9 +18,7 @@ pub fn camera_rays(scene: &Scene, size: u32) -> Vec<Ray> {
     (0..size * size)
         .map(|i| {
             let (x, y) = (i % size, i / size);
-            scene
-                .camera
-                .ray((size - y) as f32 - 0.5, x as f32 + 0.5, size, size)
+            scene.camera.eye_ray((x, y), PIXEL_CENTRE, (size, size))
         })
         .collect()
 }

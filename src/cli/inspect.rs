@@ -6,9 +6,10 @@ use clap::Args;
 use raylab::bvh::Bvh;
 use raylab::formats::nff::NffLighting;
 use raylab::inspect::trace_ray_tree;
+use raylab::settings::SettingsOverrides;
 use raylab::whitted::Tracer;
 
-use super::overrides::SettingsOverrides;
+use super::overrides::OverrideArgs;
 
 #[derive(Args, Debug)]
 pub struct InspectArgs {
@@ -23,7 +24,7 @@ pub struct InspectArgs {
     json: bool,
     /// Overrides of the scene's render settings.
     #[command(flatten)]
-    overrides: SettingsOverrides,
+    overrides: OverrideArgs,
     /// Brightness of NFF and SPD scenes' lights (see `raylab render --help`).
     #[arg(long, default_value_t = NffLighting::default())]
     nff_lights: NffLighting,
@@ -39,7 +40,7 @@ fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
 
 pub fn run(args: InspectArgs) -> Result<(), String> {
     let mut scene = super::load_scene(args.scene.as_deref(), args.nff_lights)?;
-    args.overrides.apply(&mut scene.settings)?;
+    SettingsOverrides::from(args.overrides).apply(&mut scene.settings)?;
     let (width, height) = (scene.settings.width, scene.settings.height);
     let (x, y) = args.pixel;
     if x >= width || y >= height {

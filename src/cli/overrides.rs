@@ -1,16 +1,16 @@
-//! The render settings that `render`, `inspect` and `view` let the command line override, with
-//! the same flags in each, and the one function that applies them to a scene's settings.
+//! The command-line flags that override a scene's render settings, the same in `render`,
+//! `inspect` and `view`; they become the library's [`SettingsOverrides`], which applies them.
 
 use clap::Args;
-use raylab::settings::RenderSettings;
+use raylab::settings::SettingsOverrides;
 
 /// Overrides of the scene's render settings.
-#[derive(Args, Debug, Default)]
-pub struct SettingsOverrides {
-    /// Image width in pixels.
+#[derive(Args, Clone, Copy, Debug, Default)]
+pub struct OverrideArgs {
+    /// Image width in pixels (the scene's height stays unless --height is given).
     #[arg(long)]
     width: Option<u32>,
-    /// Image height in pixels.
+    /// Image height in pixels (the scene's width stays unless --width is given).
     #[arg(long)]
     height: Option<u32>,
     /// Image size: N for N×N, or WIDTHxHEIGHT; instead of --width and --height (giving both is
@@ -19,39 +19,33 @@ pub struct SettingsOverrides {
     size: Option<(u32, u32)>,
     /// Deepest level of the ray tree (the eye ray is depth 1).
     #[arg(long)]
-    pub max_depth: Option<u32>,
-    /// Adaptive depth control: skip branches whose weight is below this (0 = off). Not in the
-    /// viewer, which has it in its Tracing panel.
+    max_depth: Option<u32>,
+    /// Adaptive depth control: skip branches whose weight is below this (0 = off).
     #[arg(long)]
-    pub min_weight: Option<f32>,
+    min_weight: Option<f32>,
     /// Starting block size of progressive refinement (power of two, 1 to 64).
     #[arg(long)]
-    pub block_size: Option<u32>,
+    block_size: Option<u32>,
     /// Samples per pixel (more than 1 anti-aliases after block size 1).
     #[arg(long)]
-    pub samples: Option<u32>,
+    samples: Option<u32>,
 }
 
-impl SettingsOverrides {
-    /// The image width and height asked for, each `None` where the scene's stays.
-    pub fn size(&self) -> (Option<u32>, Option<u32>) {
-        match self.size {
+impl From<OverrideArgs> for SettingsOverrides {
+    /// `--size` gives both the width and the height.
+    fn from(args: OverrideArgs) -> SettingsOverrides {
+        let (width, height) = match args.size {
             Some((width, height)) => (Some(width), Some(height)),
-            None => (self.width, self.height),
+            None => (args.width, args.height),
+        };
+        SettingsOverrides {
+            width,
+            height,
+            max_depth: args.max_depth,
+            min_weight: args.min_weight,
+            block_size: args.block_size,
+            samples: args.samples,
         }
-    }
-
-    /// Applies the overrides to `settings` and checks the result.
-    pub fn apply(&self, settings: &mut RenderSettings) -> Result<(), String> {
-        let s = settings;
-        let (width, height) = self.size();
-        s.width = width.unwrap_or(s.width);
-        s.height = height.unwrap_or(s.height);
-        s.max_depth = self.max_depth.unwrap_or(s.max_depth);
-        s.min_weight = self.min_weight.unwrap_or(s.min_weight);
-        s.block_size = self.block_size.unwrap_or(s.block_size);
-        s.samples = self.samples.unwrap_or(s.samples);
-        s.validate()
     }
 }
 
@@ -83,19 +77,18 @@ mod tests {
     }
 
     #[test]
-    fn size_sets_both_sides_and_width_or_height_one() {
-        let mut settings = RenderSettings::default();
-        let square = SettingsOverrides {
-            size: Some((64, 64)),
-            ..SettingsOverrides::default()
+    fn size_gives_both_sides_and_width_or_height_one() {
+        let sized = OverrideArgs {
+            size: Some((64, 48)),
+            ..OverrideArgs::default()
         };
-        square.apply(&mut settings).unwrap();
-        assert_eq!((settings.width, settings.height), (64, 64));
-        let wide = SettingsOverrides {
+        let overrides = SettingsOverrides::from(sized);
+        assert_eq!((overrides.width, overrides.height), (Some(64), Some(48)));
+        let wide = OverrideArgs {
             width: Some(100),
-            ..SettingsOverrides::default()
+            ..OverrideArgs::default()
         };
-        wide.apply(&mut settings).unwrap();
-        assert_eq!((settings.width, settings.height), (100, 64));
+        let overrides = SettingsOverrides::from(wide);
+        assert_eq!((overrides.width, overrides.height), (Some(100), None));
     }
 }

@@ -13,10 +13,10 @@ use raylab::formats::nff::NffLighting;
 use raylab::inspect::DebugView;
 use raylab::memory;
 use raylab::progressive::{self, RenderControl, RenderStats};
-use raylab::settings::RenderSettings;
+use raylab::settings::{RenderSettings, SettingsOverrides};
 use raylab::whitted::{RAY_BUDGET, Tracer};
 
-use super::overrides::SettingsOverrides;
+use super::overrides::OverrideArgs;
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
@@ -33,7 +33,7 @@ pub struct RenderArgs {
     view: DebugView,
     /// Overrides of the scene's render settings.
     #[command(flatten)]
-    overrides: SettingsOverrides,
+    overrides: OverrideArgs,
     /// Worker threads (default: one per core).
     #[arg(long)]
     threads: Option<usize>,
@@ -48,7 +48,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     // Before any long work: the scene, the BVH, the render.
     let format = check_image_path(&args.output).map_err(|e| e.to_string())?;
     let mut scene = super::load_scene(args.scene.as_deref(), args.nff_lights)?;
-    args.overrides.apply(&mut scene.settings)?;
+    SettingsOverrides::from(args.overrides).apply(&mut scene.settings)?;
     let pool = super::thread_pool(args.threads)?;
     let (width, height) = (scene.settings.width, scene.settings.height);
     let pixels = u64::from(width) * u64::from(height);

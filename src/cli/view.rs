@@ -5,8 +5,9 @@ use std::path::PathBuf;
 use clap::Args;
 use raylab::inspect::DebugView;
 use raylab::output::check_writable;
+use raylab::settings::{RenderSettings, SettingsOverrides};
 
-use super::overrides::{SettingsOverrides, parse_size};
+use super::overrides::{OverrideArgs, parse_size};
 use crate::viewer::{self, Options, Script};
 
 #[derive(Args, Debug)]
@@ -16,7 +17,7 @@ pub struct ViewArgs {
     scene: Option<PathBuf>,
     /// Overrides of the scene's render settings.
     #[command(flatten)]
-    overrides: SettingsOverrides,
+    overrides: OverrideArgs,
     /// What the image shows: shaded, normals, depth, uv, object, material, tree-depth, rays or
     /// bvh-cost (switchable in the Tracing panel).
     #[arg(long, value_name = "NAME", default_value = "shaded", value_parser = |s: &str| s.parse::<DebugView>())]
@@ -60,25 +61,13 @@ pub fn run(args: ViewArgs) -> Result<(), String> {
         }
         check_writable(path).map_err(|e| format!("{}: {e}", path.display()))?;
     }
-    let overrides = &args.overrides;
-    // The viewer takes a whole size (a scene's own is known only once it has loaded), and sets
-    // the weight threshold in its Tracing panel.
-    let size = match overrides.size() {
-        (Some(width), Some(height)) => Some((width, height)),
-        (None, None) => None,
-        _ => return Err("the viewer takes --width and --height together, or --size".into()),
-    };
-    if overrides.min_weight.is_some() {
-        return Err(
-            "the viewer sets --min-weight in its Tracing panel, not on the command line".into(),
-        );
-    }
+    let overrides = SettingsOverrides::from(args.overrides);
+    // Checked before the window opens: each setting's range is its own, so overrides that are
+    // right on the default settings are right on any scene's.
+    overrides.apply(&mut RenderSettings::default())?;
     viewer::run(Options {
         scene: args.scene,
-        size,
-        block_size: overrides.block_size,
-        max_depth: overrides.max_depth,
-        samples: overrides.samples,
+        overrides,
         view: args.view,
         threads,
         window: args.window.unwrap_or((1100, 720)),

@@ -15,8 +15,8 @@ use crate::viewer::frame::clock::FrameClock;
 use crate::viewer::gpu::Graphics;
 use crate::viewer::input::Input;
 use crate::viewer::input::action::Action;
+use crate::viewer::scene::SceneSlot;
 use crate::viewer::scene::source::LoadedScene;
-use crate::viewer::scene::{Overrides, SceneSlot};
 use crate::viewer::tracing::Tracing;
 use crate::viewer::ui::Ui;
 use crate::viewer::ui::layout::PixelRect;
@@ -52,10 +52,7 @@ impl App {
     pub fn new(options: Options, proxy: EventLoopProxy<UserEvent>) -> Result<App, String> {
         let Options {
             scene,
-            size,
-            block_size,
-            max_depth,
-            samples,
+            overrides,
             view,
             threads,
             window,
@@ -77,21 +74,14 @@ impl App {
                 .unwrap_or_default(),
             save_field: save_path.display().to_string(),
             message: None,
-            square: size.is_some_and(|(w, h)| w == h),
+            square: overrides.width.is_some() && overrides.width == overrides.height,
             max_side: 2048,
-        };
-        let overrides = Overrides {
-            size,
-            block_size,
-            max_depth,
-            samples,
-            view,
         };
         Ok(App {
             gpu: None,
             ui: Ui::new(panel, window),
             input: Input::new(script, exit_when_done, screenshot),
-            scene: SceneSlot::new(scene, overrides, proxy),
+            scene: SceneSlot::new(scene, overrides, view, proxy),
             tracing,
             clock: FrameClock::new(stats, max_fps),
             ended: None,

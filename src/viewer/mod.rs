@@ -26,6 +26,7 @@ mod ui;
 use std::path::PathBuf;
 
 use raylab::inspect::DebugView;
+use raylab::settings::SettingsOverrides;
 use winit::event_loop::EventLoop;
 
 pub use input::script::Script;
@@ -34,11 +35,8 @@ pub use input::script::Script;
 pub struct Options {
     /// Scene file; the built-in default scene when `None`.
     pub scene: Option<PathBuf>,
-    /// Overrides of the scene's settings.
-    pub size: Option<(u32, u32)>,
-    pub block_size: Option<u32>,
-    pub max_depth: Option<u32>,
-    pub samples: Option<u32>,
+    /// The command line's overrides of each scene's settings, applied on every load.
+    pub overrides: SettingsOverrides,
     /// What the image shows at the start: the shaded colour or a debug view.
     pub view: DebugView,
     /// Tracing threads (0: one per core).

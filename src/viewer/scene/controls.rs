@@ -6,7 +6,7 @@
 use raylab::camera::{Camera, CameraSpec};
 use raylab::inspect::DebugView;
 use raylab::scene::Scene;
-use raylab::settings::RenderSettings;
+use raylab::settings::{RenderSettings, SettingsOverrides};
 
 use crate::viewer::tracing::working_scene::TraceSetup;
 
@@ -29,6 +29,19 @@ impl Controls {
             light_scale: 1.0,
             view: DebugView::Shaded,
         }
+    }
+
+    /// The scene's controls as the viewer starts them: its camera and settings with the command
+    /// line's `overrides` applied, showing `view`. The error says which override is wrong.
+    pub fn with_overrides(
+        scene: &Scene,
+        overrides: &SettingsOverrides,
+        view: DebugView,
+    ) -> Result<Controls, String> {
+        let mut controls = Controls::from_scene(scene);
+        overrides.apply(&mut controls.settings)?;
+        controls.view = view;
+        Ok(controls)
     }
 
     /// What these controls change in the scene, if they are all valid; otherwise what is wrong.
@@ -65,6 +78,30 @@ mod tests {
     fn controls() -> Controls {
         let camera = Camera::new(CameraSpec::default()).unwrap();
         Controls::from_scene(&Scene::new(RenderSettings::default(), camera))
+    }
+
+    #[test]
+    fn the_command_lines_overrides_apply_as_in_render() {
+        let camera = Camera::new(CameraSpec::default()).unwrap();
+        let scene = Scene::new(RenderSettings::default(), camera);
+        let overrides = SettingsOverrides {
+            width: Some(100),
+            min_weight: Some(0.5),
+            ..SettingsOverrides::default()
+        };
+        let c = Controls::with_overrides(&scene, &overrides, DebugView::Normals).unwrap();
+        let mut expected = scene.settings.clone();
+        overrides.apply(&mut expected).unwrap();
+        assert_eq!(c.settings, expected);
+        assert_eq!((c.settings.width, c.settings.height), (100, 480));
+        assert_eq!(c.settings.min_weight, 0.5);
+        assert_eq!(c.view, DebugView::Normals);
+        let too_deep = SettingsOverrides {
+            max_depth: Some(0),
+            ..SettingsOverrides::default()
+        };
+        let error = Controls::with_overrides(&scene, &too_deep, DebugView::Shaded).unwrap_err();
+        assert!(error.contains("max_depth"), "{error}");
     }
 
     #[test]

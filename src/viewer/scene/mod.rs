@@ -10,38 +10,13 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use raylab::inspect::DebugView;
-use raylab::scene::Scene;
+use raylab::settings::SettingsOverrides;
 use winit::event_loop::EventLoopProxy;
 
 use self::controls::Controls;
 use self::source::LoadedScene;
 use self::watch::SceneWatcher;
 use crate::viewer::app::UserEvent;
-
-/// The command line's overrides of a scene's settings. A size or a view the user picks later
-/// replaces them, so that it stays for the next scenes.
-pub struct Overrides {
-    pub size: Option<(u32, u32)>,
-    pub block_size: Option<u32>,
-    pub max_depth: Option<u32>,
-    pub samples: Option<u32>,
-    pub view: DebugView,
-}
-
-impl Overrides {
-    /// The scene's controls with these overrides.
-    fn controls_for(&self, scene: &Scene) -> Controls {
-        let mut c = Controls::from_scene(scene);
-        if let Some((w, h)) = self.size {
-            (c.settings.width, c.settings.height) = (w, h);
-        }
-        c.settings.block_size = self.block_size.unwrap_or(c.settings.block_size);
-        c.settings.max_depth = self.max_depth.unwrap_or(c.settings.max_depth);
-        c.settings.samples = self.samples.unwrap_or(c.settings.samples);
-        c.view = self.view;
-        c
-    }
-}
 
 /// A loaded scene and the user's controls over it.
 pub struct Shown {
@@ -79,7 +54,11 @@ pub struct SceneInfo<'a> {
 /// The scene, the loads that bring it and the file watched for changes.
 pub struct SceneSlot {
     state: SceneState,
-    overrides: Overrides,
+    /// The command line's overrides of each scene's settings, and the view each scene starts
+    /// with. A size or a view the user picks later replaces them, so that it stays for the next
+    /// scenes.
+    overrides: SettingsOverrides,
+    view: DebugView,
     /// The scene file asked for last (watched even while it fails to load); `None` for the
     /// built-in default scene.
     requested: Option<PathBuf>,
@@ -100,12 +79,14 @@ impl SceneSlot {
     /// Nothing loaded yet; `first` is the scene to load first (the default scene for `None`).
     pub fn new(
         first: Option<PathBuf>,
-        overrides: Overrides,
+        overrides: SettingsOverrides,
+        view: DebugView,
         proxy: EventLoopProxy<UserEvent>,
     ) -> SceneSlot {
         SceneSlot {
             state: SceneState::Loading,
             overrides,
+            view,
             requested: first,
             files_beside: Vec::new(),
             watcher: None,
@@ -167,8 +148,14 @@ impl SceneSlot {
             SceneState::Failed { last_good, .. } => last_good,
             SceneState::Loaded(shown) => Some(shown),
         };
-        let loaded = match result {
-            Ok(loaded) => loaded,
+        // The scene with the overrides applied (they were checked before the window opened, so
+        // only a scene's own bad settings can fail here).
+        let with_overrides = result.and_then(|loaded| {
+            let controls = Controls::with_overrides(&loaded.scene, &self.overrides, self.view)?;
+            Ok((loaded, controls))
+        });
+        let (loaded, with_overrides) = match with_overrides {
+            Ok(both) => both,
             Err(error) => {
                 self.state = SceneState::Failed {
                     error: error.clone(),
@@ -179,7 +166,6 @@ impl SceneSlot {
         };
         // The file's own controls, to tell on the next reload what the file changed.
         let file_controls = Controls::from_scene(&loaded.scene);
-        let with_overrides = self.overrides.controls_for(&loaded.scene);
         let controls = match last_good {
             Some(old) if old.scene.path == loaded.path => {
                 let mut controls = old.controls;
@@ -262,18 +248,21 @@ impl SceneSlot {
         self.loads
     }
 
-    /// The shown controls are being rendered: a size the user chose, and the view, stay for the
-    /// next scenes.
+    /// The shown controls are being rendered: a size the user chose (not the one the scene
+    /// started with), and the view, stay for the next scenes.
     pub fn keep_choices(&mut self) {
         let Some(shown) = self.shown() else { return };
         let settings = &shown.controls.settings;
-        let size = (settings.width, settings.height);
         let file = &shown.file_controls.settings;
-        let size_chosen = (file.width, file.height) != size;
+        let started = (
+            self.overrides.width.unwrap_or(file.width),
+            self.overrides.height.unwrap_or(file.height),
+        );
+        let size = (settings.width, settings.height);
         let view = shown.controls.view;
-        if self.overrides.size.is_some() || size_chosen {
-            self.overrides.size = Some(size);
+        if size != started {
+            (self.overrides.width, self.overrides.height) = (Some(size.0), Some(size.1));
         }
-        self.overrides.view = view;
+        self.view = view;
     }
 }
