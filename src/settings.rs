@@ -1,7 +1,10 @@
 //! Render settings: image size, the ray tree's limits, progressive refinement and the switches
 //! that turn parts of the shading off (for teaching and for the viewer), and the overrides of
-//! them that `render`, `inspect` and the viewer take from the command line.
+//! them and of the camera that `render`, `inspect` and the viewer take from the command line.
 
+use glam::Vec3;
+
+use crate::camera::{Camera, CameraError, CameraSpec};
 use crate::color::Color;
 
 /// Largest starting block size.
@@ -98,9 +101,10 @@ impl RenderSettings {
     }
 }
 
-/// Changes to a scene's render settings from outside its file (the command line's `--width`,
-/// `--max-depth`, …), the same for `render`, `inspect` and the viewer. Each `None` keeps the
-/// scene's own value: a width alone keeps the scene's height.
+/// Changes to a scene's render settings and camera from outside its file (the command line's
+/// `--width`, `--max-depth`, `--eye`, …), the same for `render`, `inspect` and the viewer. Each
+/// `None` keeps the scene's own value: a width alone keeps the scene's height, an eye alone the
+/// scene's look-at point.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SettingsOverrides {
     pub width: Option<u32>,
@@ -109,6 +113,11 @@ pub struct SettingsOverrides {
     pub min_weight: Option<f32>,
     pub block_size: Option<u32>,
     pub samples: Option<u32>,
+    pub eye: Option<Vec3>,
+    pub look_at: Option<Vec3>,
+    pub up: Option<Vec3>,
+    /// Vertical, in degrees.
+    pub view_angle: Option<f32>,
 }
 
 impl SettingsOverrides {
@@ -123,6 +132,56 @@ impl SettingsOverrides {
         s.samples = self.samples.unwrap_or(s.samples);
         s.validate()
     }
+
+    /// The camera `spec` with the camera overrides applied, checked as a scene file's camera is.
+    pub fn apply_camera(&self, spec: CameraSpec) -> Result<Camera, String> {
+        Camera::new(CameraSpec {
+            eye: self.eye.unwrap_or(spec.eye),
+            look_at: self.look_at.unwrap_or(spec.look_at),
+            up: self.up.unwrap_or(spec.up),
+            view_angle: self.view_angle.unwrap_or(spec.view_angle),
+            near: spec.near,
+        })
+        .map_err(camera_error)
+    }
+
+    /// Checks the camera overrides that are wrong whatever the scene's camera (before a scene is
+    /// read): a view angle out of range, an eye or look-at point out of range, both given and
+    /// equal, an up vector of zero or, with both points given, along the view.
+    pub fn check_camera(&self) -> Result<(), String> {
+        let default = CameraSpec::default();
+        let view_angle = self.view_angle.unwrap_or(default.view_angle);
+        // The points not given stand one unit apart from the ones given, across the up vector.
+        let up = self.up.unwrap_or(default.up);
+        let across = up.normalize_or_zero().any_orthonormal_vector();
+        let (eye, look_at) = match (self.eye, self.look_at) {
+            (Some(eye), Some(look_at)) => (eye, look_at),
+            (Some(eye), None) => (eye, eye - across),
+            (None, Some(look_at)) => (look_at + across, look_at),
+            (None, None) => (across, Vec3::ZERO),
+        };
+        let spec = CameraSpec {
+            eye,
+            look_at,
+            up,
+            view_angle,
+            near: default.near,
+        };
+        Camera::new(spec).map(drop).map_err(camera_error)
+    }
+}
+
+/// The message of a camera override that cannot be: the camera's own, after the flags it is about.
+fn camera_error(error: CameraError) -> String {
+    let flags = match error {
+        CameraError::EyeAtLookAt => "--eye, --look-at",
+        CameraError::UpParallelToView => "--up",
+        CameraError::ViewAngle(_) => "--view-angle",
+        CameraError::Eye(_) => "--eye",
+        CameraError::LookAt(_) => "--look-at",
+        CameraError::Near(_) => "camera",
+    };
+    format!("{flags}: {error}")
 }
 
 #[cfg(test)]

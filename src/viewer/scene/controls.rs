@@ -40,6 +40,7 @@ impl Controls {
     ) -> Result<Controls, String> {
         let mut controls = Controls::from_scene(scene);
         overrides.apply(&mut controls.settings)?;
+        controls.camera = overrides.apply_camera(controls.camera)?.spec;
         controls.view = view;
         Ok(controls)
     }
