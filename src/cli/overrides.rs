@@ -32,16 +32,16 @@ pub struct OverrideArgs {
     #[arg(long)]
     samples: Option<u32>,
     /// Where the camera's eye is (instead of the scene's camera, or its NAME.camera.toml).
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vector)]
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vector, allow_hyphen_values = true)]
     eye: Option<Vec3>,
     /// The point the camera looks at.
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vector)]
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vector, allow_hyphen_values = true)]
     look_at: Option<Vec3>,
     /// Which way is up in the image.
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vector)]
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vector, allow_hyphen_values = true)]
     up: Option<Vec3>,
     /// Vertical view angle in degrees (between 0 and 180).
-    #[arg(long, value_name = "DEG", value_parser = parse_number)]
+    #[arg(long, value_name = "DEG", value_parser = parse_number, allow_hyphen_values = true)]
     view_angle: Option<f32>,
 }
 
