@@ -206,6 +206,66 @@ mod tests {
     }
 
     #[test]
+    fn camera_overrides_change_only_what_they_give() {
+        let spec = CameraSpec::default();
+        let overrides = SettingsOverrides {
+            eye: Some(Vec3::new(1.0, 2.0, 3.0)),
+            view_angle: Some(30.0),
+            ..SettingsOverrides::default()
+        };
+        let camera = overrides.apply_camera(spec).unwrap();
+        let expected = CameraSpec {
+            eye: Vec3::new(1.0, 2.0, 3.0),
+            view_angle: 30.0,
+            ..spec
+        };
+        assert_eq!(camera.spec, expected);
+        assert!(overrides.check_camera().is_ok());
+        assert!(SettingsOverrides::default().check_camera().is_ok());
+    }
+
+    #[test]
+    fn camera_overrides_are_checked_with_the_scenes_camera_and_alone() {
+        let looking_down = SettingsOverrides {
+            look_at: Some(Vec3::new(0.0, -10.0, 5.0)),
+            ..SettingsOverrides::default()
+        };
+        // Alone it may be right; with the default camera's eye at (0, 0, 5) it looks along up.
+        assert!(looking_down.check_camera().is_ok());
+        let error = looking_down
+            .apply_camera(CameraSpec::default())
+            .unwrap_err();
+        assert!(
+            error.starts_with("--up: the up vector is parallel"),
+            "{error}"
+        );
+        let wrong_alone = [
+            (
+                Some(Vec3::ONE),
+                Some(Vec3::ONE),
+                None,
+                None,
+                "--eye, --look-at:",
+            ),
+            (None, None, Some(Vec3::ZERO), None, "--up:"),
+            (Some(Vec3::Y), Some(Vec3::ZERO), None, None, "--up:"),
+            (None, None, None, Some(0.0), "--view-angle:"),
+            (None, Some(Vec3::splat(1e16)), None, None, "--look-at:"),
+        ];
+        for (eye, look_at, up, view_angle, flags) in wrong_alone {
+            let overrides = SettingsOverrides {
+                eye,
+                look_at,
+                up,
+                view_angle,
+                ..SettingsOverrides::default()
+            };
+            let error = overrides.check_camera().unwrap_err();
+            assert!(error.starts_with(flags), "{error}");
+        }
+    }
+
+    #[test]
     fn overridden_settings_are_checked() {
         let mut settings = RenderSettings::default();
         let overrides = SettingsOverrides {
