@@ -74,7 +74,7 @@ pub fn frame(bounds: &Aabb, aspect: f32) -> Camera {
     three_quarter
         .framing(bounds, aspect)
         .and_then(|spec| Camera::new(spec).ok())
-        .unwrap_or_else(Camera::default)
+        .unwrap_or_default()
 }
 
 /// Why a camera cannot be built.

@@ -6,6 +6,7 @@ use glam::Vec3;
 
 use crate::camera::{Camera, CameraError, CameraSpec};
 use crate::color::Color;
+use crate::limits;
 
 /// Largest starting block size.
 pub const MAX_BLOCK_SIZE: u32 = 64;
@@ -151,13 +152,15 @@ impl SettingsOverrides {
     pub fn check_camera(&self) -> Result<(), String> {
         let default = CameraSpec::default();
         let view_angle = self.view_angle.unwrap_or(default.view_angle);
-        // The points not given stand one unit apart from the ones given, across the up vector.
+        // The points not given stand one unit apart from the ones given, across the up vector
+        // (an eye beside a look-at point out of range would be out of range first).
         let up = self.up.unwrap_or(default.up);
         let across = up.normalize_or_zero().any_orthonormal_vector();
         let (eye, look_at) = match (self.eye, self.look_at) {
             (Some(eye), Some(look_at)) => (eye, look_at),
             (Some(eye), None) => (eye, eye - across),
-            (None, Some(look_at)) => (look_at + across, look_at),
+            (None, Some(look_at)) if limits::within_range(look_at) => (look_at + across, look_at),
+            (None, Some(look_at)) => (across, look_at),
             (None, None) => (across, Vec3::ZERO),
         };
         let spec = CameraSpec {
