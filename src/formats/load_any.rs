@@ -53,15 +53,21 @@ pub fn load_any_with(name: &str, lighting: NffLighting) -> Result<Scene, SceneEr
     Ok(scene)
 }
 
-/// The camera file of the scene file `name`, `NAME.camera.toml` beside it (`room.camera.toml` for
-/// `room.toml` or `room.dat`), if there is one; `None` for a built-in SPD scene. Its `[camera]`
-/// table (the viewer's Ctrl+S writes one) takes the place of the scene's camera, key by key.
+/// The camera file of the scene file `name`, [`camera_path`] beside it, if there is one; `None`
+/// for a built-in SPD scene. Its `[camera]` table takes the place of the scene's camera, key by
+/// key.
 pub fn camera_file_beside(name: &str) -> Option<PathBuf> {
     if name.starts_with(SCENE_PREFIX) {
         return None;
     }
-    let path = Path::new(name).with_extension("camera.toml");
+    let path = camera_path(Path::new(name));
     path.is_file().then_some(path)
+}
+
+/// Where the camera of `file` (a scene file, or an image the viewer saves) goes: beside it,
+/// `NAME.camera.toml` (`room.camera.toml` for `room.toml`, `room.dat` or `room.png`).
+pub fn camera_path(file: &Path) -> PathBuf {
+    file.with_extension("camera.toml")
 }
 
 /// The scene with the default framing camera ([`camera::frame`]): a three-quarter view of its

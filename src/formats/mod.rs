@@ -17,4 +17,4 @@ pub mod toml;
 pub use error::SceneError;
 pub(crate) use error::Source;
 pub use files::{SceneFiles, ascii_text, utf8_text};
-pub use load_any::{camera_file_beside, load_any, load_any_with, with_framing_camera};
+pub use load_any::{camera_file_beside, camera_path, load_any, load_any_with, with_framing_camera};
