@@ -150,27 +150,30 @@ impl SettingsOverrides {
     /// read): a view angle out of range, an eye or look-at point out of range, both given and
     /// equal, an up vector of zero or, with both points given, along the view.
     pub fn check_camera(&self) -> Result<(), String> {
+        // With a point not given, the view goes across the up vector (seen from the origin),
+        // which is right for any up vector but zero; the point given is checked after, in the
+        // order the camera checks its own.
         let default = CameraSpec::default();
-        let view_angle = self.view_angle.unwrap_or(default.view_angle);
-        // The points not given stand one unit apart from the ones given, across the up vector
-        // (an eye beside a look-at point out of range would be out of range first).
         let up = self.up.unwrap_or(default.up);
-        let across = up.normalize_or_zero().any_orthonormal_vector();
         let (eye, look_at) = match (self.eye, self.look_at) {
             (Some(eye), Some(look_at)) => (eye, look_at),
-            (Some(eye), None) => (eye, eye - across),
-            (None, Some(look_at)) if limits::within_range(look_at) => (look_at + across, look_at),
-            (None, Some(look_at)) => (across, look_at),
-            (None, None) => (across, Vec3::ZERO),
+            _ => (Vec3::ZERO, up.normalize_or_zero().any_orthonormal_vector()),
         };
         let spec = CameraSpec {
             eye,
             look_at,
             up,
-            view_angle,
+            view_angle: self.view_angle.unwrap_or(default.view_angle),
             near: default.near,
         };
-        Camera::new(spec).map(drop).map_err(camera_error)
+        Camera::new(spec).map_err(camera_error)?;
+        if let Some(eye) = self.eye.filter(|&p| !limits::within_range(p)) {
+            return Err(camera_error(CameraError::Eye(eye)));
+        }
+        if let Some(look_at) = self.look_at.filter(|&p| !limits::within_range(p)) {
+            return Err(camera_error(CameraError::LookAt(look_at)));
+        }
+        Ok(())
     }
 }
 
@@ -225,6 +228,14 @@ mod tests {
         assert_eq!(camera.spec, expected);
         assert!(overrides.check_camera().is_ok());
         assert!(SettingsOverrides::default().check_camera().is_ok());
+        // A point alone, however far, is right for some scene.
+        for eye in [Vec3::new(1e9, 0.0, 0.0), Vec3::new(0.0, 5.0, 0.0)] {
+            let far = SettingsOverrides {
+                eye: Some(eye),
+                ..SettingsOverrides::default()
+            };
+            assert!(far.check_camera().is_ok(), "{eye}");
+        }
     }
 
     #[test]
@@ -254,6 +265,14 @@ mod tests {
             (Some(Vec3::Y), Some(Vec3::ZERO), None, None, "--up:"),
             (None, None, None, Some(0.0), "--view-angle:"),
             (None, Some(Vec3::splat(1e16)), None, None, "--look-at:"),
+            (
+                Some(Vec3::X),
+                Some(Vec3::splat(1e16)),
+                None,
+                None,
+                "--look-at:",
+            ),
+            (Some(Vec3::splat(-2e15)), None, None, None, "--eye:"),
         ];
         for (eye, look_at, up, view_angle, flags) in wrong_alone {
             let overrides = SettingsOverrides {
