@@ -12,6 +12,7 @@ mod sphere;
 mod tapered_cylinder;
 #[cfg(test)]
 mod test_support;
+mod torus;
 mod triangle;
 
 pub use cuboid::Cuboid;
@@ -22,6 +23,7 @@ pub use polygon::Polygon;
 pub use quadratic::solve_quadratic;
 pub use sphere::Sphere;
 pub use tapered_cylinder::TaperedCylinder;
+pub use torus::Torus;
 pub use triangle::{ShearedRay, Triangle, TriangleHit};
 
 use glam::{Vec2, Vec3};
@@ -57,6 +59,7 @@ pub enum Shape {
     TaperedCylinder(TaperedCylinder),
     Ellipsoid(Ellipsoid),
     Paraboloid(Paraboloid),
+    Torus(Torus),
 }
 
 impl Shape {
@@ -71,6 +74,7 @@ impl Shape {
             Shape::TaperedCylinder(s) => s.intersect(ray, t_min, t_max),
             Shape::Ellipsoid(s) => s.intersect(ray, t_min, t_max),
             Shape::Paraboloid(s) => s.intersect(ray, t_min, t_max),
+            Shape::Torus(s) => s.intersect(ray, t_min, t_max),
         }
     }
 
@@ -84,6 +88,7 @@ impl Shape {
             Shape::TaperedCylinder(s) => s.surface(p, part),
             Shape::Ellipsoid(s) => s.surface(p, part),
             Shape::Paraboloid(s) => s.surface(p, part),
+            Shape::Torus(s) => s.surface(p, part),
         }
     }
 
@@ -97,6 +102,7 @@ impl Shape {
             Shape::TaperedCylinder(_) => "tapered cylinder",
             Shape::Ellipsoid(_) => "ellipsoid",
             Shape::Paraboloid(_) => "paraboloid",
+            Shape::Torus(_) => "torus",
         }
     }
 
@@ -110,6 +116,7 @@ impl Shape {
             Shape::TaperedCylinder(s) => Some(s.bounds()),
             Shape::Ellipsoid(s) => Some(s.bounds()),
             Shape::Paraboloid(s) => Some(s.bounds()),
+            Shape::Torus(s) => Some(s.bounds()),
         }
     }
 
@@ -117,7 +124,7 @@ impl Shape {
     /// know which side is in).
     pub fn is_closed(&self) -> bool {
         match self {
-            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Ellipsoid(_) => true,
+            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Ellipsoid(_) | Shape::Torus(_) => true,
             Shape::Plane(_) | Shape::Polygon(_) => false,
             Shape::TaperedCylinder(s) => s.is_capped(),
             Shape::Paraboloid(s) => s.is_capped(),

@@ -27,7 +27,7 @@ use crate::primitive::{Geometry, Object};
 use crate::scene::Scene;
 use crate::settings::RenderSettings;
 use crate::shapes::{
-    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder, Triangle,
+    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder, Torus, Triangle,
 };
 use crate::texture::{Texture, TextureImage, Wrap};
 use crate::transform::{Transform, TransformStep};
@@ -527,6 +527,15 @@ impl GeometryBuilder<'_> {
                     capped.unwrap_or(false),
                 );
                 self.add_shape(shape.map(Shape::Paraboloid), span, material, transform)
+            }
+            ShapeFile::Torus {
+                center,
+                major_radius,
+                minor_radius,
+            } => {
+                let center = center.map_or(Vec3::ZERO, |c| c.0);
+                let shape = Torus::new(center, major_radius, minor_radius);
+                self.add_shape(shape.map(Shape::Torus), span, material, transform)
             }
         }
     }

@@ -223,4 +223,11 @@ pub enum ShapeFile {
         height: Option<f32>,
         capped: Option<bool>,
     },
+    /// A torus around the y axis through `center`: a tube of radius `minor_radius` swept
+    /// around a ring of radius `major_radius`.
+    Torus {
+        center: Option<Vector>,
+        major_radius: f32,
+        minor_radius: f32,
+    },
 }
