@@ -1,11 +1,12 @@
 //! The one entry point for every scene raylab reads, for the command line and the viewer alike:
 //! a built-in SPD scene by name (`spd:balls`, `spd:tree:6`), an NFF file (by its `.nff`
-//! extension), or a TOML scene file.
+//! extension), an SDL file (`.dat` or `.sdl`), or a TOML scene file.
 
 use std::path::Path;
 
 use super::SceneError;
 use super::nff::{NffLighting, load_nff};
+use super::sdl::load_sdl;
 use super::spd::{SCENE_PREFIX, load_spd};
 use super::toml::load_scene;
 use crate::scene::Scene;
@@ -36,11 +37,12 @@ pub fn load_any_with(name: &str, lighting: NffLighting) -> Result<Scene, SceneEr
         return load_spd(name, lighting);
     }
     let path = Path::new(name);
-    if path
-        .extension()
-        .is_some_and(|ext| ext.eq_ignore_ascii_case("nff"))
-    {
+    let extension = path.extension().and_then(|ext| ext.to_str());
+    let is = |wanted: &str| extension.is_some_and(|ext| ext.eq_ignore_ascii_case(wanted));
+    if is("nff") {
         load_nff(path, lighting)
+    } else if is("dat") || is("sdl") {
+        load_sdl(path)
     } else {
         load_scene(path)
     }
