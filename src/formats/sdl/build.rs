@@ -172,7 +172,7 @@ impl Builder {
     fn current(&mut self) -> Result<Transform, String> {
         let transform = Transform::from_affine(*self.top());
         if !transform.object_from_world.is_finite() {
-            return Err("the current transform squashes the shape flat".to_string());
+            return Err("the current transform cannot be undone in single precision (a scale too large or too small)".to_string());
         }
         Ok(transform)
     }

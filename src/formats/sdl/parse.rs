@@ -139,14 +139,12 @@ impl<'a> Parser<'a> {
                 self.check_settings(word)?;
             }
             "minReflectivity" => {
-                self.build.min_reflectivity = self.number(word, "a number")?;
+                self.build.min_reflectivity = self.fraction(word)?;
                 self.build.set_cutoff();
-                self.check_settings(word)?;
             }
             "minTransparency" => {
-                self.build.min_transparency = self.number(word, "a number")?;
+                self.build.min_transparency = self.fraction(word)?;
                 self.build.set_cutoff();
-                self.check_settings(word)?;
             }
             "maxRecursionDepth" => {
                 let depth = self.number(word, "a whole number")?;
@@ -307,6 +305,16 @@ impl<'a> Parser<'a> {
                     ),
                 )
             })
+    }
+
+    /// A number from 0 to 1 (`minReflectivity`, `minTransparency`).
+    fn fraction(&mut self, after: &Word) -> Result<f32, SceneError> {
+        let value = self.number(after, "a number from 0 to 1")?;
+        if !(0.0..=1.0).contains(&value) {
+            let message = format!("`{}` must be between 0 and 1, got {value}", after.text());
+            return Err(self.tokens.error(after, message));
+        }
+        Ok(value)
     }
 
     /// Three numbers.
