@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use glam::Vec3;
-use raylab::formats::sdl::{MAX_EXPANDED_TOKENS, parse_sdl};
+use raylab::formats::sdl::{MAX_EXPANDED_TOKENS, MAX_TRIANGLES, parse_sdl};
 use raylab::formats::{SceneError, SceneFiles, load_any};
 use raylab::light::Light;
 use raylab::scene::Scene;
@@ -436,4 +436,21 @@ fn load_any_reads_dat_and_sdl_files_and_their_meshes() {
         message.contains("bad.dat:3:1: unknown keyword `exponent`"),
         "{message}"
     );
+}
+
+#[test]
+fn a_few_uses_cannot_ask_for_billions_of_triangles() {
+    // 2^12 teapots of about 4000 triangles each: more than the limit, refused there.
+    let mut text = String::from("def t0 { teapot }\n");
+    for i in 1..=12 {
+        text += &format!("def t{i} {{ use t{j} use t{j} }}\n", j = i - 1);
+    }
+    text += "use t12";
+    let e = error(&text);
+    assert!(
+        e.message
+            .contains(&format!("more than {MAX_TRIANGLES} triangles")),
+        "{e}"
+    );
+    assert!(e.message.contains("in def `t0`"), "{e}");
 }

@@ -10,11 +10,21 @@ use crate::camera::{Camera, CameraSpec};
 use crate::color::Color;
 use crate::limits;
 use crate::material::Material;
+use crate::memory;
 use crate::mesh::Mesh;
 use crate::scene::Scene;
 use crate::settings::RenderSettings;
 use crate::shapes::Shape;
 use crate::transform::{Transform, TransformStep};
+
+/// Memory a triangle of a mesh takes, at most, with its share of the BVH (an estimate).
+const BYTES_PER_TRIANGLE: u64 = 256;
+
+/// The most triangles the meshes of an SDL scene may hold (2500 teapots).
+pub const MAX_TRIANGLES: u64 = 10_000_000;
+
+/// How many triangles a scene may have before their memory is checked.
+const FIRST_MEMORY_CHECK: u64 = 1 << 20;
 
 /// The book's material: colours for each term of its shading model, as `Material::setDefault`
 /// sets them.
@@ -92,6 +102,10 @@ pub(crate) struct Builder {
     /// `minReflectivity` and `minTransparency`: raylab's one cut-off is the smaller.
     pub min_reflectivity: f32,
     pub min_transparency: f32,
+    /// Triangles in the scene's meshes so far, and how many there must be to check the memory
+    /// they take again.
+    triangles: u64,
+    next_memory_check: u64,
     /// Polyhedra and the teapot, made once per file.
     solids: HashMap<String, Mesh>,
 }
@@ -114,6 +128,8 @@ impl Builder {
             stack: vec![Affine3A::IDENTITY],
             min_reflectivity: 0.5,
             min_transparency: 0.5,
+            triangles: 0,
+            next_memory_check: FIRST_MEMORY_CHECK,
             solids: HashMap::new(),
         }
     }
@@ -190,8 +206,24 @@ impl Builder {
         Ok(())
     }
 
-    /// Adds a mesh in its object space, placed and coloured as [`Self::shape`] does.
+    /// Adds a mesh in its object space, placed and coloured as [`Self::shape`] does. A few
+    /// `use`s of a teapot can ask for billions of triangles: there may be at most
+    /// [`MAX_TRIANGLES`], and each time they double, the memory they take is checked.
     pub fn mesh(&mut self, mut mesh: Mesh) -> Result<(), String> {
+        self.triangles += mesh.faces.len() as u64;
+        if self.triangles > MAX_TRIANGLES {
+            return Err(format!(
+                "the scene's meshes would hold more than {MAX_TRIANGLES} triangles \
+                 (raylab's limit for an SDL scene)"
+            ));
+        }
+        if self.triangles >= self.next_memory_check {
+            self.next_memory_check = self.triangles * 2;
+            memory::check(
+                &format!("{} triangles", self.triangles),
+                self.triangles * BYTES_PER_TRIANGLE,
+            )?;
+        }
         mesh.transform(&self.current()?);
         mesh.validate().map_err(|e| e.to_string())?;
         mesh.material = self.material_index();

@@ -14,6 +14,7 @@ mod suggest;
 
 use std::path::Path;
 
+pub use build::MAX_TRIANGLES;
 pub use expand::{MAX_EXPANDED_TOKENS, MAX_USE_DEPTH};
 
 use crate::formats::{SceneError, SceneFiles, Source, ascii_text};
