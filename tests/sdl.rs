@@ -4,8 +4,9 @@
 use std::path::Path;
 
 use glam::Vec3;
+use raylab::formats::nff::NffLighting;
 use raylab::formats::sdl::{MAX_EXPANDED_TOKENS, MAX_TRIANGLES, parse_sdl};
-use raylab::formats::{SceneError, SceneFiles, load_any};
+use raylab::formats::{SceneError, SceneFiles, SceneFormat, load_any, load_any_as};
 use raylab::light::Light;
 use raylab::scene::Scene;
 use raylab::shapes::Shape;
@@ -453,4 +454,51 @@ fn a_few_uses_cannot_ask_for_billions_of_triangles() {
         "{e}"
     );
     assert!(e.message.contains("in def `t0`"), "{e}");
+}
+
+#[test]
+fn format_sdl_reads_a_file_whatever_its_name() {
+    let folder = tempfile::tempdir().unwrap();
+    let path = folder.path().join("scene.txt");
+    std::fs::write(&path, "light 0 5 5 1 1 1 sphere mesh gone.3vn").unwrap();
+    let name = path.to_str().unwrap();
+    let s = load_any_as(name, NffLighting::default(), Some(SceneFormat::Sdl)).unwrap();
+    assert_eq!(s.geometry.objects.len(), 1);
+    assert!(load_any(name).is_err(), "read as TOML by its name");
+
+    let out = folder.path().join("out.png");
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let rendered = run(&[
+        "render",
+        name,
+        "--format",
+        "sdl",
+        "--size",
+        "8",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&rendered.stderr);
+    assert!(rendered.status.success(), "{stderr}");
+    assert!(out.exists());
+    assert!(
+        stderr.contains("warning: ") && stderr.contains(":1: cannot read mesh file"),
+        "{stderr}"
+    );
+    let inspected = run(&[
+        "inspect", name, "--format", "sdl", "--pixel", "4,4", "--size", "8",
+    ]);
+    assert!(
+        inspected.status.success(),
+        "{}",
+        String::from_utf8_lossy(&inspected.stderr)
+    );
+    let refused = run(&["render", name, "--format", "obj"]);
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("expected toml, nff or sdl"));
 }

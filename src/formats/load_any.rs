@@ -3,6 +3,7 @@
 //! extension), an SDL file (`.dat` or `.sdl`), or a TOML scene file.
 
 use std::path::Path;
+use std::str::FromStr;
 
 use super::SceneError;
 use super::nff::{NffLighting, load_nff};
@@ -33,17 +34,62 @@ pub fn load_any(name: &str) -> Result<Scene, SceneError> {
 /// Reads the scene `name` names; `lighting` sets the brightness of NFF and SPD scenes' lights
 /// (TOML scenes say their own).
 pub fn load_any_with(name: &str, lighting: NffLighting) -> Result<Scene, SceneError> {
-    if name.starts_with(SCENE_PREFIX) {
+    load_any_as(name, lighting, None)
+}
+
+/// A scene file's format, for reading a file whatever its name ends in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SceneFormat {
+    Toml,
+    Nff,
+    /// Hill & Kelley's SDL.
+    Sdl,
+}
+
+impl SceneFormat {
+    /// The format a file's extension names: `.nff`, `.dat` and `.sdl`; TOML for any other.
+    pub fn of(path: &Path) -> SceneFormat {
+        let extension = path.extension().and_then(|ext| ext.to_str());
+        let is = |wanted: &str| extension.is_some_and(|ext| ext.eq_ignore_ascii_case(wanted));
+        if is("nff") {
+            SceneFormat::Nff
+        } else if is("dat") || is("sdl") {
+            SceneFormat::Sdl
+        } else {
+            SceneFormat::Toml
+        }
+    }
+}
+
+impl FromStr for SceneFormat {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<SceneFormat, String> {
+        match text {
+            "toml" => Ok(SceneFormat::Toml),
+            "nff" => Ok(SceneFormat::Nff),
+            "sdl" => Ok(SceneFormat::Sdl),
+            _ => Err(format!(
+                "unknown scene format `{text}` (expected toml, nff or sdl)"
+            )),
+        }
+    }
+}
+
+/// [`load_any_with`], reading a file in `format` when given, else in the format its
+/// extension names.
+pub fn load_any_as(
+    name: &str,
+    lighting: NffLighting,
+    format: Option<SceneFormat>,
+) -> Result<Scene, SceneError> {
+    if format.is_none() && name.starts_with(SCENE_PREFIX) {
         return load_spd(name, lighting);
     }
     let path = Path::new(name);
-    let extension = path.extension().and_then(|ext| ext.to_str());
-    let is = |wanted: &str| extension.is_some_and(|ext| ext.eq_ignore_ascii_case(wanted));
-    if is("nff") {
-        load_nff(path, lighting)
-    } else if is("dat") || is("sdl") {
-        load_sdl(path)
-    } else {
-        load_scene(path)
+    match format.unwrap_or_else(|| SceneFormat::of(path)) {
+        SceneFormat::Nff => load_nff(path, lighting),
+        SceneFormat::Sdl => load_sdl(path),
+        SceneFormat::Toml => load_scene(path),
     }
 }
