@@ -3,6 +3,25 @@
 //! runs `def`/`use`, [`parse`] reads the statements, [`build`] keeps the reader's state and makes
 //! the scene, [`solids`] has the shapes in object space, [`mesh_3vn`] reads `.3vn` meshes).
 //! SDL has no camera: the scene gets a placeholder, to be set from outside.
+//!
+//! Where raylab differs from the book's reader:
+//! - Where the book stops reading without a word (an unknown keyword, a missing `{`, an
+//!   undefined `use`) or ends the program (a bad number), raylab reports `file:line:column`,
+//!   what it expected, a near-miss keyword or name, and the `def`s an expanded word came from.
+//! - A `def` that uses itself is an error, and expansion is bounded ([`MAX_USE_DEPTH`],
+//!   [`MAX_EXPANDED_TOKENS`]), as are the meshes' triangles ([`MAX_TRIANGLES`]).
+//! - A last word with no whitespace after it is read (the book drops it).
+//! - `pop` with nothing pushed resets the transform and warns (the book crashes later); a
+//!   `push` never popped is a warning; a missing mesh file is a warning, once per file.
+//! - A zero scale is an error (the book divides by it and carries on).
+//! - raylab's materials have one colour: the diffuse colour, the ambient colour becoming the
+//!   ambient coefficient (its mean over the diffuse colour's mean), the specular colour the
+//!   highlight's colour. `emissive` and the textures (`texture`, `parameters`, `makePixmap`)
+//!   are read and ignored, with a warning. `minReflectivity` and `minTransparency` become
+//!   raylab's one adaptive cut-off, the smaller of the two.
+//! - The polyhedra are generated (the convex hulls of their corners), not read from files.
+//! - `torus`, `union`, `intersection` and `difference` are read and reported as not supported
+//!   yet; `taperedTube`, `backgroundImage` and the other versions' extensions are unknown words.
 
 mod build;
 mod expand;

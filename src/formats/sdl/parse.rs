@@ -155,7 +155,7 @@ impl<'a> Parser<'a> {
             "diffuse" => self.build.material.diffuse = self.vector(word, "a colour")?,
             "specular" => self.build.material.specular = self.vector(word, "a colour")?,
             "emissive" => {
-                self.build.material.emissive = self.vector(word, "a colour")?;
+                self.vector(word, "a colour")?;
                 self.warn_once(word, "`emissive` is read, but raylab has no emission yet");
             }
             "specularExponent" => {

@@ -127,7 +127,14 @@ mod tests {
     #[test]
     fn scene_files_are_listed_sorted_without_other_files() {
         let dir = tempfile::tempdir().unwrap();
-        for name in ["b.toml", "a.toml", "notes.txt", "Cargo.toml", "c.NFF", "d.dat"] {
+        for name in [
+            "b.toml",
+            "a.toml",
+            "notes.txt",
+            "Cargo.toml",
+            "c.NFF",
+            "d.dat",
+        ] {
             std::fs::write(dir.path().join(name), "").unwrap();
         }
         let files = scene_files_beside(Some(&dir.path().join("a.toml")));
