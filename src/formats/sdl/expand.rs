@@ -21,8 +21,17 @@ pub const MAX_EXPANDED_TOKENS: usize = 1_000_000;
 #[derive(Clone, Debug)]
 pub(crate) struct Word<'a> {
     pub token: Token<'a>,
-    /// `in def `leg` (used at 14:1)`, innermost first; `None` for the file's own text.
-    pub context: Option<Rc<str>>,
+    /// The `use` that spliced it in, innermost first; `None` for the file's own text.
+    pub context: Option<Rc<Expansion>>,
+}
+
+/// A `use` being expanded: the `def`'s name, where the name after `use` stands, and the `use`
+/// this one was spliced in by. Turned into words only for an error message.
+#[derive(Debug)]
+pub(crate) struct Expansion {
+    name: String,
+    used_at: Range<usize>,
+    outer: Option<Rc<Expansion>>,
 }
 
 impl Word<'_> {
@@ -34,10 +43,9 @@ impl Word<'_> {
 /// A `def` being read out: its name, its body and how far it has been read.
 #[derive(Debug)]
 struct Frame<'a> {
-    name: String,
     body: Rc<[Token<'a>]>,
     next: usize,
-    context: Rc<str>,
+    context: Rc<Expansion>,
 }
 
 /// A definition: its body and where its name stands.
@@ -89,8 +97,16 @@ impl<'a> Tokens<'a> {
     /// An error at `word`, naming the `def`s it was spliced in from.
     pub fn error(&self, word: &Word, message: impl Into<String>) -> SceneError {
         let mut message = message.into();
-        if let Some(context) = &word.context {
-            message = format!("{message} ({context})");
+        let mut expansion = word.context.as_deref();
+        let mut separator = " (";
+        while let Some(e) = expansion {
+            let at = self.place(e.used_at.clone());
+            message += &format!("{separator}in def `{}`, used at {at}", e.name);
+            separator = ", ";
+            expansion = e.outer.as_deref();
+        }
+        if word.context.is_some() {
+            message += ")";
         }
         self.source.error(word.token.span.clone(), message)
     }
@@ -190,10 +206,14 @@ impl<'a> Tokens<'a> {
                 ),
             ));
         };
-        if let Some(open) = self.frames.iter().position(|f| f.name == name.text()) {
+        if let Some(open) = self
+            .frames
+            .iter()
+            .position(|f| f.context.name == name.text())
+        {
             let mut chain: Vec<&str> = self.frames[open..]
                 .iter()
-                .map(|f| f.name.as_str())
+                .map(|f| f.context.name.as_str())
                 .collect();
             chain.push(name.text());
             return Err(self.error(
@@ -223,19 +243,14 @@ impl<'a> Tokens<'a> {
             ));
         }
         let body = def.body.clone();
-        let mut context = format!(
-            "in def `{}`, used at {}",
-            name.text(),
-            self.place(name.token.span.clone())
-        );
-        if let Some(outer) = &name.context {
-            context = format!("{context}, {outer}");
-        }
         self.frames.push(Frame {
-            name: name.token.text.into_owned(),
             body,
             next: 0,
-            context: context.into(),
+            context: Rc::new(Expansion {
+                name: name.token.text.into_owned(),
+                used_at: name.token.span.clone(),
+                outer: name.context.clone(),
+            }),
         });
         Ok(())
     }
