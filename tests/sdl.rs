@@ -502,3 +502,19 @@ fn format_sdl_reads_a_file_whatever_its_name() {
     assert!(!refused.status.success());
     assert!(String::from_utf8_lossy(&refused.stderr).contains("expected toml, nff or sdl"));
 }
+
+#[test]
+fn load_any_frames_an_sdl_scene_which_has_no_camera() {
+    let folder = tempfile::tempdir().unwrap();
+    let path = folder.path().join("far.sdl");
+    std::fs::write(&path, "translate 100 0 0 sphere").unwrap();
+    let placeholder = read("translate 100 0 0 sphere").unwrap().camera.spec;
+    assert_eq!(placeholder, raylab::camera::CameraSpec::default());
+    let framed = load_any(path.to_str().unwrap()).unwrap().camera.spec;
+    assert_eq!(
+        framed.look_at.round(),
+        Vec3::new(100.0, 0.0, 0.0),
+        "{framed:?}"
+    );
+    assert!(framed.eye.distance(framed.look_at) > 1.0);
+}

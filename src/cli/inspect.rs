@@ -44,7 +44,9 @@ fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
 
 pub fn run(args: InspectArgs) -> Result<(), String> {
     let mut scene = super::load_scene(args.scene.as_deref(), args.nff_lights, args.format)?;
-    SettingsOverrides::from(args.overrides).apply(&mut scene.settings)?;
+    let overrides = SettingsOverrides::from(args.overrides);
+    overrides.apply(&mut scene.settings)?;
+    scene.camera = overrides.apply_camera(scene.camera.spec)?;
     let (width, height) = (scene.settings.width, scene.settings.height);
     let (x, y) = args.pixel;
     if x >= width || y >= height {

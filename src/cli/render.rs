@@ -52,7 +52,9 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     // Before any long work: the scene, the BVH, the render.
     let format = check_image_path(&args.output).map_err(|e| e.to_string())?;
     let mut scene = super::load_scene(args.scene.as_deref(), args.nff_lights, args.format)?;
-    SettingsOverrides::from(args.overrides).apply(&mut scene.settings)?;
+    let overrides = SettingsOverrides::from(args.overrides);
+    overrides.apply(&mut scene.settings)?;
+    scene.camera = overrides.apply_camera(scene.camera.spec)?;
     let pool = super::thread_pool(args.threads)?;
     let (width, height) = (scene.settings.width, scene.settings.height);
     let pixels = u64::from(width) * u64::from(height);

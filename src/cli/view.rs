@@ -63,8 +63,10 @@ pub fn run(args: ViewArgs) -> Result<(), String> {
     }
     let overrides = SettingsOverrides::from(args.overrides);
     // Checked before the window opens: each setting's range is its own, so overrides that are
-    // right on the default settings are right on any scene's.
+    // right on the default settings are right on any scene's; the camera's as far as they can be
+    // without the scene's camera.
     overrides.apply(&mut RenderSettings::default())?;
+    overrides.check_camera()?;
     viewer::run(Options {
         scene: args.scene,
         overrides,

@@ -18,4 +18,7 @@ pub mod toml;
 pub use error::SceneError;
 pub(crate) use error::Source;
 pub use files::{SceneFiles, ascii_text, utf8_text};
-pub use load_any::{SceneFormat, load_any, load_any_as, load_any_with};
+pub use load_any::{
+    SceneFormat, camera_file_beside, camera_path, load_any, load_any_as, load_any_with,
+    with_framing_camera,
+};

@@ -36,6 +36,13 @@ pub struct SceneFile {
     pub objects: Vec<ObjectFile>,
 }
 
+/// A `NAME.camera.toml` file beside a scene (what the viewer saves): only a `[camera]` table.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSnippetFile {
+    pub camera: Spanned<CameraFile>,
+}
+
 /// `[render]`: the fields of [`crate::settings::RenderSettings`], each optional.
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
