@@ -12,8 +12,8 @@ use crate::viewer::{self, Options, Script};
 
 #[derive(Args, Debug)]
 pub struct ViewArgs {
-    /// Scene to open: a .toml or .nff file, or spd:NAME[:SIZE]; the built-in default scene when
-    /// left out.
+    /// Scene to open: a .toml, .nff or SDL (.dat, .sdl) file, or spd:NAME[:SIZE]; the built-in
+    /// default scene when left out.
     scene: Option<PathBuf>,
     /// Overrides of the scene's render settings.
     #[command(flatten)]
