@@ -4,12 +4,15 @@
 use std::path::Path;
 
 use glam::Vec3;
+use raylab::bvh::Bvh;
 use raylab::formats::nff::NffLighting;
 use raylab::formats::sdl::{MAX_EXPANDED_TOKENS, MAX_TRIANGLES, parse_sdl};
 use raylab::formats::{SceneError, SceneFiles, SceneFormat, load_any, load_any_as};
 use raylab::light::Light;
+use raylab::ray::Ray;
 use raylab::scene::Scene;
 use raylab::shapes::Shape;
+use raylab::whitted::Tracer;
 
 /// A square of one face, as a `.3vn` file.
 const SQUARE_3VN: &[u8] = b"4 1 1\n-1 -1 0  1 -1 0  1 1 0  -1 1 0\n0 0 1\n4\n0 1 2 3\n0 0 0 0\n";
@@ -353,10 +356,27 @@ fn meshes_from_files_and_missing_ones() {
 }
 
 #[test]
-fn torus_and_booleans_are_read_but_not_made_yet() {
-    let e = error("sphere\n  torus");
-    assert_eq!((e.line, e.column), (2, 3));
-    assert!(e.message.contains("not supported"), "{e}");
+fn the_torus_rings_the_z_axis_as_the_books_glut_torus_does() {
+    // Ring radius 1 around z in the plane z = 0, tube radius 0.2; then moved up by 1.
+    let s = scene("translate 0 0 1 torus");
+    assert!(matches!(s.geometry.objects[0].shape, Shape::Torus(_)));
+    let bvh = Bvh::build(&s.geometry);
+    let tracer = Tracer::new(&s, &bvh);
+    let down = |x: f32, y: f32| Ray::new(Vec3::new(x, y, 5.0), -Vec3::Z);
+    // Straight down onto the top of the tube, at z = 1 + 0.2, wherever around the ring.
+    for (x, y) in [(1.0, 0.0), (0.0, -1.0), (0.6, 0.8)] {
+        let hit = tracer
+            .closest_hit(&down(x, y), 0.0)
+            .expect("the tube is below");
+        assert!((hit.t - 3.8).abs() < 1e-4, "({x}, {y}): t = {}", hit.t);
+    }
+    // Down the hole, and outside the ring: nothing.
+    assert!(tracer.closest_hit(&down(0.0, 0.0), 0.0).is_none());
+    assert!(tracer.closest_hit(&down(1.3, 0.0), 0.0).is_none());
+}
+
+#[test]
+fn booleans_are_read_but_not_made_yet() {
     let e = error("light 0 0 0 1 1 1\nunion sphere translate 1 0 0 cube");
     assert_eq!((e.line, e.column), (2, 1));
     assert!(

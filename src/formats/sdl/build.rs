@@ -183,8 +183,8 @@ impl Builder {
     }
 
     /// The current transform, checked: it must be invertible.
-    fn current(&mut self) -> Result<Transform, String> {
-        let transform = Transform::from_affine(*self.top());
+    fn current(&mut self, frame: Affine3A) -> Result<Transform, String> {
+        let transform = Transform::from_affine(*self.top() * frame);
         if !transform.object_from_world.is_finite() {
             return Err("the current transform cannot be undone in single precision (a scale too large or too small)".to_string());
         }
@@ -194,7 +194,13 @@ impl Builder {
     /// Adds a shape in its object space, placed by the current transform, in the current
     /// material.
     pub fn shape(&mut self, shape: Shape) -> Result<(), String> {
-        let transform = self.current()?;
+        self.shape_in_frame(shape, Affine3A::IDENTITY)
+    }
+
+    /// [`Self::shape`] for a shape that raylab models in another frame than the book does:
+    /// `frame` takes raylab's frame of the shape into the book's object space.
+    pub fn shape_in_frame(&mut self, shape: Shape, frame: Affine3A) -> Result<(), String> {
+        let transform = self.current(frame)?;
         if let Some(bounds) = shape.bounds() {
             let bounds = transform.bounds_to_world(&bounds);
             limits::check_bounds(&format!("the {}", shape.name()), &bounds)?;
@@ -222,7 +228,7 @@ impl Builder {
                 self.triangles * BYTES_PER_TRIANGLE,
             )?;
         }
-        mesh.transform(&self.current()?);
+        mesh.transform(&self.current(Affine3A::IDENTITY)?);
         mesh.validate().map_err(|e| e.to_string())?;
         mesh.material = self.material_index();
         self.scene.geometry.add_mesh(mesh);

@@ -22,8 +22,10 @@
 //!   are read and ignored, with a warning. `minReflectivity` and `minTransparency` become
 //!   raylab's one adaptive cut-off, the smaller of the two.
 //! - The polyhedra are generated (the convex hulls of their corners), not read from files.
-//! - `torus`, `union`, `intersection` and `difference` are read and reported as not supported
-//!   yet; `taperedTube`, `backgroundImage` and the other versions' extensions are unknown words.
+//! - `torus` is raylab's exact torus, turned to ring the z axis as GLUT's does (ring radius 1,
+//!   tube 0.2); the book's own `Torus::hit` was a stub.
+//! - `union`, `intersection` and `difference` are read and reported as not supported yet;
+//!   `taperedTube`, `backgroundImage` and the other versions' extensions are unknown words.
 
 mod build;
 mod expand;

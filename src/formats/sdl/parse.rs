@@ -249,7 +249,12 @@ impl<'a> Parser<'a> {
                 self.mesh_file(word)?;
                 return Ok(true);
             }
-            "torus" => return Err(self.not_yet(word, "the torus")),
+            "torus" => {
+                let result = solids::torus()
+                    .and_then(|(torus, frame)| self.build.shape_in_frame(torus, frame));
+                result.map_err(|e| self.tokens.error(word, e))?;
+                return Ok(true);
+            }
             "union" | "intersection" | "difference" => {
                 // Read both operands, so that the file is understood up to here.
                 for side in ["first", "second"] {

@@ -3,12 +3,12 @@
 //! GLUT teapot, and the polyhedra the book reads from `.3vn` files beside the program, which
 //! raylab generates instead (each the convex hull of its corners, circumradius 1).
 
-use glam::{DVec3, Vec3};
+use glam::{Affine3A, DVec3, Vec3};
 
 use crate::formats::nff::Item;
 use crate::formats::spd::utah_teapot;
 use crate::mesh::Mesh;
-use crate::shapes::{Cuboid, Plane, Polygon, Shape, Sphere, TaperedCylinder};
+use crate::shapes::{Cuboid, Plane, Polygon, Shape, Sphere, TaperedCylinder, Torus};
 
 pub(crate) fn sphere() -> Result<Shape, String> {
     Sphere::new(Vec3::ZERO, 1.0).map(Shape::Sphere)
@@ -21,6 +21,15 @@ pub(crate) fn cube() -> Result<Shape, String> {
 /// Radius 1 at z = 0, `top_radius` at z = 1, closed at both ends.
 pub(crate) fn tapered_cylinder(top_radius: f32) -> Result<Shape, String> {
     TaperedCylinder::new(Vec3::ZERO, Vec3::Z, 1.0, top_radius, true).map(Shape::TaperedCylinder)
+}
+
+/// The book's torus (GLUT's `glutSolidTorus(0.2, 1.0, …)`): a ring of radius 1 around the z
+/// axis, its tube of radius 0.2. raylab's torus rings the y axis, so it comes with the frame
+/// that turns y into z (a quarter turn about x).
+pub(crate) fn torus() -> Result<(Shape, Affine3A), String> {
+    let torus = Torus::new(Vec3::ZERO, 1.0, 0.2)?;
+    let y_to_z = Affine3A::from_rotation_x(std::f32::consts::FRAC_PI_2);
+    Ok((Shape::Torus(torus), y_to_z))
 }
 
 /// The square −1 ≤ x, y ≤ 1 in the plane z = 0.
