@@ -1,7 +1,7 @@
 //! Hill & Kelley's SDL, the scene language of *Computer Graphics using OpenGL* (`.dat` and
-//! `.sdl` files): read as the book's `SDL.cpp` reads it ([`lexer`] splits the text, [`expand`]
-//! runs `def`/`use`, [`parse`] reads the statements, [`build`] keeps the reader's state and makes
-//! the scene, [`solids`] has the shapes in object space, [`mesh_3vn`] reads `.3vn` meshes).
+//! `.sdl` files): read as the book's `SDL.cpp` reads it (`lexer` splits the text, `expand`
+//! runs `def`/`use`, `parse` reads the statements, `build` keeps the reader's state and makes
+//! the scene, `solids` has the shapes in object space, `mesh_3vn` reads `.3vn` meshes).
 //! SDL has no camera: [`parse_sdl`] gives the scene a placeholder, and
 //! [`load_any`](crate::formats::load_any) the default framing camera, or the one of a
 //! `NAME.camera.toml` beside the file, or the command line's.
