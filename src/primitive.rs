@@ -19,6 +19,16 @@ pub struct Object {
     pub material: u32,
 }
 
+impl Object {
+    /// The material of the part `part` of the object: a CSG operand's own, or the object's.
+    pub fn material_at(&self, part: u32) -> u32 {
+        match &self.shape {
+            Shape::Csg(csg) => csg.leaf(part).material,
+            _ => self.material,
+        }
+    }
+}
+
 /// A reference to one primitive: an object or a mesh triangle, told apart by the top bit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct PrimId(pub u32);
@@ -242,10 +252,10 @@ impl Geometry {
         &self.meshes[self.mesh_index(t)]
     }
 
-    /// The material of primitive `id`.
-    pub fn material(&self, id: PrimId) -> u32 {
-        match id.kind() {
-            Ok(o) => self.objects[o].material,
+    /// The material at `hit`.
+    pub fn material(&self, hit: &Hit) -> u32 {
+        match hit.prim.kind() {
+            Ok(o) => self.objects[o].material_at(hit.part),
             Err(t) => self.mesh_of(t).material,
         }
     }
@@ -271,7 +281,7 @@ impl Geometry {
                     normal,
                     geometric_normal: normal,
                     uv: local.uv,
-                    material: object.material,
+                    material: object.material_at(hit.part),
                 }
             }
             Err(t) => {
