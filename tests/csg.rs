@@ -203,21 +203,21 @@ children = [
 fn nested_nodes_keep_their_transforms_and_materials() {
     // A hollow box, moved up by 3 inside a union with a green sphere, the whole turned 90°
     // about z: the hollow box ends up at x = −3.
-    let scene = scene_of(&format!(
+    let scene = scene_of(
         r#"
 [[objects]]
 type = "csg"
 operation = "union"
-transform = [ {{ rotate = {{ axis = [0, 0, 1], degrees = 90 }} }} ]
+transform = [ { rotate = { axis = [0, 0, 1], degrees = 90 } } ]
 children = [
-    {{ type = "sphere", radius = 0.5, material = "green" }},
-    {{ type = "csg", operation = "difference", material = "red", transform = [ {{ translate = [0, 3, 0] }} ], children = [
-        {{ type = "box", min = [-1, -1, -1], max = [1, 1, 1] }},
-        {{ type = "sphere", radius = 1.2, material = "blue" }},
-    ] }},
+    { type = "sphere", radius = 0.5, material = "green" },
+    { type = "csg", operation = "difference", material = "red", transform = [ { translate = [0, 3, 0] } ], children = [
+        { type = "box", min = [-1, -1, -1], max = [1, 1, 1] },
+        { type = "sphere", radius = 1.2, material = "blue" },
+    ] },
 ]
-"#
-    ));
+"#,
+    );
     let (hit, surface) = first_hit(&scene, &Ray::new(Vec3::new(0.0, 0.0, 5.0), -Vec3::Z), 0.0)
         .expect("the sphere at the centre");
     assert!((hit.t - 4.5).abs() < 1e-5);
@@ -308,8 +308,7 @@ fn open_surfaces_and_absurd_nesting_are_errors_at_their_place() {
     }
     let text = format!("objects = [{node}]\n");
     let error = parse_scene(&text, Path::new("test.toml"), Path::new("."))
-        .err()
-        .expect("nesting 17 deep is refused");
+        .expect_err("nesting 17 deep is refused");
     assert_eq!(error.line, 1, "{error}");
     assert!(
         error.message.contains("nested more than 16 deep"),
@@ -317,8 +316,7 @@ fn open_surfaces_and_absurd_nesting_are_errors_at_their_place() {
     );
     let bad_operation = "[[objects]]\ntype = \"csg\"\noperation = \"xor\"\nchildren = []\n";
     let error = parse_scene(bad_operation, Path::new("test.toml"), Path::new("."))
-        .err()
-        .expect("xor is no operation");
+        .expect_err("xor is no operation");
     assert_eq!((error.line, error.column), (3, 13), "{error}");
 }
 

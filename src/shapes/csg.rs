@@ -378,7 +378,11 @@ fn combined_bounds(operation: CsgOperation, children: &[Option<Aabb>]) -> Option
 fn combine(operation: CsgOperation, a: &[Span], b: &[Span], out: &mut Spans) {
     let boundary = |list: &[Span], i: usize| {
         let span = list[i / 2];
-        if i % 2 == 0 { span.enter } else { span.exit }
+        if i.is_multiple_of(2) {
+            span.enter
+        } else {
+            span.exit
+        }
     };
     let (a_end, b_end) = (2 * a.len(), 2 * b.len());
     let (mut i, mut j) = (0, 0);
