@@ -239,6 +239,32 @@ impl Geometry {
         }
     }
 
+    /// [`Self::prim_label`] of what `hit` met, with the operand for a CSG object, e.g.
+    /// "csg #3 › child 2 (sphere)".
+    pub fn hit_label(&self, hit: &Hit) -> String {
+        let label = self.prim_label(hit.prim);
+        match hit.prim.kind() {
+            Ok(o) => match &self.objects[o].shape {
+                Shape::Csg(csg) => format!("{label} › {}", csg.leaf(hit.part).label),
+                _ => label,
+            },
+            Err(_) => label,
+        }
+    }
+
+    /// A number for what `hit` met that tells apart the operands of a CSG object (for the
+    /// object-id view): [`Self::object_id`] for everything else.
+    pub fn part_id(&self, hit: &Hit) -> u32 {
+        let object = self.object_id(hit.prim);
+        match hit.prim.kind() {
+            Ok(o) => match &self.objects[o].shape {
+                Shape::Csg(csg) => object ^ ((csg.leaf_index(hit.part) as u32 + 1) << 20),
+                _ => object,
+            },
+            Err(_) => object,
+        }
+    }
+
     /// The index of the mesh that triangle `t` belongs to.
     fn mesh_index(&self, t: usize) -> usize {
         let later = self

@@ -13,7 +13,7 @@ use glam::Vec3;
 use raylab::bvh::Bvh;
 use raylab::formats::toml::parse_scene;
 use raylab::inspect::trace_ray_tree;
-use raylab::primitive::{Hit, SurfacePoint};
+use raylab::primitive::{Hit, PrimId, SurfacePoint};
 use raylab::ray::{Ray, offset_origin};
 use raylab::scene::Scene;
 use raylab::whitted::{RayKind, Tracer};
@@ -434,4 +434,54 @@ children = [
         (crossing - focus).abs() < 0.005 * focal_length,
         "crosses the axis at z = {crossing}, the lensmaker says {focus}"
     );
+}
+
+/// The BVH's box of a CSG object is tight: the overlap of an intersection's operands, the
+/// first operand's for a difference.
+#[test]
+fn csg_bounds_are_tight() {
+    let lens = scene_of(LENS);
+    let b = lens.geometry.bounds(PrimId::object(0)).expect("bounded");
+    assert_near(b.min, Vec3::new(-1.0, -1.0, -0.4), 1e-5);
+    assert_near(b.max, Vec3::new(1.0, 1.0, 0.4), 1e-5);
+    let hollow = scene_of(HOLLOW_BOX);
+    let b = hollow.geometry.bounds(PrimId::object(0)).expect("bounded");
+    assert_near(b.min, Vec3::splat(-1.0), 1e-6);
+    assert_near(b.max, Vec3::splat(1.0), 1e-6);
+}
+
+/// The inspector names the operand a ray met, and the object-id view tells operands apart.
+#[test]
+fn the_inspector_names_the_operand_hit() {
+    let scene = parse(&format!(
+        r#"{MATERIALS}
+[render]
+width = 1
+height = 1
+[camera]
+eye = [0, 0.9, -5]
+look_at = [0, 0.9, 0]
+[[objects]]
+type = "sphere"
+center = [0, 10, 0]
+{HOLLOW_BOX}"#
+    ));
+    let bvh = Bvh::build(&scene.geometry);
+    let tree = trace_ray_tree(&Tracer::new(&scene, &bvh), 0, 0);
+    let hit = tree.nodes[0].hit.as_ref().expect("the box is hit");
+    assert_eq!(hit.label, "csg #1 › child 1 (cuboid)");
+    // Inside the hole: the sphere.
+    let ray = Ray::new(Vec3::new(0.0, 0.9, 0.0), Vec3::Z);
+    let (in_hole, _) = first_hit(&scene, &ray, 0.0).expect("the far wall");
+    assert_eq!(
+        scene.geometry.hit_label(&in_hole),
+        "csg #1 › child 2 (sphere)"
+    );
+    let (on_box, _) =
+        first_hit(&scene, &Ray::new(Vec3::new(0.0, 0.9, -5.0), Vec3::Z), 0.0).expect("the box");
+    let g = &scene.geometry;
+    assert_ne!(g.part_id(&in_hole), g.part_id(&on_box));
+    let (plain, _) = first_hit(&scene, &Ray::new(Vec3::new(0.0, 20.0, 0.0), -Vec3::Y), 0.0)
+        .expect("the plain sphere");
+    assert_eq!(g.part_id(&plain), g.object_id(plain.prim));
 }

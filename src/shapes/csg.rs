@@ -254,9 +254,14 @@ impl Csg {
         &self.leaves
     }
 
+    /// The index of the leaf a hit's `part` belongs to.
+    pub fn leaf_index(&self, part: u32) -> usize {
+        (part >> PART_BITS) as usize
+    }
+
     /// The leaf a hit's `part` belongs to.
     pub fn leaf(&self, part: u32) -> &Leaf {
-        &self.leaves[(part >> PART_BITS) as usize]
+        &self.leaves[self.leaf_index(part)]
     }
 
     /// The first boundary of the result in `(t_min, t_max)`.
