@@ -11,7 +11,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use glam::Vec3;
 use raylab::ray::Ray;
 use raylab::shapes::{
-    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder, Triangle,
+    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder, Torus, Triangle,
 };
 
 /// 256 rays from a sphere of radius 4 around the origin towards points near it.
@@ -71,6 +71,10 @@ fn shapes() -> Vec<(&'static str, Shape)> {
         (
             "paraboloid (capped)",
             Shape::Paraboloid(Paraboloid::new(-Vec3::Y, 0.8, 1.6, true).unwrap()),
+        ),
+        (
+            "torus",
+            Shape::Torus(Torus::new(Vec3::ZERO, 0.7, 0.3).unwrap()),
         ),
     ]
 }

@@ -1,8 +1,10 @@
 //! The pinhole camera of the lecture: the eye, the axes `u, v, n`, the near distance `N` and the
-//! view angle `θ`, and the eye ray through each pixel.
+//! view angle `θ`, and the eye ray through each pixel; and the camera that frames a scene
+//! whose file gives none ([`frame`]).
 
 use glam::{Vec2, Vec3};
 
+use crate::aabb::Aabb;
 use crate::limits;
 use crate::ray::Ray;
 
@@ -28,6 +30,51 @@ impl Default for CameraSpec {
             near: 1.0,
         }
     }
+}
+
+/// Smallest radius [`CameraSpec::framing`] fits in view, so that a point-sized scene still leaves
+/// the eye away from the look-at point.
+const MIN_FRAMING_RADIUS: f32 = 1e-3;
+
+/// Where the eye of [`frame`] looks from, seen from the scene's centre: to the right (+x), above
+/// (+y) and in front (+z, where the default camera stands), a three-quarter view.
+pub const THREE_QUARTER_VIEW: Vec3 = Vec3::new(0.6, 0.5, 1.0);
+
+impl CameraSpec {
+    /// The camera looking the same way at the centre of `bounds`, just far enough that the box's
+    /// bounding sphere fits the view of an image `aspect` wide per unit of height. `None` for an
+    /// empty or infinite box.
+    pub fn framing(&self, bounds: &Aabb, aspect: f32) -> Option<CameraSpec> {
+        if !bounds.is_finite() || bounds.is_empty() {
+            return None;
+        }
+        let radius = (bounds.extent().length() * 0.5).max(MIN_FRAMING_RADIUS);
+        let half_v = self.view_angle.to_radians() * 0.5;
+        let half_h = (half_v.tan() * aspect.max(1e-3)).atan();
+        let distance = radius / half_v.min(half_h).sin();
+        let back = (self.eye - self.look_at).try_normalize().unwrap_or(Vec3::Z);
+        Some(CameraSpec {
+            eye: bounds.center() + back * distance,
+            look_at: bounds.center(),
+            ..*self
+        })
+    }
+}
+
+/// The default camera of a scene whose format has none: a three-quarter view
+/// ([`THREE_QUARTER_VIEW`]) of the centre of `bounds` (the scene's finite objects: infinite planes
+/// left out), far enough that their bounding sphere fits an image `aspect` wide per unit of
+/// height. A scene with nothing finite gets [`CameraSpec::default`].
+pub fn frame(bounds: &Aabb, aspect: f32) -> Camera {
+    let three_quarter = CameraSpec {
+        eye: THREE_QUARTER_VIEW,
+        look_at: Vec3::ZERO,
+        ..CameraSpec::default()
+    };
+    three_quarter
+        .framing(bounds, aspect)
+        .and_then(|spec| Camera::new(spec).ok())
+        .unwrap_or_default()
 }
 
 /// Why a camera cannot be built.
@@ -93,6 +140,23 @@ pub struct Camera {
     pub near: f32,
     /// `H = N·tan(θ/2)`: half the image plane's height.
     pub half_height: f32,
+}
+
+impl Default for Camera {
+    /// The camera of [`CameraSpec::default`].
+    fn default() -> Camera {
+        let spec = CameraSpec::default();
+        let half_height = spec.near * (spec.view_angle.to_radians() * 0.5).tan();
+        Camera {
+            spec,
+            eye: spec.eye,
+            u: Vec3::X,
+            v: Vec3::Y,
+            n: Vec3::Z,
+            near: spec.near,
+            half_height,
+        }
+    }
 }
 
 impl Camera {

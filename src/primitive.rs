@@ -167,6 +167,15 @@ impl Geometry {
         }
     }
 
+    /// The bounds of every bounded primitive, planes left out: what a framing camera shows
+    /// ([`crate::camera::frame`]). Empty when there is none.
+    pub fn finite_bounds(&self) -> Aabb {
+        self.prim_ids()
+            .filter_map(|id| self.bounds(id))
+            .filter(Aabb::is_finite)
+            .fold(Aabb::EMPTY, Aabb::union)
+    }
+
     /// The hit of `ray` with primitive `id` in `(t_min, t_max)`, if any.
     pub fn intersect(&self, id: PrimId, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
         self.intersect_prepared(id, ray, &ShearedRay::new(ray), t_min, t_max)

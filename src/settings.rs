@@ -1,8 +1,12 @@
 //! Render settings: image size, the ray tree's limits, progressive refinement and the switches
 //! that turn parts of the shading off (for teaching and for the viewer), and the overrides of
-//! them that `render`, `inspect` and the viewer take from the command line.
+//! them and of the camera that `render`, `inspect` and the viewer take from the command line.
 
+use glam::Vec3;
+
+use crate::camera::{Camera, CameraError, CameraSpec};
 use crate::color::Color;
+use crate::limits;
 
 /// Largest starting block size.
 pub const MAX_BLOCK_SIZE: u32 = 64;
@@ -98,9 +102,10 @@ impl RenderSettings {
     }
 }
 
-/// Changes to a scene's render settings from outside its file (the command line's `--width`,
-/// `--max-depth`, …), the same for `render`, `inspect` and the viewer. Each `None` keeps the
-/// scene's own value: a width alone keeps the scene's height.
+/// Changes to a scene's render settings and camera from outside its file (the command line's
+/// `--width`, `--max-depth`, `--eye`, …), the same for `render`, `inspect` and the viewer. Each
+/// `None` keeps the scene's own value: a width alone keeps the scene's height, an eye alone the
+/// scene's look-at point.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SettingsOverrides {
     pub width: Option<u32>,
@@ -109,6 +114,11 @@ pub struct SettingsOverrides {
     pub min_weight: Option<f32>,
     pub block_size: Option<u32>,
     pub samples: Option<u32>,
+    pub eye: Option<Vec3>,
+    pub look_at: Option<Vec3>,
+    pub up: Option<Vec3>,
+    /// Vertical, in degrees.
+    pub view_angle: Option<f32>,
 }
 
 impl SettingsOverrides {
@@ -123,6 +133,61 @@ impl SettingsOverrides {
         s.samples = self.samples.unwrap_or(s.samples);
         s.validate()
     }
+
+    /// The camera `spec` with the camera overrides applied, checked as a scene file's camera is.
+    pub fn apply_camera(&self, spec: CameraSpec) -> Result<Camera, String> {
+        Camera::new(CameraSpec {
+            eye: self.eye.unwrap_or(spec.eye),
+            look_at: self.look_at.unwrap_or(spec.look_at),
+            up: self.up.unwrap_or(spec.up),
+            view_angle: self.view_angle.unwrap_or(spec.view_angle),
+            near: spec.near,
+        })
+        .map_err(camera_error)
+    }
+
+    /// Checks the camera overrides that are wrong whatever the scene's camera (before a scene is
+    /// read): a view angle out of range, an eye or look-at point out of range, both given and
+    /// equal, an up vector of zero or, with both points given, along the view.
+    pub fn check_camera(&self) -> Result<(), String> {
+        // With a point not given, the view goes across the up vector (seen from the origin),
+        // which is right for any up vector but zero; the point given is checked after, in the
+        // order the camera checks its own.
+        let default = CameraSpec::default();
+        let up = self.up.unwrap_or(default.up);
+        let (eye, look_at) = match (self.eye, self.look_at) {
+            (Some(eye), Some(look_at)) => (eye, look_at),
+            _ => (Vec3::ZERO, up.normalize_or_zero().any_orthonormal_vector()),
+        };
+        let spec = CameraSpec {
+            eye,
+            look_at,
+            up,
+            view_angle: self.view_angle.unwrap_or(default.view_angle),
+            near: default.near,
+        };
+        Camera::new(spec).map_err(camera_error)?;
+        if let Some(eye) = self.eye.filter(|&p| !limits::within_range(p)) {
+            return Err(camera_error(CameraError::Eye(eye)));
+        }
+        if let Some(look_at) = self.look_at.filter(|&p| !limits::within_range(p)) {
+            return Err(camera_error(CameraError::LookAt(look_at)));
+        }
+        Ok(())
+    }
+}
+
+/// The message of a camera override that cannot be: the camera's own, after the flags it is about.
+fn camera_error(error: CameraError) -> String {
+    let flags = match error {
+        CameraError::EyeAtLookAt => "--eye, --look-at",
+        CameraError::UpParallelToView => "--up",
+        CameraError::ViewAngle(_) => "--view-angle",
+        CameraError::Eye(_) => "--eye",
+        CameraError::LookAt(_) => "--look-at",
+        CameraError::Near(_) => "camera",
+    };
+    format!("{flags}: {error}")
 }
 
 #[cfg(test)]
@@ -144,6 +209,82 @@ mod tests {
             ..RenderSettings::default()
         };
         assert_eq!(settings, expected, "a width alone keeps the height");
+    }
+
+    #[test]
+    fn camera_overrides_change_only_what_they_give() {
+        let spec = CameraSpec::default();
+        let overrides = SettingsOverrides {
+            eye: Some(Vec3::new(1.0, 2.0, 3.0)),
+            view_angle: Some(30.0),
+            ..SettingsOverrides::default()
+        };
+        let camera = overrides.apply_camera(spec).unwrap();
+        let expected = CameraSpec {
+            eye: Vec3::new(1.0, 2.0, 3.0),
+            view_angle: 30.0,
+            ..spec
+        };
+        assert_eq!(camera.spec, expected);
+        assert!(overrides.check_camera().is_ok());
+        assert!(SettingsOverrides::default().check_camera().is_ok());
+        // A point alone, however far, is right for some scene.
+        for eye in [Vec3::new(1e9, 0.0, 0.0), Vec3::new(0.0, 5.0, 0.0)] {
+            let far = SettingsOverrides {
+                eye: Some(eye),
+                ..SettingsOverrides::default()
+            };
+            assert!(far.check_camera().is_ok(), "{eye}");
+        }
+    }
+
+    #[test]
+    fn camera_overrides_are_checked_with_the_scenes_camera_and_alone() {
+        let looking_down = SettingsOverrides {
+            look_at: Some(Vec3::new(0.0, -10.0, 5.0)),
+            ..SettingsOverrides::default()
+        };
+        // Alone it may be right; with the default camera's eye at (0, 0, 5) it looks along up.
+        assert!(looking_down.check_camera().is_ok());
+        let error = looking_down
+            .apply_camera(CameraSpec::default())
+            .unwrap_err();
+        assert!(
+            error.starts_with("--up: the up vector is parallel"),
+            "{error}"
+        );
+        let wrong_alone = [
+            (
+                Some(Vec3::ONE),
+                Some(Vec3::ONE),
+                None,
+                None,
+                "--eye, --look-at:",
+            ),
+            (None, None, Some(Vec3::ZERO), None, "--up:"),
+            (Some(Vec3::Y), Some(Vec3::ZERO), None, None, "--up:"),
+            (None, None, None, Some(0.0), "--view-angle:"),
+            (None, Some(Vec3::splat(1e16)), None, None, "--look-at:"),
+            (
+                Some(Vec3::X),
+                Some(Vec3::splat(1e16)),
+                None,
+                None,
+                "--look-at:",
+            ),
+            (Some(Vec3::splat(-2e15)), None, None, None, "--eye:"),
+        ];
+        for (eye, look_at, up, view_angle, flags) in wrong_alone {
+            let overrides = SettingsOverrides {
+                eye,
+                look_at,
+                up,
+                view_angle,
+                ..SettingsOverrides::default()
+            };
+            let error = overrides.check_camera().unwrap_err();
+            assert!(error.starts_with(flags), "{error}");
+        }
     }
 
     #[test]

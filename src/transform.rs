@@ -47,7 +47,8 @@ impl std::fmt::Display for TransformError {
 }
 
 impl Transform {
-    fn from_affine(world_from_object: Affine3A) -> Self {
+    /// The transform that maps object space to the world by `world_from_object`.
+    pub(crate) fn from_affine(world_from_object: Affine3A) -> Self {
         let object_from_world = world_from_object.inverse();
         Transform {
             world_from_object,

@@ -1,8 +1,12 @@
 //! The camera against the lecture's formulas: `u, v, n`, `H = N·tan(θ/2)`, `W = H·aspect` and
-//! `dir_rc = −N·n + W(2c/nCols − 1)·u + H(2r/nRows − 1)·v`.
+//! `dir_rc = −N·n + W(2c/nCols − 1)·u + H(2r/nRows − 1)·v`; and the camera that frames a scene
+//! whose format has none.
+
+use std::path::Path;
 
 use glam::Vec3;
-use raylab::camera::{Camera, CameraError, CameraSpec, PIXEL_CENTRE};
+use raylab::aabb::Aabb;
+use raylab::camera::{self, Camera, CameraError, CameraSpec, PIXEL_CENTRE, THREE_QUARTER_VIEW};
 
 fn close(a: Vec3, b: Vec3) -> bool {
     (a - b).length() < 1e-5
@@ -154,4 +158,154 @@ fn degenerate_cameras_are_errors_not_nans() {
         Camera::new(CameraSpec { near: 0.0, ..spec }),
         Err(CameraError::Near(_))
     ));
+}
+
+/// A scene read from TOML `text`.
+fn scene(text: &str) -> raylab::scene::Scene {
+    raylab::formats::toml::parse_scene(text, Path::new("test.toml"), Path::new("")).unwrap()
+}
+
+/// Whether every corner of every finite object's bounds lands inside the `width × height` image.
+fn every_object_in_view(scene: &raylab::scene::Scene, width: u32, height: u32) -> bool {
+    let geometry = &scene.geometry;
+    geometry
+        .prim_ids()
+        .filter_map(|id| geometry.bounds(id))
+        .flat_map(|bounds| bounds.corners())
+        .all(|corner| {
+            scene
+                .camera
+                .project(corner, width, height)
+                .is_some_and(|p| {
+                    (0.0..=width as f32).contains(&p.x) && (0.0..=height as f32).contains(&p.y)
+                })
+        })
+}
+
+#[test]
+fn the_default_camera_is_the_default_specs() {
+    assert_eq!(
+        Camera::default(),
+        Camera::new(CameraSpec::default()).unwrap()
+    );
+}
+
+#[test]
+fn framing_keeps_the_view_direction_and_fits_every_corner_of_the_box() {
+    let spec = CameraSpec {
+        eye: Vec3::new(0.0, 0.0, 10.0),
+        look_at: Vec3::ZERO,
+        up: Vec3::Y,
+        view_angle: 60.0,
+        near: 1.0,
+    };
+    let bounds = Aabb::new(Vec3::new(3.0, -1.0, 2.0), Vec3::new(7.0, 2.0, 4.0));
+    for (width, height) in [(50, 100), (100, 100), (200, 100)] {
+        let framed = spec.framing(&bounds, width as f32 / height as f32).unwrap();
+        assert!(close(framed.look_at, Vec3::new(5.0, 0.5, 3.0)));
+        assert!(close((framed.eye - framed.look_at).normalize(), Vec3::Z));
+        let camera = Camera::new(framed).unwrap();
+        for corner in bounds.corners() {
+            let p = camera.project(corner, width, height).unwrap();
+            assert!(p.x >= 0.0 && p.x <= width as f32, "{width}×{height}: {p}");
+            assert!(p.y >= 0.0 && p.y <= height as f32, "{width}×{height}: {p}");
+        }
+    }
+    assert_eq!(spec.framing(&Aabb::EMPTY, 1.0), None);
+    let infinite = Aabb::new(Vec3::splat(f32::NEG_INFINITY), Vec3::ZERO);
+    assert_eq!(spec.framing(&infinite, 1.0), None);
+}
+
+#[test]
+fn a_scene_without_a_camera_is_framed_from_a_three_quarter_view() {
+    // Objects far from the default camera's view, a mesh among them, and a floor plane that
+    // must not blow the bounds up.
+    let mut s = scene(
+        r#"
+        [render]
+        width = 320
+        height = 120
+
+        [[objects]]
+        type = "sphere"
+        center = [40, 3, -20]
+        radius = 2
+
+        [[objects]]
+        type = "box"
+        min = [30, 0, -30]
+        max = [34, 8, -26]
+        transform = [ { rotate = { axis = [0, 1, 0], degrees = 30 } } ]
+
+        [[objects]]
+        type = "mesh"
+        positions = [[44, 0, -24], [46, 0, -24], [45, 5, -22]]
+        faces = [[0, 1, 2]]
+
+        [[objects]]
+        type = "plane"
+        point = [0, -1, 0]
+        normal = [0, 1, 0]
+        "#,
+    );
+    assert!(
+        !every_object_in_view(&s, 320, 120),
+        "the test's scene starts out of view"
+    );
+    s = raylab::formats::with_framing_camera(s);
+    assert!(every_object_in_view(&s, 320, 120));
+    // A three-quarter view: from the right, above and in front of the scene's centre.
+    let bounds = s.geometry.finite_bounds();
+    let from_centre = s.camera.eye - bounds.center();
+    assert!(close(s.camera.spec.look_at, bounds.center()));
+    assert!(from_centre.x > 0.0 && from_centre.y > 0.0 && from_centre.z > 0.0);
+    assert!(close(
+        from_centre.normalize(),
+        THREE_QUARTER_VIEW.normalize()
+    ));
+    // The same scene tall and narrow fits too.
+    let tall = camera::frame(&bounds, 0.25);
+    s.camera = tall;
+    assert!(every_object_in_view(&s, 40, 160));
+}
+
+#[test]
+fn framing_works_from_tiny_to_huge_scenes() {
+    for scale in [1e-3f32, 1.0, 1e3] {
+        let bounds = Aabb::new(Vec3::splat(-scale), Vec3::new(2.0, 1.0, 0.5) * scale);
+        let camera = camera::frame(&bounds, 4.0 / 3.0);
+        for corner in bounds.corners() {
+            let p = camera.project(corner, 400, 300).unwrap();
+            assert!(
+                p.x >= 0.0 && p.x <= 400.0 && p.y >= 0.0 && p.y <= 300.0,
+                "{scale}: {p}"
+            );
+        }
+        let from_centre = (camera.eye - bounds.center()).length();
+        assert!(
+            from_centre > scale && from_centre < 10.0 * scale,
+            "{scale}: {from_centre}"
+        );
+    }
+}
+
+#[test]
+fn a_scene_of_only_planes_or_nothing_gets_the_default_camera() {
+    let planes = scene(
+        r#"
+        [[objects]]
+        type = "plane"
+        point = [0, -1, 0]
+        normal = [0, 1, 0]
+        [[objects]]
+        type = "plane"
+        point = [0, 0, -50]
+        normal = [0, 0, 1]
+        "#,
+    );
+    assert!(planes.geometry.finite_bounds().is_empty());
+    let framed = raylab::formats::with_framing_camera(planes);
+    assert_eq!(framed.camera, Camera::default());
+    assert!(framed.camera.eye.is_finite());
+    assert_eq!(camera::frame(&Aabb::EMPTY, 1.0), Camera::default());
 }

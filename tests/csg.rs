@@ -485,3 +485,36 @@ center = [0, 10, 0]
         .expect("the plain sphere");
     assert_eq!(g.part_id(&plain), g.object_id(plain.prim));
 }
+
+/// A torus is an operand like any other: a disk with a ring-shaped groove cut through it.
+#[test]
+fn a_torus_cuts_a_groove() {
+    let scene = scene_of(
+        r#"
+[[objects]]
+type = "csg"
+operation = "difference"
+children = [
+    { type = "cylinder", base = [0, -0.2, 0], top = [0, 0.2, 0], radius = 2 },
+    { type = "torus", major_radius = 1.5, minor_radius = 0.3, material = "green" },
+]
+"#,
+    );
+    let down = |x: f32| first_hit(&scene, &Ray::new(Vec3::new(x, 5.0, 0.0), -Vec3::Y), 0.0);
+    let (centre, _) = down(0.0).expect("the disk's middle");
+    assert!((centre.t - 4.8).abs() < 1e-5);
+    assert!(down(1.5).is_none(), "the groove goes right through");
+    // Beside the groove's middle the tube is thinner than the disk: the top is left, and below
+    // it the ray meets the groove's wall.
+    let (top, _) = down(1.75).expect("the top beside the groove");
+    assert!((top.t - 4.8).abs() < 1e-5);
+    let inside = Ray::new(Vec3::new(1.75, 0.19, 0.0), -Vec3::Y);
+    let (wall, surface) = first_hit(&scene, &inside, 0.0).expect("the groove's wall");
+    let wall_y = (0.09f32 - 0.0625).sqrt();
+    assert!((inside.at(wall.t).y - wall_y).abs() < 1e-4, "{}", wall.t);
+    assert_eq!(surface.material, GREEN);
+    assert!(
+        surface.normal.y < 0.0,
+        "the wall faces out of the disk, down into the groove"
+    );
+}

@@ -1021,6 +1021,59 @@ capped = true
 }
 
 #[test]
+fn torus_is_read_with_its_keys_and_turned_by_its_transform() {
+    let scene = parse(
+        r#"
+[[objects]]
+type = "torus"
+center = [1, 2, 3]
+major_radius = 2
+minor_radius = 0.5
+transform = [ { rotate = { axis = [1, 0, 0], degrees = 90 } } ]
+"#,
+    )
+    .unwrap();
+    let object = &scene.geometry.objects[0];
+    let Shape::Torus(torus) = &object.shape else {
+        panic!("expected a torus, got {:?}", object.shape);
+    };
+    assert_eq!(torus.center, Vec3::new(1.0, 2.0, 3.0));
+    assert_eq!((torus.major_radius, torus.minor_radius), (2.0, 0.5));
+    assert!(object.transform.is_some());
+    assert!(object.shape.is_closed());
+}
+
+#[test]
+fn bad_torus_radii_are_errors_at_the_object() {
+    let torus = |radii: &str| format!("\n[[objects]]\ntype = \"torus\"\n{radii}\n");
+    assert_error(
+        &torus("major_radius = 1\nminor_radius = 1"),
+        2,
+        1,
+        "less than major_radius",
+    );
+    assert_error(
+        &torus("major_radius = -1\nminor_radius = 0.5"),
+        2,
+        1,
+        "major_radius must be a positive number",
+    );
+    assert_error(
+        &torus("major_radius = 1\nminor_radius = 0"),
+        2,
+        1,
+        "minor_radius must be a positive number",
+    );
+    assert_error(&torus("major_radius = 1"), 2, 1, "minor_radius");
+    assert_error(
+        &torus("major_radius = 1\nminor_radius = 0.5\nradius = 2"),
+        6,
+        1,
+        "unexpected keys in table: radius",
+    );
+}
+
+#[test]
 fn degenerate_shapes_are_errors_at_the_object() {
     assert_error(
         "[[objects]]\ntype = \"cylinder\"\nbase = [0, 1, 0]\ntop = [0, 1, 0]\n",

@@ -6,11 +6,11 @@
 use std::cell::Cell;
 use std::f32::consts::TAU;
 
-use glam::{Quat, Vec2, Vec3};
+use glam::{DVec3, Quat, Vec2, Vec3};
 use proptest::prelude::*;
 use raylab::ray::Ray;
 use raylab::shapes::{
-    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder, Triangle,
+    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder, Torus, Triangle,
 };
 
 /// How far off its surface a reported hit point may lie, relative to the size of the numbers
@@ -731,6 +731,8 @@ fn wild_shape() -> impl Strategy<Value = Result<Shape, String>> {
                 Paraboloid::new(vertex, radius, height, capped).map(Shape::Paraboloid)
             }
         ),
+        (wild_vec3(), wild_f32(), wild_f32())
+            .prop_map(|(center, major, minor)| Torus::new(center, major, minor).map(Shape::Torus)),
         prop::collection::vec(wild_vec3(), 0..7).prop_map(|v| Polygon::new(v).map(Shape::Polygon)),
         // Planar polygons, so that some get past the constructor.
         (
@@ -803,5 +805,216 @@ proptest! {
             prop_assert!(model.off_surface(p, hit.part) < tolerance, "{p}");
             prop_assert!(shape.surface(p, hit.part).normal.normalize().is_finite());
         }
+    }
+}
+
+// ---- the torus: not convex, so checked against a numerical root search ----------------------
+
+/// A torus at one of the scales from 1e-3 to 1e3, with a random ray aimed at a point of its box.
+#[derive(Clone, Debug)]
+struct TorusCase {
+    torus: Torus,
+    ray: Ray,
+}
+
+fn torus_case() -> impl Strategy<Value = TorusCase> {
+    (
+        prop_oneof![Just(1e-3f32), Just(1.0f32), Just(1e3f32)],
+        vec3_in(3.0),
+        float_in(0.5, 3.0),
+        float_in(0.05, 0.95),
+        vec3_in(8.0),
+        unit_cube(),
+        dir_scale(),
+    )
+        .prop_map(|(scale, center, major, tube, origin, aim, dir_scale)| {
+            let torus = Torus::new(center * scale, major * scale, tube * major * scale).unwrap();
+            let bounds = torus.bounds();
+            let target = bounds.min + (bounds.max - bounds.min) * aim;
+            let origin = (center + origin) * scale;
+            let ray = Ray::new(origin, (target - origin).normalize_or(Vec3::X) * dir_scale);
+            TorusCase { torus, ray }
+        })
+}
+
+/// How far inside (negative) or outside the tube `p` is, squared: `(ρ − R)² + y² − r²`, from the
+/// tube's own definition rather than the quartic the shape solves.
+fn tube_function(torus: &Torus, p: DVec3) -> f64 {
+    let q = p - torus.center.as_dvec3();
+    let rho = q.x.hypot(q.z);
+    (rho - f64::from(torus.major_radius)).powi(2) + q.y * q.y
+        - f64::from(torus.minor_radius).powi(2)
+}
+
+/// Every `t` where the ray's line crosses the tube within the torus's bounding sphere, found by
+/// sampling the tube function at `samples` points and bisecting each change of sign; and the
+/// sample spacing.
+fn sampled_crossings(torus: &Torus, ray: &Ray, samples: u32) -> (Vec<f64>, f64) {
+    let (o, d) = (ray.origin.as_dvec3(), ray.dir.as_dvec3());
+    let reach = f64::from(torus.major_radius + torus.minor_radius) * 1.01;
+    let t_mid = (torus.center.as_dvec3() - o).dot(d) / d.length_squared();
+    let half = reach / d.length();
+    let (t_lo, step) = (t_mid - half, 2.0 * half / f64::from(samples));
+    let g = |t: f64| tube_function(torus, o + d * t);
+    let mut found = Vec::new();
+    let mut a = t_lo;
+    for i in 1..=samples {
+        let b = t_lo + step * f64::from(i);
+        if (g(a) > 0.0) != (g(b) > 0.0) {
+            let (mut lo, mut hi) = (a, b);
+            for _ in 0..80 {
+                let mid = 0.5 * (lo + hi);
+                if (g(mid) > 0.0) == (g(lo) > 0.0) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            found.push(0.5 * (lo + hi));
+        }
+        a = b;
+    }
+    (found, step)
+}
+
+#[test]
+fn torus_crossings_agree_with_a_dense_root_search() {
+    let hits = &HitCount::default();
+    proptest!(|(case in torus_case())| {
+        let TorusCase { torus, ray } = case;
+        let crossings = torus.crossings(&ray);
+        hits.record(crossings.first());
+        let (sampled, step) = sampled_crossings(&torus, &ray, 20_000);
+        let size = f64::from(torus.major_radius + torus.minor_radius);
+        let tolerance = 1e-5 * (size + ray.origin.abs().max_element() as f64)
+            / ray.dir.as_dvec3().length();
+        prop_assert!(crossings.is_sorted() && crossings.len().is_multiple_of(2), "{crossings:?}");
+        // Every crossing the search finds is found, at the same place...
+        for &t in &sampled {
+            prop_assert!(
+                crossings.iter().any(|&c| (f64::from(c) - t).abs() < tolerance),
+                "sampled crossing {t} missing from {crossings:?}"
+            );
+        }
+        // ...and any other crossing is one of a pair too close for the samples to see.
+        for (i, &c) in crossings.iter().enumerate() {
+            let c = f64::from(c);
+            if !sampled.iter().any(|&t| (c - t).abs() < tolerance) {
+                let partner = crossings
+                    .iter()
+                    .enumerate()
+                    .any(|(j, &other)| j != i && (f64::from(other) - c).abs() < 2.0 * step);
+                prop_assert!(partner, "crossing {c} not in {sampled:?}");
+            }
+        }
+        // The first hit is the first crossing in range.
+        let first = crossings.iter().copied().find(|&t| t > 1e-4);
+        let hit = torus.intersect(&ray, 1e-4, f32::INFINITY).map(|h| h.t);
+        prop_assert_eq!(hit.is_some(), first.is_some(), "{:?} vs {:?}", hit, first);
+        if let (Some(hit), Some(first)) = (hit, first) {
+            prop_assert!(f64::from((hit - first).abs()) < tolerance, "{hit} vs {first}");
+        }
+        for &t in &crossings {
+            let p = ray.at(t);
+            let s = torus.surface(p, 0);
+            prop_assert!((s.normal.length() - 1.0).abs() < 1e-5, "normal {}", s.normal);
+            let q = (p - torus.center).as_dvec3();
+            let rho = q.x.hypot(q.z);
+            let ring = DVec3::new(q.x / rho, 0.0, q.z / rho) * f64::from(torus.major_radius);
+            let expected = (q - ring).normalize().as_vec3();
+            prop_assert!(s.normal.dot(expected) > 0.999, "normal {} at {p}, expected {expected}", s.normal);
+            prop_assert!(s.uv.cmpge(Vec2::ZERO).all() && s.uv.cmple(Vec2::ONE).all(), "uv {}", s.uv);
+        }
+    });
+    hits.assert_at_least(0.3);
+}
+
+/// A point on a torus at `turn` around the ring and `around` the tube (fractions of a turn,
+/// `around` = 0 on the outer equator), and the outward normal there.
+fn torus_point(torus: &Torus, turn: f32, around: f32) -> (Vec3, Vec3) {
+    let (sin_t, cos_t) = (turn * TAU).sin_cos();
+    let (sin_a, cos_a) = (around * TAU).sin_cos();
+    let radial = Vec3::new(cos_t, 0.0, sin_t);
+    let normal = radial * cos_a + Vec3::Y * sin_a;
+    (
+        torus.center + radial * torus.major_radius + normal * torus.minor_radius,
+        normal,
+    )
+}
+
+proptest! {
+    #[test]
+    fn rays_just_inside_a_grazing_line_on_the_outer_half_hit_near_the_touch(
+        scale in prop_oneof![Just(1e-3f32), Just(1.0f32), Just(1e3f32)],
+        tube in float_in(0.1, 0.95),
+        turn in float_in(0.0, 1.0),
+        around in float_in(-0.15, 0.15),
+        heading in float_in(0.0, TAU),
+        depth in float_in(1e-4, 1e-3),
+    ) {
+        // On the outer half the surface is convex: a ray tangent to it there, moved a little
+        // into the tube, crosses the tube twice close to where it touched.
+        let torus = Torus::new(Vec3::new(0.5, -1.0, 2.0) * scale, scale, tube * scale).unwrap();
+        let (touch, normal) = torus_point(&torus, turn, around);
+        let (e1, e2) = normal.any_orthonormal_pair();
+        let along = e1 * heading.cos() + e2 * heading.sin();
+        let inside = touch - normal * (depth * torus.minor_radius);
+        let ray = Ray::new(inside - along * 5.0 * scale, along);
+        let crossings = torus.crossings(&ray);
+        let near = crossings
+            .iter()
+            .filter(|&&t| (ray.at(t) - touch).length() < 0.5 * torus.minor_radius)
+            .count();
+        prop_assert_eq!(near, 2, "{:?} around {}", crossings, touch);
+        let outside = touch + normal * (depth * torus.minor_radius);
+        let missing = Ray::new(outside - along * 5.0 * scale, along);
+        prop_assert!(
+            torus.crossings(&missing).iter().all(|&t| (missing.at(t) - touch).length() > 1e-3 * torus.minor_radius),
+            "{:?}", torus.crossings(&missing)
+        );
+    }
+
+    #[test]
+    fn rays_skimming_the_inner_equator_through_the_hole_cross_four_times(
+        scale in prop_oneof![Just(1e-3f32), Just(1.0f32), Just(1e3f32)],
+        tube in float_in(0.05, 0.9),
+        turn in float_in(0.0, TAU),
+        gap in float_in(1e-4, 1e-2),
+        dir_scale in dir_scale(),
+    ) {
+        // A horizontal line at distance R − r − gap from the axis passes through the hole,
+        // inside the tube on both sides of where it skims the inner equator.
+        let torus = Torus::new(Vec3::new(-1.0, 0.5, 3.0) * scale, scale, tube * scale).unwrap();
+        let (sin, cos) = turn.sin_cos();
+        let (out, along) = (Vec3::new(cos, 0.0, sin), Vec3::new(-sin, 0.0, cos));
+        let closest = torus.center + out * (torus.major_radius - torus.minor_radius * (1.0 + gap));
+        let ray = Ray::new(closest - along * 3.0 * scale, along * dir_scale);
+        let crossings = torus.crossings(&ray);
+        prop_assert_eq!(crossings.len(), 4, "{:?}", crossings);
+        let middle = ray.at(0.5 * (crossings[1] + crossings[2]));
+        prop_assert!((middle - closest).length() < 1e-3 * scale, "{} vs {}", middle, closest);
+        prop_assert!(crossings[1] < crossings[2]);
+    }
+
+    #[test]
+    fn rays_along_the_axis_miss_and_rays_from_inside_the_tube_leave_once(
+        scale in prop_oneof![Just(1e-3f32), Just(1.0f32), Just(1e3f32)],
+        tube in float_in(0.05, 0.95),
+        start in unit_cube(),
+        dir in unit_vector(),
+    ) {
+        let torus = Torus::new(Vec3::new(2.0, 1.0, -1.0) * scale, scale, tube * scale).unwrap();
+        let axis = Ray::new(torus.center + Vec3::Y * 3.0 * scale, -Vec3::Y);
+        prop_assert!(torus.crossings(&axis).is_empty());
+        // A point inside the tube: its first hit lies ahead, and an odd number of crossings do.
+        let (surface, normal) = torus_point(&torus, start.x, start.y);
+        let tube_centre = surface - normal * torus.minor_radius;
+        let inside = surface.lerp(tube_centre, 0.1 + 0.8 * start.z);
+        let ray = Ray::new(inside, dir);
+        prop_assert!(tube_function(&torus, inside.as_dvec3()) < 0.0);
+        let ahead = torus.crossings(&ray).iter().filter(|&&t| t > 0.0).count();
+        prop_assert!(!ahead.is_multiple_of(2), "{ahead} crossings ahead");
+        let hit = torus.intersect(&ray, 0.0, f32::INFINITY);
+        prop_assert!(hit.is_some());
     }
 }

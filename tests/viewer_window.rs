@@ -550,6 +550,52 @@ fn saving_the_watched_scene_file_renders_it_again() {
     assert_eq!(mismatches(&shot, image_rect(&run.stdout), 64, &expected), 0);
 }
 
+#[test]
+fn the_camera_flags_and_camera_file_hold_on_every_load() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("ball.toml");
+    std::fs::write(&path, ball_scene([0.0, 2.0, 6.0])).unwrap();
+    // The camera file moves the eye; the flag narrows the view.
+    std::fs::write(
+        dir.path().join("ball.camera.toml"),
+        "[camera]\neye = [2.0, 2.0, 5.0]\n",
+    )
+    .unwrap();
+    let (edit_path, temp) = (path.clone(), dir.path().join(".ball.toml.new"));
+    let mut edited = false;
+    // Once the first view is done, the scene file's camera changes (its look-at point, which
+    // neither the camera file nor the flags give).
+    let on_line = move |line: &str, _| {
+        if !edited && line.contains("block size 1 at") {
+            edited = true;
+            let moved =
+                ball_scene([0.0, 2.0, 6.0]).replace("look_at = [0, 1, 0]", "look_at = [0, 0, 0]");
+            std::fs::write(&temp, moved).unwrap();
+            std::fs::rename(&temp, &edit_path).unwrap();
+        }
+    };
+    let Some(run) = run_viewer_watching(
+        &[
+            path.to_str().unwrap(),
+            "--view-angle",
+            "30",
+            "--stats",
+            "--exit-when-done",
+            "--script",
+            "wait; wait-load 2; wait; print-camera",
+        ],
+        &[],
+        on_line,
+    ) else {
+        return;
+    };
+    run.assert_success();
+    // The scene's new look-at point, the file's eye and the flag's view angle.
+    let reloaded = printed_camera(&run.stdout);
+    assert_eq!(reloaded.eye, Vec3::new(2.0, 2.0, 5.0));
+    assert_eq!((reloaded.look_at, reloaded.view_angle), (Vec3::ZERO, 30.0));
+}
+
 /// The viewer's process: `pid` itself or its child named raylab (under xvfb-run).
 fn viewer_pid(pid: u32) -> Option<u32> {
     let comm = |p: u32| std::fs::read_to_string(format!("/proc/{p}/comm")).unwrap_or_default();

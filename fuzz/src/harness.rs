@@ -9,6 +9,7 @@ use std::path::Path;
 
 use raylab::bvh::Bvh;
 use raylab::formats::nff::{NffDocument, NffLighting, parse_nff_document};
+use raylab::formats::sdl::parse_sdl;
 use raylab::formats::toml::parse_scene_with;
 use raylab::formats::{SceneError, SceneFiles, ascii_text, utf8_text};
 use raylab::inspect::trace_ray_tree;
@@ -79,6 +80,23 @@ pub fn nff(data: &[u8]) -> Result<(), String> {
     let scene = document
         .to_scene(NffLighting::default())
         .map_err(|e| e.to_string())?;
+    render_tiny(scene);
+    Ok(())
+}
+
+/// The one mesh file a fuzzed SDL file may name (`mesh square.3vn`): a square of one face.
+const SQUARE_3VN: &[u8] = b"4 1 1\n-1 -1 0  1 -1 0  1 1 0  -1 1 0\n0 0 1\n4\n0 1 2 3\n0 0 0 0\n";
+
+/// Reads `data` as an SDL file, which may name `square.3vn`, and renders it (through the
+/// placeholder camera SDL scenes get).
+pub fn sdl(data: &[u8]) -> Result<(), String> {
+    let files = [("square.3vn", SQUARE_3VN)];
+    let scene = parse_sdl(
+        &ascii_text(data),
+        Path::new("fuzz.dat"),
+        SceneFiles::Builtin(&files),
+    )
+    .map_err(|e| e.to_string())?;
     render_tiny(scene);
     Ok(())
 }

@@ -4,6 +4,7 @@ use std::io::Write;
 
 use clap::Args;
 use raylab::bvh::Bvh;
+use raylab::formats::SceneFormat;
 use raylab::formats::nff::NffLighting;
 use raylab::inspect::trace_ray_tree;
 use raylab::settings::SettingsOverrides;
@@ -13,9 +14,12 @@ use super::overrides::OverrideArgs;
 
 #[derive(Args, Debug)]
 pub struct InspectArgs {
-    /// Scene: a .toml or .nff file, or `spd:NAME[:SIZE]`; the built-in default scene when left
+    /// Scene: a .toml, .nff or SDL (.dat, .sdl) file, or `spd:NAME[:SIZE]`; the built-in default scene when left
     /// out.
     scene: Option<String>,
+    /// The scene file's format, whatever its name ends in: toml, nff or sdl.
+    #[arg(long)]
+    format: Option<SceneFormat>,
     /// The pixel, `X,Y`: X from the left, Y from the top of the image, from 0.
     #[arg(long, value_parser = parse_pixel)]
     pixel: (u32, u32),
@@ -39,8 +43,10 @@ fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
 }
 
 pub fn run(args: InspectArgs) -> Result<(), String> {
-    let mut scene = super::load_scene(args.scene.as_deref(), args.nff_lights)?;
-    SettingsOverrides::from(args.overrides).apply(&mut scene.settings)?;
+    let mut scene = super::load_scene(args.scene.as_deref(), args.nff_lights, args.format)?;
+    let overrides = SettingsOverrides::from(args.overrides);
+    overrides.apply(&mut scene.settings)?;
+    scene.camera = overrides.apply_camera(scene.camera.spec)?;
     let (width, height) = (scene.settings.width, scene.settings.height);
     let (x, y) = args.pixel;
     if x >= width || y >= height {

@@ -13,9 +13,9 @@ mod view;
 use std::io::{self, BufWriter, StdoutLock, Write};
 
 use clap::{Parser, Subcommand};
-use raylab::formats::load_any_with;
 use raylab::formats::nff::NffLighting;
 use raylab::formats::toml::default_scene;
+use raylab::formats::{SceneFormat, camera_file_beside, load_any_as};
 use raylab::scene::Scene;
 
 #[derive(Parser, Debug)]
@@ -63,17 +63,25 @@ pub fn run(cli: Cli) -> Result<(), String> {
     }
 }
 
-/// Loads the scene `name` names (a TOML or NFF file, or `spd:NAME[:SIZE]`), or the built-in
-/// default scene when there is none, and prints the reader's warnings. `lighting` applies to
-/// NFF and SPD scenes.
-fn load_scene(name: Option<&str>, lighting: NffLighting) -> Result<Scene, String> {
+/// Loads the scene `name` names (a TOML, NFF or SDL file, or `spd:NAME[:SIZE]`), or the
+/// built-in default scene when there is none, and prints the reader's warnings and a note when
+/// the camera comes from a `NAME.camera.toml` beside the file. `lighting` applies to NFF and SPD
+/// scenes; `format`, when given, is the file's format whatever its name.
+fn load_scene(
+    name: Option<&str>,
+    lighting: NffLighting,
+    format: Option<SceneFormat>,
+) -> Result<Scene, String> {
     let scene = match name {
-        Some(name) => load_any_with(name, lighting),
+        Some(name) => load_any_as(name, lighting, format),
         None => default_scene(),
     }
     .map_err(|e| e.to_string())?;
     for warning in &scene.warnings {
         eprintln!("warning: {warning}");
+    }
+    if let Some(camera_file) = name.and_then(camera_file_beside) {
+        eprintln!("note: the camera is from {}", camera_file.display());
     }
     Ok(scene)
 }

@@ -1,7 +1,9 @@
-//! The command-line flags that override a scene's render settings, the same in `render`,
-//! `inspect` and `view`; they become the library's [`SettingsOverrides`], which applies them.
+//! The command-line flags that override a scene's render settings and camera, the same in
+//! `render`, `inspect` and `view`; they become the library's [`SettingsOverrides`], which applies
+//! them.
 
 use clap::Args;
+use glam::Vec3;
 use raylab::settings::SettingsOverrides;
 
 /// Overrides of the scene's render settings.
@@ -29,6 +31,18 @@ pub struct OverrideArgs {
     /// Samples per pixel (more than 1 anti-aliases after block size 1).
     #[arg(long)]
     samples: Option<u32>,
+    /// Where the camera's eye is (instead of the scene's camera, or its NAME.camera.toml).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vector, allow_hyphen_values = true)]
+    eye: Option<Vec3>,
+    /// The point the camera looks at.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vector, allow_hyphen_values = true)]
+    look_at: Option<Vec3>,
+    /// Which way is up in the image.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vector, allow_hyphen_values = true)]
+    up: Option<Vec3>,
+    /// Vertical view angle in degrees (between 0 and 180).
+    #[arg(long, value_name = "DEG", value_parser = parse_number, allow_hyphen_values = true)]
+    view_angle: Option<f32>,
 }
 
 impl From<OverrideArgs> for SettingsOverrides {
@@ -45,6 +59,10 @@ impl From<OverrideArgs> for SettingsOverrides {
             min_weight: args.min_weight,
             block_size: args.block_size,
             samples: args.samples,
+            eye: args.eye,
+            look_at: args.look_at,
+            up: args.up,
+            view_angle: args.view_angle,
         }
     }
 }
@@ -63,6 +81,29 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     }
 }
 
+/// A finite number.
+fn parse_number(text: &str) -> Result<f32, String> {
+    match text.trim().parse::<f32>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(format!("`{text}` is not a finite number")),
+    }
+}
+
+/// `X,Y,Z`: three finite numbers, spaces allowed around the commas.
+pub fn parse_vector(text: &str) -> Result<Vec3, String> {
+    let numbers: Vec<&str> = text.split(',').collect();
+    let [x, y, z] = numbers[..] else {
+        return Err(format!(
+            "`{text}` is not a point or vector (use X,Y,Z, e.g. 0,1.5,-4)"
+        ));
+    };
+    Ok(Vec3::new(
+        parse_number(x)?,
+        parse_number(y)?,
+        parse_number(z)?,
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -74,6 +115,17 @@ mod tests {
         assert_eq!(parse_size("640×480"), Ok((640, 480)));
         assert!(parse_size("0").is_err());
         assert!(parse_size("12xq").unwrap_err().contains("`q`"));
+    }
+
+    #[test]
+    fn vectors_are_three_finite_numbers() {
+        assert_eq!(parse_vector("1,-2.5,3e1"), Ok(Vec3::new(1.0, -2.5, 30.0)));
+        assert_eq!(parse_vector("1, 2,  3"), Ok(Vec3::new(1.0, 2.0, 3.0)));
+        assert!(parse_vector("1,2").unwrap_err().contains("X,Y,Z"));
+        assert!(parse_vector("1,2,3,4").unwrap_err().contains("X,Y,Z"));
+        assert!(parse_vector("1,nan,3").unwrap_err().contains("`nan`"));
+        assert!(parse_vector("1,2,inf").unwrap_err().contains("finite"));
+        assert!(parse_number("NaN").is_err());
     }
 
     #[test]

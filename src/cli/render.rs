@@ -8,6 +8,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use raylab::bvh::Bvh;
 use raylab::film::Film;
+use raylab::formats::SceneFormat;
 use raylab::formats::image::{check_image_path, save_image};
 use raylab::formats::nff::NffLighting;
 use raylab::inspect::DebugView;
@@ -20,9 +21,12 @@ use super::overrides::OverrideArgs;
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// Scene: a .toml or .nff file, or a built-in SPD scene `spd:NAME[:SIZE]` (balls, gears,
+    /// Scene: a .toml, .nff or SDL (.dat, .sdl) file, or a built-in SPD scene `spd:NAME[:SIZE]` (balls, gears,
     /// mount, rings, teapot, tetra, tree); the built-in default scene when left out.
     scene: Option<String>,
+    /// The scene file's format, whatever its name ends in: toml, nff or sdl.
+    #[arg(long)]
+    format: Option<SceneFormat>,
     /// Output image: .png or .ppm (8-bit sRGB), .exr or .hdr (linear floats).
     #[arg(short, long, default_value = "out.png")]
     output: PathBuf,
@@ -47,8 +51,10 @@ pub struct RenderArgs {
 pub fn run(args: RenderArgs) -> Result<(), String> {
     // Before any long work: the scene, the BVH, the render.
     let format = check_image_path(&args.output).map_err(|e| e.to_string())?;
-    let mut scene = super::load_scene(args.scene.as_deref(), args.nff_lights)?;
-    SettingsOverrides::from(args.overrides).apply(&mut scene.settings)?;
+    let mut scene = super::load_scene(args.scene.as_deref(), args.nff_lights, args.format)?;
+    let overrides = SettingsOverrides::from(args.overrides);
+    overrides.apply(&mut scene.settings)?;
+    scene.camera = overrides.apply_camera(scene.camera.spec)?;
     let pool = super::thread_pool(args.threads)?;
     let (width, height) = (scene.settings.width, scene.settings.height);
     let pixels = u64::from(width) * u64::from(height);

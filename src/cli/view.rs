@@ -12,8 +12,8 @@ use crate::viewer::{self, Options, Script};
 
 #[derive(Args, Debug)]
 pub struct ViewArgs {
-    /// Scene to open: a .toml or .nff file, or spd:NAME[:SIZE]; the built-in default scene when
-    /// left out.
+    /// Scene to open: a .toml, .nff or SDL (.dat, .sdl) file, or spd:NAME[:SIZE]; the built-in
+    /// default scene when left out.
     scene: Option<PathBuf>,
     /// Overrides of the scene's render settings.
     #[command(flatten)]
@@ -63,8 +63,10 @@ pub fn run(args: ViewArgs) -> Result<(), String> {
     }
     let overrides = SettingsOverrides::from(args.overrides);
     // Checked before the window opens: each setting's range is its own, so overrides that are
-    // right on the default settings are right on any scene's.
+    // right on the default settings are right on any scene's; the camera's as far as they can be
+    // without the scene's camera.
     overrides.apply(&mut RenderSettings::default())?;
+    overrides.check_camera()?;
     viewer::run(Options {
         scene: args.scene,
         overrides,

@@ -1,13 +1,18 @@
 //! The one entry point for every scene raylab reads, for the command line and the viewer alike:
 //! a built-in SPD scene by name (`spd:balls`, `spd:tree:6`), an NFF file (by its `.nff`
-//! extension), or a TOML scene file.
+//! extension), an SDL file (`.dat` or `.sdl`), or a TOML scene file; with the camera of a
+//! `NAME.camera.toml` beside the file, and the default framing ([`with_framing_camera`]) for a
+//! format that has no camera (SDL).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
 
 use super::SceneError;
 use super::nff::{NffLighting, load_nff};
+use super::sdl::load_sdl;
 use super::spd::{SCENE_PREFIX, load_spd};
-use super::toml::load_scene;
+use super::toml::{load_camera, load_scene};
+use crate::camera;
 use crate::scene::Scene;
 
 /// Reads the scene `name` names, NFF lights as bright as the SPD readme suggests.
@@ -30,18 +35,95 @@ pub fn load_any(name: &str) -> Result<Scene, SceneError> {
 }
 
 /// Reads the scene `name` names; `lighting` sets the brightness of NFF and SPD scenes' lights
-/// (TOML scenes say their own).
+/// (TOML scenes say their own). A scene file's camera is replaced by the one of its
+/// [`camera_file_beside`], when there is one; a built-in SPD scene (no file) keeps its own.
 pub fn load_any_with(name: &str, lighting: NffLighting) -> Result<Scene, SceneError> {
-    if name.starts_with(SCENE_PREFIX) {
+    load_any_as(name, lighting, None)
+}
+
+/// A scene file's format, for reading a file whatever its name ends in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SceneFormat {
+    Toml,
+    Nff,
+    /// Hill & Kelley's SDL.
+    Sdl,
+}
+
+impl SceneFormat {
+    /// The format a file's extension names: `.nff`, `.dat` and `.sdl`; TOML for any other.
+    pub fn of(path: &Path) -> SceneFormat {
+        let extension = path.extension().and_then(|ext| ext.to_str());
+        let is = |wanted: &str| extension.is_some_and(|ext| ext.eq_ignore_ascii_case(wanted));
+        if is("nff") {
+            SceneFormat::Nff
+        } else if is("dat") || is("sdl") {
+            SceneFormat::Sdl
+        } else {
+            SceneFormat::Toml
+        }
+    }
+}
+
+impl FromStr for SceneFormat {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<SceneFormat, String> {
+        match text {
+            "toml" => Ok(SceneFormat::Toml),
+            "nff" => Ok(SceneFormat::Nff),
+            "sdl" => Ok(SceneFormat::Sdl),
+            _ => Err(format!(
+                "unknown scene format `{text}` (expected toml, nff or sdl)"
+            )),
+        }
+    }
+}
+
+/// [`load_any_with`], reading a file in `format` when given, else in the format its
+/// extension names.
+pub fn load_any_as(
+    name: &str,
+    lighting: NffLighting,
+    format: Option<SceneFormat>,
+) -> Result<Scene, SceneError> {
+    if format.is_none() && name.starts_with(SCENE_PREFIX) {
         return load_spd(name, lighting);
     }
     let path = Path::new(name);
-    if path
-        .extension()
-        .is_some_and(|ext| ext.eq_ignore_ascii_case("nff"))
-    {
-        load_nff(path, lighting)
-    } else {
-        load_scene(path)
+    let mut scene = match format.unwrap_or_else(|| SceneFormat::of(path)) {
+        SceneFormat::Nff => load_nff(path, lighting),
+        SceneFormat::Sdl => load_sdl(path).map(with_framing_camera),
+        SceneFormat::Toml => load_scene(path),
+    }?;
+    if let Some(camera_file) = camera_file_beside(name) {
+        scene.camera = load_camera(&camera_file, scene.camera.spec)?;
     }
+    Ok(scene)
+}
+
+/// The camera file of the scene file `name`, [`camera_path`] beside it, if there is one; `None`
+/// for a built-in SPD scene. Its `[camera]` table takes the place of the scene's camera, key by
+/// key.
+pub fn camera_file_beside(name: &str) -> Option<PathBuf> {
+    if name.starts_with(SCENE_PREFIX) {
+        return None;
+    }
+    let path = camera_path(Path::new(name));
+    path.is_file().then_some(path)
+}
+
+/// Where the camera of `file` (a scene file, or an image the viewer saves) goes: beside it,
+/// `NAME.camera.toml` (`room.camera.toml` for `room.toml`, `room.dat` or `room.png`).
+pub fn camera_path(file: &Path) -> PathBuf {
+    file.with_extension("camera.toml")
+}
+
+/// The scene with the default framing camera ([`camera::frame`]): a three-quarter view of its
+/// finite objects at its image's aspect. The reader of a format without a camera ends with it:
+/// `load_sdl(path).map(with_framing_camera)`.
+pub fn with_framing_camera(mut scene: Scene) -> Scene {
+    let aspect = scene.settings.width as f32 / scene.settings.height as f32;
+    scene.camera = camera::frame(&scene.geometry.finite_bounds(), aspect);
+    scene
 }

@@ -1,7 +1,7 @@
 //! Scene formats: everything raylab reads a [`Scene`](crate::scene::Scene) from or writes an
 //! image to. [`load_any`] reads any scene raylab knows by its name: a built-in SPD scene
-//! ([`spd`]), an NFF file ([`nff`]) or a TOML scene file ([`toml`], which reads OBJ models
-//! with `obj`); [`image`] writes the rendered picture. Every reader reports bad input as a
+//! ([`spd`]), an NFF file ([`nff`]), an SDL file ([`sdl`]) or a TOML scene file ([`toml`], which reads
+//! OBJ models with `obj`); [`image`] writes the rendered picture. Every reader reports bad input as a
 //! [`SceneError`] at its `file:line:column`. The formats depend on the scene; the scene knows
 //! none of them.
 
@@ -11,10 +11,14 @@ pub mod image;
 mod load_any;
 pub mod nff;
 mod obj;
+pub mod sdl;
 pub mod spd;
 pub mod toml;
 
 pub use error::SceneError;
 pub(crate) use error::Source;
 pub use files::{SceneFiles, ascii_text, utf8_text};
-pub use load_any::{load_any, load_any_with};
+pub use load_any::{
+    SceneFormat, camera_file_beside, camera_path, load_any, load_any_as, load_any_with,
+    with_framing_camera,
+};

@@ -13,6 +13,7 @@ mod sphere;
 mod tapered_cylinder;
 #[cfg(test)]
 mod test_support;
+mod torus;
 mod triangle;
 
 pub use csg::{
@@ -26,6 +27,7 @@ pub use polygon::Polygon;
 pub use quadratic::solve_quadratic;
 pub use sphere::Sphere;
 pub use tapered_cylinder::TaperedCylinder;
+pub use torus::Torus;
 pub use triangle::{ShearedRay, Triangle, TriangleHit};
 
 use arrayvec::ArrayVec;
@@ -67,6 +69,7 @@ pub enum Shape {
     TaperedCylinder(TaperedCylinder),
     Ellipsoid(Ellipsoid),
     Paraboloid(Paraboloid),
+    Torus(Torus),
     Csg(Box<Csg>),
 }
 
@@ -82,6 +85,7 @@ impl Shape {
             Shape::TaperedCylinder(s) => s.intersect(ray, t_min, t_max),
             Shape::Ellipsoid(s) => s.intersect(ray, t_min, t_max),
             Shape::Paraboloid(s) => s.intersect(ray, t_min, t_max),
+            Shape::Torus(s) => s.intersect(ray, t_min, t_max),
             Shape::Csg(s) => s.intersect(ray, t_min, t_max),
         }
     }
@@ -96,6 +100,7 @@ impl Shape {
             Shape::TaperedCylinder(s) => s.surface(p, part),
             Shape::Ellipsoid(s) => s.surface(p, part),
             Shape::Paraboloid(s) => s.surface(p, part),
+            Shape::Torus(s) => s.surface(p, part),
             Shape::Csg(s) => s.surface(p, part),
         }
     }
@@ -110,6 +115,7 @@ impl Shape {
             Shape::TaperedCylinder(_) => "tapered cylinder",
             Shape::Ellipsoid(_) => "ellipsoid",
             Shape::Paraboloid(_) => "paraboloid",
+            Shape::Torus(_) => "torus",
             Shape::Csg(_) => "csg",
         }
     }
@@ -124,6 +130,7 @@ impl Shape {
             Shape::TaperedCylinder(s) => Some(s.bounds()),
             Shape::Ellipsoid(s) => Some(s.bounds()),
             Shape::Paraboloid(s) => Some(s.bounds()),
+            Shape::Torus(s) => Some(s.bounds()),
             Shape::Csg(s) => s.bounds(),
         }
     }
@@ -132,7 +139,11 @@ impl Shape {
     /// know which side is in).
     pub fn is_closed(&self) -> bool {
         match self {
-            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Ellipsoid(_) | Shape::Csg(_) => true,
+            Shape::Sphere(_)
+            | Shape::Cuboid(_)
+            | Shape::Ellipsoid(_)
+            | Shape::Torus(_)
+            | Shape::Csg(_) => true,
             Shape::Plane(_) | Shape::Polygon(_) => false,
             Shape::TaperedCylinder(s) => s.is_capped(),
             Shape::Paraboloid(s) => s.is_capped(),
@@ -150,7 +161,12 @@ impl Shape {
     pub fn crossings(&self, ray: &Ray) -> Crossings {
         match self {
             Shape::Plane(s) => s.crossings(ray),
-            // The other closed shapes are convex, so a line crosses them at most twice: it
+            Shape::Torus(s) => s
+                .crossings(ray)
+                .into_iter()
+                .map(|t| ShapeHit { t, part: 0 })
+                .collect(),
+            // The other solids are convex, so a line crosses them at most twice: it
             // enters at the first hit on the whole line and leaves at the next one. A line that
             // only touches the surface does not go in.
             _ => {

@@ -2,10 +2,11 @@
 //! [`save_image`]) and the camera as a `[camera]` snippet to paste into a scene file.
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use raylab::camera::CameraSpec;
 use raylab::film::Film;
+use raylab::formats::camera_path;
 use raylab::formats::image::save_image;
 use raylab::output::write_atomically;
 
@@ -21,11 +22,6 @@ pub fn camera_snippet(spec: &CameraSpec) -> String {
         spec.view_angle,
         spec.near
     )
-}
-
-/// Where the camera snippet of an image saved at `image` goes: beside it, `NAME.camera.toml`.
-pub fn camera_path(image: &Path) -> PathBuf {
-    image.with_extension("camera.toml")
 }
 
 /// Saves the film at `path` (its extension picks the format) and the camera beside it; returns

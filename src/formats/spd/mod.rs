@@ -14,6 +14,8 @@ mod teapot_patches;
 mod tetra;
 mod tree;
 
+pub(crate) use teapot::utah_teapot;
+
 use std::fmt;
 use std::path::Path;
 use std::str::FromStr;

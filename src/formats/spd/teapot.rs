@@ -30,10 +30,19 @@ pub(super) fn teapot(size: u32) -> NffDocument {
         ior: 0.0,
     };
     doc.items.push(pot.fill());
-    for patch in &PATCHES {
-        tessellate(&mut doc.items, patch, size);
-    }
+    doc.items.extend(utah_teapot(size));
     doc
+}
+
+/// The pot alone, in SPD's coordinates (Z up, standing on z = 0): each of its patches cut into
+/// `size`×`size` quadrilaterals of two smooth-shaded triangles (`pp` items). The SDL reader's
+/// `teapot` is made of these.
+pub(crate) fn utah_teapot(size: u32) -> Vec<Item> {
+    let mut items = Vec::new();
+    for patch in &PATCHES {
+        tessellate(&mut items, patch, size);
+    }
+    items
 }
 
 /// An 8×8 board centred on the origin, in `size`×`size` squares: first the white ones, then

@@ -28,7 +28,7 @@ use crate::scene::Scene;
 use crate::settings::RenderSettings;
 use crate::shapes::{
     Csg, CsgOperation, Cuboid, Ellipsoid, Operand, Paraboloid, Plane, Polygon, Shape, Sphere,
-    TaperedCylinder, Triangle,
+    TaperedCylinder, Torus, Triangle,
 };
 use crate::texture::{Texture, TextureImage, Wrap};
 use crate::transform::{Transform, TransformStep};
@@ -50,7 +50,7 @@ pub(crate) fn build_scene(
     files: SceneFiles,
 ) -> Result<Scene, SceneError> {
     let settings = build_settings(file.render, source)?;
-    let camera = build_camera(file.camera, source)?;
+    let camera = build_camera(file.camera, CameraSpec::default(), source)?;
     let lights = file.lights.into_iter().map(build_light).collect();
 
     let texture_names = Names::new("texture", file.textures.keys(), 0);
@@ -172,14 +172,17 @@ fn build_settings(render: RenderFile, source: Source) -> Result<RenderSettings, 
     Ok(settings)
 }
 
-/// The camera; an error points at the key it is about, or at `[camera]` when that key was
-/// left to its default.
-fn build_camera(camera: Option<Spanned<CameraFile>>, source: Source) -> Result<Camera, SceneError> {
+/// The camera: each key the table leaves out is `default`'s. An error points at the key it is
+/// about, or at `[camera]` when that key was left to its default.
+pub(super) fn build_camera(
+    camera: Option<Spanned<CameraFile>>,
+    default: CameraSpec,
+    source: Source,
+) -> Result<Camera, SceneError> {
     let (table_span, file) = match camera {
         Some(camera) => (camera.span(), camera.into_inner()),
         None => (0..0, CameraFile::default()),
     };
-    let default = CameraSpec::default();
     let vector =
         |v: &Option<Spanned<Vector>>, default| v.as_ref().map_or(default, |v| v.get_ref().0);
     let number = |x: &Option<Spanned<f32>>, default| x.as_ref().map_or(default, |x| *x.get_ref());
@@ -552,6 +555,15 @@ impl GeometryBuilder<'_> {
                     capped.unwrap_or(false),
                 );
                 (shape.map(Shape::Paraboloid), span)
+            }
+            ShapeFile::Torus {
+                center,
+                major_radius,
+                minor_radius,
+            } => {
+                let center = center.map_or(Vec3::ZERO, |c| c.0);
+                let shape = Torus::new(center, major_radius, minor_radius);
+                (shape.map(Shape::Torus), span)
             }
             ShapeFile::Csg {
                 operation,

@@ -36,6 +36,13 @@ pub struct SceneFile {
     pub objects: Vec<ObjectFile>,
 }
 
+/// A `NAME.camera.toml` file beside a scene (what the viewer saves): only a `[camera]` table.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSnippetFile {
+    pub camera: Spanned<CameraFile>,
+}
+
 /// `[render]`: the fields of [`crate::settings::RenderSettings`], each optional.
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -215,6 +222,13 @@ pub enum ShapeFile {
         radius: Option<f32>,
         height: Option<f32>,
         capped: Option<bool>,
+    },
+    /// A torus around the y axis through `center`: a tube of radius `minor_radius` swept
+    /// around a ring of radius `major_radius`.
+    Torus {
+        center: Option<Vector>,
+        major_radius: f32,
+        minor_radius: f32,
     },
     /// A boolean object: closed solids and other csg objects combined by `operation`. Children
     /// without a `material` take the node's.

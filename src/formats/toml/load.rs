@@ -5,11 +5,13 @@
 use std::path::Path;
 
 use serde::Deserialize;
+use toml::Spanned;
 use toml::de::DeTable;
 
-use super::build::build_scene;
-use super::file::{OBJECT_KEYS, SceneFile};
+use super::build::{build_camera, build_scene};
+use super::file::{CameraSnippetFile, OBJECT_KEYS, SceneFile};
 use super::retag::retag_document;
+use crate::camera::{Camera, CameraSpec};
 use crate::formats::{SceneError, Source};
 use crate::formats::{SceneFiles, utf8_text};
 use crate::memory::{self, Bytes};
@@ -24,6 +26,19 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
     parse_scene(text, path, path.parent().unwrap_or(Path::new("")))
 }
 
+/// Reads the `[camera]` table of the file at `path` (a `NAME.camera.toml`, as the viewer saves
+/// it); the keys it leaves out are `base`'s. Errors are at the file's line and column.
+pub fn load_camera(path: &Path, base: CameraSpec) -> Result<Camera, SceneError> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| SceneError::whole_file(path, format!("cannot read the camera file: {e}")))?;
+    let text = utf8_text(&bytes, path)?;
+    let source = Source { origin: path, text };
+    let document = parse_toml(source)?;
+    let file = CameraSnippetFile::deserialize(toml::de::Deserializer::from(document))
+        .map_err(|e| source.toml_error(&e))?;
+    build_camera(Some(file.camera), base, source)
+}
+
 /// Reads a scene from `text`. `origin` names it in error messages; texture and OBJ file names
 /// are relative to `base_dir`.
 pub fn parse_scene(text: &str, origin: &Path, base_dir: &Path) -> Result<Scene, SceneError> {
@@ -34,16 +49,21 @@ pub fn parse_scene(text: &str, origin: &Path, base_dir: &Path) -> Result<Scene, 
 /// of many small tables, such as a million lights).
 const PARSE_BYTES_PER_BYTE: u64 = 48;
 
-/// Reads a scene from `text`, taking the files it names from `files`.
-pub fn parse_scene_with(text: &str, origin: &Path, files: SceneFiles) -> Result<Scene, SceneError> {
-    let size = text.len() as u64;
+/// Parses the TOML of `source`, if there is memory for it.
+fn parse_toml<'a>(source: Source<'a>) -> Result<Spanned<DeTable<'a>>, SceneError> {
+    let size = source.text.len() as u64;
     memory::check(
         &format!("reading this {} file", Bytes(size)),
         size * PARSE_BYTES_PER_BYTE,
     )
-    .map_err(|message| SceneError::whole_file(origin, message))?;
+    .map_err(|message| SceneError::whole_file(source.origin, message))?;
+    DeTable::parse(source.text).map_err(|e| source.toml_error(&e))
+}
+
+/// Reads a scene from `text`, taking the files it names from `files`.
+pub fn parse_scene_with(text: &str, origin: &Path, files: SceneFiles) -> Result<Scene, SceneError> {
     let source = Source { origin, text };
-    let mut document = DeTable::parse(text).map_err(|e| source.toml_error(&e))?;
+    let mut document = parse_toml(source)?;
     let shape_keys = retag_document(document.get_mut(), source)?;
     let file = SceneFile::deserialize(toml::de::Deserializer::from(document)).map_err(|e| {
         let mut error = source.toml_error(&e);

@@ -139,7 +139,7 @@ fn navigate(s: &mut Shown, action: Action, shown: PixelRect) {
             let distance = navigation::fly_speed(spec, bounds) * seconds;
             Some(navigation::fly(spec, motion, distance))
         }
-        Action::Frame => navigation::frame(spec, bounds, size.0 as f32 / size.1.max(1) as f32),
+        Action::Frame => spec.framing(&bounds, size.0 as f32 / size.1.max(1) as f32),
         Action::ResetCamera => Some(s.scene.scene.camera.spec),
         _ => None,
     };

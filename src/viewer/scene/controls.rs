@@ -40,6 +40,7 @@ impl Controls {
     ) -> Result<Controls, String> {
         let mut controls = Controls::from_scene(scene);
         overrides.apply(&mut controls.settings)?;
+        controls.camera = overrides.apply_camera(controls.camera)?.spec;
         controls.view = view;
         Ok(controls)
     }
@@ -96,6 +97,20 @@ mod tests {
         assert_eq!((c.settings.width, c.settings.height), (100, 480));
         assert_eq!(c.settings.min_weight, 0.5);
         assert_eq!(c.view, DebugView::Normals);
+        let looking = SettingsOverrides {
+            eye: Some(Vec3::new(0.0, 1.0, 9.0)),
+            view_angle: Some(20.0),
+            ..SettingsOverrides::default()
+        };
+        let c = Controls::with_overrides(&scene, &looking, DebugView::Shaded).unwrap();
+        assert_eq!(c.camera, looking.apply_camera(camera.spec).unwrap().spec);
+        assert_eq!((c.camera.eye.z, c.camera.view_angle), (9.0, 20.0));
+        let along_up = SettingsOverrides {
+            up: Some(Vec3::Z),
+            ..SettingsOverrides::default()
+        };
+        let error = Controls::with_overrides(&scene, &along_up, DebugView::Shaded).unwrap_err();
+        assert!(error.contains("--up"), "{error}");
         let too_deep = SettingsOverrides {
             max_depth: Some(0),
             ..SettingsOverrides::default()

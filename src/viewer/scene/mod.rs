@@ -170,7 +170,7 @@ impl SceneSlot {
             Some(old) if old.scene.path == loaded.path => {
                 let mut controls = old.controls;
                 if old.file_controls.camera != file_controls.camera {
-                    controls.camera = file_controls.camera;
+                    controls.camera = with_overrides.camera;
                 }
                 if old.file_controls.settings != file_controls.settings {
                     controls.settings = with_overrides.settings;

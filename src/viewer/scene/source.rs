@@ -33,7 +33,7 @@ impl LoadedScene {
     }
 }
 
-/// Reads the scene at `path` (a TOML or NFF file, or an `spd:NAME[:SIZE]` name; the default
+/// Reads the scene at `path` (a TOML, NFF or SDL file, or an `spd:NAME[:SIZE]` name; the default
 /// scene for `None`) and builds its BVH. The error is the loader's message
 /// (`file:line:column: message`).
 pub fn load(path: Option<&Path>) -> Result<LoadedScene, String> {
@@ -70,7 +70,7 @@ pub fn spawn_load(
     }
 }
 
-/// The scene files (`*.toml` and `*.nff`, sorted by name) in the folder of `path`; for the
+/// The scene files (`*.toml`, `*.nff` and SDL's `*.dat` and `*.sdl`, sorted by name) in the folder of `path`; for the
 /// built-in scene (`None`), those in `assets/scenes` under the current folder, if there is one.
 pub fn scene_files_beside(path: Option<&Path>) -> Vec<PathBuf> {
     let folder = match path {
@@ -92,7 +92,7 @@ pub fn scene_files_beside(path: Option<&Path>) -> Vec<PathBuf> {
                 .extension()
                 .and_then(|x| x.to_str())
                 .map(str::to_ascii_lowercase);
-            p.is_file() && matches!(ext.as_deref(), Some("toml" | "nff"))
+            p.is_file() && matches!(ext.as_deref(), Some("toml" | "nff" | "dat" | "sdl"))
         })
         .filter(|p| p.file_name().is_some_and(|n| n != "Cargo.toml"))
         .collect();
@@ -127,7 +127,14 @@ mod tests {
     #[test]
     fn scene_files_are_listed_sorted_without_other_files() {
         let dir = tempfile::tempdir().unwrap();
-        for name in ["b.toml", "a.toml", "notes.txt", "Cargo.toml", "c.NFF"] {
+        for name in [
+            "b.toml",
+            "a.toml",
+            "notes.txt",
+            "Cargo.toml",
+            "c.NFF",
+            "d.dat",
+        ] {
             std::fs::write(dir.path().join(name), "").unwrap();
         }
         let files = scene_files_beside(Some(&dir.path().join("a.toml")));
@@ -135,6 +142,6 @@ mod tests {
             .iter()
             .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
             .collect();
-        assert_eq!(names, ["a.toml", "b.toml", "c.NFF"]);
+        assert_eq!(names, ["a.toml", "b.toml", "c.NFF", "d.dat"]);
     }
 }

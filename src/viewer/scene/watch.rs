@@ -1,10 +1,11 @@
 //! Scene file watching: the file's folder is watched (editors often save by writing a new file and
 //! renaming it over the old one, which a watch on the file itself would lose), and every change to
-//! the file calls back, so the viewer re-renders when the scene is saved.
+//! the file or to its `NAME.camera.toml` calls back, so the viewer re-renders when either is saved.
 
 use std::path::Path;
 
 use notify::{EventKind, RecursiveMode, Watcher};
+use raylab::formats::camera_path;
 
 /// Watches one file while it lives.
 pub struct SceneWatcher {
@@ -12,12 +13,13 @@ pub struct SceneWatcher {
 }
 
 impl SceneWatcher {
-    /// Calls `changed` (on the watcher's thread) each time the file at `path` is written,
-    /// created, renamed or removed.
+    /// Calls `changed` (on the watcher's thread) each time the file at `path`, or the camera file
+    /// beside it, is written, created, renamed or removed.
     pub fn new(path: &Path, changed: impl Fn() + Send + 'static) -> Result<SceneWatcher, String> {
         let file = std::path::absolute(path).map_err(|e| format!("{}: {e}", path.display()))?;
         let folder = file.parent().unwrap_or(Path::new("/")).to_path_buf();
-        let name = file.file_name().map(|n| n.to_os_string());
+        let names =
+            [file.clone(), camera_path(&file)].map(|f| f.file_name().map(|n| n.to_os_string()));
         let mut watcher =
             notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
                 let Ok(event) = event else { return };
@@ -25,7 +27,9 @@ impl SceneWatcher {
                     event.kind,
                     EventKind::Create(_) | EventKind::Modify(_) | EventKind::Remove(_)
                 );
-                if relevant && event.paths.iter().any(|p| p.file_name() == name.as_deref()) {
+                let watched =
+                    |p: &std::path::PathBuf| names.iter().any(|n| p.file_name() == n.as_deref());
+                if relevant && event.paths.iter().any(watched) {
                     changed();
                 }
             })
@@ -45,7 +49,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn saving_the_file_calls_back_and_other_files_do_not() {
+    fn saving_the_file_or_its_camera_file_calls_back_and_other_files_do_not() {
         use std::sync::Arc;
         use std::sync::atomic::{AtomicBool, Ordering::SeqCst};
 
@@ -74,6 +78,9 @@ mod tests {
         let temp = dir.path().join(".scene.toml.swp");
         std::fs::write(&temp, "d").unwrap();
         std::fs::rename(&temp, &scene).unwrap();
+        assert_eq!(receiver.recv_timeout(Duration::from_secs(5)), Ok(true));
+        while receiver.try_recv().is_ok() {}
+        std::fs::write(dir.path().join("scene.camera.toml"), "[camera]").unwrap();
         assert_eq!(receiver.recv_timeout(Duration::from_secs(5)), Ok(true));
     }
 }

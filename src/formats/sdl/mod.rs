@@ -1,0 +1,55 @@
+//! Hill & Kelley's SDL, the scene language of *Computer Graphics using OpenGL* (`.dat` and
+//! `.sdl` files): read as the book's `SDL.cpp` reads it ([`lexer`] splits the text, [`expand`]
+//! runs `def`/`use`, [`parse`] reads the statements, [`build`] keeps the reader's state and makes
+//! the scene, [`solids`] has the shapes in object space, [`mesh_3vn`] reads `.3vn` meshes).
+//! SDL has no camera: [`parse_sdl`] gives the scene a placeholder, and
+//! [`load_any`](crate::formats::load_any) the default framing camera, or the one of a
+//! `NAME.camera.toml` beside the file, or the command line's.
+//!
+//! Where raylab differs from the book's reader:
+//! - Where the book stops reading without a word (an unknown keyword, a missing `{`, an
+//!   undefined `use`) or ends the program (a bad number), raylab reports `file:line:column`,
+//!   what it expected, a near-miss keyword or name, and the `def`s an expanded word came from.
+//! - A `def` that uses itself is an error, and expansion is bounded ([`MAX_USE_DEPTH`],
+//!   [`MAX_EXPANDED_TOKENS`]), as are the meshes' triangles ([`MAX_TRIANGLES`]).
+//! - A last word with no whitespace after it is read (the book drops it).
+//! - `pop` with nothing pushed resets the transform and warns (the book crashes later); a
+//!   `push` never popped is a warning; a missing mesh file is a warning, once per file.
+//! - A zero scale is an error (the book divides by it and carries on).
+//! - raylab's materials have one colour: the diffuse colour, the ambient colour becoming the
+//!   ambient coefficient (its mean over the diffuse colour's mean), the specular colour the
+//!   highlight's colour. `emissive` and the textures (`texture`, `parameters`, `makePixmap`)
+//!   are read and ignored, with a warning. `minReflectivity` and `minTransparency` become
+//!   raylab's one adaptive cut-off, the smaller of the two.
+//! - The polyhedra are generated (the convex hulls of their corners), not read from files.
+//! - `torus`, `union`, `intersection` and `difference` are read and reported as not supported
+//!   yet; `taperedTube`, `backgroundImage` and the other versions' extensions are unknown words.
+
+mod build;
+mod expand;
+mod lexer;
+mod mesh_3vn;
+mod parse;
+mod solids;
+mod suggest;
+
+use std::path::Path;
+
+pub use build::MAX_TRIANGLES;
+pub use expand::{MAX_EXPANDED_TOKENS, MAX_USE_DEPTH};
+
+use crate::formats::{SceneError, SceneFiles, Source, ascii_text};
+use crate::scene::Scene;
+
+/// Reads the SDL file at `path`; its meshes are read from beside it.
+pub fn load_sdl(path: &Path) -> Result<Scene, SceneError> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| SceneError::whole_file(path, format!("cannot read the scene file: {e}")))?;
+    let folder = path.parent().unwrap_or(Path::new(""));
+    parse_sdl(&ascii_text(&bytes), path, SceneFiles::Folder(folder))
+}
+
+/// Reads a scene from SDL text; `origin` names it in messages, `files` gives its mesh files.
+pub fn parse_sdl(text: &str, origin: &Path, files: SceneFiles) -> Result<Scene, SceneError> {
+    parse::parse(Source { origin, text }, files)
+}

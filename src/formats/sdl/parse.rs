@@ -1,0 +1,420 @@
+//! Reading SDL statements the way the book's `Scene::getObject` does, and telling the
+//! [`Builder`] what they mean. Where the book's parser stops reading without a word (an unknown
+//! keyword, a missing `{`, an undefined `use`) or ends the program (a bad number), this one
+//! reports the place and what was expected there.
+
+use glam::Vec3;
+
+use super::build::{Builder, SdlMaterial};
+use super::expand::{Tokens, Word};
+use super::mesh_3vn::parse_3vn;
+use super::solids::{self, POLYHEDRA};
+use super::suggest::did_you_mean;
+use crate::color::Color;
+use crate::formats::{SceneError, SceneFiles, Source, ascii_text};
+use crate::light::Light;
+use crate::limits;
+use crate::scene::Scene;
+use crate::shapes::Shape;
+use crate::transform::TransformStep;
+
+/// Every keyword raylab's SDL reader knows, for suggestions.
+const KEYWORDS: &[&str] = &[
+    "light",
+    "globalAmbient",
+    "background",
+    "minReflectivity",
+    "minTransparency",
+    "maxRecursionDepth",
+    "ambient",
+    "diffuse",
+    "specular",
+    "emissive",
+    "specularExponent",
+    "reflectivity",
+    "transparency",
+    "speedOfLight",
+    "specularFraction",
+    "surfaceRoughness",
+    "texture",
+    "parameters",
+    "defaultMaterials",
+    "translate",
+    "scale",
+    "rotate",
+    "push",
+    "pop",
+    "identityAffine",
+    "def",
+    "use",
+    "sphere",
+    "cube",
+    "cylinder",
+    "cone",
+    "taperedCylinder",
+    "torus",
+    "square",
+    "plane",
+    "teapot",
+    "mesh",
+    "tetrahedron",
+    "octahedron",
+    "dodecahedron",
+    "icosahedron",
+    "buckyball",
+    "diamond",
+    "union",
+    "intersection",
+    "difference",
+    "makePixmap",
+];
+
+/// The most numbers `parameters` takes (the book's array holds 10).
+const MAX_PARAMETERS: f32 = 10.0;
+
+/// What the parser reads and what it builds.
+struct Parser<'a> {
+    tokens: Tokens<'a>,
+    build: Builder,
+    source: Source<'a>,
+    files: SceneFiles<'a>,
+    /// Mesh files already reported missing, so that each is reported once.
+    missing: Vec<String>,
+    /// Warnings given once per file, already given.
+    noted: Vec<&'static str>,
+}
+
+/// Reads a whole SDL text into a scene.
+pub(crate) fn parse(source: Source, files: SceneFiles) -> Result<Scene, SceneError> {
+    let mut parser = Parser {
+        tokens: Tokens::new(source),
+        build: Builder::new(),
+        source,
+        files,
+        missing: Vec::new(),
+        noted: Vec::new(),
+    };
+    while parser.object()?.is_some() {}
+    let open = parser.build.open_pushes();
+    if open > 0 {
+        let origin = source.origin.display();
+        parser.build.scene.warnings.push(format!(
+            "{origin}: {open} `push` never popped (harmless: the book's reader allows it)"
+        ));
+    }
+    Ok(parser.build.scene)
+}
+
+impl<'a> Parser<'a> {
+    /// Reads statements up to and including one shape, which it returns the keyword of (as
+    /// `getObject` does); `None` at the end of the file.
+    fn object(&mut self) -> Result<Option<Word<'a>>, SceneError> {
+        while let Some(word) = self.tokens.next() {
+            if self.statement(&word)? {
+                return Ok(Some(word));
+            }
+        }
+        Ok(None)
+    }
+
+    /// Reads the statement `word` begins; `true` when it made a shape.
+    fn statement(&mut self, word: &Word<'a>) -> Result<bool, SceneError> {
+        match word.text() {
+            "light" => {
+                let position = self.point(word)?;
+                let color = self.vector(word, "the light's colour")?;
+                self.build
+                    .scene
+                    .lights
+                    .push(Light::Point { position, color });
+            }
+            "globalAmbient" => {
+                let ambient = self.vector(word, "a colour")?;
+                self.build.scene.settings.ambient = ambient;
+                self.check_settings(word)?;
+            }
+            "background" => {
+                let background = self.vector(word, "a colour")?;
+                self.build.scene.settings.background = background;
+                self.check_settings(word)?;
+            }
+            "minReflectivity" => {
+                self.build.min_reflectivity = self.fraction(word)?;
+                self.build.set_cutoff();
+            }
+            "minTransparency" => {
+                self.build.min_transparency = self.fraction(word)?;
+                self.build.set_cutoff();
+            }
+            "maxRecursionDepth" => {
+                let depth = self.number(word, "a whole number")?;
+                self.build.scene.settings.max_depth = depth.max(0.0) as u32;
+                self.check_settings(word)?;
+            }
+            "ambient" => self.build.material.ambient = self.vector(word, "a colour")?,
+            "diffuse" => self.build.material.diffuse = self.vector(word, "a colour")?,
+            "specular" => self.build.material.specular = self.vector(word, "a colour")?,
+            "emissive" => {
+                self.vector(word, "a colour")?;
+                self.warn_once(word, "`emissive` is read, but raylab has no emission yet");
+            }
+            "specularExponent" => {
+                self.build.material.specular_exponent = self.number(word, "a number")?;
+            }
+            "reflectivity" => self.build.material.reflectivity = self.number(word, "a number")?,
+            "transparency" => self.build.material.transparency = self.number(word, "a number")?,
+            "speedOfLight" => {
+                let speed = self.number(word, "a number")?;
+                if speed <= 0.0 {
+                    return Err(self.tokens.error(
+                        word,
+                        format!("`speedOfLight` must be positive, got {speed}"),
+                    ));
+                }
+                self.build.material.speed_of_light = speed;
+            }
+            "specularFraction" | "surfaceRoughness" => {
+                // The book stores these and uses neither.
+                self.number(word, "a number")?;
+            }
+            "texture" => {
+                self.number(word, "a texture number")?;
+                self.ignore_textures(word);
+            }
+            "parameters" => {
+                let count = self.number(word, "how many parameters follow")?;
+                if !(0.0..=MAX_PARAMETERS).contains(&count) {
+                    return Err(self.tokens.error(
+                        word,
+                        format!("`parameters` takes 0 to {MAX_PARAMETERS} numbers, not {count}"),
+                    ));
+                }
+                for _ in 0..count as usize {
+                    self.number(word, "a parameter")?;
+                }
+                self.ignore_textures(word);
+            }
+            "makePixmap" => {
+                self.number(word, "a pixmap number")?;
+                self.word(word, "a BMP file name")?;
+                self.ignore_textures(word);
+            }
+            "defaultMaterials" => self.build.material = SdlMaterial::default(),
+            "translate" => {
+                let by = self.vector(word, "a distance along x, y and z")?;
+                self.transform(word, TransformStep::Translate(by))?;
+            }
+            "scale" => {
+                let by = self.vector(word, "a factor along x, y and z")?;
+                self.transform(word, TransformStep::Scale(by))?;
+            }
+            "rotate" => {
+                let degrees = self.number(word, "an angle in degrees")?;
+                let axis = self.vector(word, "an axis")?;
+                self.transform(word, TransformStep::Rotate { axis, degrees })?;
+            }
+            "push" => self.build.push(),
+            "pop" => {
+                if !self.build.pop() {
+                    self.warn_once(
+                        word,
+                        "`pop` with nothing pushed (the transform becomes the identity)",
+                    );
+                }
+            }
+            "identityAffine" => self.build.identity(),
+            "def" => self.tokens.define(word)?,
+            "use" => self.tokens.expand(word)?,
+            "sphere" => return self.shape(word, solids::sphere()),
+            "cube" => return self.shape(word, solids::cube()),
+            "cylinder" => return self.shape(word, solids::tapered_cylinder(1.0)),
+            "cone" => return self.shape(word, solids::tapered_cylinder(0.0)),
+            "taperedCylinder" => {
+                let top = self.number(word, "the small radius")?;
+                return self.shape(word, solids::tapered_cylinder(top));
+            }
+            "square" => return self.shape(word, solids::square()),
+            "plane" => return self.shape(word, solids::plane()),
+            "teapot" => {
+                let result = self.build.solid("teapot", solids::teapot);
+                result.map_err(|e| self.tokens.error(word, e))?;
+                return Ok(true);
+            }
+            name if POLYHEDRA.contains(&name) => {
+                let result = self.build.solid(name, || solids::polyhedron(name));
+                result.map_err(|e| self.tokens.error(word, e))?;
+                return Ok(true);
+            }
+            "mesh" => {
+                self.mesh_file(word)?;
+                return Ok(true);
+            }
+            "torus" => return Err(self.not_yet(word, "the torus")),
+            "union" | "intersection" | "difference" => {
+                // Read both operands, so that the file is understood up to here.
+                for side in ["first", "second"] {
+                    if self.object()?.is_none() {
+                        return Err(self.tokens.error(
+                            word,
+                            format!(
+                                "`{}` needs two shapes, but the file ends before its {side}",
+                                word.text()
+                            ),
+                        ));
+                    }
+                }
+                return Err(self.not_yet(word, "boolean objects"));
+            }
+            other => {
+                let hint = did_you_mean(other, KEYWORDS.iter().copied());
+                let message = if matches!(other, "{" | "}") {
+                    format!("unexpected `{other}` (braces belong to a `def`)")
+                } else {
+                    format!("unknown keyword `{other}`{hint}")
+                };
+                return Err(self.tokens.error(word, message));
+            }
+        }
+        Ok(false)
+    }
+
+    /// The next word, which `after` needs as `what`.
+    fn word(&mut self, after: &Word, what: &str) -> Result<Word<'a>, SceneError> {
+        self.tokens.next().ok_or_else(|| {
+            self.tokens.error(
+                after,
+                format!("`{}` needs {what}, but the file ends", after.text()),
+            )
+        })
+    }
+
+    /// A number: what C++ reads into a float (`.7`, `-3`, `1e-3`, `+2`), the whole word.
+    fn number(&mut self, after: &Word, what: &str) -> Result<f32, SceneError> {
+        let word = self.word(after, what)?;
+        word.text()
+            .parse::<f32>()
+            .ok()
+            .filter(|x| x.is_finite() && !word.text().starts_with(['i', 'I', 'n', 'N']))
+            .ok_or_else(|| {
+                self.tokens.error(
+                    &word,
+                    format!(
+                        "expected {what} after `{}`, found `{}`",
+                        after.text(),
+                        word.text()
+                    ),
+                )
+            })
+    }
+
+    /// A number from 0 to 1 (`minReflectivity`, `minTransparency`).
+    fn fraction(&mut self, after: &Word) -> Result<f32, SceneError> {
+        let value = self.number(after, "a number from 0 to 1")?;
+        if !(0.0..=1.0).contains(&value) {
+            let message = format!("`{}` must be between 0 and 1, got {value}", after.text());
+            return Err(self.tokens.error(after, message));
+        }
+        Ok(value)
+    }
+
+    /// Three numbers.
+    fn vector(&mut self, after: &Word, what: &str) -> Result<Color, SceneError> {
+        Ok(Vec3::new(
+            self.number(after, what)?,
+            self.number(after, what)?,
+            self.number(after, what)?,
+        ))
+    }
+
+    /// A point, within raylab's range.
+    fn point(&mut self, after: &Word) -> Result<Vec3, SceneError> {
+        let point = self.vector(after, "a position x y z")?;
+        if !limits::within_range(point) {
+            let message = limits::out_of_range_message("the position", point);
+            return Err(self.tokens.error(after, message));
+        }
+        Ok(point)
+    }
+
+    fn transform(&mut self, word: &Word, step: TransformStep) -> Result<(), SceneError> {
+        self.build
+            .transform(step)
+            .map_err(|e| self.tokens.error(word, e))
+    }
+
+    fn check_settings(&mut self, word: &Word) -> Result<(), SceneError> {
+        self.build
+            .scene
+            .settings
+            .validate()
+            .map_err(|e| self.tokens.error(word, e))
+    }
+
+    /// Adds a shape; `true`, for [`Self::statement`].
+    fn shape(&mut self, word: &Word, shape: Result<Shape, String>) -> Result<bool, SceneError> {
+        shape
+            .and_then(|shape| self.build.shape(shape))
+            .map_err(|e| self.tokens.error(word, e))?;
+        Ok(true)
+    }
+
+    /// `mesh FILE`: a `.3vn` file beside the scene file. A missing file is a warning, once.
+    fn mesh_file(&mut self, word: &Word<'a>) -> Result<(), SceneError> {
+        let name = self.word(word, "a .3vn file name")?;
+        let path = self.files.path(name.text());
+        let bytes = match self.files.read(&path) {
+            Ok(bytes) => bytes,
+            Err(why) => {
+                if !self.missing.iter().any(|m| m == name.text()) {
+                    self.missing.push(name.text().to_string());
+                    let message =
+                        format!("cannot read mesh file {}: {why}; left out", path.display());
+                    self.warn(&name, &message);
+                }
+                return Ok(());
+            }
+        };
+        let mesh = parse_3vn(&ascii_text(&bytes))
+            .map_err(|e| self.tokens.error(&name, format!("{}: {e}", path.display())))?;
+        self.build
+            .mesh(mesh)
+            .map_err(|e| self.tokens.error(&name, e))
+    }
+
+    /// The error for a keyword raylab reads but cannot make yet.
+    fn not_yet(&self, word: &Word, what: &str) -> SceneError {
+        self.tokens.error(
+            word,
+            format!(
+                "`{}`: {what} are not supported by raylab's SDL reader yet",
+                word.text()
+            ),
+        )
+    }
+
+    fn ignore_textures(&mut self, word: &Word) {
+        self.warn_once(
+            word,
+            "textures are not supported by raylab's SDL reader yet; ignored",
+        );
+    }
+
+    /// A warning the first time `message` comes up, and no more.
+    fn warn_once(&mut self, word: &Word, message: &'static str) {
+        if !self.noted.contains(&message) {
+            self.noted.push(message);
+            self.warn(word, message);
+        }
+    }
+
+    /// A warning at `word`'s line: `file:line: message`.
+    fn warn(&mut self, word: &Word, message: &str) {
+        let at = self.tokens.error(word, message);
+        self.build.scene.warnings.push(format!(
+            "{}:{}: {}",
+            self.source.origin.display(),
+            at.line,
+            at.message
+        ));
+    }
+}

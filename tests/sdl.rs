@@ -1,0 +1,520 @@
+//! Hill & Kelley's SDL: every keyword raylab reads, the book's transform order, `def`/`use`,
+//! `push`/`pop`, the lexer's quirks, and every error with its line, column and suggestion.
+
+use std::path::Path;
+
+use glam::Vec3;
+use raylab::formats::nff::NffLighting;
+use raylab::formats::sdl::{MAX_EXPANDED_TOKENS, MAX_TRIANGLES, parse_sdl};
+use raylab::formats::{SceneError, SceneFiles, SceneFormat, load_any, load_any_as};
+use raylab::light::Light;
+use raylab::scene::Scene;
+use raylab::shapes::Shape;
+
+/// A square of one face, as a `.3vn` file.
+const SQUARE_3VN: &[u8] = b"4 1 1\n-1 -1 0  1 -1 0  1 1 0  -1 1 0\n0 0 1\n4\n0 1 2 3\n0 0 0 0\n";
+
+fn read(text: &str) -> Result<Scene, SceneError> {
+    let files = [("square.3vn", SQUARE_3VN)];
+    parse_sdl(text, Path::new("t.dat"), SceneFiles::Builtin(&files))
+}
+
+fn scene(text: &str) -> Scene {
+    read(text).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn error(text: &str) -> SceneError {
+    match read(text) {
+        Ok(_) => panic!("`{text}` reads"),
+        Err(e) => e,
+    }
+}
+
+/// Where object `i`'s transform takes the object-space point `p`.
+fn placed(scene: &Scene, i: usize, p: Vec3) -> Vec3 {
+    scene.geometry.objects[i]
+        .transform
+        .unwrap()
+        .point_to_world(p)
+}
+
+fn close(a: Vec3, b: Vec3) -> bool {
+    a.abs_diff_eq(b, 1e-5)
+}
+
+#[test]
+fn scene_settings_and_lights() {
+    let s = scene(
+        "light 1 2 3 .5 .6 .7\nlight 0 9 0 1 1 1\nglobalAmbient .2 .3 .4\nbackground 1 0 0\n\
+         minReflectivity .3 minTransparency .4 maxRecursionDepth 6",
+    );
+    assert_eq!(
+        s.lights[0],
+        Light::Point {
+            position: Vec3::new(1.0, 2.0, 3.0),
+            color: Vec3::new(0.5, 0.6, 0.7)
+        }
+    );
+    assert_eq!(s.lights.len(), 2);
+    assert_eq!(s.settings.ambient, Vec3::new(0.2, 0.3, 0.4));
+    assert_eq!(s.settings.background, Vec3::new(1.0, 0.0, 0.0));
+    assert_eq!(s.settings.max_depth, 6);
+    assert_eq!(s.settings.min_weight, 0.3);
+}
+
+#[test]
+fn the_books_defaults() {
+    let s = scene("sphere");
+    assert_eq!(s.settings.background, Vec3::new(0.0, 0.0, 0.6));
+    assert_eq!(s.settings.ambient, Vec3::splat(0.1));
+    assert_eq!(s.settings.max_depth, 3);
+    assert_eq!(s.settings.min_weight, 0.5);
+    let m = &s.materials[0];
+    assert_eq!(m.color, Vec3::splat(0.8));
+    assert_eq!((m.specular, m.shininess, m.ior), (0.0, 1.0, 1.0));
+}
+
+#[test]
+fn every_material_keyword() {
+    let s = scene(
+        "ambient .2 .2 .2 diffuse .4 .2 .0 specular .5 .25 0 emissive 0 0 0 specularExponent 30\n\
+         reflectivity .3 transparency .6 speedOfLight .5 specularFraction .1 surfaceRoughness 2\n\
+         sphere defaultMaterials cube",
+    );
+    let m = &s.materials[0];
+    assert_eq!(m.color, Vec3::new(0.4, 0.2, 0.0));
+    assert!(
+        (m.ambient - 1.0).abs() < 1e-6,
+        "ambient mean .2 over diffuse mean .2"
+    );
+    assert_eq!(
+        (m.specular, m.specular_color),
+        (0.5, Vec3::new(1.0, 0.5, 0.0))
+    );
+    assert_eq!(
+        (m.shininess, m.reflectivity, m.transparency),
+        (30.0, 0.3, 0.6)
+    );
+    assert_eq!(m.ior, 2.0, "speedOfLight .5 is an index of refraction of 2");
+    assert_eq!(s.materials.len(), 2);
+    assert_eq!(
+        s.materials[1].color,
+        Vec3::splat(0.8),
+        "defaultMaterials resets"
+    );
+    assert_eq!(s.geometry.objects[1].material, 1);
+}
+
+#[test]
+fn shapes_sharing_a_material_share_its_index() {
+    let s = scene("diffuse 1 0 0 sphere cube diffuse 0 1 0 sphere");
+    let materials: Vec<u32> = s.geometry.objects.iter().map(|o| o.material).collect();
+    assert_eq!(materials, [0, 0, 1]);
+}
+
+#[test]
+fn every_shape() {
+    let s = scene(
+        "sphere cube cylinder cone taperedCylinder .3 square plane\n\
+         teapot mesh square.3vn tetrahedron octahedron dodecahedron icosahedron buckyball diamond",
+    );
+    let kinds: Vec<&str> = s.geometry.objects.iter().map(|o| o.shape.name()).collect();
+    assert_eq!(
+        kinds,
+        [
+            "sphere",
+            "cuboid",
+            "tapered cylinder",
+            "tapered cylinder",
+            "tapered cylinder",
+            "polygon",
+            "plane"
+        ]
+    );
+    // The teapot, the mesh file and six polyhedra.
+    assert_eq!(s.geometry.meshes.len(), 8);
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    // The cone's apex is at (0, 0, 1), the tapered cylinder's top radius 0.3.
+    let Shape::TaperedCylinder(cone) = &s.geometry.objects[3].shape else {
+        unreachable!()
+    };
+    let bounds = cone.bounds();
+    assert!(
+        close(bounds.min, Vec3::new(-1.0, -1.0, 0.0))
+            && close(bounds.max, Vec3::new(1.0, 1.0, 1.0))
+    );
+    assert!(s.geometry.objects[3].shape.is_closed());
+}
+
+#[test]
+fn the_transform_written_last_applies_first() {
+    // `translate … scale … cube` scales first, then moves.
+    let s =
+        scene("translate 1 0 0 scale 2 2 2 cube\nidentityAffine scale 2 2 2 translate 1 0 0 cube");
+    assert!(close(placed(&s, 0, Vec3::X), Vec3::new(3.0, 0.0, 0.0)));
+    assert!(close(placed(&s, 1, Vec3::X), Vec3::new(4.0, 0.0, 0.0)));
+}
+
+#[test]
+fn rotations_are_right_handed_about_any_axis() {
+    let s = scene("rotate 90 0 0 1 sphere identityAffine rotate 180 0 180 180 sphere");
+    assert!(close(placed(&s, 0, Vec3::X), Vec3::Y));
+    // The axis is normalised: a half turn about (0, 1, 1) takes y to z.
+    assert!(close(placed(&s, 1, Vec3::Y), Vec3::Z));
+}
+
+#[test]
+fn push_and_pop_keep_transforms_but_not_materials() {
+    let s = scene("push translate 5 0 0 diffuse 1 0 0 sphere pop sphere");
+    assert!(close(placed(&s, 0, Vec3::ZERO), Vec3::new(5.0, 0.0, 0.0)));
+    assert!(close(placed(&s, 1, Vec3::ZERO), Vec3::ZERO));
+    assert_eq!(
+        s.geometry.objects[1].material,
+        s.geometry.objects[0].material
+    );
+    assert_eq!(s.materials[0].color, Vec3::X);
+    assert!(s.warnings.is_empty());
+}
+
+#[test]
+fn unbalanced_push_and_pop_are_warnings_given_once() {
+    let s = scene("translate 1 0 0 pop pop sphere\npush push sphere");
+    assert!(
+        close(placed(&s, 0, Vec3::ZERO), Vec3::ZERO),
+        "popping the last resets"
+    );
+    assert_eq!(s.warnings.len(), 2, "{:?}", s.warnings);
+    assert!(
+        s.warnings[0].starts_with("t.dat:1: `pop` with nothing pushed"),
+        "{:?}",
+        s.warnings
+    );
+    assert!(
+        s.warnings[1].contains("2 `push` never popped"),
+        "{:?}",
+        s.warnings
+    );
+}
+
+#[test]
+fn identity_affine_resets_the_top_only() {
+    let s = scene("translate 1 0 0 push translate 0 1 0 identityAffine sphere pop sphere");
+    assert!(close(placed(&s, 0, Vec3::ZERO), Vec3::ZERO));
+    assert!(close(placed(&s, 1, Vec3::ZERO), Vec3::X));
+}
+
+#[test]
+fn def_and_use_expand_in_place() {
+    let s = scene(
+        "def red {diffuse 1 0 0}\ndef ball { push translate 0 2 0 sphere pop }\n\
+         push translate 1 0 0 use red use ball pop use ball",
+    );
+    assert_eq!(s.geometry.objects.len(), 2);
+    assert!(close(placed(&s, 0, Vec3::ZERO), Vec3::new(1.0, 2.0, 0.0)));
+    assert!(close(placed(&s, 1, Vec3::ZERO), Vec3::new(0.0, 2.0, 0.0)));
+    // The material-only macro stays in force after the `pop`.
+    assert_eq!(s.materials[0].color, Vec3::X);
+    assert_eq!(s.geometry.objects[1].material, 0);
+}
+
+#[test]
+fn a_def_may_use_a_def_made_later() {
+    let s = scene("def a { use b use b } def b { sphere } use a");
+    assert_eq!(s.geometry.objects.len(), 2);
+}
+
+#[test]
+fn lexer_quirks() {
+    // Braces glued to words and `}def`; a `!` comment anywhere, even inside a word, which
+    // glues the next line's start onto it.
+    let s = scene("def a{sphere}def b{cube!note\n} use a use b ! a comment\nsph!half\nere");
+    let kinds: Vec<&str> = s.geometry.objects.iter().map(|o| o.shape.name()).collect();
+    assert_eq!(kinds, ["sphere", "cuboid", "sphere"]);
+}
+
+#[test]
+fn numbers_as_cpp_reads_them() {
+    let s = scene("translate .5 -3 +2 scale 1e-1 1E1 1 sphere");
+    assert!(close(placed(&s, 0, Vec3::ONE), Vec3::new(0.6, 7.0, 3.0)));
+    for (text, column) in [
+        ("translate 1,2 3 4 sphere", 11),
+        ("scale 3f 1 1", 7),
+        ("scale 1 inf 1", 9),
+    ] {
+        let e = error(text);
+        assert_eq!((e.line, e.column), (1, column), "{text}: {e}");
+        assert!(e.message.starts_with("expected "), "{e}");
+    }
+    let e = error("sphere\nlight 1 2");
+    assert_eq!((e.line, e.column), (2, 1));
+    assert!(e.message.contains("but the file ends"), "{e}");
+}
+
+#[test]
+fn unknown_keywords_suggest_the_nearest() {
+    let e = error("sphere\n  exponent 50");
+    assert_eq!((e.line, e.column), (2, 3));
+    assert_eq!(
+        e.message,
+        "unknown keyword `exponent`, did you mean `specularExponent`?"
+    );
+    let e = error("shpere");
+    assert!(e.message.ends_with("did you mean `sphere`?"), "{e}");
+    let e = error("frobnicate");
+    assert_eq!(e.message, "unknown keyword `frobnicate`");
+    let e = error("sphere }");
+    assert_eq!((e.line, e.column), (1, 8));
+    assert!(e.message.contains("unexpected `}`"), "{e}");
+}
+
+#[test]
+fn def_errors() {
+    let e = error("def red diffuse 1 0 0");
+    assert_eq!((e.line, e.column), (1, 9));
+    assert!(e.message.contains("expected `{` after `def red`"), "{e}");
+    let e = error("def 2x { }");
+    assert_eq!((e.line, e.column), (1, 5));
+    let e = error("def a { }\ndef a { }");
+    assert_eq!((e.line, e.column), (2, 5));
+    assert!(
+        e.message.contains("already defined (at line 1, column 5)"),
+        "{e}"
+    );
+    let e = error("def a { sphere");
+    assert!(e.message.contains("no closing `}`"), "{e}");
+    let e = error("def green { }\nuse gren");
+    assert_eq!((e.line, e.column), (2, 5));
+    assert!(e.message.contains("`gren` is not defined"), "{e}");
+    assert!(e.message.ends_with("did you mean `green`?"), "{e}");
+}
+
+#[test]
+fn an_error_inside_a_use_names_its_def() {
+    let e = error("def leg {\n  scale 1 x 1 cube }\ndef table { use leg }\n\nuse table");
+    assert_eq!(
+        (e.line, e.column),
+        (2, 11),
+        "at the bad word in the def: {e}"
+    );
+    assert_eq!(
+        e.message,
+        "expected a factor along x, y and z after `scale`, found `x` \
+         (in def `leg`, used at line 3, column 17, in def `table`, used at line 5, column 5)"
+    );
+}
+
+#[test]
+fn a_def_that_uses_itself_is_an_error_not_a_hang() {
+    let e = error("def a { sphere use a }\nuse a");
+    assert_eq!((e.line, e.column), (1, 20));
+    assert!(e.message.starts_with("`a` uses itself (a → a)"), "{e}");
+    let e = error("def a { use b }\ndef b { use a }\nuse a");
+    assert!(e.message.starts_with("`a` uses itself (a → b → a)"), "{e}");
+}
+
+#[test]
+fn expansion_is_bounded() {
+    let mut text = String::from("def d0 { sphere }\n");
+    for i in 1..30 {
+        text += &format!("def d{i} {{ use d{j} use d{j} }}\n", j = i - 1);
+    }
+    text += "use d29";
+    let e = error(&text);
+    assert!(
+        e.message
+            .contains(&format!("more than {MAX_EXPANDED_TOKENS} tokens")),
+        "{e}"
+    );
+}
+
+#[test]
+fn meshes_from_files_and_missing_ones() {
+    let s = scene("translate 0 0 2 mesh square.3vn mesh gone.3vn mesh gone.3vn");
+    assert_eq!(s.geometry.meshes.len(), 1);
+    let mesh = &s.geometry.meshes[0];
+    assert_eq!(mesh.faces.len(), 2);
+    assert!(
+        mesh.positions.iter().all(|p| p.z == 2.0),
+        "placed by the transform"
+    );
+    assert_eq!(
+        s.warnings.len(),
+        1,
+        "one warning per missing file: {:?}",
+        s.warnings
+    );
+    assert!(
+        s.warnings[0].starts_with("t.dat:1: cannot read mesh file gone.3vn"),
+        "{:?}",
+        s.warnings
+    );
+    let e = error("mesh\n");
+    assert!(e.message.contains("`mesh` needs a .3vn file name"), "{e}");
+}
+
+#[test]
+fn torus_and_booleans_are_read_but_not_made_yet() {
+    let e = error("sphere\n  torus");
+    assert_eq!((e.line, e.column), (2, 3));
+    assert!(e.message.contains("not supported"), "{e}");
+    let e = error("light 0 0 0 1 1 1\nunion sphere translate 1 0 0 cube");
+    assert_eq!((e.line, e.column), (2, 1));
+    assert!(
+        e.message
+            .contains("`union`: boolean objects are not supported"),
+        "{e}"
+    );
+    // A nested node is complete, and reported, first.
+    let e = error("union sphere translate 1 0 0 difference cube sphere");
+    assert_eq!((e.line, e.column), (1, 30));
+    assert!(e.message.starts_with("`difference`"), "{e}");
+    // The operands are read first: an error in one is reported where it is.
+    let e = error("intersection sphere shpere");
+    assert_eq!((e.line, e.column), (1, 21));
+    let e = error("difference sphere");
+    assert!(e.message.contains("ends before its second"), "{e}");
+}
+
+#[test]
+fn bad_values_are_errors_at_their_statement() {
+    for (text, wanted) in [
+        ("speedOfLight 0", "`speedOfLight` must be positive"),
+        ("maxRecursionDepth 0", "max_depth must be between"),
+        (
+            "minReflectivity 2",
+            "`minReflectivity` must be between 0 and 1",
+        ),
+        (
+            "scale 0 1 1 sphere",
+            "scale factors must be finite and non-zero",
+        ),
+        ("rotate 30 0 0 0", "rotation axis must not be zero"),
+        ("scale 1e16 1 1 sphere", "the sphere"),
+        (
+            "scale 1e30 1e30 1e30 sphere",
+            "cannot be undone in single precision",
+        ),
+        ("taperedCylinder -1", "radii must not be negative"),
+        ("light 1e20 0 0 1 1 1", "the position"),
+        ("parameters 11", "`parameters` takes 0 to 10 numbers"),
+    ] {
+        let e = error(text);
+        assert!(e.message.contains(wanted), "{text}: {e}");
+        assert_eq!(e.line, 1);
+    }
+}
+
+#[test]
+fn textures_are_read_and_ignored_with_one_warning() {
+    let s = scene("texture -1 parameters 2 .5 .5 makePixmap 1 wood.bmp sphere texture 0");
+    assert_eq!(s.geometry.objects.len(), 1);
+    assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+    assert!(
+        s.warnings[0].contains("textures are not supported"),
+        "{:?}",
+        s.warnings
+    );
+}
+
+#[test]
+fn load_any_reads_dat_and_sdl_files_and_their_meshes() {
+    let folder = tempfile::tempdir().unwrap();
+    std::fs::write(folder.path().join("square.3vn"), SQUARE_3VN).unwrap();
+    for name in ["scene.dat", "scene.SDL"] {
+        let path = folder.path().join(name);
+        std::fs::write(&path, "light 0 5 5 1 1 1 sphere mesh square.3vn").unwrap();
+        let s = load_any(path.to_str().unwrap()).unwrap();
+        assert_eq!(
+            (s.geometry.objects.len(), s.geometry.meshes.len()),
+            (1, 1),
+            "{name}"
+        );
+    }
+    let path = folder.path().join("bad.dat");
+    std::fs::write(&path, "\n\nexponent 3").unwrap();
+    let message = load_any(path.to_str().unwrap()).unwrap_err().to_string();
+    assert!(
+        message.contains("bad.dat:3:1: unknown keyword `exponent`"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_few_uses_cannot_ask_for_billions_of_triangles() {
+    // 2^12 teapots of about 4000 triangles each: more than the limit, refused there.
+    let mut text = String::from("def t0 { teapot }\n");
+    for i in 1..=12 {
+        text += &format!("def t{i} {{ use t{j} use t{j} }}\n", j = i - 1);
+    }
+    text += "use t12";
+    let e = error(&text);
+    assert!(
+        e.message
+            .contains(&format!("more than {MAX_TRIANGLES} triangles")),
+        "{e}"
+    );
+    assert!(e.message.contains("in def `t0`"), "{e}");
+}
+
+#[test]
+fn format_sdl_reads_a_file_whatever_its_name() {
+    let folder = tempfile::tempdir().unwrap();
+    let path = folder.path().join("scene.txt");
+    std::fs::write(&path, "light 0 5 5 1 1 1 sphere mesh gone.3vn").unwrap();
+    let name = path.to_str().unwrap();
+    let s = load_any_as(name, NffLighting::default(), Some(SceneFormat::Sdl)).unwrap();
+    assert_eq!(s.geometry.objects.len(), 1);
+    assert!(load_any(name).is_err(), "read as TOML by its name");
+
+    let out = folder.path().join("out.png");
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let rendered = run(&[
+        "render",
+        name,
+        "--format",
+        "sdl",
+        "--size",
+        "8",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&rendered.stderr);
+    assert!(rendered.status.success(), "{stderr}");
+    assert!(out.exists());
+    assert!(
+        stderr.contains("warning: ") && stderr.contains(":1: cannot read mesh file"),
+        "{stderr}"
+    );
+    let inspected = run(&[
+        "inspect", name, "--format", "sdl", "--pixel", "4,4", "--size", "8",
+    ]);
+    assert!(
+        inspected.status.success(),
+        "{}",
+        String::from_utf8_lossy(&inspected.stderr)
+    );
+    let refused = run(&["render", name, "--format", "obj"]);
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("expected toml, nff or sdl"));
+}
+
+#[test]
+fn load_any_frames_an_sdl_scene_which_has_no_camera() {
+    let folder = tempfile::tempdir().unwrap();
+    let path = folder.path().join("far.sdl");
+    std::fs::write(&path, "translate 100 0 0 sphere").unwrap();
+    let placeholder = read("translate 100 0 0 sphere").unwrap().camera.spec;
+    assert_eq!(placeholder, raylab::camera::CameraSpec::default());
+    let framed = load_any(path.to_str().unwrap()).unwrap().camera.spec;
+    assert_eq!(
+        framed.look_at.round(),
+        Vec3::new(100.0, 0.0, 0.0),
+        "{framed:?}"
+    );
+    assert!(framed.eye.distance(framed.look_at) > 1.0);
+}
