@@ -518,3 +518,43 @@ children = [
         "the wall faces out of the disk, down into the groove"
     );
 }
+
+/// A shadow ray through a glass operand is tinted by the glass (once for the object), not
+/// stopped by the node's material.
+#[test]
+fn shadows_through_a_glass_operand_are_tinted_by_it() {
+    let scene = parse(
+        r#"
+[render]
+width = 1
+height = 1
+[camera]
+eye = [0, 1, 3]
+look_at = [0, 0, 0]
+[[lights]]
+position = [0, 10, 0]
+[materials.glass]
+color = [1, 1, 1]
+transparency = 0.5
+[[objects]]
+type = "plane"
+[[objects]]
+type = "csg"
+operation = "intersection"
+children = [
+    { type = "sphere", center = [0, 5.6, 0], radius = 1, material = "glass" },
+    { type = "sphere", center = [0, 4.4, 0], radius = 1, material = "glass" },
+]
+"#,
+    );
+    let bvh = Bvh::build(&scene.geometry);
+    let tree = trace_ray_tree(&Tracer::new(&scene, &bvh), 0, 0);
+    let shadow = &tree.nodes[0].shadows[0];
+    assert_eq!(shadow.blockers.len(), 1, "{shadow:#?}");
+    assert!(!shadow.blocked);
+    assert_near(
+        Vec3::from(shadow.light_color.to_array()),
+        Vec3::splat(0.5),
+        1e-6,
+    );
+}
