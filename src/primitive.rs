@@ -19,6 +19,16 @@ pub struct Object {
     pub material: u32,
 }
 
+impl Object {
+    /// The material of the part `part` of the object: a CSG operand's own, or the object's.
+    pub fn material_at(&self, part: u32) -> u32 {
+        match &self.shape {
+            Shape::Csg(csg) => csg.leaf(part).material,
+            _ => self.material,
+        }
+    }
+}
+
 /// A reference to one primitive: an object or a mesh triangle, told apart by the top bit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct PrimId(pub u32);
@@ -238,6 +248,32 @@ impl Geometry {
         }
     }
 
+    /// [`Self::prim_label`] of what `hit` met, with the operand for a CSG object, e.g.
+    /// "csg #3 › child 2 (sphere)".
+    pub fn hit_label(&self, hit: &Hit) -> String {
+        let label = self.prim_label(hit.prim);
+        match hit.prim.kind() {
+            Ok(o) => match &self.objects[o].shape {
+                Shape::Csg(csg) => format!("{label} › {}", csg.leaf(hit.part).label),
+                _ => label,
+            },
+            Err(_) => label,
+        }
+    }
+
+    /// A number for what `hit` met that tells apart the operands of a CSG object (for the
+    /// object-id view): [`Self::object_id`] for everything else.
+    pub fn part_id(&self, hit: &Hit) -> u32 {
+        let object = self.object_id(hit.prim);
+        match hit.prim.kind() {
+            Ok(o) => match &self.objects[o].shape {
+                Shape::Csg(csg) => object ^ ((csg.leaf_index(hit.part) as u32 + 1) << 20),
+                _ => object,
+            },
+            Err(_) => object,
+        }
+    }
+
     /// The index of the mesh that triangle `t` belongs to.
     fn mesh_index(&self, t: usize) -> usize {
         let later = self
@@ -251,10 +287,10 @@ impl Geometry {
         &self.meshes[self.mesh_index(t)]
     }
 
-    /// The material of primitive `id`.
-    pub fn material(&self, id: PrimId) -> u32 {
-        match id.kind() {
-            Ok(o) => self.objects[o].material,
+    /// The material at `hit`.
+    pub fn material(&self, hit: &Hit) -> u32 {
+        match hit.prim.kind() {
+            Ok(o) => self.objects[o].material_at(hit.part),
             Err(t) => self.mesh_of(t).material,
         }
     }
@@ -280,7 +316,7 @@ impl Geometry {
                     normal,
                     geometric_normal: normal,
                     uv: local.uv,
-                    material: object.material,
+                    material: object.material_at(hit.part),
                 }
             }
             Err(t) => {

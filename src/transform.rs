@@ -81,6 +81,12 @@ impl Transform {
         Ok(Transform::from_affine(m))
     }
 
+    /// The transform that applies `self` first and then `outer` (an object placed inside a
+    /// group that is placed in turn).
+    pub fn then(&self, outer: &Transform) -> Transform {
+        Transform::from_affine(outer.world_from_object * self.world_from_object)
+    }
+
     /// The ray in object space. The direction is not renormalised, so `t` means the same point in
     /// both spaces.
     #[inline]

@@ -393,7 +393,7 @@ fn each_triangle_has_its_own_mesh_material() {
         let hit = bvh
             .closest_hit(&g, &ray, 0.0, f32::INFINITY)
             .expect("a hit");
-        (g.material(hit.prim), g.surface(&ray, &hit).material)
+        (g.material(&hit), g.surface(&ray, &hit).material)
     };
     assert_eq!(material_seen_from(-5.0, Vec3::Z), (3, 3));
     assert_eq!(material_seen_from(5.0, -Vec3::Z), (5, 5));

@@ -139,7 +139,7 @@ impl TreeObserver for Recorder<'_> {
         let t = (surface.point - node.origin).length();
         node.hit = Some(NodeHit {
             object: geometry.object_id(hit.prim),
-            label: geometry.prim_label(hit.prim),
+            label: geometry.hit_label(hit),
             material: surface.material,
             material_name: scene.material_name(surface.material),
             t,
@@ -167,7 +167,7 @@ impl TreeObserver for Recorder<'_> {
                 passed *= *tint;
                 Blocker {
                     object: geometry.object_id(hit.prim),
-                    label: geometry.prim_label(hit.prim),
+                    label: geometry.hit_label(hit),
                     t: hit.t,
                     transmittance_after: passed.to_array(),
                 }

@@ -112,7 +112,7 @@ fn first_hit_color(tracer: &Tracer, view: DebugView, ray: &Ray, counts: &mut Ray
             surface.uv.y.rem_euclid(1.0),
             0.0,
         ),
-        DebugView::ObjectId => id_color(geometry.object_id(hit.prim)),
+        DebugView::ObjectId => id_color(geometry.part_id(&hit)),
         _ => id_color(surface.material),
     }
 }

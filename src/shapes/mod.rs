@@ -2,6 +2,7 @@
 //! first meets it, what the surface looks like there (normal and texture coordinates), and what
 //! box bounds it. Placing a shape in the world is the job of [`crate::primitive`].
 
+mod csg;
 mod cuboid;
 mod ellipsoid;
 mod paraboloid;
@@ -15,6 +16,9 @@ mod test_support;
 mod torus;
 mod triangle;
 
+pub use csg::{
+    Csg, CsgOperation, Leaf, MAX_DEPTH as MAX_CSG_DEPTH, MAX_OPERANDS as MAX_CSG_OPERANDS, Operand,
+};
 pub use cuboid::Cuboid;
 pub use ellipsoid::Ellipsoid;
 pub use paraboloid::Paraboloid;
@@ -26,6 +30,7 @@ pub use tapered_cylinder::TaperedCylinder;
 pub use torus::Torus;
 pub use triangle::{ShearedRay, Triangle, TriangleHit};
 
+use arrayvec::ArrayVec;
 use glam::{Vec2, Vec3};
 
 use crate::aabb::Aabb;
@@ -38,6 +43,11 @@ pub struct ShapeHit {
     pub t: f32,
     pub part: u32,
 }
+
+/// Where a ray crosses the surface of a closed solid, along the whole line, in increasing `t`:
+/// entry, exit, entry, exit… (at most two spans inside; `t` is infinite where the ray never
+/// leaves a half-space). The CSG operands are traced by these.
+pub type Crossings = ArrayVec<ShapeHit, 4>;
 
 /// The surface at a hit point, in object space.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -60,6 +70,7 @@ pub enum Shape {
     Ellipsoid(Ellipsoid),
     Paraboloid(Paraboloid),
     Torus(Torus),
+    Csg(Box<Csg>),
 }
 
 impl Shape {
@@ -75,6 +86,7 @@ impl Shape {
             Shape::Ellipsoid(s) => s.intersect(ray, t_min, t_max),
             Shape::Paraboloid(s) => s.intersect(ray, t_min, t_max),
             Shape::Torus(s) => s.intersect(ray, t_min, t_max),
+            Shape::Csg(s) => s.intersect(ray, t_min, t_max),
         }
     }
 
@@ -89,6 +101,7 @@ impl Shape {
             Shape::Ellipsoid(s) => s.surface(p, part),
             Shape::Paraboloid(s) => s.surface(p, part),
             Shape::Torus(s) => s.surface(p, part),
+            Shape::Csg(s) => s.surface(p, part),
         }
     }
 
@@ -103,6 +116,7 @@ impl Shape {
             Shape::Ellipsoid(_) => "ellipsoid",
             Shape::Paraboloid(_) => "paraboloid",
             Shape::Torus(_) => "torus",
+            Shape::Csg(_) => "csg",
         }
     }
 
@@ -117,6 +131,7 @@ impl Shape {
             Shape::Ellipsoid(s) => Some(s.bounds()),
             Shape::Paraboloid(s) => Some(s.bounds()),
             Shape::Torus(s) => Some(s.bounds()),
+            Shape::Csg(s) => s.bounds(),
         }
     }
 
@@ -124,10 +139,47 @@ impl Shape {
     /// know which side is in).
     pub fn is_closed(&self) -> bool {
         match self {
-            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Ellipsoid(_) | Shape::Torus(_) => true,
+            Shape::Sphere(_)
+            | Shape::Cuboid(_)
+            | Shape::Ellipsoid(_)
+            | Shape::Torus(_)
+            | Shape::Csg(_) => true,
             Shape::Plane(_) | Shape::Polygon(_) => false,
             Shape::TaperedCylinder(s) => s.is_capped(),
             Shape::Paraboloid(s) => s.is_capped(),
+        }
+    }
+
+    /// Whether the shape can be an operand of a CSG node: a closed solid, or a plane, which
+    /// stands for the half-space behind it.
+    pub fn is_solid(&self) -> bool {
+        self.is_closed() || matches!(self, Shape::Plane(_))
+    }
+
+    /// Where the ray crosses the solid along the whole line (see [`Crossings`]), for a closed
+    /// shape that is an operand of a CSG node (so neither an open surface nor a node itself).
+    pub fn crossings(&self, ray: &Ray) -> Crossings {
+        match self {
+            Shape::Plane(s) => s.crossings(ray),
+            Shape::Torus(s) => s
+                .crossings(ray)
+                .into_iter()
+                .map(|t| ShapeHit { t, part: 0 })
+                .collect(),
+            // The other solids are convex, so a line crosses them at most twice: it
+            // enters at the first hit on the whole line and leaves at the next one. A line that
+            // only touches the surface does not go in.
+            _ => {
+                let mut crossings = Crossings::new();
+                let whole_line = (f32::NEG_INFINITY, f32::INFINITY);
+                if let Some(enter) = self.intersect(ray, whole_line.0, whole_line.1)
+                    && let Some(exit) = self.intersect(ray, enter.t, whole_line.1)
+                {
+                    crossings.push(enter);
+                    crossings.push(exit);
+                }
+                crossings
+            }
         }
     }
 }

@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{LocalSurface, ShapeHit};
+use super::{Crossings, LocalSurface, ShapeHit};
 use crate::ray::Ray;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -26,6 +26,31 @@ impl Plane {
 
     /// Planar mapping: distances along two axes lying in the plane, one unit of texture space
     /// per unit of length.
+    /// As a CSG operand the plane is the half-space behind it (the side its normal points
+    /// away from), as in POV-Ray: the ray is inside from where it crosses the plane going
+    /// backwards, or up to where it crosses going forwards; everywhere or nowhere when it runs
+    /// parallel.
+    pub fn crossings(&self, ray: &Ray) -> Crossings {
+        let denom = self.normal.dot(ray.dir);
+        let height = self.normal.dot(ray.origin - self.point);
+        let t = -height / denom;
+        let (enter, exit) = if !t.is_finite() {
+            if height < 0.0 {
+                (f32::NEG_INFINITY, f32::INFINITY)
+            } else {
+                return Crossings::new();
+            }
+        } else if denom < 0.0 {
+            (t, f32::INFINITY)
+        } else {
+            (f32::NEG_INFINITY, t)
+        };
+        [enter, exit]
+            .into_iter()
+            .map(|t| ShapeHit { t, part: 0 })
+            .collect()
+    }
+
     pub fn surface(&self, p: Vec3, _part: u32) -> LocalSurface {
         let (s, t) = tangent_axes(self.normal);
         let d = p - self.point;

@@ -88,10 +88,12 @@ impl Tracer<'_> {
         if O::USES_SHADOW_CACHE
             && let Some(id) = shadow_cache::last_blocker(light)
             && geometry.contains(id)
-            && self.tint(id) == Color::ZERO
         {
             observer.prims_tested(1);
-            if geometry.intersect(id, ray, 0.0, distance).is_some() {
+            // Tinted by what is hit: a CSG object's operands may differ.
+            if let Some(hit) = geometry.intersect(id, ray, 0.0, distance)
+                && self.tint(&hit) == Color::ZERO
+            {
                 return (Color::ZERO, blockers);
             }
         }
@@ -120,7 +122,7 @@ impl Tracer<'_> {
         let mut blocker = None;
         self.bvh
             .any_hit_counted(&self.scene.geometry, ray, 0.0, distance, cost, |hit| {
-                let tint = self.tint(hit.prim);
+                let tint = self.tint(hit);
                 on_blocker(hit, tint);
                 passed *= tint;
                 if passed == Color::ZERO {
@@ -134,8 +136,8 @@ impl Tracer<'_> {
     }
 
     /// What a primitive lets through of the light behind it: `transparency × colour`.
-    fn tint(&self, id: PrimId) -> Color {
-        let material = &self.scene.materials[self.scene.geometry.material(id) as usize];
+    fn tint(&self, hit: &Hit) -> Color {
+        let material = &self.scene.materials[self.scene.geometry.material(hit) as usize];
         material.transparency * material.color
     }
 }

@@ -10,8 +10,8 @@ use glam::{Vec2, Vec3};
 use toml::Spanned;
 
 use super::file::{
-    CameraFile, LightFile, MaterialFile, ObjectFile, RenderFile, SceneFile, ShapeFile, TextureFile,
-    TransformStepFile, WrapFile,
+    CameraFile, CsgOperationFile, LightFile, MaterialFile, ObjectFile, RenderFile, SceneFile,
+    ShapeFile, TextureFile, TransformStepFile, WrapFile,
 };
 use super::values::{ColorValue, Direction, Exact, NonNegative, TexCoord, Vector};
 use crate::camera::{Camera, CameraError, CameraSpec};
@@ -27,7 +27,8 @@ use crate::primitive::{Geometry, Object};
 use crate::scene::Scene;
 use crate::settings::RenderSettings;
 use crate::shapes::{
-    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder, Torus, Triangle,
+    Csg, CsgOperation, Cuboid, Ellipsoid, Operand, Paraboloid, Plane, Polygon, Shape, Sphere,
+    TaperedCylinder, Torus, Triangle,
 };
 use crate::texture::{Texture, TextureImage, Wrap};
 use crate::transform::{Transform, TransformStep};
@@ -402,36 +403,12 @@ struct GeometryBuilder<'a> {
 }
 
 impl GeometryBuilder<'_> {
-    /// Adds one object. A shape's arm hands the result of the shape's constructor, a
-    /// `Result<Shape, String>`, to [`Self::add_shape`] with the position to blame, e.g.
-    /// `ShapeFile::Cuboid { min, max } => self.add_shape(Cuboid::new(min.0, max.0)
-    /// .map(Shape::Cuboid), span, material, transform)`.
+    /// Adds one object: a mesh, or an analytic shape (see [`Self::analytic_shape`]).
     fn add_object(&mut self, object: ObjectFile) -> Result<(), SceneError> {
         let source = self.source;
-        let material = object
-            .material
-            .map(|name| self.material_names.resolve(&name, source))
-            .transpose()?;
-        let transform = match object.transform {
-            Some(steps) => build_transform(steps, source)?,
-            None => None,
-        };
+        let (material, transform) = self.placement(object.material, object.transform, None)?;
         let span = object.shape.span();
         match object.shape.into_inner() {
-            ShapeFile::Sphere { center, radius } => {
-                let radius_span = radius.as_ref().map_or(span, |r| r.span());
-                let center = center.map_or(Vec3::ZERO, |c| c.0);
-                let radius = radius.map_or(1.0, |r| *r.get_ref());
-                let shape = Sphere::new(center, radius).map(Shape::Sphere);
-                self.add_shape(shape, radius_span, material, transform)
-            }
-            ShapeFile::Plane { point, normal } => {
-                let plane = Plane {
-                    point: point.map_or(Vec3::ZERO, |p| p.0),
-                    normal: normal.map_or(Vec3::Y, |n| n.0),
-                };
-                self.add_shape(Ok(Shape::Plane(plane)), span, material, transform)
-            }
             ShapeFile::Triangle {
                 vertices,
                 normals,
@@ -469,14 +446,65 @@ impl GeometryBuilder<'_> {
                 self.add_mesh(mesh, material, transform, &spans)
             }
             ShapeFile::Obj { file } => self.add_obj(file, material, transform),
+            shape => {
+                let (shape, blame) = self.analytic_shape(shape, span, material)?;
+                self.add_shape(shape, blame, material, transform)
+            }
+        }
+    }
+
+    /// The material (the object's own, else `inherited`) and the transform of an object.
+    fn placement(
+        &self,
+        material: Option<Spanned<String>>,
+        transform: Option<Spanned<Vec<TransformStepFile>>>,
+        inherited: Option<u32>,
+    ) -> Result<(Option<u32>, Option<Transform>), SceneError> {
+        let material = material
+            .map(|name| self.material_names.resolve(&name, self.source))
+            .transpose()?
+            .or(inherited);
+        let transform = match transform {
+            Some(steps) => build_transform(steps, self.source)?,
+            None => None,
+        };
+        Ok((material, transform))
+    }
+
+    /// An analytic shape, and the position to blame for what is wrong with it. Each arm hands
+    /// the result of the shape's constructor, a `Result<Shape, String>`, with that position,
+    /// e.g. `ShapeFile::Box { min, max } => (Cuboid::new(min.0, max.0).map(Shape::Cuboid),
+    /// span)`. `material` is what the children of a csg object take when they name none.
+    fn analytic_shape(
+        &mut self,
+        shape: ShapeFile,
+        span: Range<usize>,
+        material: Option<u32>,
+    ) -> Result<(Shape, Range<usize>), SceneError> {
+        let source = self.source;
+        let (shape, blame) = match shape {
+            ShapeFile::Sphere { center, radius } => {
+                let radius_span = radius.as_ref().map_or(span, |r| r.span());
+                let center = center.map_or(Vec3::ZERO, |c| c.0);
+                let radius = radius.map_or(1.0, |r| *r.get_ref());
+                let shape = Sphere::new(center, radius).map(Shape::Sphere);
+                (shape, radius_span)
+            }
+            ShapeFile::Plane { point, normal } => {
+                let plane = Plane {
+                    point: point.map_or(Vec3::ZERO, |p| p.0),
+                    normal: normal.map_or(Vec3::Y, |n| n.0),
+                };
+                (Ok(Shape::Plane(plane)), span)
+            }
             ShapeFile::Polygon { vertices } => {
                 let vertices = vertices.iter().map(|v| v.0).collect();
                 let shape = Polygon::new(vertices).map(Shape::Polygon);
-                self.add_shape(shape, span, material, transform)
+                (shape, span)
             }
             ShapeFile::Box { min, max } => {
                 let shape = Cuboid::new(min.0, max.0).map(Shape::Cuboid);
-                self.add_shape(shape, span, material, transform)
+                (shape, span)
             }
             ShapeFile::Cylinder {
                 base,
@@ -492,7 +520,7 @@ impl GeometryBuilder<'_> {
                     radius,
                     capped.unwrap_or(true),
                 );
-                self.add_shape(shape.map(Shape::TaperedCylinder), span, material, transform)
+                (shape.map(Shape::TaperedCylinder), span)
             }
             ShapeFile::Cone {
                 base,
@@ -508,11 +536,11 @@ impl GeometryBuilder<'_> {
                     top_radius.unwrap_or(0.0),
                     capped.unwrap_or(true),
                 );
-                self.add_shape(shape.map(Shape::TaperedCylinder), span, material, transform)
+                (shape.map(Shape::TaperedCylinder), span)
             }
             ShapeFile::Ellipsoid { center, radii } => {
                 let shape = Ellipsoid::new(center.map_or(Vec3::ZERO, |v| v.0), radii.0);
-                self.add_shape(shape.map(Shape::Ellipsoid), span, material, transform)
+                (shape.map(Shape::Ellipsoid), span)
             }
             ShapeFile::Paraboloid {
                 vertex,
@@ -526,7 +554,7 @@ impl GeometryBuilder<'_> {
                     height.unwrap_or(1.0),
                     capped.unwrap_or(false),
                 );
-                self.add_shape(shape.map(Shape::Paraboloid), span, material, transform)
+                (shape.map(Shape::Paraboloid), span)
             }
             ShapeFile::Torus {
                 center,
@@ -535,31 +563,104 @@ impl GeometryBuilder<'_> {
             } => {
                 let center = center.map_or(Vec3::ZERO, |c| c.0);
                 let shape = Torus::new(center, major_radius, minor_radius);
-                self.add_shape(shape.map(Shape::Torus), span, material, transform)
+                (shape.map(Shape::Torus), span)
             }
-        }
+            ShapeFile::Csg {
+                operation,
+                children,
+            } => (Ok(self.csg(operation, children, material, &span)?), span),
+            ShapeFile::Triangle { .. } | ShapeFile::Mesh { .. } | ShapeFile::Obj { .. } => {
+                let kind = match shape {
+                    ShapeFile::Triangle { .. } => "triangle",
+                    ShapeFile::Mesh { .. } => "mesh",
+                    _ => "OBJ mesh",
+                };
+                return Err(source.error(
+                    span,
+                    format!("the {kind} is an open surface; csg operands must be closed solids"),
+                ));
+            }
+        };
+        let shape = shape.map_err(|message| source.error(blame.clone(), message))?;
+        Ok((shape, blame))
     }
 
-    /// Adds an analytic shape made by a constructor; the constructor's error, or the shape
-    /// reaching past [`limits::MAX_COORDINATE`], is reported at `span`.
+    /// A csg object of `children`, which take `material` when they name none.
+    fn csg(
+        &mut self,
+        operation: CsgOperationFile,
+        children: Vec<Spanned<ObjectFile>>,
+        material: Option<u32>,
+        span: &Range<usize>,
+    ) -> Result<Shape, SceneError> {
+        let source = self.source;
+        let mut operands = Vec::with_capacity(children.len());
+        for child in children {
+            let child_span = child.span();
+            let child = child.into_inner();
+            let (material, transform) =
+                self.placement(child.material, child.transform, material)?;
+            let shape_span = child.shape.span();
+            let (shape, blame) =
+                self.analytic_shape(child.shape.into_inner(), shape_span, material)?;
+            if !shape.is_solid() {
+                return Err(source.error(
+                    child_span,
+                    format!(
+                        "the {} is an open surface; csg operands must be closed solids (a \
+                         cylinder, cone or paraboloid needs `capped = true`)",
+                        shape.name()
+                    ),
+                ));
+            }
+            self.check_bounds(&shape, transform, blame)?;
+            operands.push(Operand {
+                shape,
+                transform,
+                material: material.unwrap_or(DEFAULT_MATERIAL),
+            });
+        }
+        let operation = match operation {
+            CsgOperationFile::Union => CsgOperation::Union,
+            CsgOperationFile::Intersection => CsgOperation::Intersection,
+            CsgOperationFile::Difference => CsgOperation::Difference,
+        };
+        let csg =
+            Csg::new(operation, operands).map_err(|message| source.error(span.clone(), message))?;
+        Ok(Shape::Csg(Box::new(csg)))
+    }
+
+    /// Adds an analytic shape; the shape reaching past [`limits::MAX_COORDINATE`] is reported
+    /// at `span`.
     fn add_shape(
         &mut self,
-        shape: Result<Shape, String>,
+        shape: Shape,
         span: Range<usize>,
         material: Option<u32>,
         transform: Option<Transform>,
     ) -> Result<(), SceneError> {
-        let shape = shape.map_err(|message| self.source.error(span.clone(), message))?;
-        if let Some(bounds) = shape.bounds() {
-            let bounds = transform.map_or(bounds, |t| t.bounds_to_world(&bounds));
-            limits::check_bounds(&format!("the {}", shape.name()), &bounds)
-                .map_err(|message| self.source.error(span, message))?;
-        }
+        self.check_bounds(&shape, transform, span)?;
         self.geometry.objects.push(Object {
             shape,
             transform,
             material: material.unwrap_or(DEFAULT_MATERIAL),
         });
+        Ok(())
+    }
+
+    /// An error at `span` if the shape, placed by `transform`, reaches past
+    /// [`limits::MAX_COORDINATE`].
+    fn check_bounds(
+        &self,
+        shape: &Shape,
+        transform: Option<Transform>,
+        span: Range<usize>,
+    ) -> Result<(), SceneError> {
+        if let Some(bounds) = shape.bounds() {
+            let bounds = transform.map_or(bounds, |t| t.bounds_to_world(&bounds));
+            limits::check_bounds(&format!("the {}", shape.name()), &bounds)
+                .map_err(|message| self.source.error(span, message))?;
+        }
         Ok(())
     }
 

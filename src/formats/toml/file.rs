@@ -230,4 +230,19 @@ pub enum ShapeFile {
         major_radius: f32,
         minor_radius: f32,
     },
+    /// A boolean object: closed solids and other csg objects combined by `operation`. Children
+    /// without a `material` take the node's.
+    Csg {
+        operation: CsgOperationFile,
+        children: Vec<Spanned<ObjectFile>>,
+    },
+}
+
+/// `operation = "union" | "intersection" | "difference"` (the first child minus the others).
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CsgOperationFile {
+    Union,
+    Intersection,
+    Difference,
 }

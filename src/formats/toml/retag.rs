@@ -18,12 +18,17 @@ use toml::de::{DeTable, DeValue};
 
 use super::file::OBJECT_KEYS;
 use crate::formats::{SceneError, Source};
+use crate::shapes::MAX_CSG_DEPTH;
 
 /// The key that says what kind of light, texture or object a table describes.
 const TAG: &str = "type";
 
 /// The key [`super::file::ObjectFile`] reads an object's shape from.
 const SHAPE_KEY: &str = "shape";
+
+/// The kind of object whose `children` are objects too, and that key.
+const CSG_KIND: &str = "csg";
+const CHILDREN_KEY: &str = "children";
 
 /// Keys of `[render]` that older scene files write under another name: (old, new).
 const OLD_RENDER_KEYS: [(&str, &str); 1] = [("refractions", "transmission")];
@@ -52,7 +57,7 @@ pub(crate) fn retag_document(
     let mut shape_keys = Vec::new();
     if let Some(DeValue::Array(objects)) = root.get_mut("objects").map(Spanned::get_mut) {
         for object in objects.iter_mut() {
-            retag_object(object, source, &mut shape_keys)?;
+            retag_object(object, source, &mut shape_keys, 1)?;
         }
     }
     Ok(shape_keys)
@@ -135,16 +140,34 @@ fn retag(
 
 /// Like [`retag`], but the keys every object has ([`OBJECT_KEYS`]) stay at the top and the
 /// tagged shape goes under `shape`: `{ material, transform, shape = { x = { rest… } } }`. The
-/// positions of the shape's keys are added to `shape_keys`.
+/// positions of the shape's keys are added to `shape_keys`. The children of a csg object, at
+/// `depth` (1 for a top-level object), are objects too and retagged alike.
 fn retag_object(
     value: &mut Spanned<DeValue<'_>>,
     source: Source,
     shape_keys: &mut Vec<Range<usize>>,
+    depth: usize,
 ) -> Result<(), SceneError> {
     let span = value.span();
     let DeValue::Table(table) = value.get_mut() else {
         return Ok(());
     };
+    let is_csg = table
+        .get(TAG)
+        .is_some_and(|tag| matches!(tag.get_ref(), DeValue::String(kind) if kind == CSG_KIND));
+    if is_csg && depth > MAX_CSG_DEPTH {
+        return Err(source.error(
+            span,
+            format!("csg objects are nested more than {MAX_CSG_DEPTH} deep"),
+        ));
+    }
+    if is_csg
+        && let Some(DeValue::Array(children)) = table.get_mut(CHILDREN_KEY).map(Spanned::get_mut)
+    {
+        for child in children.iter_mut() {
+            retag_object(child, source, shape_keys, depth + 1)?;
+        }
+    }
     let mut object = DeTable::new();
     for key in OBJECT_KEYS {
         if let Some((key, value)) = table.remove_entry(key) {
