@@ -21,7 +21,7 @@ proptest! {
         c in vec3(10.0),
         side in vec3(5.0),
         fold in vec3(2.0),
-        (u1, u2, s) in (0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0),
+        (u1, u2, s) in (0.0f32..1.0, 0.0f32..1.0, 0.01f32..0.99),
         origin in vec3(30.0),
     ) {
         // Triangles (a, b, c) and (a, c, d) share the edge a–c, with b and d on either side of
@@ -32,6 +32,10 @@ proptest! {
         let t1 = Triangle::new([a, b, c], 0);
         let t2 = Triangle::new([a, c, d], 1);
         prop_assume!(t1.double_area() > 1e-2 && t2.double_area() > 1e-2);
+        // The ray aims at the edge, not at its ends: within a rounding error of a vertex it may
+        // pass beside the vertex, where the triangles around it that these two leave out would
+        // be (s = 2·10⁻⁶ on a ray from 30 units away did).
+        prop_assume!(edge.length() > 0.1);
         let ray = Ray::new(origin, a + edge * s - origin);
         // The ray sees both from the same side (else the edge is a silhouette, and a ray beside
         // it rightly misses both) and not edge-on.
