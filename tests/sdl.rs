@@ -376,23 +376,58 @@ fn the_torus_rings_the_z_axis_as_the_books_glut_torus_does() {
 }
 
 #[test]
-fn booleans_are_read_but_not_made_yet() {
-    let e = error("light 0 0 0 1 1 1\nunion sphere translate 1 0 0 cube");
-    assert_eq!((e.line, e.column), (2, 1));
+fn booleans_cut_their_two_operands() {
+    // The cube −1…1 and, scaled after it (the book's transforms are not scoped), a sphere of
+    // radius 1.3 around it: down the z axis the union shows the sphere's top, the
+    // intersection the cube's, and the difference nothing (the sphere holds that whole line).
+    let first_hit = |operation: &str, origin: Vec3, dir: Vec3| {
+        let s = scene(&format!(
+            "diffuse 1 0 0 {operation} cube diffuse 0 0 1 scale 1.3 1.3 1.3 sphere"
+        ));
+        assert_eq!(s.geometry.objects.len(), 1, "{operation}: one object");
+        let bvh = Bvh::build(&s.geometry);
+        let hit = Tracer::new(&s, &bvh).closest_hit(&Ray::new(origin, dir), 0.0);
+        hit.map(|hit| (hit.t, s.materials[s.geometry.material(&hit) as usize].color))
+    };
+    let (red, blue) = (Vec3::X, Vec3::Z);
+    let down = (Vec3::new(0.0, 0.0, 5.0), -Vec3::Z);
+    let (t, color) = first_hit("union", down.0, down.1).unwrap();
     assert!(
-        e.message
-            .contains("`union`: boolean objects are not supported"),
-        "{e}"
+        (t - 3.7).abs() < 1e-5 && color == blue,
+        "union: {t} {color}"
     );
-    // A nested node is complete, and reported, first.
-    let e = error("union sphere translate 1 0 0 difference cube sphere");
-    assert_eq!((e.line, e.column), (1, 30));
-    assert!(e.message.starts_with("`difference`"), "{e}");
+    let (t, color) = first_hit("intersection", down.0, down.1).unwrap();
+    assert!(
+        (t - 4.0).abs() < 1e-5 && color == red,
+        "intersection: {t} {color}"
+    );
+    assert_eq!(first_hit("difference", down.0, down.1), None);
+    // Towards a corner of the cube, which sticks out of the sphere: the difference keeps it.
+    let corner = (Vec3::new(5.0, 4.9, 4.8), Vec3::new(-1.0, -1.0, -1.0));
+    let (t, color) = first_hit("difference", corner.0, corner.1).unwrap();
+    assert!(
+        (t - 4.0).abs() < 1e-5 && color == red,
+        "difference: {t} {color}"
+    );
+}
+
+#[test]
+fn boolean_errors_are_at_their_operand() {
     // The operands are read first: an error in one is reported where it is.
     let e = error("intersection sphere shpere");
     assert_eq!((e.line, e.column), (1, 21));
     let e = error("difference sphere");
     assert!(e.message.contains("ends before its second"), "{e}");
+    // Meshes cannot be cut, and open surfaces have no inside.
+    let e = error("light 0 0 0 1 1 1\nunion sphere translate 1 0 0 teapot");
+    assert_eq!((e.line, e.column), (2, 30));
+    assert!(e.message.contains("`teapot` is a mesh"), "{e}");
+    let e = error("union sphere square");
+    assert_eq!((e.line, e.column), (1, 1));
+    assert!(e.message.contains("open"), "{e}");
+    // A nested boolean is one operand.
+    let s = scene("union sphere translate 3 0 0 difference cube sphere");
+    assert_eq!(s.geometry.objects.len(), 1);
 }
 
 #[test]

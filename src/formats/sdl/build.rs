@@ -14,7 +14,7 @@ use crate::memory;
 use crate::mesh::Mesh;
 use crate::scene::Scene;
 use crate::settings::RenderSettings;
-use crate::shapes::Shape;
+use crate::shapes::{Csg, Shape};
 use crate::transform::{Transform, TransformStep};
 
 /// Memory a triangle of a mesh takes, at most, with its share of the BVH (an estimate).
@@ -207,6 +207,18 @@ impl Builder {
         }
         let material = self.material_index();
         self.scene.add_object(shape, Some(transform), material);
+        Ok(())
+    }
+
+    /// Adds a boolean object. As in the book, the node has no transform or material of its own:
+    /// each operand keeps the ones in force when it was read.
+    pub fn boolean(&mut self, csg: Csg) -> Result<(), String> {
+        let shape = Shape::Csg(Box::new(csg));
+        if let Some(bounds) = shape.bounds() {
+            limits::check_bounds("the boolean object", &bounds)?;
+        }
+        let material = self.material_index();
+        self.scene.add_object(shape, None, material);
         Ok(())
     }
 

@@ -24,8 +24,9 @@
 //! - The polyhedra are generated (the convex hulls of their corners), not read from files.
 //! - `torus` is raylab's exact torus, turned to ring the z axis as GLUT's does (ring radius 1,
 //!   tube 0.2); the book's own `Torus::hit` was a stub.
-//! - `union`, `intersection` and `difference` are read and reported as not supported yet;
-//!   `taperedTube`, `backgroundImage` and the other versions' extensions are unknown words.
+//! - `union`, `intersection` and `difference` are exact boolean objects (the book's copies
+//!   only drew both operands, or stubbed them out); an operand that is a mesh is an error.
+//! - `taperedTube`, `backgroundImage` and the other versions' extensions are unknown words.
 
 mod build;
 mod expand;

@@ -15,7 +15,7 @@ use crate::formats::{SceneError, SceneFiles, Source, ascii_text};
 use crate::light::Light;
 use crate::limits;
 use crate::scene::Scene;
-use crate::shapes::Shape;
+use crate::shapes::{Csg, CsgOperation, Operand, Shape};
 use crate::transform::TransformStep;
 
 /// Every keyword raylab's SDL reader knows, for suggestions.
@@ -256,19 +256,8 @@ impl<'a> Parser<'a> {
                 return Ok(true);
             }
             "union" | "intersection" | "difference" => {
-                // Read both operands, so that the file is understood up to here.
-                for side in ["first", "second"] {
-                    if self.object()?.is_none() {
-                        return Err(self.tokens.error(
-                            word,
-                            format!(
-                                "`{}` needs two shapes, but the file ends before its {side}",
-                                word.text()
-                            ),
-                        ));
-                    }
-                }
-                return Err(self.not_yet(word, "boolean objects"));
+                self.boolean(word)?;
+                return Ok(true);
             }
             other => {
                 let hint = did_you_mean(other, KEYWORDS.iter().copied());
@@ -387,14 +376,52 @@ impl<'a> Parser<'a> {
     }
 
     /// The error for a keyword raylab reads but cannot make yet.
-    fn not_yet(&self, word: &Word, what: &str) -> SceneError {
-        self.tokens.error(
-            word,
-            format!(
-                "`{}`: {what} are not supported by raylab's SDL reader yet",
-                word.text()
-            ),
-        )
+    /// `union A B`, `intersection A B`, `difference A B`: the next two objects (each any number
+    /// of statements and then one shape, itself maybe a boolean) become the operands.
+    fn boolean(&mut self, word: &Word<'a>) -> Result<(), SceneError> {
+        let operation = match word.text() {
+            "union" => CsgOperation::Union,
+            "intersection" => CsgOperation::Intersection,
+            _ => CsgOperation::Difference,
+        };
+        let mut operands = Vec::new();
+        for side in ["first", "second"] {
+            let (objects, meshes) = (self.objects(), self.build.scene.geometry.meshes.len());
+            let Some(shape) = self.object()? else {
+                let message = format!(
+                    "`{}` needs two shapes, but the file ends before its {side}",
+                    word.text()
+                );
+                return Err(self.tokens.error(word, message));
+            };
+            if self.build.scene.geometry.meshes.len() != meshes || self.objects() != objects + 1 {
+                let message = format!(
+                    "`{}` is a mesh (or a missing one), which a boolean object cannot cut: its \
+                     operands must be solids (sphere, cube, cylinder, cone, taperedCylinder, \
+                     torus, plane or another boolean)",
+                    shape.text()
+                );
+                return Err(self.tokens.error(&shape, message));
+            }
+            let object = self
+                .build
+                .scene
+                .geometry
+                .objects
+                .pop()
+                .expect("one object was added");
+            operands.push(Operand {
+                shape: object.shape,
+                transform: object.transform,
+                material: object.material,
+            });
+        }
+        let result = Csg::new(operation, operands).and_then(|csg| self.build.boolean(csg));
+        result.map_err(|e| self.tokens.error(word, e))
+    }
+
+    fn objects(&self) -> usize {
+        self.build.scene.geometry.objects.len()
     }
 
     fn ignore_textures(&mut self, word: &Word) {
