@@ -70,6 +70,11 @@ fn the_shipped_scenes_read_and_render_with_the_fuzz_targets_files() {
 }
 
 #[test]
+fn the_shipped_sdl_scenes_read_and_render() {
+    read_all("assets/scenes", ".dat", harness::sdl);
+}
+
+#[test]
 fn the_tests_nff_files_read_back_the_same_and_render() {
     read_all("tests/nff", ".nff", harness::nff);
 }
