@@ -686,22 +686,27 @@ const OVERRIDES: [&str; 7] = [
     "--samples",
 ];
 
-#[test]
-fn render_inspect_and_view_take_the_same_setting_overrides() {
-    let dir = tempfile::tempdir().unwrap();
+/// Each command that renders a scene asserts that its `--help` names every one of `flags`.
+fn assert_every_help_names(flags: &[&str], dir: &Path) {
     for args in [
         &["render", "--help"][..],
         &["inspect", "--help"],
         &["view", "--help"],
         &["--help"],
     ] {
-        let out = raylab(args, dir.path());
+        let out = raylab(args, dir);
         assert!(out.status.success(), "{args:?}: {}", stderr(&out));
         let help = String::from_utf8_lossy(&out.stdout);
-        for option in OVERRIDES {
-            assert!(help.contains(option), "{args:?} lacks {option}: {help}");
+        for flag in flags {
+            assert!(help.contains(flag), "{args:?} lacks {flag}: {help}");
         }
     }
+}
+
+#[test]
+fn render_inspect_and_view_take_the_same_setting_overrides() {
+    let dir = tempfile::tempdir().unwrap();
+    assert_every_help_names(&OVERRIDES, dir.path());
 }
 
 #[test]
@@ -835,18 +840,7 @@ fn close3(a: [f64; 3], b: [f64; 3]) -> bool {
 #[test]
 fn render_inspect_and_view_take_the_camera_flags() {
     let dir = tempfile::tempdir().unwrap();
-    for args in [
-        &["render", "--help"][..],
-        &["inspect", "--help"],
-        &["view", "--help"],
-        &["--help"],
-    ] {
-        let out = raylab(args, dir.path());
-        let help = String::from_utf8_lossy(&out.stdout);
-        for flag in CAMERA_FLAGS {
-            assert!(help.contains(flag), "{args:?} lacks {flag}: {help}");
-        }
-    }
+    assert_every_help_names(&CAMERA_FLAGS, dir.path());
     // Pixel 0 of a 3×1 image: dir = −n − W·(2/3)·u with W = 3·tan(θ/2), so at 90° and looking
     // down −z from the origin, (−2, 0, −1) normalised.
     let (origin, dir_, _) = inspected_eye_ray(
