@@ -18,7 +18,7 @@ use crate::scene::Scene;
 use crate::shapes::{Csg, CsgOperation, Operand, Shape};
 use crate::transform::TransformStep;
 
-/// Every keyword raylab's SDL reader knows, for suggestions.
+/// Every keyword raylab's SDL reader knows but the polyhedra ([`POLYHEDRA`]), for suggestions.
 const KEYWORDS: &[&str] = &[
     "light",
     "globalAmbient",
@@ -57,12 +57,6 @@ const KEYWORDS: &[&str] = &[
     "plane",
     "teapot",
     "mesh",
-    "tetrahedron",
-    "octahedron",
-    "dodecahedron",
-    "icosahedron",
-    "buckyball",
-    "diamond",
     "union",
     "intersection",
     "difference",
@@ -260,7 +254,7 @@ impl<'a> Parser<'a> {
                 return Ok(true);
             }
             other => {
-                let hint = did_you_mean(other, KEYWORDS.iter().copied());
+                let hint = did_you_mean(other, KEYWORDS.iter().chain(&POLYHEDRA).copied());
                 let message = if matches!(other, "{" | "}") {
                     format!("unexpected `{other}` (braces belong to a `def`)")
                 } else {
