@@ -247,6 +247,22 @@ impl Camera {
         Some(Vec2::new(c, height as f32 - r))
     }
 
+    /// Where a ray in direction `dir` crosses an image of aspect ratio `aspect` (width over
+    /// height) standing on the image plane, as tall as the view and centred: texture
+    /// coordinates in [0, 1]² (v up), or `None` if the ray passes beside the image or points
+    /// away from the plane. For an eye ray, that is the point of the image behind its pixel.
+    pub fn backdrop_uv(&self, dir: Vec3, aspect: f32) -> Option<Vec2> {
+        let depth = dir.dot(-self.n);
+        if depth <= f32::EPSILON * dir.length() {
+            return None;
+        }
+        // On the image plane at distance N, in units of the half height H.
+        let y = self.near * dir.dot(self.v) / depth / self.half_height;
+        let x = self.near * dir.dot(self.u) / depth / (self.half_height * aspect);
+        let uv = (Vec2::new(x, y) + 1.0) * 0.5;
+        (uv.cmpge(Vec2::ZERO).all() && uv.cmple(Vec2::ONE).all()).then_some(uv)
+    }
+
     /// The part of the segment `a → b` in front of the image plane, projected as by
     /// [`Self::project`]: its two ends in pixels, or `None` if all of it is behind.
     pub fn project_segment(

@@ -1,6 +1,7 @@
-//! Textures: colours that vary over a surface. Solid 3D checkerboards (carved out of space, so
-//! they follow the object), checkerboards in texture coordinates, and images (PNG/JPEG) sampled
-//! with bilinear filtering. Images keep their 8-bit sRGB texels, three bytes each, and turn
+//! Textures: colours that vary over a surface. Solid textures carved out of the object's space
+//! (so they follow the object): a 3D checkerboard and Hill & Kelley's wood grain and marble;
+//! checkerboards in texture coordinates; and images (PNG, JPEG, BMP) sampled with bilinear
+//! filtering. Images keep their 8-bit sRGB texels, three bytes each, and turn
 //! them into linear colours as they are sampled.
 
 use std::io::Cursor;
@@ -9,6 +10,7 @@ use std::sync::{Arc, LazyLock};
 use glam::{Vec2, Vec3};
 
 use crate::color::{Color, srgb_to_linear};
+use crate::noise::turbulence;
 
 /// What happens to texture coordinates outside [0, 1].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -37,13 +39,29 @@ pub enum Texture {
         u_count: f32,
         v_count: f32,
     },
-    /// An image, repeated `scale` times over the unit square of texture space.
+    /// Hill & Kelley's wood grain: rings around the object's z axis, [`WOOD_RING_WIDTH`] apart,
+    /// wobbling with the angle around the axis and with z; alternately `a` and `b`.
+    Wood { a: Color, b: Color },
+    /// Hill & Kelley's marble: veins across z, stirred by turbulence; `color` darkened in the
+    /// veins (by [`marble_spline`]).
+    Marble { color: Color },
+    /// An image at texture coordinates `uv · scale + offset` (so repeated `scale` times over
+    /// the unit square of texture space).
     Image {
         image: Arc<TextureImage>,
         wrap: Wrap,
         scale: Vec2,
+        offset: Vec2,
     },
 }
+
+/// How far apart the wood's rings are, in object units.
+pub const WOOD_RING_WIDTH: f32 = 0.12;
+/// How far the rings wobble, in rings; how many wobbles go round the axis; how fast they turn
+/// with z (the book's `K`, `1/N` and `B`).
+const WOOD_WOBBLE: (f32, f32, f32) = (0.6, 5.0, 1.8);
+/// The frequency of the marble's turbulence, and how strongly it stirs the veins.
+const MARBLE_TURBULENCE: (f32, f32) = (1.5, 5.0);
 
 impl Texture {
     /// The colour at texture coordinates `uv`, or at `object_point` for solid textures.
@@ -65,20 +83,58 @@ impl Texture {
                 let parity = (uv.x * u_count).floor() as i64 + (uv.y * v_count).floor() as i64;
                 if parity.rem_euclid(2) == 0 { *a } else { *b }
             }
-            Texture::Image { image, wrap, scale } => image.sample(uv * *scale, *wrap),
+            Texture::Wood { a, b } => {
+                let (amplitude, wobbles, twist) = WOOD_WOBBLE;
+                let angle = object_point.y.atan2(object_point.x);
+                let radius = object_point.truncate().length() / WOOD_RING_WIDTH;
+                let ring = radius + amplitude * (angle * wobbles + twist * object_point.z).sin();
+                if (ring.floor() as i64).rem_euclid(2) == 0 {
+                    *a
+                } else {
+                    *b
+                }
+            }
+            Texture::Marble { color } => {
+                let (frequency, strength) = MARBLE_TURBULENCE;
+                let stir = strength * turbulence(frequency, object_point);
+                let vein = (std::f32::consts::TAU * object_point.z + stir).sin();
+                *color * marble_spline(vein)
+            }
+            Texture::Image {
+                image,
+                wrap,
+                scale,
+                offset,
+            } => image.sample(uv * *scale + *offset, *wrap),
         }
     }
 }
 
+/// The book's marble profile: how bright the stone is at `x = sin(…)` in [−1, 1]: dark veins
+/// (0.15) around x = −0.75, pale stone (0.95) around 0, a second shade (0.26) around 0.7.
+pub fn marble_spline(x: f32) -> f32 {
+    if x < -0.4 {
+        0.15 + 2.857 * (x + 0.75).powi(2)
+    } else if x < 0.4 {
+        0.95 - 2.8125 * x * x
+    } else {
+        0.26 + 2.666 * (x - 0.7).powi(2)
+    }
+}
+
 impl TextureImage {
-    /// Decodes a PNG or JPEG file's bytes. The image's size is read first, and an image that
-    /// would not fit in memory ([`crate::memory::check`]) is refused before it is decoded.
+    /// Decodes a PNG, JPEG or BMP file's bytes. The image's size is read first: an image with
+    /// no pixels, or one that would not fit in memory ([`crate::memory::check`]), is refused
+    /// before it is decoded.
     pub fn from_bytes(bytes: &[u8]) -> Result<TextureImage, String> {
         let reader = image::ImageReader::new(Cursor::new(bytes))
             .with_guessed_format()
             .map_err(|e| e.to_string())?;
         let decoder = reader.into_decoder().map_err(|e| e.to_string())?;
         let (width, height) = image::ImageDecoder::dimensions(&decoder);
+        if width == 0 || height == 0 {
+            return Err("the image has no pixels".to_string());
+        }
         let texels = u64::from(width) * u64::from(height);
         let decoded = image::ImageDecoder::total_bytes(&decoder);
         crate::memory::check(&format!("the {width}×{height} image"), decoded + texels * 3)?;
@@ -188,6 +244,82 @@ mod tests {
         let c = img.sample(Vec2::splat(0.5), Wrap::Clamp);
         assert_eq!(c, Color::new(0.0, srgb_to_linear(128.0 / 255.0), 1.0));
         assert!((c.y - 0.2158605).abs() < 1e-6, "{c}");
+    }
+
+    #[test]
+    fn wood_rings_alternate_outwards_from_the_z_axis() {
+        let t = Texture::Wood {
+            a: Color::ZERO,
+            b: Color::ONE,
+        };
+        // Along a line where the wobble is zero (angle 0, z 0), ring k spans radii
+        // [k, k + 1)·WOOD_RING_WIDTH.
+        for k in 0..8 {
+            let r = (k as f32 + 0.5) * WOOD_RING_WIDTH;
+            let expected = if k % 2 == 0 { Color::ZERO } else { Color::ONE };
+            assert_eq!(
+                t.color(Vec2::ZERO, Vec3::new(r, 0.0, 0.0)),
+                expected,
+                "ring {k}"
+            );
+        }
+        // The rings are round: the same radius elsewhere on the circle lies in a ring within
+        // the wobble's reach.
+        let p = Vec3::new(0.0, 3.5 * WOOD_RING_WIDTH, 0.0);
+        assert!([Color::ZERO, Color::ONE].contains(&t.color(Vec2::ZERO, p)));
+    }
+
+    #[test]
+    fn marble_darkens_its_colour_between_vein_and_stone() {
+        let color = Color::new(0.9, 0.8, 0.7);
+        let t = Texture::Marble { color };
+        let mut brightness = Vec::new();
+        for n in 0..400 {
+            let p = Vec3::new(n as f32 * 0.031, 0.2, n as f32 * 0.013);
+            let c = t.color(Vec2::ZERO, p);
+            let k = c.x / color.x;
+            assert!((0.149..=0.951).contains(&k), "{k}");
+            assert!(
+                (c - color * k).length() < 1e-5,
+                "{c} is not a shade of {color}"
+            );
+            brightness.push(k);
+        }
+        let spread = brightness.iter().fold(0.0f32, |m, &k| m.max(k))
+            - brightness.iter().fold(1.0f32, |m, &k| m.min(k));
+        assert!(spread > 0.5, "veins and stone differ by only {spread}");
+    }
+
+    #[test]
+    fn the_marble_profile_is_continuous() {
+        for x in [-0.4f32, 0.4] {
+            let (below, above) = (marble_spline(x - 1e-4), marble_spline(x + 1e-4));
+            assert!((below - above).abs() < 1e-3, "{below} {above} at {x}");
+        }
+        assert_eq!(marble_spline(0.0), 0.95);
+    }
+
+    #[test]
+    fn image_coordinates_are_scaled_then_offset() {
+        let t = Texture::Image {
+            image: Arc::new(two_by_two()),
+            wrap: Wrap::Clamp,
+            scale: Vec2::splat(0.5),
+            offset: Vec2::new(0.5, 0.0),
+        };
+        // (0.5, 0.5) → (0.75, 0.25): the bottom-right texel.
+        assert_eq!(t.color(Vec2::splat(0.5), Vec3::ZERO), Color::ONE);
+    }
+
+    #[test]
+    fn bmp_images_decode() {
+        let mut bmp = Vec::new();
+        image::RgbImage::from_pixel(2, 3, image::Rgb([200, 100, 50]))
+            .write_to(&mut Cursor::new(&mut bmp), image::ImageFormat::Bmp)
+            .unwrap();
+        let img = TextureImage::from_bytes(&bmp).unwrap();
+        assert_eq!((img.width, img.height), (2, 3));
+        assert_eq!(img.texels, vec![[200, 100, 50]; 6]);
     }
 
     #[test]

@@ -165,6 +165,14 @@ fn the_room_in_sdl_looks_like_the_room_in_toml() {
 }
 
 #[test]
+fn the_sdl_texture_scene_matches_its_reference() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/sdl_textures.dat");
+    let scene = load_any(path.to_str().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    check(SIZE, vec![("sdl_textures".into(), scene)]);
+}
+
+#[test]
 fn the_comparison_notices_a_changed_picture() {
     let scene = default_scene().unwrap();
     let mut darker = scene.clone();

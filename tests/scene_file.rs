@@ -108,7 +108,9 @@ fn textures_scene_loads_the_image_relative_to_the_scene_file() {
     let scene = shipped_scene("textures.toml");
     // Textures are numbered in name order: grid, squares.
     match &scene.textures[0] {
-        Texture::Image { image, wrap, scale } => {
+        Texture::Image {
+            image, wrap, scale, ..
+        } => {
             assert_eq!((image.width, image.height), (64, 64));
             assert_eq!(*wrap, Wrap::Repeat);
             assert_eq!(*scale, Vec2::new(2.0, 1.0));

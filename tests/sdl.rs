@@ -459,16 +459,195 @@ fn bad_values_are_errors_at_their_statement() {
     }
 }
 
+/// A BMP image `width` pixels wide and `height` high, its left half red and its right half
+/// green.
+fn red_green_bmp(width: u32, height: u32) -> Vec<u8> {
+    let image = image::RgbImage::from_fn(width, height, |x, _| {
+        if x < width / 2 {
+            image::Rgb([255, 0, 0])
+        } else {
+            image::Rgb([0, 255, 0])
+        }
+    });
+    let mut bytes = Vec::new();
+    image
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Bmp,
+        )
+        .unwrap();
+    bytes
+}
+
+/// [`read`], with the images `wide.bmp` (8 × 1) and `backdrop.bmp` (4 × 2) beside the scene,
+/// each red on its left half and green on its right.
+fn with_images(text: &str) -> Result<Scene, SceneError> {
+    let (wide, backdrop) = (red_green_bmp(8, 1), red_green_bmp(4, 2));
+    let files = [("wide.bmp", &wide[..]), ("backdrop.bmp", &backdrop[..])];
+    parse_sdl(text, Path::new("t.dat"), SceneFiles::Builtin(&files))
+}
+
+/// The colour of the surface `ray` hits first, before lighting: its texture's or its own.
+fn surface_color(s: &Scene, origin: Vec3, dir: Vec3) -> Vec3 {
+    let bvh = Bvh::build(&s.geometry);
+    let tracer = Tracer::new(s, &bvh);
+    let ray = Ray::new(origin, dir);
+    let hit = tracer.closest_hit(&ray, 0.0).expect("the ray hits");
+    let surface = s.geometry.surface(&ray, &hit);
+    tracer.base_color(&s.materials[surface.material as usize], &surface)
+}
+
 #[test]
-fn textures_are_read_and_ignored_with_one_warning() {
-    let s = scene("texture -1 parameters 2 .5 .5 makePixmap 1 wood.bmp sphere texture 0");
-    assert_eq!(s.geometry.objects.len(), 1);
-    assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+fn the_checkerboard_shades_the_diffuse_colour_in_half_unit_cubes_of_object_space() {
+    // A cube scaled by 2: its top face is object y = 1, world y = 2. Object cells (0, 2, 0) and
+    // (1, 2, 0) lie under world x = 0.5 and x = 1.5.
+    let s = scene("diffuse 1 .5 0 texture -1 scale 2 2 2 cube");
+    let down = |x: f32| surface_color(&s, Vec3::new(x, 5.0, 0.5), -Vec3::Y);
+    assert!(close(down(0.5), Vec3::new(0.2, 0.1, 0.0)), "{}", down(0.5));
+    assert!(close(down(1.5), Vec3::new(0.8, 0.4, 0.0)), "{}", down(1.5));
+}
+
+#[test]
+fn wood_rings_the_z_axis_in_the_books_two_colours() {
+    // On the square (z = 0) along the x axis the rings do not wobble: the first ring is
+    // light, the second dark, whatever the diffuse colour.
+    let s = scene("diffuse 0 0 1 texture -2 square");
+    let down = |x: f32| surface_color(&s, Vec3::new(x, 0.0, 5.0), -Vec3::Z);
     assert!(
-        s.warnings[0].contains("textures are not supported"),
-        "{:?}",
-        s.warnings
+        close(down(0.06), Vec3::new(0.6, 0.5, 0.2)),
+        "{}",
+        down(0.06)
     );
+    assert!(
+        close(down(0.18), Vec3::new(1.0, 0.62, 0.26)),
+        "{}",
+        down(0.18)
+    );
+}
+
+#[test]
+fn marble_shades_the_diffuse_colour_between_vein_and_stone() {
+    let s = scene("diffuse 1 .5 .25 texture -3 square");
+    let mut shades = Vec::new();
+    for k in 0..40 {
+        let (x, y) = (-0.95 + k as f32 * 0.047, 0.3);
+        let c = surface_color(&s, Vec3::new(x, y, 5.0), -Vec3::Z);
+        assert!(close(c, Vec3::new(1.0, 0.5, 0.25) * c.x), "{c}");
+        assert!((0.149..=0.951).contains(&c.x), "{c}");
+        shades.push(c.x);
+    }
+    let spread =
+        shades.iter().cloned().fold(0.0, f32::max) - shades.iter().cloned().fold(1.0, f32::min);
+    assert!(spread > 0.2, "the marble barely varies: {shades:?}");
+}
+
+#[test]
+fn a_pixmap_lies_on_a_square_as_its_parameters_say() {
+    // The image spans x from −1 to 3 (p0, p3) and y from −1 to 1 (p1, p2): the square (x up
+    // to 1) shows only its red left half. Without parameters it shows the whole image.
+    let at = |text: &str, x: f32| {
+        let s = with_images(text).unwrap();
+        assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+        surface_color(&s, Vec3::new(x, 0.0, 5.0), -Vec3::Z)
+    };
+    let mapped = "makePixmap 1 wide.bmp texture 1 parameters 4 -1 -1 1 3 square";
+    assert_eq!(at(mapped, 0.6), Vec3::X);
+    assert_eq!(at(mapped, -0.6), Vec3::X);
+    let whole = "makePixmap 1 wide.bmp texture 1 square";
+    assert_eq!(at(whole, 0.6), Vec3::Y);
+    assert_eq!(at(whole, -0.6), Vec3::X);
+    // The other version of the book's code writes a third number, the OpenGL texture's name.
+    let three = "makePixmap 1 wide.bmp 7 texture 1 square";
+    assert_eq!(at(three, 0.6), Vec3::Y);
+}
+
+#[test]
+fn texture_problems_are_errors_or_warnings_at_their_line() {
+    let e = with_images("sphere\nmakePixmap 16 wide.bmp").err().unwrap();
+    assert_eq!((e.line, e.column), (2, 1));
+    assert!(e.message.contains("numbered 0 to 15"), "{e}");
+    let e = with_images("makePixmap 1").err().unwrap();
+    assert!(e.message.contains("needs an image file name"), "{e}");
+    let e = with_images("makePixmap 1 wide.bmp texture 1 parameters 4 2 0 1 2 square").err();
+    let e = e.unwrap();
+    assert!(e.message.contains("empty range 2 to 2"), "{e}");
+    // What real files get away with: a missing image, a pixmap never made, an unknown texture.
+    let s = with_images(
+        "makePixmap 2 gone.bmp\nmakePixmap 3 gone.bmp texture 2 sphere\ntexture 5 cube\n\
+         texture -9 cube backgroundImage gone.bmp",
+    )
+    .unwrap();
+    assert_eq!(s.geometry.objects.len(), 3);
+    let warnings = s.warnings.join("\n");
+    assert_eq!(s.warnings.len(), 3, "{warnings}");
+    assert!(
+        warnings.contains("t.dat:1: cannot read pixmap file gone.bmp"),
+        "{warnings}"
+    );
+    assert!(
+        warnings.contains("t.dat:2: a shape's texture names a pixmap"),
+        "{warnings}"
+    );
+    assert!(
+        warnings.contains("t.dat:4: a texture number other than"),
+        "{warnings}"
+    );
+    assert!(s.textures.is_empty());
+}
+
+#[test]
+fn rays_that_miss_see_the_background_image_standing_on_the_image_plane() {
+    // The 4 × 2 image stands on the image plane, as tall as the view and twice as wide as
+    // high: a direction a quarter of the way across it sees its red half, three quarters
+    // across its green half, and beyond its edge the background colour.
+    let s = with_images("background .1 .2 .3 backgroundImage backdrop.bmp").unwrap();
+    let bvh = Bvh::build(&s.geometry);
+    let tracer = Tracer::new(&s, &bvh);
+    let c = &s.camera;
+    let across = |x: f32, y: f32| {
+        let dir = -c.near * c.n + x * 2.0 * c.half_height * c.u + y * c.half_height * c.v;
+        let mut counts = Default::default();
+        tracer.trace_eye(&Ray::new(c.eye, dir), &mut counts)
+    };
+    assert_eq!(across(-0.5, 0.5), Vec3::X);
+    assert_eq!(across(0.5, -0.5), Vec3::Y);
+    assert_eq!(across(1.2, 0.0), Vec3::new(0.1, 0.2, 0.3));
+    assert_eq!(across(0.0, -1.1), Vec3::new(0.1, 0.2, 0.3));
+}
+
+#[test]
+fn a_tapered_tube_is_a_wall_around_a_hole() {
+    // Radius 1 at z = 0 to 1.2 at z = 1, the wall 0.25 thick: a hole of radius 0.75 to 0.95.
+    let s = scene("taperedTube 1.2 .25");
+    assert_eq!(s.geometry.objects.len(), 1);
+    let bvh = Bvh::build(&s.geometry);
+    let tracer = Tracer::new(&s, &bvh);
+    let first = |origin: Vec3, dir: Vec3| {
+        let ray = Ray::new(origin, dir);
+        let hit = tracer.closest_hit(&ray, 0.0)?;
+        Some((hit.t, s.geometry.surface(&ray, &hit).normal))
+    };
+    // Up the axis, through the hole.
+    assert_eq!(first(Vec3::new(0.0, 0.0, -5.0), Vec3::Z), None);
+    // Up into the base's ring, from below.
+    let (t, normal) = first(Vec3::new(0.875, 0.0, -5.0), Vec3::Z).unwrap();
+    assert!(
+        (t - 5.0).abs() < 1e-4 && close(normal, -Vec3::Z),
+        "{t} {normal}"
+    );
+    // Down onto the top's ring, between radius 0.95 and 1.2.
+    let (t, normal) = first(Vec3::new(0.0, 1.1, 5.0), -Vec3::Z).unwrap();
+    assert!(
+        (t - 4.0).abs() < 1e-4 && close(normal, Vec3::Z),
+        "{t} {normal}"
+    );
+    // From inside the hole at half height, out through the inner wall (radius 0.85 there),
+    // whose normal faces the hole.
+    let (t, normal) = first(Vec3::new(0.0, 0.0, 0.5), Vec3::X).unwrap();
+    assert!((t - 0.85).abs() < 1e-4 && normal.x < -0.9, "{t} {normal}");
+    let e = error("light 0 0 0 1 1 1\ntaperedTube .5 1");
+    assert_eq!((e.line, e.column), (2, 1));
+    assert!(e.message.contains("wall must be thicker than 0"), "{e}");
 }
 
 #[test]

@@ -15,7 +15,9 @@ use glam::Vec3;
 use raylab::bvh::Bvh;
 use raylab::camera::{Camera, CameraSpec};
 use raylab::color::to_srgb8;
+use raylab::formats::nff::NffLighting;
 use raylab::formats::toml::{default_scene, load_scene};
+use raylab::formats::{SceneFormat, load_any_as};
 use raylab::inspect::{DebugView, RayTree, trace_ray_tree};
 use raylab::progressive;
 use raylab::scene::Scene;
@@ -291,6 +293,43 @@ fn the_window_shows_the_default_scene_as_the_cpu_renders_it() {
     // Outside the image: the letterbox bars and the panels, not the image.
     let shot_image = image::open(&shot).unwrap().to_rgb8();
     assert_eq!(shot_image.dimensions(), (700, 500));
+}
+
+#[test]
+fn the_viewer_reads_a_scene_in_the_format_given_whatever_its_name() {
+    // An SDL scene with a texture and a background image, in a file whose name says nothing.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("scene.txt");
+    let backdrop =
+        image::RgbImage::from_fn(4, 2, |x, y| image::Rgb([60 * x as u8, 100, 90 * y as u8]));
+    backdrop.save(dir.path().join("sky.bmp")).unwrap();
+    std::fs::write(
+        &path,
+        "light 3 5 4 1 1 1 backgroundImage sky.bmp diffuse .9 .3 .2 texture -1 sphere",
+    )
+    .unwrap();
+    let size = 64;
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            path.to_str().unwrap(),
+            "--format",
+            "sdl",
+            "--size",
+            &size.to_string(),
+            "--window",
+            "600x400",
+        ],
+    ) else {
+        return;
+    };
+    let name = path.to_str().unwrap();
+    let scene = load_any_as(name, NffLighting::default(), Some(SceneFormat::Sdl)).unwrap();
+    let expected = cpu_render(&scene, size, scene.camera.spec);
+    assert_eq!(
+        mismatches(&shot, image_rect(&run.stdout), size, &expected),
+        0
+    );
 }
 
 #[test]

@@ -86,11 +86,13 @@ pub fn nff(data: &[u8]) -> Result<(), String> {
 
 /// The one mesh file a fuzzed SDL file may name (`mesh square.3vn`): a square of one face.
 const SQUARE_3VN: &[u8] = b"4 1 1\n-1 -1 0  1 -1 0  1 1 0  -1 1 0\n0 0 1\n4\n0 1 2 3\n0 0 0 0\n";
+/// A 2 × 2 image (binary PPM: red, blue / blue, red), for `makePixmap` and `backgroundImage`.
+const TWO_BY_TWO_PPM: &[u8] = b"P6 2 2 255\n\xff\0\0\0\0\xff\0\0\xff\xff\0\0";
 
-/// Reads `data` as an SDL file, which may name `square.3vn`, and renders it (through the
+/// Reads `data` as an SDL file, which may name `square.3vn` and `tex.ppm`, and renders it (through the
 /// placeholder camera SDL scenes get).
 pub fn sdl(data: &[u8]) -> Result<(), String> {
-    let files = [("square.3vn", SQUARE_3VN)];
+    let files = [("square.3vn", SQUARE_3VN), ("tex.ppm", TWO_BY_TWO_PPM)];
     let scene = parse_sdl(
         &ascii_text(data),
         Path::new("fuzz.dat"),

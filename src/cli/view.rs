@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
+use raylab::formats::SceneFormat;
 use raylab::inspect::DebugView;
 use raylab::output::check_writable;
 use raylab::settings::{RenderSettings, SettingsOverrides};
@@ -15,6 +16,9 @@ pub struct ViewArgs {
     /// Scene to open: a .toml, .nff or SDL (.dat, .sdl) file, or spd:NAME[:SIZE]; the built-in
     /// default scene when left out.
     scene: Option<PathBuf>,
+    /// The scene file's format, whatever its name ends in: toml, nff or sdl.
+    #[arg(long)]
+    format: Option<SceneFormat>,
     /// Overrides of the scene's render settings.
     #[command(flatten)]
     overrides: OverrideArgs,
@@ -69,6 +73,7 @@ pub fn run(args: ViewArgs) -> Result<(), String> {
     overrides.check_camera()?;
     viewer::run(Options {
         scene: args.scene,
+        format: args.format,
         overrides,
         view: args.view,
         threads,

@@ -2,13 +2,15 @@
 //! It is made by code or read from a file by one of the [`crate::formats`] (TOML, NFF, a
 //! built-in SPD scene), which depend on it; it knows none of them.
 
+use std::sync::Arc;
+
 use crate::camera::Camera;
 use crate::light::Light;
 use crate::material::Material;
 use crate::primitive::{Geometry, Object};
 use crate::settings::RenderSettings;
 use crate::shapes::Shape;
-use crate::texture::Texture;
+use crate::texture::{Texture, TextureImage};
 use crate::transform::Transform;
 
 #[derive(Clone, Debug)]
@@ -21,6 +23,11 @@ pub struct Scene {
     /// reader's default material, "nff #k" for NFF fills, "#k" for materials added by code.
     pub material_names: Vec<String>,
     pub textures: Vec<Texture>,
+    /// What rays that leave the scene see, instead of the background colour (SDL's
+    /// `backgroundImage`): an image standing on the image plane, as tall as the view and
+    /// centred, at its own aspect ratio; the background colour shows around it
+    /// ([`Camera::backdrop_uv`]).
+    pub background_image: Option<Arc<TextureImage>>,
     pub geometry: Geometry,
     /// What the reader accepted but a person should hear about (`file:line: message`): a
     /// material an OBJ file names but never defines, a face it dropped. The scene renders as
@@ -38,6 +45,7 @@ impl Scene {
             materials: Vec::new(),
             material_names: Vec::new(),
             textures: Vec::new(),
+            background_image: None,
             geometry: Geometry::default(),
             warnings: Vec::new(),
         }

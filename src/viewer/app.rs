@@ -52,6 +52,7 @@ impl App {
     pub fn new(options: Options, proxy: EventLoopProxy<UserEvent>) -> Result<App, String> {
         let Options {
             scene,
+            format,
             overrides,
             view,
             threads,
@@ -81,7 +82,7 @@ impl App {
             gpu: None,
             ui: Ui::new(panel, window),
             input: Input::new(script, exit_when_done, screenshot),
-            scene: SceneSlot::new(scene, overrides, view, proxy),
+            scene: SceneSlot::new(scene, format, overrides, view, proxy),
             tracing,
             clock: FrameClock::new(stats, max_fps),
             ended: None,

@@ -25,6 +25,7 @@ mod ui;
 
 use std::path::PathBuf;
 
+use raylab::formats::SceneFormat;
 use raylab::inspect::DebugView;
 use raylab::settings::SettingsOverrides;
 use winit::event_loop::EventLoop;
@@ -35,6 +36,8 @@ pub use input::script::Script;
 pub struct Options {
     /// Scene file; the built-in default scene when `None`.
     pub scene: Option<PathBuf>,
+    /// The scene file's format, whatever its name ends in; by its name when `None`.
+    pub format: Option<SceneFormat>,
     /// The command line's overrides of each scene's settings, applied on every load.
     pub overrides: SettingsOverrides,
     /// What the image shows at the start: the shaded colour or a debug view.

@@ -28,6 +28,7 @@ use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
 use crate::scene::Scene;
 use crate::stats::RayCounts;
+use crate::texture::Wrap;
 
 /// Eye rays start at the eye but only see what lies beyond the image plane, at `t = 1`.
 pub const EYE_RAY_T_MIN: f32 = 1.0;
@@ -110,7 +111,7 @@ impl<'a> Tracer<'a> {
                 counts.primary_hits += 1;
                 self.shade(ray, &hit, branch, counts, observer)
             }
-            None => self.miss(observer),
+            None => self.miss(ray, observer),
         };
         observer.done(color);
         color
@@ -130,16 +131,23 @@ impl<'a> Tracer<'a> {
             .closest_hit_counted(geometry, ray, 0.0, f32::INFINITY, observer);
         let color = match hit {
             Some(hit) => self.shade(ray, &hit, branch, counts, observer),
-            None => self.miss(observer),
+            None => self.miss(ray, observer),
         };
         observer.done(color);
         color
     }
 
-    /// What a ray that leaves the scene sees: the background.
+    /// What a ray that leaves the scene sees: the background image where the ray crosses it,
+    /// else the background colour.
     #[inline(always)]
-    fn miss<O: TreeObserver>(&self, observer: &mut O) -> Color {
-        let background = self.scene.settings.background;
+    fn miss<O: TreeObserver>(&self, ray: &Ray, observer: &mut O) -> Color {
+        let scene = self.scene;
+        let on_image = scene.background_image.as_ref().and_then(|image| {
+            let aspect = image.width as f32 / image.height as f32;
+            let uv = scene.camera.backdrop_uv(ray.dir, aspect)?;
+            Some(image.sample(uv, Wrap::Clamp))
+        });
+        let background = on_image.unwrap_or(scene.settings.background);
         observer.miss(background);
         background
     }

@@ -1,10 +1,13 @@
 //! The state the book's parser keeps while it reads, and the scene it builds: the current
-//! material (which `push`/`pop` do not save), the stack of current transforms, and the objects,
-//! each placed by the transform on top of the stack when it is made.
+//! material (which `push`/`pop` do not save), the stack of current transforms, the pixmaps,
+//! and the objects, each placed by the transform on top of the stack and given the current
+//! material (and its texture) when it is made.
 
 use std::collections::HashMap;
+use std::f32::consts::{PI, TAU};
+use std::sync::Arc;
 
-use glam::Affine3A;
+use glam::{Affine3A, Vec2};
 
 use crate::camera::{Camera, CameraSpec};
 use crate::color::Color;
@@ -14,8 +17,18 @@ use crate::memory;
 use crate::mesh::Mesh;
 use crate::scene::Scene;
 use crate::settings::RenderSettings;
-use crate::shapes::{Csg, Shape};
+use crate::shapes::{Csg, CsgOperation, Operand, Shape};
+use crate::texture::{Texture, TextureImage, Wrap};
 use crate::transform::{Transform, TransformStep};
+
+/// How many pixmaps `makePixmap` can fill (numbers 0 to 15), as in the book's ray tracer.
+pub const PIXMAPS: usize = 16;
+
+/// The book's checkerboard: cubes of side ½, the diffuse colour at 20% and 80%.
+const CHECKER_SIZE: f32 = 0.5;
+const CHECKER_SHADES: (f32, f32) = (0.2, 0.8);
+/// The book's wood: a light and a dark ring colour, whatever the diffuse colour.
+const WOOD: (Color, Color) = (Color::new(0.6, 0.5, 0.2), Color::new(1.0, 0.62, 0.26));
 
 /// Memory a triangle of a mesh takes, at most, with its share of the BVH (an estimate).
 const BYTES_PER_TRIANGLE: u64 = 256;
@@ -38,6 +51,11 @@ pub(crate) struct SdlMaterial {
     pub transparency: f32,
     /// The speed of light in the material, relative to its speed outside.
     pub speed_of_light: f32,
+    /// `texture`: 0 none, −1 checkerboard, −2 wood, −3 marble, n > 0 pixmap n.
+    pub texture: i32,
+    /// `parameters`: for a pixmap on a square or a tapered cylinder, the ranges of the shape
+    /// that the image spans.
+    pub parameters: Vec<f32>,
 }
 
 impl Default for SdlMaterial {
@@ -50,6 +68,8 @@ impl Default for SdlMaterial {
             reflectivity: 0.0,
             transparency: 0.0,
             speed_of_light: 1.0,
+            texture: 0,
+            parameters: Vec::new(),
         }
     }
 }
@@ -59,7 +79,7 @@ impl SdlMaterial {
     /// coefficients scale: the diffuse colour, with `ka` the ambient colour's mean over the
     /// diffuse colour's mean. The specular colour becomes the highlight's colour, its largest
     /// component `ks`; the index of refraction is the inverse of the speed of light.
-    pub fn to_material(&self) -> Material {
+    fn to_material(&self) -> Material {
         let mean = |c: Color| (c.x + c.y + c.z) / 3.0;
         let ambient = if mean(self.diffuse) > 0.0 {
             mean(self.ambient) / mean(self.diffuse)
@@ -92,9 +112,11 @@ impl SdlMaterial {
 pub(crate) struct Builder {
     pub scene: Scene,
     pub material: SdlMaterial,
-    /// The last material given to the scene, and its index, shared by the shapes that follow
-    /// while the material stays the same.
-    added: Option<(SdlMaterial, u32)>,
+    /// The images `makePixmap` read, by number.
+    pub pixmaps: [Option<Arc<TextureImage>>; PIXMAPS],
+    /// The last material given to the scene, the mapping of its texture, and its index, shared
+    /// by the shapes that follow while the material and the mapping stay the same.
+    added: Option<(SdlMaterial, Mapping, u32)>,
     /// The stack of current transforms (object to world); never empty.
     stack: Vec<Affine3A>,
     /// `minReflectivity` and `minTransparency`: raylab's one cut-off is the smaller.
@@ -122,6 +144,7 @@ impl Builder {
         Builder {
             scene: Scene::new(settings, camera),
             material: SdlMaterial::default(),
+            pixmaps: Default::default(),
             added: None,
             stack: vec![Affine3A::IDENTITY],
             min_reflectivity: 0.5,
@@ -170,16 +193,60 @@ impl Builder {
         self.stack.len() - 1
     }
 
-    /// The current material's index in the scene.
-    fn material_index(&mut self) -> u32 {
-        match &self.added {
-            Some((material, index)) if *material == self.material => *index,
-            _ => {
-                let index = self.scene.add_material(self.material.to_material());
-                self.added = Some((self.material.clone(), index));
-                index
-            }
+    /// The index in the scene of the current material, its texture laid on as `mapping` says.
+    fn material_index(&mut self, mapping: Mapping) -> Result<u32, String> {
+        if let Some((material, m, index)) = &self.added
+            && *material == self.material
+            && *m == mapping
+        {
+            return Ok(*index);
         }
+        let mut material = self.material.to_material();
+        if let Some(texture) = self.texture(mapping)? {
+            material.texture = Some(self.scene.textures.len() as u32);
+            self.scene.textures.push(texture);
+        }
+        let index = self.scene.add_material(material);
+        self.added = Some((self.material.clone(), mapping, index));
+        Ok(index)
+    }
+
+    /// Whether the current material names a pixmap that `makePixmap` has not filled.
+    pub fn pixmap_missing(&self) -> bool {
+        let n = self.material.texture;
+        n > 0 && self.pixmaps.get(n as usize).is_none_or(Option::is_none)
+    }
+
+    /// The current material's texture, as the book's ray tracer shades it: the checkerboard
+    /// and the marble shade the diffuse colour, the wood replaces it, a pixmap lies on the
+    /// shape as `mapping` says. Unknown numbers and empty pixmaps give none.
+    fn texture(&self, mapping: Mapping) -> Result<Option<Texture>, String> {
+        let diffuse = self.material.diffuse;
+        Ok(match self.material.texture {
+            -1 => Some(Texture::Checker3d {
+                a: diffuse * CHECKER_SHADES.0,
+                b: diffuse * CHECKER_SHADES.1,
+                size: CHECKER_SIZE,
+            }),
+            -2 => Some(Texture::Wood {
+                a: WOOD.0,
+                b: WOOD.1,
+            }),
+            -3 => Some(Texture::Marble { color: diffuse }),
+            n if n > 0 => match self.pixmaps.get(n as usize).and_then(Option::as_ref) {
+                Some(image) => {
+                    let (scale, offset) = pixmap_mapping(mapping, &self.material.parameters)?;
+                    Some(Texture::Image {
+                        image: image.clone(),
+                        wrap: Wrap::Repeat,
+                        scale,
+                        offset,
+                    })
+                }
+                None => None,
+            },
+            _ => None,
+        })
     }
 
     /// The current transform, checked: it must be invertible.
@@ -205,9 +272,23 @@ impl Builder {
             let bounds = transform.bounds_to_world(&bounds);
             limits::check_bounds(&format!("the {}", shape.name()), &bounds)?;
         }
-        let material = self.material_index();
+        let material = self.material_index(Mapping::of(&shape))?;
         self.scene.add_object(shape, Some(transform), material);
         Ok(())
+    }
+
+    /// Adds a solid with a hole taken out of it (the tapered tube), both in its object space,
+    /// placed and coloured as [`Self::shape`] does.
+    pub fn hollow(&mut self, solid: Shape, hole: Shape) -> Result<(), String> {
+        let material = self.material_index(Mapping::Own)?;
+        let operand = |shape| Operand {
+            shape,
+            transform: None,
+            material,
+        };
+        let operands = vec![operand(solid), operand(hole)];
+        let csg = Csg::new(CsgOperation::Difference, operands)?;
+        self.shape(Shape::Csg(Box::new(csg)))
     }
 
     /// Adds a boolean object. As in the book, the node has no transform or material of its own:
@@ -217,7 +298,7 @@ impl Builder {
         if let Some(bounds) = shape.bounds() {
             limits::check_bounds("the boolean object", &bounds)?;
         }
-        let material = self.material_index();
+        let material = self.material_index(Mapping::Own)?;
         self.scene.add_object(shape, None, material);
         Ok(())
     }
@@ -242,7 +323,7 @@ impl Builder {
         }
         mesh.transform(&self.current(Affine3A::IDENTITY)?);
         mesh.validate().map_err(|e| e.to_string())?;
-        mesh.material = self.material_index();
+        mesh.material = self.material_index(Mapping::Own)?;
         self.scene.geometry.add_mesh(mesh);
         Ok(())
     }
@@ -260,5 +341,100 @@ impl Builder {
     /// Sets raylab's adaptive cut-off from `minReflectivity` and `minTransparency`: the smaller.
     pub fn set_cutoff(&mut self) {
         self.scene.settings.min_weight = self.min_reflectivity.min(self.min_transparency);
+    }
+}
+
+/// How a pixmap lies on a shape. The book maps it by the material's `parameters` on a square
+/// (the image spans x from p0 to p3 and y from p1 to p2) and on a tapered cylinder (the angle
+/// around z from p0 to p1, in radians, and z from p2 to p3); other shapes use their own
+/// texture coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Mapping {
+    Square,
+    TaperedCylinder,
+    Own,
+}
+
+impl Mapping {
+    fn of(shape: &Shape) -> Mapping {
+        match shape {
+            // The only polygon SDL makes is the square.
+            Shape::Polygon(_) => Mapping::Square,
+            Shape::TaperedCylinder(_) => Mapping::TaperedCylinder,
+            _ => Mapping::Own,
+        }
+    }
+}
+
+/// The `scale` and `offset` of an image texture that lays the pixmap as `mapping` and the
+/// `parameters` say, from the shape's own texture coordinates: on the square, u = (x + 1)/2
+/// and v = (y + 1)/2; on the cylinder's side, u = ½ + angle/2π and v = z.
+fn pixmap_mapping(mapping: Mapping, parameters: &[f32]) -> Result<(Vec2, Vec2), String> {
+    let &[p0, p1, p2, p3, ..] = parameters else {
+        return Ok((Vec2::ONE, Vec2::ZERO));
+    };
+    // A coordinate `c = k·t + c0` of the shape (t its own u or v) mapped from [from, to] onto
+    // [0, 1]: (c − from)/(to − from).
+    let range = |k: f32, c0: f32, from: f32, to: f32| -> Result<(f32, f32), String> {
+        let (scale, offset) = (k / (to - from), (c0 - from) / (to - from));
+        if scale.is_finite() && offset.is_finite() {
+            Ok((scale, offset))
+        } else {
+            Err(format!(
+                "the `parameters` of this pixmap give the empty range {from} to {to}"
+            ))
+        }
+    };
+    let (u, v) = match mapping {
+        Mapping::Square => (range(2.0, -1.0, p0, p3)?, range(2.0, -1.0, p1, p2)?),
+        Mapping::TaperedCylinder => (range(TAU, -PI, p0, p1)?, range(1.0, 0.0, p2, p3)?),
+        Mapping::Own => return Ok((Vec2::ONE, Vec2::ZERO)),
+    };
+    Ok((Vec2::new(u.0, v.0), Vec2::new(u.1, v.1)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Where `mapping` with `parameters` takes the shape's own texture coordinates `uv`.
+    fn mapped(mapping: Mapping, parameters: &[f32], uv: Vec2) -> Vec2 {
+        let (scale, offset) = pixmap_mapping(mapping, parameters).unwrap();
+        uv * scale + offset
+    }
+
+    #[test]
+    fn on_a_square_the_image_spans_x_from_p0_to_p3_and_y_from_p1_to_p2() {
+        let p = [-0.5, 0.0, 1.0, 1.5];
+        // The square's point (x, y) has u = (x + 1)/2, v = (y + 1)/2.
+        for (x, y) in [(-0.5, 0.0), (1.5, 1.0), (0.5, 0.25), (-1.0, -1.0)] {
+            let uv = Vec2::new((x + 1.0) / 2.0, (y + 1.0) / 2.0);
+            let expected = Vec2::new((x + 0.5) / 2.0, y / 1.0);
+            assert!(mapped(Mapping::Square, &p, uv).abs_diff_eq(expected, 1e-6));
+        }
+    }
+
+    #[test]
+    fn on_a_tapered_cylinder_the_image_spans_an_angle_and_a_height() {
+        let p = [0.0, PI, 0.25, 0.75];
+        // The side's point at angle θ (−π to π) and height z has u = ½ + θ/2π, v = z.
+        for (angle, z) in [
+            (0.0f32, 0.25f32),
+            (PI, 0.75),
+            (PI / 2.0, 0.5),
+            (-PI / 2.0, 1.0),
+        ] {
+            let uv = Vec2::new(0.5 + angle / TAU, z);
+            let expected = Vec2::new(angle / PI, (z - 0.25) / 0.5);
+            let got = mapped(Mapping::TaperedCylinder, &p, uv);
+            assert!(got.abs_diff_eq(expected, 1e-6), "{got} {expected}");
+        }
+    }
+
+    #[test]
+    fn without_four_parameters_or_on_other_shapes_the_shapes_own_coordinates_serve() {
+        let uv = Vec2::new(0.3, 0.7);
+        assert_eq!(mapped(Mapping::Square, &[1.0, 2.0], uv), uv);
+        assert_eq!(mapped(Mapping::Own, &[0.0, 1.0, 2.0, 3.0], uv), uv);
     }
 }

@@ -4,6 +4,7 @@
 //! a `def` that uses itself (directly or through others) is an error, and expansion is bounded
 //! ([`MAX_USE_DEPTH`], [`MAX_EXPANDED_TOKENS`]), so no file expands forever or without bound.
 
+use std::borrow::Cow;
 use std::collections::HashMap;
 use std::ops::Range;
 use std::rc::Rc;
@@ -92,6 +93,15 @@ impl<'a> Tokens<'a> {
             token,
             context: None,
         })
+    }
+
+    /// The text of the token [`Self::next`] would give, without reading it.
+    pub fn peek(&self) -> Option<Cow<'a, str>> {
+        let spliced = self.frames.iter().rev().find_map(|f| f.body.get(f.next));
+        match spliced {
+            Some(token) => Some(token.text.clone()),
+            None => self.lexer.clone().next().map(|token| token.text),
+        }
     }
 
     /// An error at `word`, naming the `def`s it was spliced in from.

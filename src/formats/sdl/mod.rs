@@ -18,15 +18,30 @@
 //! - A zero scale is an error (the book divides by it and carries on).
 //! - raylab's materials have one colour: the diffuse colour, the ambient colour becoming the
 //!   ambient coefficient (its mean over the diffuse colour's mean), the specular colour the
-//!   highlight's colour. `emissive` and the textures (`texture`, `parameters`, `makePixmap`)
-//!   are read and ignored, with a warning. `minReflectivity` and `minTransparency` become
-//!   raylab's one adaptive cut-off, the smaller of the two.
+//!   highlight's colour. `emissive` is read and ignored, with a warning. `minReflectivity` and
+//!   `minTransparency` become raylab's one adaptive cut-off, the smaller of the two.
+//! - Textures mean what they mean in the book's ray tracer (`Scene::texture`, `Scene::shade`):
+//!   −1 the checkerboard (its cells counted with `floor`, where the book truncates towards
+//!   zero and doubles the cells through the origin), −2 wood, −3 marble (the book's ring and
+//!   vein recipes with raylab's noise, wood's rings alternating in two colours), N > 0 pixmap N,
+//!   mapped by `parameters` on squares and (tapered) cylinders and by the shape's own texture
+//!   coordinates elsewhere, repeated and filtered rather than read off by the nearest pixel.
+//!   Solid textures see a mesh (the polyhedra, the teapot, `.3vn` files) in world space.
+//!   `makePixmap` also takes the third number of the other version of the book's code. A pixmap
+//!   or background image that cannot be read, a pixmap number no `makePixmap` filled, and an
+//!   unknown texture number are warnings (the book stops reading, or reads past its array).
+//! - `backgroundImage` stands on the image plane, as tall as the view and centred at its own
+//!   aspect ratio (the book copies it pixel for pixel from the image's corner), so it follows
+//!   any image size; the background colour shows around it.
 //! - The polyhedra are generated (the convex hulls of their corners), not read from files.
 //! - `torus` is raylab's exact torus, turned to ring the z axis as GLUT's does (ring radius 1,
 //!   tube 0.2); the book's own `Torus::hit` was a stub.
 //! - `union`, `intersection` and `difference` are exact boolean objects (the book's copies
 //!   only drew both operands, or stubbed them out); an operand that is a mesh is an error.
-//! - `taperedTube`, `backgroundImage` and the other versions' extensions are unknown words.
+//! - `taperedTube s t` is the tapered cylinder with its wall `t` thick everywhere (the book's
+//!   inner wall starts at the outer one's radius); a wall of 1 or more is an error.
+//! - The other versions' extensions (`extrude`, `texturedCube`, `wineglass`, …) are unknown
+//!   words.
 
 mod build;
 mod expand;

@@ -5,7 +5,11 @@
 
 use glam::Vec3;
 
-use super::build::{Builder, SdlMaterial};
+use std::borrow::Cow;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use super::build::{Builder, PIXMAPS, SdlMaterial};
 use super::expand::{Tokens, Word};
 use super::mesh_3vn::parse_3vn;
 use super::solids::{self, POLYHEDRA};
@@ -16,6 +20,7 @@ use crate::light::Light;
 use crate::limits;
 use crate::scene::Scene;
 use crate::shapes::{Csg, CsgOperation, Operand, Shape};
+use crate::texture::TextureImage;
 use crate::transform::TransformStep;
 
 /// Every keyword raylab's SDL reader knows but the polyhedra ([`POLYHEDRA`]), for suggestions.
@@ -52,6 +57,7 @@ const KEYWORDS: &[&str] = &[
     "cylinder",
     "cone",
     "taperedCylinder",
+    "taperedTube",
     "torus",
     "square",
     "plane",
@@ -61,6 +67,7 @@ const KEYWORDS: &[&str] = &[
     "intersection",
     "difference",
     "makePixmap",
+    "backgroundImage",
 ];
 
 /// The most numbers `parameters` takes (the book's array holds 10).
@@ -72,7 +79,7 @@ struct Parser<'a> {
     build: Builder,
     source: Source<'a>,
     files: SceneFiles<'a>,
-    /// Mesh files already reported missing, so that each is reported once.
+    /// Files (meshes, pixmaps) already reported missing, so that each is reported once.
     missing: Vec<String>,
     /// Warnings given once per file, already given.
     noted: Vec<&'static str>,
@@ -105,6 +112,13 @@ impl<'a> Parser<'a> {
     fn object(&mut self) -> Result<Option<Word<'a>>, SceneError> {
         while let Some(word) = self.tokens.next() {
             if self.statement(&word)? {
+                if self.build.pixmap_missing() {
+                    self.warn_once(
+                        &word,
+                        "a shape's texture names a pixmap that no `makePixmap` has read; it \
+                         keeps its colour",
+                    );
+                }
                 return Ok(Some(word));
             }
         }
@@ -172,8 +186,17 @@ impl<'a> Parser<'a> {
                 self.number(word, "a number")?;
             }
             "texture" => {
-                self.number(word, "a texture number")?;
-                self.ignore_textures(word);
+                let number = self.number(word, "a texture number")?;
+                // The book reads it into an int, dropping the fraction.
+                let texture = number as i32;
+                if !(-3..PIXMAPS as i32).contains(&texture) {
+                    self.warn_once(
+                        word,
+                        "a texture number other than 0 (none), -1 (checkerboard), -2 (wood), \
+                         -3 (marble) or 1 to 15 (a pixmap) gives no texture",
+                    );
+                }
+                self.build.material.texture = texture;
             }
             "parameters" => {
                 let count = self.number(word, "how many parameters follow")?;
@@ -183,15 +206,16 @@ impl<'a> Parser<'a> {
                         format!("`parameters` takes 0 to {MAX_PARAMETERS} numbers, not {count}"),
                     ));
                 }
+                let mut parameters = Vec::with_capacity(count as usize);
                 for _ in 0..count as usize {
-                    self.number(word, "a parameter")?;
+                    parameters.push(self.number(word, "a parameter")?);
                 }
-                self.ignore_textures(word);
+                self.build.material.parameters = parameters;
             }
-            "makePixmap" => {
-                self.number(word, "a pixmap number")?;
-                self.word(word, "a BMP file name")?;
-                self.ignore_textures(word);
+            "makePixmap" => self.make_pixmap(word)?,
+            "backgroundImage" => {
+                let name = self.word(word, "an image file name")?;
+                self.build.scene.background_image = self.image_beside(&name, "background image");
             }
             "defaultMaterials" => self.build.material = SdlMaterial::default(),
             "translate" => {
@@ -226,6 +250,14 @@ impl<'a> Parser<'a> {
             "taperedCylinder" => {
                 let top = self.number(word, "the small radius")?;
                 return self.shape(word, solids::tapered_cylinder(top));
+            }
+            "taperedTube" => {
+                let top = self.number(word, "the small radius")?;
+                let thickness = self.number(word, "the wall's thickness")?;
+                let result = solids::tapered_tube(top, thickness)
+                    .and_then(|(solid, hole)| self.build.hollow(solid, hole));
+                result.map_err(|e| self.tokens.error(word, e))?;
+                return Ok(true);
             }
             "square" => return self.shape(word, solids::square()),
             "plane" => return self.shape(word, solids::plane()),
@@ -349,18 +381,8 @@ impl<'a> Parser<'a> {
     /// `mesh FILE`: a `.3vn` file beside the scene file. A missing file is a warning, once.
     fn mesh_file(&mut self, word: &Word<'a>) -> Result<(), SceneError> {
         let name = self.word(word, "a .3vn file name")?;
-        let path = self.files.path(name.text());
-        let bytes = match self.files.read(&path) {
-            Ok(bytes) => bytes,
-            Err(why) => {
-                if !self.missing.iter().any(|m| m == name.text()) {
-                    self.missing.push(name.text().to_string());
-                    let message =
-                        format!("cannot read mesh file {}: {why}; left out", path.display());
-                    self.warn(&name, &message);
-                }
-                return Ok(());
-            }
+        let Some((bytes, path)) = self.read_beside(&name, "mesh") else {
+            return Ok(());
         };
         let mesh = parse_3vn(&ascii_text(&bytes))
             .map_err(|e| self.tokens.error(&name, format!("{}: {e}", path.display())))?;
@@ -369,7 +391,58 @@ impl<'a> Parser<'a> {
             .map_err(|e| self.tokens.error(&name, e))
     }
 
-    /// The error for a keyword raylab reads but cannot make yet.
+    /// `makePixmap N FILE`: reads the image into pixmap N (0 to 15). The other version of the
+    /// book's code writes a third number (the OpenGL texture's name), which is read and not
+    /// needed. A file that cannot be read or decoded is a warning, once, and leaves the pixmap
+    /// empty.
+    fn make_pixmap(&mut self, word: &Word<'a>) -> Result<(), SceneError> {
+        let number = self.number(word, "a pixmap number from 0 to 15")?;
+        if !(number.fract() == 0.0 && (0.0..PIXMAPS as f32).contains(&number)) {
+            let message = format!("pixmaps are numbered 0 to {}, not {number}", PIXMAPS - 1);
+            return Err(self.tokens.error(word, message));
+        }
+        let name = self.word(word, "an image file name")?;
+        if self.tokens.peek().is_some_and(|t| t.parse::<f32>().is_ok()) {
+            self.number(word, "a texture name")?;
+        }
+        self.build.pixmaps[number as usize] = self.image_beside(&name, "pixmap");
+        Ok(())
+    }
+
+    /// The image file `name` names, beside the scene file, decoded; a warning, once, and
+    /// `None` if it cannot be read or decoded.
+    fn image_beside(&mut self, name: &Word, what: &str) -> Option<Arc<TextureImage>> {
+        let (bytes, path) = self.read_beside(name, what)?;
+        match TextureImage::from_bytes(&bytes) {
+            Ok(image) => Some(Arc::new(image)),
+            Err(why) => {
+                let message = format!("cannot decode {what} {}: {why}; left out", path.display());
+                self.warn(name, &message);
+                None
+            }
+        }
+    }
+
+    /// The bytes of the file `name` names, beside the scene file, and its path. A file that
+    /// cannot be read is a warning, the first time it is named, and `None`.
+    fn read_beside(&mut self, name: &Word, what: &str) -> Option<(Cow<'a, [u8]>, PathBuf)> {
+        let path = self.files.path(name.text());
+        match self.files.read(&path) {
+            Ok(bytes) => Some((bytes, path)),
+            Err(why) => {
+                if !self.missing.iter().any(|m| m == name.text()) {
+                    self.missing.push(name.text().to_string());
+                    let message = format!(
+                        "cannot read {what} file {}: {why}; left out",
+                        path.display()
+                    );
+                    self.warn(name, &message);
+                }
+                None
+            }
+        }
+    }
+
     /// `union A B`, `intersection A B`, `difference A B`: the next two objects (each any number
     /// of statements and then one shape, itself maybe a boolean) become the operands.
     fn boolean(&mut self, word: &Word<'a>) -> Result<(), SceneError> {
@@ -416,13 +489,6 @@ impl<'a> Parser<'a> {
 
     fn objects(&self) -> usize {
         self.build.scene.geometry.objects.len()
-    }
-
-    fn ignore_textures(&mut self, word: &Word) {
-        self.warn_once(
-            word,
-            "textures are not supported by raylab's SDL reader yet; ignored",
-        );
     }
 
     /// A warning the first time `message` comes up, and no more.

@@ -23,6 +23,43 @@ pub(crate) fn tapered_cylinder(top_radius: f32) -> Result<Shape, String> {
     TaperedCylinder::new(Vec3::ZERO, Vec3::Z, 1.0, top_radius, true).map(Shape::TaperedCylinder)
 }
 
+/// How far the hole of a tapered tube reaches past the tube's ends, so that the difference
+/// cuts through them cleanly instead of leaving a skin where two caps coincide.
+const TUBE_HOLE_OVERHANG: f32 = 0.01;
+
+/// `taperedTube s t`: the tapered cylinder of radii 1 and `s` with a wall `t` thick, as the
+/// solid and the hole to take out of it. The hole's radius is `t` less than the solid's at every
+/// height; where it would shrink to nothing (a thick wall on a thin end), the hole ends in a
+/// point and the tube is closed there.
+pub(crate) fn tapered_tube(top_radius: f32, thickness: f32) -> Result<(Shape, Shape), String> {
+    if !(thickness > 0.0 && thickness < 1.0) {
+        return Err(format!(
+            "a tapered tube's wall must be thicker than 0 and thinner than its base radius 1, \
+             got {thickness}"
+        ));
+    }
+    let solid = tapered_cylinder(top_radius)?;
+    let hole_radius = |z: f32| (1.0 - thickness) + (top_radius - 1.0) * z;
+    // Where the hole's radius reaches zero, if it does within the overhang.
+    let apex = (1.0 - thickness) / (1.0 - top_radius);
+    let (mut low, mut high) = (-TUBE_HOLE_OVERHANG, 1.0 + TUBE_HOLE_OVERHANG);
+    if hole_radius(high) < 0.0 {
+        high = apex;
+    }
+    if hole_radius(low) < 0.0 {
+        low = apex;
+    }
+    let (base, top) = (Vec3::Z * low, Vec3::Z * high);
+    let hole = TaperedCylinder::new(
+        base,
+        top,
+        hole_radius(low).max(0.0),
+        hole_radius(high).max(0.0),
+        true,
+    )?;
+    Ok((solid, Shape::TaperedCylinder(hole)))
+}
+
 /// The book's torus (GLUT's `glutSolidTorus(0.2, 1.0, …)`): a ring of radius 1 around the z
 /// axis, its tube of radius 0.2. raylab's torus rings the y axis, so it comes with the frame
 /// that turns y into z (a quarter turn about x).

@@ -102,6 +102,7 @@ pub(crate) fn build_scene(
         materials: builder.materials,
         material_names: builder.names,
         textures,
+        background_image: None,
         geometry: builder.geometry,
         warnings: builder.warnings,
     })
@@ -264,9 +265,6 @@ fn build_texture(
             };
             let bytes = files.read(&path).map_err(fail)?;
             let image = TextureImage::from_bytes(&bytes).map_err(fail)?;
-            if image.width == 0 || image.height == 0 {
-                return Err(fail("the image has no pixels".into()));
-            }
             Texture::Image {
                 image: Arc::new(image),
                 wrap: match wrap {
@@ -274,6 +272,7 @@ fn build_texture(
                     Some(WrapFile::Clamp) => Wrap::Clamp,
                 },
                 scale: scale.map_or(Vec2::ONE, |Exact([u, v])| Vec2::new(u.0, v.0)),
+                offset: Vec2::ZERO,
             }
         }
     })

@@ -107,7 +107,7 @@ pub enum TextureFile {
         v_count: Option<Positive>,
     },
     Image {
-        /// PNG or JPEG, relative to the scene file's folder.
+        /// PNG, JPEG or BMP, relative to the scene file's folder.
         file: Spanned<String>,
         wrap: Option<WrapFile>,
         /// `[su, sv]`: how many times the image repeats across texture space.

@@ -31,7 +31,7 @@ mod tests {
 
     #[test]
     fn the_centre_of_the_image_hits_what_the_camera_looks_at() {
-        let loaded = source::load(None).unwrap();
+        let loaded = source::load(None, None).unwrap();
         let camera = loaded.scene.camera;
         let size = (64, 48);
         let centre =
@@ -43,7 +43,7 @@ mod tests {
 
     #[test]
     fn a_ray_into_the_sky_hits_nothing() {
-        let loaded = source::load(None).unwrap();
+        let loaded = source::load(None, None).unwrap();
         let camera = loaded.scene.camera;
         // The top-left corner of a very wide view looks up past everything.
         let mut spec = camera.spec;

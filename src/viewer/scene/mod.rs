@@ -9,6 +9,7 @@ pub mod watch;
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use raylab::formats::SceneFormat;
 use raylab::inspect::DebugView;
 use raylab::settings::SettingsOverrides;
 use winit::event_loop::EventLoopProxy;
@@ -62,6 +63,9 @@ pub struct SceneSlot {
     /// The scene file asked for last (watched even while it fails to load); `None` for the
     /// built-in default scene.
     requested: Option<PathBuf>,
+    /// The command line's scene file and the format it said to read it in (`--format`),
+    /// whenever that file is loaded; other files are read in the format their names say.
+    format: Option<(PathBuf, SceneFormat)>,
     /// The scene files beside the requested one, for quick switching.
     files_beside: Vec<PathBuf>,
     watcher: Option<SceneWatcher>,
@@ -76,9 +80,11 @@ pub struct SceneSlot {
 }
 
 impl SceneSlot {
-    /// Nothing loaded yet; `first` is the scene to load first (the default scene for `None`).
+    /// Nothing loaded yet; `first` is the scene to load first (the default scene for `None`),
+    /// read in `format` if given.
     pub fn new(
         first: Option<PathBuf>,
+        format: Option<SceneFormat>,
         overrides: SettingsOverrides,
         view: DebugView,
         proxy: EventLoopProxy<UserEvent>,
@@ -87,6 +93,7 @@ impl SceneSlot {
             state: SceneState::Loading,
             overrides,
             view,
+            format: first.clone().zip(format),
             requested: first,
             files_beside: Vec::new(),
             watcher: None,
@@ -122,7 +129,12 @@ impl SceneSlot {
         self.requested = path.clone();
         self.files_beside = source::scene_files_beside(path.as_deref());
         let (proxy, generation) = (self.proxy.clone(), self.generation);
-        source::spawn_load(path, move |result| {
+        let format = self
+            .format
+            .as_ref()
+            .filter(|(file, _)| path.as_ref() == Some(file))
+            .map(|&(_, format)| format);
+        source::spawn_load(path, format, move |result| {
             let result = result.map(Box::new);
             let _ = proxy.send_event(UserEvent::Loaded { generation, result });
         });

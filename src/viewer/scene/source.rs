@@ -7,8 +7,9 @@ use std::time::{Duration, Instant};
 
 use raylab::aabb::Aabb;
 use raylab::bvh::Bvh;
-use raylab::formats::load_any;
+use raylab::formats::nff::NffLighting;
 use raylab::formats::toml::{default_scene, load_scene};
+use raylab::formats::{SceneFormat, load_any_as};
 use raylab::scene::Scene;
 
 /// A scene ready to trace, with where it came from.
@@ -34,13 +35,13 @@ impl LoadedScene {
 }
 
 /// Reads the scene at `path` (a TOML, NFF or SDL file, or an `spd:NAME[:SIZE]` name; the default
-/// scene for `None`) and builds its BVH. The error is the loader's message
-/// (`file:line:column: message`).
-pub fn load(path: Option<&Path>) -> Result<LoadedScene, String> {
+/// scene for `None`) in `format`, or the one its name says, and builds its BVH. The error is the
+/// loader's message (`file:line:column: message`).
+pub fn load(path: Option<&Path>, format: Option<SceneFormat>) -> Result<LoadedScene, String> {
     let start = Instant::now();
     let scene = match path {
         Some(path) => match path.to_str() {
-            Some(name) => load_any(name),
+            Some(name) => load_any_as(name, NffLighting::default(), format),
             None => load_scene(path),
         },
         None => default_scene(),
@@ -60,11 +61,12 @@ pub fn load(path: Option<&Path>) -> Result<LoadedScene, String> {
 /// Loads on a new thread and hands the result to `done` there.
 pub fn spawn_load(
     path: Option<PathBuf>,
+    format: Option<SceneFormat>,
     done: impl FnOnce(Result<LoadedScene, String>) + Send + 'static,
 ) {
     let spawned = std::thread::Builder::new()
         .name("scene loader".into())
-        .spawn(move || done(load(path.as_deref())));
+        .spawn(move || done(load(path.as_deref(), format)));
     if let Err(e) = spawned {
         eprintln!("error: cannot start the scene loader thread: {e}");
     }
@@ -106,7 +108,7 @@ mod tests {
 
     #[test]
     fn the_default_scene_loads_with_finite_bounds() {
-        let loaded = load(None).unwrap();
+        let loaded = load(None, None).unwrap();
         assert!(loaded.path.is_none());
         assert!(loaded.bounds.min.is_finite() && loaded.bounds.max.is_finite());
         assert!(!loaded.scene.lights.is_empty());
@@ -114,13 +116,15 @@ mod tests {
 
     #[test]
     fn spd_names_load_too() {
-        let loaded = load(Some(Path::new("spd:balls:1"))).unwrap();
+        let loaded = load(Some(Path::new("spd:balls:1")), None).unwrap();
         assert!(!loaded.scene.geometry.objects.is_empty());
     }
 
     #[test]
     fn a_missing_file_is_an_error_naming_it() {
-        let err = load(Some(Path::new("/no/such/scene.toml"))).err().unwrap();
+        let err = load(Some(Path::new("/no/such/scene.toml")), None)
+            .err()
+            .unwrap();
         assert!(err.contains("/no/such/scene.toml"), "{err}");
     }
 

@@ -227,7 +227,7 @@ mod tests {
 
     #[test]
     fn a_pick_is_traced_again_when_the_camera_moves_and_dropped_outside_the_image() {
-        let scene = Arc::new(source::load(None).unwrap());
+        let scene = Arc::new(source::load(None, None).unwrap());
         let mut controls = Controls::from_scene(&scene.scene);
         (controls.settings.width, controls.settings.height) = (32, 32);
         let mut picked = PickedPixel::start(1, || {}).unwrap();

@@ -240,7 +240,7 @@ mod tests {
 
     #[test]
     fn a_job_renders_every_pass_into_its_film() {
-        let scene = Arc::new(source::load(None).unwrap());
+        let scene = Arc::new(source::load(None, None).unwrap());
         let worker = Worker::start(2).unwrap();
         let j = job(&scene, 32);
         let (film, report, control) = (j.film.clone(), j.report.clone(), j.control.clone());
@@ -257,7 +257,7 @@ mod tests {
 
     #[test]
     fn a_cancelled_job_stops_and_the_next_one_runs() {
-        let scene = Arc::new(source::load(None).unwrap());
+        let scene = Arc::new(source::load(None, None).unwrap());
         let worker = Worker::start(1).unwrap();
         let first = job(&scene, 1024);
         let (first_control, first_report) = (first.control.clone(), first.report.clone());
@@ -272,8 +272,8 @@ mod tests {
 
     #[test]
     fn a_failing_tracer_is_reported_and_the_worker_goes_on() {
-        let good = Arc::new(source::load(None).unwrap());
-        let mut broken = source::load(None).unwrap();
+        let good = Arc::new(source::load(None, None).unwrap());
+        let mut broken = source::load(None, None).unwrap();
         // An object whose material does not exist makes the tracer index out of bounds.
         for object in &mut broken.scene.geometry.objects {
             object.material = 9999;

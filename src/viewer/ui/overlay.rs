@@ -248,7 +248,7 @@ mod tests {
 
     #[test]
     fn the_eye_ray_lands_on_its_pixel_and_blocked_shadow_rays_are_marked() {
-        let mut loaded = source::load(None).unwrap();
+        let mut loaded = source::load(None, None).unwrap();
         let size = 32;
         (loaded.scene.settings.width, loaded.scene.settings.height) = (size, size);
         let tracer = Tracer::new(&loaded.scene, &loaded.bvh);

@@ -228,7 +228,7 @@ mod tests {
 
     #[test]
     fn the_headings_follow_the_tree_indented_by_depth() {
-        let mut loaded = source::load(None).unwrap();
+        let mut loaded = source::load(None, None).unwrap();
         (loaded.scene.settings.width, loaded.scene.settings.height) = (24, 24);
         let tracer = Tracer::new(&loaded.scene, &loaded.bvh);
         let trees = (0..24).flat_map(|y| (0..24).map(move |x| (x, y)));
