@@ -1094,3 +1094,59 @@ fn degenerate_shapes_are_errors_at_the_object() {
         "min",
     );
 }
+
+/// A spot light whose keys after `position` are `keys`, one per line from line 4.
+fn spot_scene(keys: &str) -> String {
+    format!("[[lights]]\ntype = \"spot\"\nposition = [0, 4, 0]\n{keys}\n")
+}
+
+#[test]
+fn spot_lights_are_read_with_their_cone() {
+    let scene = parse(&spot_scene(
+        "direction = [0, -2, 0]\nangle = 30\nfalloff = 5\ncolor = [1, 0.5, 0]\nintensity = 2",
+    ))
+    .unwrap();
+    let [Light::Spot(spot)] = scene.lights[..] else {
+        panic!("{:?}", scene.lights)
+    };
+    assert_eq!(spot.position, Vec3::new(0.0, 4.0, 0.0));
+    assert_eq!(spot.direction, -Vec3::Y, "the direction is normalised");
+    assert_eq!(spot.cos_angle, 30f32.to_radians().cos());
+    assert_eq!(spot.cos_full, 25f32.to_radians().cos());
+    assert_eq!(spot.color, Color::new(2.0, 1.0, 0.0));
+    // Without a falloff the edge is hard.
+    let hard = parse(&spot_scene("direction = [0, -1, 0]\nangle = 90")).unwrap();
+    let [Light::Spot(hard)] = hard.lights[..] else {
+        panic!()
+    };
+    assert_eq!(hard.cos_full, hard.cos_angle);
+}
+
+#[test]
+fn spot_light_mistakes_are_errors_at_their_value() {
+    assert_error(
+        &spot_scene("direction = [0, 0, 0]\nangle = 30"),
+        4,
+        13,
+        "expected a direction",
+    );
+    for (angle, column) in [("0", 9), ("-10", 9), ("90.5", 9), ("nan", 9)] {
+        assert_error(
+            &spot_scene(&format!("direction = [0, -1, 0]\nangle = {angle}")),
+            5,
+            column,
+            "angle (the half-angle of its cone, in degrees) must be more than 0 and at most 90",
+        );
+    }
+    for falloff in ["-1", "30.5", "inf"] {
+        assert_error(
+            &spot_scene(&format!(
+                "direction = [0, -1, 0]\nangle = 30\nfalloff = {falloff}"
+            )),
+            6,
+            11,
+            "falloff (the degrees of soft edge inside its angle) must be from 0 to the angle, 30",
+        );
+    }
+    assert_error(&spot_scene("angle = 30"), 1, 1, "missing field `direction`");
+}

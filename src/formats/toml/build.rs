@@ -19,7 +19,7 @@ use crate::color::Color;
 use crate::formats::SceneFiles;
 use crate::formats::obj::{ObjError, load_obj};
 use crate::formats::{SceneError, Source};
-use crate::light::Light;
+use crate::light::{Light, Spot};
 use crate::limits;
 use crate::material::Material;
 use crate::mesh::{Mesh, MeshError};
@@ -51,7 +51,11 @@ pub(crate) fn build_scene(
 ) -> Result<Scene, SceneError> {
     let settings = build_settings(file.render, source)?;
     let camera = build_camera(file.camera, CameraSpec::default(), source)?;
-    let lights = file.lights.into_iter().map(build_light).collect();
+    let lights = file
+        .lights
+        .into_iter()
+        .map(|light| build_light(light, source))
+        .collect::<Result<_, _>>()?;
 
     let texture_names = Names::new("texture", file.textures.keys(), 0);
     let material_names = Names::new("material", file.materials.keys(), DEFAULT_MATERIAL + 1);
@@ -206,11 +210,15 @@ pub(super) fn build_camera(
     })
 }
 
-fn build_light(light: LightFile) -> Light {
+/// Largest half-angle of a spot light's cone, in degrees: a cone wider than a half-space
+/// would no longer be a spot.
+const MAX_SPOT_ANGLE: f32 = 90.0;
+
+fn build_light(light: LightFile, source: Source) -> Result<Light, SceneError> {
     let color = |color: Option<ColorValue>, intensity: Option<NonNegative>| {
         color.map_or(Color::ONE, |c| c.0) * intensity.map_or(1.0, |i| i.0)
     };
-    match light {
+    Ok(match light {
         LightFile::Point {
             position,
             color: c,
@@ -227,7 +235,45 @@ fn build_light(light: LightFile) -> Light {
             direction: direction.0,
             color: color(c, intensity),
         },
-    }
+        LightFile::Spot {
+            position,
+            direction,
+            angle,
+            falloff,
+            color: c,
+            intensity,
+        } => {
+            let angle_degrees = *angle.get_ref();
+            if !(angle_degrees > 0.0 && angle_degrees <= MAX_SPOT_ANGLE) {
+                return Err(source.error(
+                    angle.span(),
+                    format!(
+                        "a spot light's angle (the half-angle of its cone, in degrees) must be \
+                         more than 0 and at most {MAX_SPOT_ANGLE}, got {angle_degrees}"
+                    ),
+                ));
+            }
+            let falloff_degrees = falloff.as_ref().map_or(0.0, |f| *f.get_ref());
+            if let Some(falloff) = falloff
+                && !(0.0..=angle_degrees).contains(&falloff_degrees)
+            {
+                return Err(source.error(
+                    falloff.span(),
+                    format!(
+                        "a spot light's falloff (the degrees of soft edge inside its angle) must \
+                         be from 0 to the angle, {angle_degrees}, got {falloff_degrees}"
+                    ),
+                ));
+            }
+            Light::Spot(Spot::new(
+                position.0,
+                direction.0,
+                angle_degrees,
+                falloff_degrees,
+                color(c, intensity),
+            ))
+        }
+    })
 }
 
 fn build_texture(

@@ -89,6 +89,18 @@ pub enum LightFile {
         color: Option<ColorValue>,
         intensity: Option<NonNegative>,
     },
+    /// A point light shining into a cone; see [`crate::light::Spot`].
+    Spot {
+        position: Vector,
+        /// Along the cone's axis, away from the light.
+        direction: Direction,
+        /// Half-angle of the cone in degrees, more than 0 and at most 90.
+        angle: Spanned<f32>,
+        /// Degrees of soft edge inside `angle`, from 0 (a hard edge, the default) to `angle`.
+        falloff: Option<Spanned<f32>>,
+        color: Option<ColorValue>,
+        intensity: Option<NonNegative>,
+    },
 }
 
 /// `[textures.NAME]`.
