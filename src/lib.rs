@@ -12,7 +12,7 @@
 //!   [`transform`], [`limits`], [`memory`], [`output`] (writing files safely), [`camera`] (the
 //!   one place a pixel becomes an eye ray) and [`sampling`] (where a pixel's samples lie).
 //! - The scene: [`shapes`], [`mesh`], [`primitive`], [`material`], [`texture`], [`light`],
-//!   [`settings`] and [`scene::Scene`], which [`formats`] reads from TOML, OBJ, NFF and SPD
+//!   [`medium`] (fog), [`settings`] and [`scene::Scene`], which [`formats`] reads from TOML, OBJ, NFF and SPD
 //!   files (or [`large_mesh`] generates, for benchmarks).
 //! - Tracing: [`bvh::Bvh`] finds what a ray hits; [`whitted`] builds each eye ray's ray tree,
 //!   counts its rays ([`stats`]) and tells a [`whitted::TreeObserver`] what it does.
@@ -35,6 +35,7 @@ pub mod large_mesh;
 pub mod light;
 pub mod limits;
 pub mod material;
+pub mod medium;
 pub mod memory;
 pub mod mesh;
 pub mod output;

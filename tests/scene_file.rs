@@ -14,6 +14,7 @@ use raylab::formats::SceneError;
 use raylab::formats::toml::{DEFAULT_MATERIAL, load_scene, parse_scene};
 use raylab::light::Light;
 use raylab::material::Material;
+use raylab::medium::Atmosphere;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::Shape;
@@ -168,6 +169,7 @@ shadows = false
 reflections = false
 transmission = false
 textures = false
+fog_steps = 12
 
 [camera]
 eye = [0, 2, 8]
@@ -275,6 +277,7 @@ fn full_feature_file_sets_every_setting() {
             reflections: false,
             transmission: false,
             textures: false,
+            fog_steps: 12,
         }
     );
     let spec = scene.camera.spec;
@@ -736,10 +739,10 @@ fn a_missing_or_unknown_type_says_which_kinds_exist() {
         "expected one of `sphere`",
     );
     assert_error(
-        "[[lights]]\ntype = \"spot\"\n",
+        "[[lights]]\ntype = \"area\"\n",
         2,
         8,
-        "`point` or `directional`",
+        "expected one of `point`, `directional`, `spot`",
     );
     assert_error("[textures.t]\ntype = 3\n", 2, 8, "expected a string");
 }
@@ -1149,4 +1152,59 @@ fn spot_light_mistakes_are_errors_at_their_value() {
         );
     }
     assert_error(&spot_scene("angle = 30"), 1, 1, "missing field `direction`");
+}
+
+#[test]
+fn an_atmosphere_is_read_with_defaults_for_what_it_leaves_out() {
+    let scene =
+        parse("[atmosphere]\ndensity = 0.2\nalbedo = 0.5\ncolor = [1, 0.9, 0.8]\n").unwrap();
+    assert_eq!(
+        scene.atmosphere,
+        Atmosphere {
+            density: 0.2,
+            albedo: 0.5,
+            color: Color::new(1.0, 0.9, 0.8),
+        }
+    );
+    let thin = parse("[atmosphere]\ndensity = 0.1\n").unwrap();
+    assert_eq!(
+        thin.atmosphere,
+        Atmosphere {
+            density: 0.1,
+            ..Atmosphere::default()
+        }
+    );
+    assert!(parse("").unwrap().atmosphere.is_clear());
+    assert_eq!(RenderSettings::default().fog_steps, 16);
+}
+
+#[test]
+fn atmosphere_mistakes_are_errors_at_their_value() {
+    assert_error("[atmosphere]\ndensity = -1\n", 2, 11, "zero or more");
+    assert_error(
+        "[atmosphere]\ndensity = 1\nalbedo = 1.5\n",
+        3,
+        10,
+        "from 0 to 1",
+    );
+    assert_error(
+        "[atmosphere]\ndensity = 1\ncolor = [1, -1, 0]\n",
+        3,
+        9,
+        "non-negative",
+    );
+    assert_error(
+        "[atmosphere]\nalbedo = 0.5\n",
+        1,
+        1,
+        "missing field `density`",
+    );
+    assert_error("[atmosphere]\ndensity = 1\ndensty = 1\n", 3, 1, "`density`");
+    assert_error(
+        "[render]\nfog_steps = 0\n",
+        2,
+        13,
+        "fog_steps must be between 1 and 1024",
+    );
+    assert_error("[render]\nfog_steps = 2000\n", 2, 13, "fog_steps");
 }

@@ -5,6 +5,7 @@
 use crate::camera::Camera;
 use crate::light::Light;
 use crate::material::Material;
+use crate::medium::Atmosphere;
 use crate::primitive::{Geometry, Object};
 use crate::settings::RenderSettings;
 use crate::shapes::Shape;
@@ -16,6 +17,8 @@ pub struct Scene {
     pub settings: RenderSettings,
     pub camera: Camera,
     pub lights: Vec<Light>,
+    /// The fog filling the scene; clear air (density 0) when the file has no `[atmosphere]`.
+    pub atmosphere: Atmosphere,
     pub materials: Vec<Material>,
     /// The materials' names, index for index: the scene file's names, "default" for the TOML
     /// reader's default material, "nff #k" for NFF fills, "#k" for materials added by code.
@@ -35,6 +38,7 @@ impl Scene {
             settings,
             camera,
             lights: Vec::new(),
+            atmosphere: Atmosphere::default(),
             materials: Vec::new(),
             material_names: Vec::new(),
             textures: Vec::new(),

@@ -10,8 +10,8 @@ use glam::{Vec2, Vec3};
 use toml::Spanned;
 
 use super::file::{
-    CameraFile, CsgOperationFile, LightFile, MaterialFile, ObjectFile, RenderFile, SceneFile,
-    ShapeFile, TextureFile, TransformStepFile, WrapFile,
+    AtmosphereFile, CameraFile, CsgOperationFile, LightFile, MaterialFile, ObjectFile, RenderFile,
+    SceneFile, ShapeFile, TextureFile, TransformStepFile, WrapFile,
 };
 use super::values::{ColorValue, Direction, Exact, NonNegative, TexCoord, Vector};
 use crate::camera::{Camera, CameraError, CameraSpec};
@@ -22,6 +22,7 @@ use crate::formats::{SceneError, Source};
 use crate::light::{Light, Spot};
 use crate::limits;
 use crate::material::Material;
+use crate::medium::Atmosphere;
 use crate::mesh::{Mesh, MeshError};
 use crate::primitive::{Geometry, Object};
 use crate::scene::Scene;
@@ -56,6 +57,9 @@ pub(crate) fn build_scene(
         .into_iter()
         .map(|light| build_light(light, source))
         .collect::<Result<_, _>>()?;
+    let atmosphere = file
+        .atmosphere
+        .map_or(Atmosphere::default(), build_atmosphere);
 
     let texture_names = Names::new("texture", file.textures.keys(), 0);
     let material_names = Names::new("material", file.materials.keys(), DEFAULT_MATERIAL + 1);
@@ -103,6 +107,7 @@ pub(crate) fn build_scene(
         settings,
         camera,
         lights,
+        atmosphere,
         materials: builder.materials,
         material_names: builder.names,
         textures,
@@ -173,6 +178,7 @@ fn build_settings(render: RenderFile, source: Source) -> Result<RenderSettings, 
     apply(s, render.reflections, |s, v| s.reflections = v, source)?;
     apply(s, render.transmission, |s, v| s.transmission = v, source)?;
     apply(s, render.textures, |s, v| s.textures = v, source)?;
+    apply(s, render.fog_steps, |s, v| s.fog_steps = v, source)?;
     Ok(settings)
 }
 
@@ -274,6 +280,15 @@ fn build_light(light: LightFile, source: Source) -> Result<Light, SceneError> {
             ))
         }
     })
+}
+
+fn build_atmosphere(atmosphere: AtmosphereFile) -> Atmosphere {
+    let clear = Atmosphere::default();
+    Atmosphere {
+        density: atmosphere.density.0,
+        albedo: atmosphere.albedo.map_or(clear.albedo, |a| a.0),
+        color: atmosphere.color.map_or(clear.color, |c| c.0),
+    }
 }
 
 fn build_texture(

@@ -26,6 +26,7 @@ pub struct SceneFile {
     pub camera: Option<Spanned<CameraFile>>,
     #[serde(default)]
     pub lights: Vec<LightFile>,
+    pub atmosphere: Option<AtmosphereFile>,
     /// By name; the scene's textures are numbered in name order.
     #[serde(default)]
     pub textures: BTreeMap<String, TextureFile>,
@@ -60,6 +61,16 @@ pub struct RenderFile {
     /// Older files call it `refractions` (see [`super::retag`]).
     pub transmission: Option<Spanned<bool>>,
     pub textures: Option<Spanned<bool>>,
+    pub fog_steps: Option<Spanned<u32>>,
+}
+
+/// `[atmosphere]`: the fields of [`crate::medium::Atmosphere`]; `density` is required.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AtmosphereFile {
+    pub density: NonNegative,
+    pub albedo: Option<Fraction>,
+    pub color: Option<ColorValue>,
 }
 
 /// `[camera]`: the fields of [`crate::camera::CameraSpec`], each optional.
