@@ -12,8 +12,9 @@
 //!   [`transform`], [`limits`], [`memory`], [`output`] (writing files safely), [`camera`] (the
 //!   one place a pixel becomes an eye ray) and [`sampling`] (where a pixel's samples lie).
 //! - The scene: [`shapes`], [`mesh`], [`primitive`], [`material`], [`texture`] (with
-//!   [`noise`]), [`light`], [`settings`] and [`scene::Scene`], which [`formats`] reads from
-//!   TOML, OBJ, NFF, SPD and SDL files (or [`large_mesh`] generates, for benchmarks).
+//!   [`noise`]), [`light`], [`medium`] (fog), [`settings`] and [`scene::Scene`], which
+//!   [`formats`] reads from TOML, OBJ, NFF, SPD and SDL files (or [`large_mesh`] generates, for
+//!   benchmarks).
 //! - Tracing: [`bvh::Bvh`] finds what a ray hits; [`whitted`] builds each eye ray's ray tree,
 //!   counts its rays ([`stats`]) and tells a [`whitted::TreeObserver`] what it does.
 //! - Rendering: [`progressive`] refines the image pass after pass on all cores into a
@@ -35,6 +36,7 @@ pub mod large_mesh;
 pub mod light;
 pub mod limits;
 pub mod material;
+pub mod medium;
 pub mod memory;
 pub mod mesh;
 pub mod noise;

@@ -16,6 +16,8 @@ pub const MAX_IMAGE_SIDE: u32 = 16384;
 pub const MAX_DEPTH_LIMIT: u32 = 64;
 /// Most samples per pixel.
 pub const MAX_SAMPLES: u32 = 4096;
+/// Most steps along a ray through fog.
+pub const MAX_FOG_STEPS: u32 = 1024;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderSettings {
@@ -38,6 +40,9 @@ pub struct RenderSettings {
     /// Whether transmitted rays are traced (through transparent objects, `kt > 0`).
     pub transmission: bool,
     pub textures: bool,
+    /// Sample points along each ray through fog where the light scattered into it is gathered
+    /// (one shadow ray per light from each); only scenes with an `[atmosphere]` use it.
+    pub fog_steps: u32,
 }
 
 impl Default for RenderSettings {
@@ -55,6 +60,7 @@ impl Default for RenderSettings {
             reflections: true,
             transmission: true,
             textures: true,
+            fog_steps: 16,
         }
     }
 }
@@ -98,6 +104,12 @@ impl RenderSettings {
                 self.samples
             ));
         }
+        if self.fog_steps == 0 || self.fog_steps > MAX_FOG_STEPS {
+            return Err(format!(
+                "fog_steps must be between 1 and {MAX_FOG_STEPS}, got {}",
+                self.fog_steps
+            ));
+        }
         Ok(())
     }
 }
@@ -114,6 +126,7 @@ pub struct SettingsOverrides {
     pub min_weight: Option<f32>,
     pub block_size: Option<u32>,
     pub samples: Option<u32>,
+    pub fog_steps: Option<u32>,
     pub eye: Option<Vec3>,
     pub look_at: Option<Vec3>,
     pub up: Option<Vec3>,
@@ -131,6 +144,7 @@ impl SettingsOverrides {
         s.min_weight = self.min_weight.unwrap_or(s.min_weight);
         s.block_size = self.block_size.unwrap_or(s.block_size);
         s.samples = self.samples.unwrap_or(s.samples);
+        s.fog_steps = self.fog_steps.unwrap_or(s.fog_steps);
         s.validate()
     }
 
@@ -200,12 +214,14 @@ mod tests {
         let overrides = SettingsOverrides {
             width: Some(100),
             min_weight: Some(0.5),
+            fog_steps: Some(4),
             ..SettingsOverrides::default()
         };
         overrides.apply(&mut settings).unwrap();
         let expected = RenderSettings {
             width: 100,
             min_weight: 0.5,
+            fog_steps: 4,
             ..RenderSettings::default()
         };
         assert_eq!(settings, expected, "a width alone keeps the height");

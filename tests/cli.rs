@@ -676,7 +676,7 @@ fn a_signal_during_the_save_leaves_no_temporary_file() {
 }
 
 /// The options that override a scene's settings, shared by `render`, `inspect` and `view`.
-const OVERRIDES: [&str; 7] = [
+const OVERRIDES: [&str; 8] = [
     "--width",
     "--height",
     "--size",
@@ -684,6 +684,7 @@ const OVERRIDES: [&str; 7] = [
     "--min-weight",
     "--block-size",
     "--samples",
+    "--fog-steps",
 ];
 
 /// Each command that renders a scene asserts that its `--help` names every one of `flags`.
@@ -784,6 +785,8 @@ fn the_viewer_takes_every_override_as_render_does() {
             "4",
             "--samples",
             "2",
+            "--fog-steps",
+            "8",
         ],
     ] {
         let out = raylab_without_display(args, dir.path());
@@ -797,6 +800,7 @@ fn the_viewer_takes_every_override_as_render_does() {
         &["--max-depth", "0"],
         &["--block-size", "3"],
         &["--samples", "0"],
+        &["--fog-steps", "0"],
     ] {
         let view = raylab_without_display(&[&["view"][..], bad].concat(), dir.path());
         let render = raylab(

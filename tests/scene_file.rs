@@ -14,6 +14,7 @@ use raylab::formats::SceneError;
 use raylab::formats::toml::{DEFAULT_MATERIAL, load_scene, parse_scene};
 use raylab::light::Light;
 use raylab::material::Material;
+use raylab::medium::Atmosphere;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::Shape;
@@ -170,6 +171,7 @@ shadows = false
 reflections = false
 transmission = false
 textures = false
+fog_steps = 12
 
 [camera]
 eye = [0, 2, 8]
@@ -277,6 +279,7 @@ fn full_feature_file_sets_every_setting() {
             reflections: false,
             transmission: false,
             textures: false,
+            fog_steps: 12,
         }
     );
     let spec = scene.camera.spec;
@@ -738,10 +741,10 @@ fn a_missing_or_unknown_type_says_which_kinds_exist() {
         "expected one of `sphere`",
     );
     assert_error(
-        "[[lights]]\ntype = \"spot\"\n",
+        "[[lights]]\ntype = \"area\"\n",
         2,
         8,
-        "`point` or `directional`",
+        "expected one of `point`, `directional`, `spot`",
     );
     assert_error("[textures.t]\ntype = 3\n", 2, 8, "expected a string");
 }
@@ -1095,4 +1098,115 @@ fn degenerate_shapes_are_errors_at_the_object() {
         1,
         "min",
     );
+}
+
+/// A spot light whose keys after `position` are `keys`, one per line from line 4.
+fn spot_scene(keys: &str) -> String {
+    format!("[[lights]]\ntype = \"spot\"\nposition = [0, 4, 0]\n{keys}\n")
+}
+
+#[test]
+fn spot_lights_are_read_with_their_cone() {
+    let scene = parse(&spot_scene(
+        "direction = [0, -2, 0]\nangle = 30\nfalloff = 5\ncolor = [1, 0.5, 0]\nintensity = 2",
+    ))
+    .unwrap();
+    let [Light::Spot(spot)] = scene.lights[..] else {
+        panic!("{:?}", scene.lights)
+    };
+    assert_eq!(spot.position, Vec3::new(0.0, 4.0, 0.0));
+    assert_eq!(spot.direction, -Vec3::Y, "the direction is normalised");
+    assert_eq!(spot.cos_angle, 30f32.to_radians().cos());
+    assert_eq!(spot.cos_full, 25f32.to_radians().cos());
+    assert_eq!(spot.color, Color::new(2.0, 1.0, 0.0));
+    // Without a falloff the edge is hard.
+    let hard = parse(&spot_scene("direction = [0, -1, 0]\nangle = 90")).unwrap();
+    let [Light::Spot(hard)] = hard.lights[..] else {
+        panic!()
+    };
+    assert_eq!(hard.cos_full, hard.cos_angle);
+}
+
+#[test]
+fn spot_light_mistakes_are_errors_at_their_value() {
+    assert_error(
+        &spot_scene("direction = [0, 0, 0]\nangle = 30"),
+        4,
+        13,
+        "expected a direction",
+    );
+    for (angle, column) in [("0", 9), ("-10", 9), ("90.5", 9), ("nan", 9)] {
+        assert_error(
+            &spot_scene(&format!("direction = [0, -1, 0]\nangle = {angle}")),
+            5,
+            column,
+            "angle (the half-angle of its cone, in degrees) must be more than 0 and at most 90",
+        );
+    }
+    for falloff in ["-1", "30.5", "inf"] {
+        assert_error(
+            &spot_scene(&format!(
+                "direction = [0, -1, 0]\nangle = 30\nfalloff = {falloff}"
+            )),
+            6,
+            11,
+            "falloff (the degrees of soft edge inside its angle) must be from 0 to the angle, 30",
+        );
+    }
+    assert_error(&spot_scene("angle = 30"), 1, 1, "missing field `direction`");
+}
+
+#[test]
+fn an_atmosphere_is_read_with_defaults_for_what_it_leaves_out() {
+    let scene =
+        parse("[atmosphere]\ndensity = 0.2\nalbedo = 0.5\ncolor = [1, 0.9, 0.8]\n").unwrap();
+    assert_eq!(
+        scene.atmosphere,
+        Atmosphere {
+            density: 0.2,
+            albedo: 0.5,
+            color: Color::new(1.0, 0.9, 0.8),
+        }
+    );
+    let thin = parse("[atmosphere]\ndensity = 0.1\n").unwrap();
+    assert_eq!(
+        thin.atmosphere,
+        Atmosphere {
+            density: 0.1,
+            ..Atmosphere::default()
+        }
+    );
+    assert!(parse("").unwrap().atmosphere.is_clear());
+    assert_eq!(RenderSettings::default().fog_steps, 16);
+}
+
+#[test]
+fn atmosphere_mistakes_are_errors_at_their_value() {
+    assert_error("[atmosphere]\ndensity = -1\n", 2, 11, "zero or more");
+    assert_error(
+        "[atmosphere]\ndensity = 1\nalbedo = 1.5\n",
+        3,
+        10,
+        "from 0 to 1",
+    );
+    assert_error(
+        "[atmosphere]\ndensity = 1\ncolor = [1, -1, 0]\n",
+        3,
+        9,
+        "non-negative",
+    );
+    assert_error(
+        "[atmosphere]\nalbedo = 0.5\n",
+        1,
+        1,
+        "missing field `density`",
+    );
+    assert_error("[atmosphere]\ndensity = 1\ndensty = 1\n", 3, 1, "`density`");
+    assert_error(
+        "[render]\nfog_steps = 0\n",
+        2,
+        13,
+        "fog_steps must be between 1 and 1024",
+    );
+    assert_error("[render]\nfog_steps = 2000\n", 2, 13, "fog_steps");
 }

@@ -31,6 +31,9 @@ pub struct OverrideArgs {
     /// Samples per pixel (more than 1 anti-aliases after block size 1).
     #[arg(long)]
     samples: Option<u32>,
+    /// Steps along each ray through fog, each gathering the light the fog scatters into it.
+    #[arg(long)]
+    fog_steps: Option<u32>,
     /// Where the camera's eye is (instead of the scene's camera, or its NAME.camera.toml).
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vector, allow_hyphen_values = true)]
     eye: Option<Vec3>,
@@ -59,6 +62,7 @@ impl From<OverrideArgs> for SettingsOverrides {
             min_weight: args.min_weight,
             block_size: args.block_size,
             samples: args.samples,
+            fog_steps: args.fog_steps,
             eye: args.eye,
             look_at: args.look_at,
             up: args.up,

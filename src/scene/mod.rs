@@ -7,6 +7,7 @@ use std::sync::Arc;
 use crate::camera::Camera;
 use crate::light::Light;
 use crate::material::Material;
+use crate::medium::Atmosphere;
 use crate::primitive::{Geometry, Object};
 use crate::settings::RenderSettings;
 use crate::shapes::Shape;
@@ -18,6 +19,8 @@ pub struct Scene {
     pub settings: RenderSettings,
     pub camera: Camera,
     pub lights: Vec<Light>,
+    /// The fog filling the scene; clear air (density 0) when the file has no `[atmosphere]`.
+    pub atmosphere: Atmosphere,
     pub materials: Vec<Material>,
     /// The materials' names, index for index: the scene file's names, "default" for the TOML
     /// reader's default material, "nff #k" for NFF fills, "#k" for materials added by code.
@@ -42,6 +45,7 @@ impl Scene {
             settings,
             camera,
             lights: Vec::new(),
+            atmosphere: Atmosphere::default(),
             materials: Vec::new(),
             material_names: Vec::new(),
             textures: Vec::new(),

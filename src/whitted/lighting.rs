@@ -33,12 +33,16 @@ impl Tracer<'_> {
         let shadow_origin = offset_origin(surface.point, geometric_normal);
         for (light_index, light) in self.scene.lights.iter().enumerate() {
             let sample = light.sample(surface.point);
-            // A light behind the surface (as seen from the ray's side) adds nothing and needs
-            // no shadow ray.
+            // A light behind the surface (as seen from the ray's side), or a spot turned away
+            // from it, adds nothing and needs no shadow ray.
             let cos_l = normal.dot(sample.dir);
-            if cos_l <= 0.0 || geometric_normal.dot(sample.dir) <= 0.0 {
+            if cos_l <= 0.0
+                || geometric_normal.dot(sample.dir) <= 0.0
+                || sample.color == Color::ZERO
+            {
                 continue;
             }
+            let sample = self.light_through_fog(surface.point, sample);
             let light_color = if settings.shadows {
                 counts.shadow += 1;
                 let shadow_ray = Ray::new(shadow_origin, sample.dir);
@@ -111,7 +115,7 @@ impl Tracer<'_> {
     /// otherwise the product of the transparent blockers' tints (`transparency × colour`, once
     /// per object); and the opaque primitive that ended the search, if one did. `on_blocker`
     /// hears of each primitive met, with its tint.
-    fn transmittance_and_blocker(
+    pub(super) fn transmittance_and_blocker(
         &self,
         ray: &Ray,
         distance: f32,

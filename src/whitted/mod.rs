@@ -5,6 +5,9 @@
 //! `max_depth` is reached, the branch's weight falls below `min_weight` (adaptive depth
 //! control), or the tree has used up its [`RAY_BUDGET`].
 //!
+//! In a scene with fog (`[atmosphere]`), every ray is attenuated by the fog it crosses and
+//! gains the light the fog scatters into it, and shadow rays are attenuated too ([`fog`]).
+//!
 //! Shadow rays try first the primitive that last blocked the same light on the same thread
 //! (the shadow cache of Haines and Greenberg, `shadow_cache`).
 //!
@@ -12,6 +15,7 @@
 //! as it grows. The renderer passes `()`, which compiles away; the inspector
 //! ([`crate::inspect`]) records the tree with the very same code.
 
+mod fog;
 mod lighting;
 mod observer;
 mod scattering;
@@ -24,6 +28,7 @@ use crate::bvh::Bvh;
 use crate::bvh::packet::PACKET_SIZE;
 use crate::color::Color;
 use crate::material::Material;
+use crate::medium::Fog;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
 use crate::scene::Scene;
@@ -46,11 +51,19 @@ pub const RAY_BUDGET: u64 = 1024;
 pub struct Tracer<'a> {
     pub scene: &'a Scene,
     pub bvh: &'a Bvh,
+    /// The scene's fog and the box it fills; `None` in clear air.
+    pub fog: Option<Fog>,
 }
 
 impl<'a> Tracer<'a> {
     pub fn new(scene: &'a Scene, bvh: &'a Bvh) -> Self {
-        Tracer { scene, bvh }
+        let fog = Fog::new(
+            scene.atmosphere,
+            bvh.bounds(),
+            &scene.lights,
+            scene.camera.eye,
+        );
+        Tracer { scene, bvh, fog }
     }
 
     /// The closest hit along `ray` beyond `t_min`.
@@ -105,6 +118,7 @@ impl<'a> Tracer<'a> {
             depth: 1,
             weight: 1.0,
             budget_end: counts.reflected + counts.transmitted + RAY_BUDGET,
+            in_fog: true,
         };
         let color = match hit {
             Some(hit) => {
@@ -113,6 +127,8 @@ impl<'a> Tracer<'a> {
             }
             None => self.miss(ray, observer),
         };
+        let t_end = hit.map_or(f32::INFINITY, |hit| hit.t);
+        let color = self.through_fog(ray, t_end, color, counts, observer);
         observer.done(color);
         color
     }
@@ -132,6 +148,12 @@ impl<'a> Tracer<'a> {
         let color = match hit {
             Some(hit) => self.shade(ray, &hit, branch, counts, observer),
             None => self.miss(ray, observer),
+        };
+        let color = if branch.in_fog {
+            let t_end = hit.map_or(f32::INFINITY, |hit| hit.t);
+            self.through_fog(ray, t_end, color, counts, observer)
+        } else {
+            color
         };
         observer.done(color);
         color
@@ -251,7 +273,11 @@ impl<'a> Tracer<'a> {
                     transmit_weight,
                     scale,
                 );
-                let child = branch.child(transmit_weight);
+                // A ray that enters a surface travels inside the object, where there is no fog.
+                let child = Branch {
+                    in_fog: !entering,
+                    ..branch.child(transmit_weight)
+                };
                 color += scale * self.trace(&transmitted, child, counts, observer);
             }
             _ => {}
@@ -301,6 +327,8 @@ struct Branch {
     /// The tree's budget runs out when the counts of reflected plus transmitted rays reach
     /// this ([`RAY_BUDGET`] past their value when the eye ray started).
     budget_end: u64,
+    /// Whether the ray runs through the fog (if the scene has any): not inside objects.
+    in_fog: bool,
 }
 
 impl Branch {

@@ -63,6 +63,11 @@ pub trait TreeObserver: TraversalCost {
     /// A child ray of kind `branch` with `weight` was not traced, for `reason`.
     #[inline(always)]
     fn cut(&mut self, branch: RayKind, reason: StopReason, weight: f32) {}
+    /// The ray ran through fog: its colour was multiplied by `transmittance` and gained
+    /// `in_scattered`, the light the fog scattered into it. Heard just before `done`, only in
+    /// scenes with fog.
+    #[inline(always)]
+    fn fog(&mut self, transmittance: f32, in_scattered: Color) {}
     /// The ray returns `color` to its parent.
     #[inline(always)]
     fn done(&mut self, color: Color) {}

@@ -10,8 +10,8 @@ use glam::{Vec2, Vec3};
 use toml::Spanned;
 
 use super::file::{
-    CameraFile, CsgOperationFile, LightFile, MaterialFile, ObjectFile, RenderFile, SceneFile,
-    ShapeFile, TextureFile, TransformStepFile, WrapFile,
+    AtmosphereFile, CameraFile, CsgOperationFile, LightFile, MaterialFile, ObjectFile, RenderFile,
+    SceneFile, ShapeFile, TextureFile, TransformStepFile, WrapFile,
 };
 use super::values::{ColorValue, Direction, Exact, NonNegative, TexCoord, Vector};
 use crate::camera::{Camera, CameraError, CameraSpec};
@@ -19,9 +19,10 @@ use crate::color::Color;
 use crate::formats::SceneFiles;
 use crate::formats::obj::{ObjError, load_obj};
 use crate::formats::{SceneError, Source};
-use crate::light::Light;
+use crate::light::{Light, Spot};
 use crate::limits;
 use crate::material::Material;
+use crate::medium::Atmosphere;
 use crate::mesh::{Mesh, MeshError};
 use crate::primitive::{Geometry, Object};
 use crate::scene::Scene;
@@ -51,7 +52,14 @@ pub(crate) fn build_scene(
 ) -> Result<Scene, SceneError> {
     let settings = build_settings(file.render, source)?;
     let camera = build_camera(file.camera, CameraSpec::default(), source)?;
-    let lights = file.lights.into_iter().map(build_light).collect();
+    let lights = file
+        .lights
+        .into_iter()
+        .map(|light| build_light(light, source))
+        .collect::<Result<_, _>>()?;
+    let atmosphere = file
+        .atmosphere
+        .map_or(Atmosphere::default(), build_atmosphere);
 
     let texture_names = Names::new("texture", file.textures.keys(), 0);
     let material_names = Names::new("material", file.materials.keys(), DEFAULT_MATERIAL + 1);
@@ -99,6 +107,7 @@ pub(crate) fn build_scene(
         settings,
         camera,
         lights,
+        atmosphere,
         materials: builder.materials,
         material_names: builder.names,
         textures,
@@ -170,6 +179,7 @@ fn build_settings(render: RenderFile, source: Source) -> Result<RenderSettings, 
     apply(s, render.reflections, |s, v| s.reflections = v, source)?;
     apply(s, render.transmission, |s, v| s.transmission = v, source)?;
     apply(s, render.textures, |s, v| s.textures = v, source)?;
+    apply(s, render.fog_steps, |s, v| s.fog_steps = v, source)?;
     Ok(settings)
 }
 
@@ -207,11 +217,15 @@ pub(super) fn build_camera(
     })
 }
 
-fn build_light(light: LightFile) -> Light {
+/// Largest half-angle of a spot light's cone, in degrees: a cone wider than a half-space
+/// would no longer be a spot.
+const MAX_SPOT_ANGLE: f32 = 90.0;
+
+fn build_light(light: LightFile, source: Source) -> Result<Light, SceneError> {
     let color = |color: Option<ColorValue>, intensity: Option<NonNegative>| {
         color.map_or(Color::ONE, |c| c.0) * intensity.map_or(1.0, |i| i.0)
     };
-    match light {
+    Ok(match light {
         LightFile::Point {
             position,
             color: c,
@@ -228,6 +242,53 @@ fn build_light(light: LightFile) -> Light {
             direction: direction.0,
             color: color(c, intensity),
         },
+        LightFile::Spot {
+            position,
+            direction,
+            angle,
+            falloff,
+            color: c,
+            intensity,
+        } => {
+            let angle_degrees = *angle.get_ref();
+            if !(angle_degrees > 0.0 && angle_degrees <= MAX_SPOT_ANGLE) {
+                return Err(source.error(
+                    angle.span(),
+                    format!(
+                        "a spot light's angle (the half-angle of its cone, in degrees) must be \
+                         more than 0 and at most {MAX_SPOT_ANGLE}, got {angle_degrees}"
+                    ),
+                ));
+            }
+            let falloff_degrees = falloff.as_ref().map_or(0.0, |f| *f.get_ref());
+            if let Some(falloff) = falloff
+                && !(0.0..=angle_degrees).contains(&falloff_degrees)
+            {
+                return Err(source.error(
+                    falloff.span(),
+                    format!(
+                        "a spot light's falloff (the degrees of soft edge inside its angle) must \
+                         be from 0 to the angle, {angle_degrees}, got {falloff_degrees}"
+                    ),
+                ));
+            }
+            Light::Spot(Spot::new(
+                position.0,
+                direction.0,
+                angle_degrees,
+                falloff_degrees,
+                color(c, intensity),
+            ))
+        }
+    })
+}
+
+fn build_atmosphere(atmosphere: AtmosphereFile) -> Atmosphere {
+    let clear = Atmosphere::default();
+    Atmosphere {
+        density: atmosphere.density.0,
+        albedo: atmosphere.albedo.map_or(clear.albedo, |a| a.0),
+        color: atmosphere.color.map_or(clear.color, |c| c.0),
     }
 }
 

@@ -26,6 +26,7 @@ pub struct SceneFile {
     pub camera: Option<Spanned<CameraFile>>,
     #[serde(default)]
     pub lights: Vec<LightFile>,
+    pub atmosphere: Option<AtmosphereFile>,
     /// By name; the scene's textures are numbered in name order.
     #[serde(default)]
     pub textures: BTreeMap<String, TextureFile>,
@@ -60,6 +61,16 @@ pub struct RenderFile {
     /// Older files call it `refractions` (see [`super::retag`]).
     pub transmission: Option<Spanned<bool>>,
     pub textures: Option<Spanned<bool>>,
+    pub fog_steps: Option<Spanned<u32>>,
+}
+
+/// `[atmosphere]`: the fields of [`crate::medium::Atmosphere`]; `density` is required.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AtmosphereFile {
+    pub density: NonNegative,
+    pub albedo: Option<Fraction>,
+    pub color: Option<ColorValue>,
 }
 
 /// `[camera]`: the fields of [`crate::camera::CameraSpec`], each optional.
@@ -86,6 +97,18 @@ pub enum LightFile {
     Directional {
         /// Towards the light.
         direction: Direction,
+        color: Option<ColorValue>,
+        intensity: Option<NonNegative>,
+    },
+    /// A point light shining into a cone; see [`crate::light::Spot`].
+    Spot {
+        position: Vector,
+        /// Along the cone's axis, away from the light.
+        direction: Direction,
+        /// Half-angle of the cone in degrees, more than 0 and at most 90.
+        angle: Spanned<f32>,
+        /// Degrees of soft edge inside `angle`, from 0 (a hard edge, the default) to `angle`.
+        falloff: Option<Spanned<f32>>,
         color: Option<ColorValue>,
         intensity: Option<NonNegative>,
     },

@@ -1,0 +1,143 @@
+//! Fog along the rays of the ray tree (the scene's [`crate::medium::Fog`]): every ray that
+//! runs through it is attenuated by Beer–Lambert and gains the light the fog scatters into it
+//! (single scattering), and light reaching a surface is attenuated on its way from the light.
+//!
+//! The light scattered towards the start of a ray by the fog between `a` and `b` (distances
+//! along the ray) is
+//!
+//! ```text
+//! L_s = ∫ₐᵇ T(s − a) · σ_s · phase · Σ_lights L_light(x(s)) · V(x(s)) · T_light(x(s)) ds
+//! ```
+//!
+//! with `T` the transmittance of the fog, `σ_s` its scattering coefficient (times its colour),
+//! `phase` the isotropic phase function, and for each light what arrives at the point `x(s)`:
+//! its colour `L_light`, `V` what a shadow ray from `x(s)` lets through (0 in shadow, so
+//! shadows cast dark beams) and `T_light` the fog's transmittance along that shadow ray. The
+//! integral is estimated with `fog_steps` stratified samples: the segment is cut into equal
+//! steps and each is sampled at one jittered point. The jitter is a hash of the ray itself, so
+//! a pixel comes out the same whatever thread renders it, and neighbouring pixels' errors
+//! differ, which the eye sees as fine noise rather than bands.
+//!
+//! Rays inside objects (a transmitted ray in a glass ball) are in no fog: the fog fills the
+//! space between objects.
+
+use glam::Vec3;
+
+use super::{Tracer, TreeObserver};
+use crate::color::Color;
+use crate::light::{Light, LightSample};
+use crate::medium::{Fog, FogSegment, ISOTROPIC_PHASE};
+use crate::ray::Ray;
+use crate::sampling::{hash, jitter};
+use crate::stats::RayCounts;
+
+impl Tracer<'_> {
+    /// What reaches the start of `ray` when `color` leaves its point at parameter `t_end` (the
+    /// hit; infinity for the background): `color` attenuated by the fog in between, plus the
+    /// light the fog scatters into the ray. Unchanged without fog.
+    #[inline(always)]
+    pub(super) fn through_fog<O: TreeObserver>(
+        &self,
+        ray: &Ray,
+        t_end: f32,
+        color: Color,
+        counts: &mut RayCounts,
+        observer: &mut O,
+    ) -> Color {
+        let Some(fog) = &self.fog else {
+            return color;
+        };
+        let length = ray.dir.length();
+        let dir = ray.dir / length;
+        let Some(segment) = fog.segment(ray.origin, dir, 0.0, t_end * length) else {
+            observer.fog(1.0, Color::ZERO);
+            return color;
+        };
+        let transmittance = fog.atmosphere.transmittance(segment.length());
+        let in_scattered = self.in_scattered(fog, ray.origin, dir, segment, counts, observer);
+        observer.fog(transmittance, in_scattered);
+        transmittance * color + in_scattered
+    }
+
+    /// The light the fog scatters towards `origin` from the `segment` of the ray along the unit
+    /// vector `dir`: the integral of the module's comment, by stratified sampling.
+    fn in_scattered<O: TreeObserver>(
+        &self,
+        fog: &Fog,
+        origin: Vec3,
+        dir: Vec3,
+        segment: FogSegment,
+        counts: &mut RayCounts,
+        observer: &mut O,
+    ) -> Color {
+        let atmosphere = &fog.atmosphere;
+        let steps = self.scene.settings.fog_steps;
+        let step = segment.length() / steps as f32;
+        let (seed_origin, seed_dir) = (hash_vec3(origin), hash_vec3(dir));
+        let mut gathered = Color::ZERO;
+        for k in 0..steps {
+            let (u, _) = jitter(seed_origin, seed_dir, k);
+            let s = segment.start + (k as f32 + u) * step;
+            let point = origin + dir * s;
+            let mut arriving = Color::ZERO;
+            for light in &self.scene.lights {
+                arriving += self.light_in_fog(fog, light, point, counts, observer);
+            }
+            gathered += atmosphere.transmittance(s - segment.start) * arriving;
+        }
+        gathered * atmosphere.scattering() * (ISOTROPIC_PHASE * step)
+    }
+
+    /// The light of `light` that arrives at `point`, a point in the fog: what a shadow ray lets
+    /// through, attenuated by the fog along it.
+    fn light_in_fog<O: TreeObserver>(
+        &self,
+        fog: &Fog,
+        light: &Light,
+        point: Vec3,
+        counts: &mut RayCounts,
+        observer: &mut O,
+    ) -> Color {
+        let sample = light.sample(point);
+        if sample.color == Color::ZERO {
+            return Color::ZERO;
+        }
+        let passed = if self.scene.settings.shadows {
+            counts.shadow += 1;
+            let shadow_ray = Ray::new(point, sample.dir);
+            let no_record = |_: &_, _| {};
+            self.transmittance_and_blocker(&shadow_ray, sample.distance, observer, no_record)
+                .0
+        } else {
+            Color::ONE
+        };
+        if passed == Color::ZERO {
+            return Color::ZERO;
+        }
+        passed * fogged(fog, point, sample).color
+    }
+
+    /// `sample`, the light arriving at the surface point `point`, attenuated by the fog along
+    /// the shadow ray; unchanged without fog.
+    #[inline(always)]
+    pub(super) fn light_through_fog(&self, point: Vec3, sample: LightSample) -> LightSample {
+        match &self.fog {
+            Some(fog) => fogged(fog, point, sample),
+            None => sample,
+        }
+    }
+}
+
+/// `sample`, the light arriving at `point`, attenuated by `fog` on the way from the light.
+fn fogged(fog: &Fog, point: Vec3, sample: LightSample) -> LightSample {
+    let passed = fog.transmittance(point, sample.dir, 0.0, sample.distance);
+    LightSample {
+        color: sample.color * passed,
+        ..sample
+    }
+}
+
+/// A hash of a vector's bits, to seed the jitter of a ray's samples.
+fn hash_vec3(v: Vec3) -> u32 {
+    hash(v.x.to_bits() ^ hash(v.y.to_bits() ^ hash(v.z.to_bits())))
+}
