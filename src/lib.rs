@@ -41,6 +41,7 @@ pub mod memory;
 pub mod mesh;
 pub mod noise;
 pub mod output;
+pub mod photon;
 pub mod primitive;
 pub mod progressive;
 pub mod ray;

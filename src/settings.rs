@@ -18,6 +18,10 @@ pub const MAX_DEPTH_LIMIT: u32 = 64;
 pub const MAX_SAMPLES: u32 = 4096;
 /// Most steps along a ray through fog.
 pub const MAX_FOG_STEPS: u32 = 1024;
+/// Most caustic photons: a hundred million, a few gigabytes of photon map.
+pub const MAX_CAUSTIC_PHOTONS: u32 = 100_000_000;
+/// Most photons one caustic estimate gathers.
+pub const MAX_CAUSTIC_GATHER: u32 = 512;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderSettings {
@@ -43,6 +47,10 @@ pub struct RenderSettings {
     /// Sample points along each ray through fog where the light scattered into it is gathered
     /// (one shadow ray per light from each); only scenes with an `[atmosphere]` use it.
     pub fog_steps: u32,
+    /// Photons shot for the caustic photon map; 0 turns caustics off.
+    pub caustic_photons: u32,
+    /// Photons each caustic estimate gathers (1 to [`MAX_CAUSTIC_GATHER`]).
+    pub caustic_gather: u32,
 }
 
 impl Default for RenderSettings {
@@ -61,6 +69,8 @@ impl Default for RenderSettings {
             transmission: true,
             textures: true,
             fog_steps: 16,
+            caustic_photons: 0,
+            caustic_gather: 64,
         }
     }
 }
@@ -110,6 +120,18 @@ impl RenderSettings {
                 self.fog_steps
             ));
         }
+        if self.caustic_photons > MAX_CAUSTIC_PHOTONS {
+            return Err(format!(
+                "caustic_photons must be at most {MAX_CAUSTIC_PHOTONS}, got {}",
+                self.caustic_photons
+            ));
+        }
+        if self.caustic_gather == 0 || self.caustic_gather > MAX_CAUSTIC_GATHER {
+            return Err(format!(
+                "caustic_gather must be between 1 and {MAX_CAUSTIC_GATHER}, got {}",
+                self.caustic_gather
+            ));
+        }
         Ok(())
     }
 }
@@ -127,6 +149,8 @@ pub struct SettingsOverrides {
     pub block_size: Option<u32>,
     pub samples: Option<u32>,
     pub fog_steps: Option<u32>,
+    pub caustic_photons: Option<u32>,
+    pub caustic_gather: Option<u32>,
     pub eye: Option<Vec3>,
     pub look_at: Option<Vec3>,
     pub up: Option<Vec3>,
@@ -145,6 +169,8 @@ impl SettingsOverrides {
         s.block_size = self.block_size.unwrap_or(s.block_size);
         s.samples = self.samples.unwrap_or(s.samples);
         s.fog_steps = self.fog_steps.unwrap_or(s.fog_steps);
+        s.caustic_photons = self.caustic_photons.unwrap_or(s.caustic_photons);
+        s.caustic_gather = self.caustic_gather.unwrap_or(s.caustic_gather);
         s.validate()
     }
 

@@ -676,7 +676,7 @@ fn a_signal_during_the_save_leaves_no_temporary_file() {
 }
 
 /// The options that override a scene's settings, shared by `render`, `inspect` and `view`.
-const OVERRIDES: [&str; 8] = [
+const OVERRIDES: [&str; 10] = [
     "--width",
     "--height",
     "--size",
@@ -685,6 +685,8 @@ const OVERRIDES: [&str; 8] = [
     "--block-size",
     "--samples",
     "--fog-steps",
+    "--caustic-photons",
+    "--caustic-gather",
 ];
 
 /// Each command that renders a scene asserts that its `--help` names every one of `flags`.

@@ -172,6 +172,8 @@ reflections = false
 transmission = false
 textures = false
 fog_steps = 12
+caustic_photons = 1000
+caustic_gather = 20
 
 [camera]
 eye = [0, 2, 8]
@@ -280,6 +282,8 @@ fn full_feature_file_sets_every_setting() {
             transmission: false,
             textures: false,
             fog_steps: 12,
+            caustic_photons: 1000,
+            caustic_gather: 20,
         }
     );
     let spec = scene.camera.spec;
@@ -1178,6 +1182,35 @@ fn an_atmosphere_is_read_with_defaults_for_what_it_leaves_out() {
     );
     assert!(parse("").unwrap().atmosphere.is_clear());
     assert_eq!(RenderSettings::default().fog_steps, 16);
+}
+
+#[test]
+fn caustic_settings_are_read_and_checked() {
+    let scene = parse("[render]\ncaustic_photons = 50000\ncaustic_gather = 32\n").unwrap();
+    assert_eq!(
+        (
+            scene.settings.caustic_photons,
+            scene.settings.caustic_gather
+        ),
+        (50000, 32)
+    );
+    let old = parse("").unwrap();
+    assert_eq!(
+        old.settings.caustic_photons, 0,
+        "caustics are off in old scenes"
+    );
+    assert_error(
+        "[render]\ncaustic_gather = 0\n",
+        2,
+        18,
+        "caustic_gather must be between 1 and 512",
+    );
+    assert_error(
+        "[render]\ncaustic_photons = 200000000\n",
+        2,
+        19,
+        "caustic_photons must be at most 100000000",
+    );
 }
 
 #[test]

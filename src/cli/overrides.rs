@@ -34,6 +34,12 @@ pub struct OverrideArgs {
     /// Steps along each ray through fog, each gathering the light the fog scatters into it.
     #[arg(long)]
     fog_steps: Option<u32>,
+    /// Photons shot for caustics (light focused by mirrors and glass); 0 turns them off.
+    #[arg(long)]
+    caustic_photons: Option<u32>,
+    /// Photons each caustic estimate gathers (1 to 512).
+    #[arg(long)]
+    caustic_gather: Option<u32>,
     /// Where the camera's eye is (instead of the scene's camera, or its NAME.camera.toml).
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vector, allow_hyphen_values = true)]
     eye: Option<Vec3>,
@@ -63,6 +69,8 @@ impl From<OverrideArgs> for SettingsOverrides {
             block_size: args.block_size,
             samples: args.samples,
             fog_steps: args.fog_steps,
+            caustic_photons: args.caustic_photons,
+            caustic_gather: args.caustic_gather,
             eye: args.eye,
             look_at: args.look_at,
             up: args.up,

@@ -13,6 +13,7 @@ use raylab::formats::image::{check_image_path, save_image};
 use raylab::formats::nff::NffLighting;
 use raylab::inspect::DebugView;
 use raylab::memory;
+use raylab::photon::caustic_map;
 use raylab::progressive::{self, RenderControl, RenderStats};
 use raylab::settings::{RenderSettings, SettingsOverrides};
 use raylab::whitted::{RAY_BUDGET, Tracer};
@@ -71,6 +72,16 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     let film = Film::new(width, height);
     let control = RenderControl::default();
     let tracer = Tracer::new(&scene, &bvh);
+    let caustics_start = Instant::now();
+    let caustics = match settings.caustic_photons {
+        0 => None,
+        count => Some(pool.install(|| caustic_map(&tracer, count))?),
+    };
+    let caustics_time = caustics_start.elapsed();
+    let tracer = match &caustics {
+        Some(map) => tracer.with_caustics(map),
+        None => tracer,
+    };
     let legend = args.view.legend(&tracer);
     let legend_path = args.output.with_extension("legend.png");
     if legend.is_some() {
@@ -113,6 +124,15 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
             "{}",
             summary(settings, &stats, build_time, &args.output)
         )?;
+        if let Some(map) = &caustics {
+            writeln!(
+                out,
+                "caustics: {} photons shot, {} stored, {:.3} s",
+                map.shot(),
+                map.len(),
+                caustics_time.as_secs_f64()
+            )?;
+        }
         if let Some(legend) = &legend {
             writeln!(out, "{} → {}", legend.to_text(), legend_path.display())?;
         }

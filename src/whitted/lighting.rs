@@ -1,6 +1,7 @@
 //! The local colour at a hit (the lecture's shading model): ambient light, plus the diffuse
-//! (Lambert) and specular (Phong) light of every light that a shadow ray reaches. Transparent
-//! blockers tint the light that passes them.
+//! (Lambert) and specular (Phong) light of every light that a shadow ray reaches, plus, with
+//! caustics on, the diffuse light of the caustic photons nearby. Transparent blockers tint the
+//! light that passes them.
 
 use std::ops::ControlFlow;
 
@@ -10,6 +11,7 @@ use super::shadow_cache;
 use super::{ShadowEvent, Tracer, TreeObserver, reflect};
 use crate::color::Color;
 use crate::material::Material;
+use crate::photon::bends_light;
 use crate::primitive::{Hit, PrimId, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
 use crate::stats::RayCounts;
@@ -72,6 +74,14 @@ impl Tracer<'_> {
                 Color::ZERO
             };
             color += light_color * (diffuse + specular);
+        }
+        if let Some(caustics) = self.caustics
+            && material.diffuse > 0.0
+        {
+            let gather = settings.caustic_gather as usize;
+            let irradiance = caustics.irradiance(surface.point, normal, gather);
+            observer.caustic(irradiance);
+            color += material.diffuse * base * irradiance;
         }
         color
     }
@@ -139,9 +149,13 @@ impl Tracer<'_> {
         (passed, blocker)
     }
 
-    /// What a primitive lets through of the light behind it: `transparency × colour`.
+    /// What a primitive lets through of the light behind it: `transparency × colour`; nothing
+    /// through glass that bends light when the caustic photons bring that light instead.
     fn tint(&self, hit: &Hit) -> Color {
         let material = &self.scene.materials[self.scene.geometry.material(hit) as usize];
+        if self.caustics.is_some() && bends_light(material) {
+            return Color::ZERO;
+        }
         material.transparency * material.color
     }
 }

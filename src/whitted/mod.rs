@@ -29,6 +29,7 @@ use crate::bvh::packet::PACKET_SIZE;
 use crate::color::Color;
 use crate::material::Material;
 use crate::medium::Fog;
+use crate::photon::PhotonMap;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
 use crate::scene::Scene;
@@ -53,6 +54,8 @@ pub struct Tracer<'a> {
     pub bvh: &'a Bvh,
     /// The scene's fog and the box it fills; `None` in clear air.
     pub fog: Option<Fog>,
+    /// The caustic photon map, with caustics on ([`Self::with_caustics`]).
+    pub caustics: Option<&'a PhotonMap>,
 }
 
 impl<'a> Tracer<'a> {
@@ -63,7 +66,22 @@ impl<'a> Tracer<'a> {
             &scene.lights,
             scene.camera.eye,
         );
-        Tracer { scene, bvh, fog }
+        Tracer {
+            scene,
+            bvh,
+            fog,
+            caustics: None,
+        }
+    }
+
+    /// The same tracer adding the light of the caustic photon map `caustics` at diffuse hits,
+    /// and no longer letting shadow rays through glass that bends light (the photons bring
+    /// that light, in the right place).
+    pub fn with_caustics(self, caustics: &'a PhotonMap) -> Self {
+        Tracer {
+            caustics: Some(caustics),
+            ..self
+        }
     }
 
     /// The closest hit along `ray` beyond `t_min`.

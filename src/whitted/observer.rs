@@ -63,6 +63,10 @@ pub trait TreeObserver: TraversalCost {
     /// A child ray of kind `branch` with `weight` was not traced, for `reason`.
     #[inline(always)]
     fn cut(&mut self, branch: RayKind, reason: StopReason, weight: f32) {}
+    /// The diffuse hit gathered `irradiance` from the caustic photon map (only with caustics
+    /// on); the local colour includes it.
+    #[inline(always)]
+    fn caustic(&mut self, irradiance: Color) {}
     /// The ray ran through fog: its colour was multiplied by `transmittance` and gained
     /// `in_scattered`, the light the fog scattered into it. Heard just before `done`, only in
     /// scenes with fog.

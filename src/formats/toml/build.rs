@@ -180,6 +180,18 @@ fn build_settings(render: RenderFile, source: Source) -> Result<RenderSettings, 
     apply(s, render.transmission, |s, v| s.transmission = v, source)?;
     apply(s, render.textures, |s, v| s.textures = v, source)?;
     apply(s, render.fog_steps, |s, v| s.fog_steps = v, source)?;
+    apply(
+        s,
+        render.caustic_photons,
+        |s, v| s.caustic_photons = v,
+        source,
+    )?;
+    apply(
+        s,
+        render.caustic_gather,
+        |s, v| s.caustic_gather = v,
+        source,
+    )?;
     Ok(settings)
 }
 

@@ -62,6 +62,8 @@ pub struct RenderFile {
     pub transmission: Option<Spanned<bool>>,
     pub textures: Option<Spanned<bool>>,
     pub fog_steps: Option<Spanned<u32>>,
+    pub caustic_photons: Option<Spanned<u32>>,
+    pub caustic_gather: Option<Spanned<u32>>,
 }
 
 /// `[atmosphere]`: the fields of [`crate::medium::Atmosphere`]; `density` is required.
