@@ -333,6 +333,51 @@ fn the_viewer_reads_a_scene_in_the_format_given_whatever_its_name() {
 }
 
 #[test]
+fn caustics_sharpen_while_the_view_is_still_and_a_camera_move_reuses_the_photons() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("caustic.toml");
+    std::fs::write(
+        &path,
+        "[render]\ncaustic_photons = 5000\n[camera]\neye = [0, 3, 6]\nlook_at = [0, 0.5, 0]\n\
+         [[lights]]\ntype = \"spot\"\nposition = [-2, 5, -2]\ndirection = [2, -5, 2]\n\
+         angle = 30\nintensity = 30\n[materials.glass]\ndiffuse = 0\ntransparency = 1\n\
+         ior = 1.5\n[[objects]]\ntype = \"plane\"\nnormal = [0, 1, 0]\n[[objects]]\n\
+         type = \"sphere\"\ncenter = [0, 1, 0]\nradius = 1\nmaterial = \"glass\"\n",
+    )
+    .unwrap();
+    let Some((run, _)) = run_to_screenshot(
+        dir.path(),
+        &[
+            path.to_str().unwrap(),
+            "--size",
+            "64",
+            "--stats",
+            "--script",
+            "wait; orbit 20 0; wait",
+        ],
+    ) else {
+        return;
+    };
+    let stats = &run.stderr;
+    // The first view: a new map, then a round at a time up to 8 × 5000 photons.
+    let (first, after_move) = stats
+        .rsplit_once("stats: first image")
+        .expect("two views were rendered");
+    assert_eq!(
+        first.matches("caustics: new map, 5000 photons").count(),
+        1,
+        "{stats}"
+    );
+    assert!(
+        first.contains("caustics: sharpened, 40000 photons"),
+        "{stats}"
+    );
+    assert!(!first.contains("45000 photons"), "{stats}");
+    // The camera moved: the same photons serve, none are shot.
+    assert!(!after_move.contains("caustics:"), "{stats}");
+}
+
+#[test]
 fn the_viewer_takes_a_width_and_height_as_render_does() {
     let dir = tempfile::tempdir().unwrap();
     let Some((run, _)) = run_to_screenshot(

@@ -4,6 +4,8 @@
 
 use std::time::{Duration, Instant};
 
+use crate::viewer::tracing::caustics::Shot;
+
 /// How often the frame rate is printed.
 const LOG_EVERY: Duration = Duration::from_secs(2);
 
@@ -77,6 +79,19 @@ impl Timing {
             eprintln!(
                 "stats: first image (block size {block_size}) {:.1} ms after the change",
                 ms(after)
+            );
+        }
+    }
+
+    /// Caustic photons were shot for a render.
+    pub fn caustics(&mut self, shot: &Shot) {
+        if self.enabled {
+            let what = if shot.new_map { "new map" } else { "sharpened" };
+            eprintln!(
+                "stats: caustics: {what}, {} photons ({} shot) in {:.1} ms",
+                shot.photons,
+                shot.added,
+                ms(shot.time)
             );
         }
     }

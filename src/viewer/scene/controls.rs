@@ -66,6 +66,7 @@ impl Controls {
             settings: self.settings.clone(),
             light_scale: self.light_scale,
             view: self.view,
+            caustic_round: 0,
         })
     }
 }

@@ -1,7 +1,9 @@
 //! The tracing behind the window: the render worker refining the image, the render in progress,
-//! the scene copies the tracing threads keep, and the picked pixel whose ray tree is traced on
-//! its own thread. [`Tracing`] keeps both in step with the shown scene and its controls.
+//! the scene copies the tracing threads keep, the caustic photon map they share, and the picked
+//! pixel whose ray tree is traced on its own thread. [`Tracing`] keeps both in step with the
+//! shown scene and its controls, and, while they stay still, has the caustics sharpened.
 
+pub mod caustics;
 pub mod picked_pixel;
 pub mod ray_tree_thread;
 pub mod rendering;
@@ -14,9 +16,11 @@ use std::time::Instant;
 use raylab::film::Film;
 use raylab::progressive::{Progress, RenderControl};
 
+use self::caustics::{MAX_ROUNDS, SharedCaustics};
 use self::picked_pixel::PickedPixel;
 use self::rendering::Rendering;
 use self::worker::{Job, JobReport, Outcome, Worker};
+use self::working_scene::TraceSetup;
 use crate::viewer::frame::timing::Timing;
 use crate::viewer::scene::Shown;
 use crate::viewer::ui::status::{RenderStatus, status_line};
@@ -36,8 +40,9 @@ impl Tracing {
     /// Starts the render worker and the ray tree thread (each with `threads` tracing threads,
     /// 0: one per core); `wake` tells the window a ray tree has come.
     pub fn start(threads: usize, wake: impl Fn() + Send + 'static) -> Result<Tracing, String> {
-        let worker = Worker::start(threads)?;
-        let picked = PickedPixel::start(threads, wake)?;
+        let caustics = SharedCaustics::default();
+        let worker = Worker::start(threads, caustics.clone())?;
+        let picked = PickedPixel::start(threads, caustics, wake)?;
         Ok(Tracing {
             worker,
             rendering: None,
@@ -51,6 +56,7 @@ impl Tracing {
     /// them.
     pub fn sync_render(&mut self, shown: &Shown, max_side: u32, changed_at: Instant) -> bool {
         if self.rendering.as_ref().is_some_and(|r| r.renders(shown)) {
+            self.sharpen_caustics(shown, max_side);
             return false;
         }
         let setup = match shown.controls.setup(max_side) {
@@ -61,6 +67,37 @@ impl Tracing {
             }
         };
         self.control_error = None;
+        self.submit(shown, setup, changed_at);
+        true
+    }
+
+    /// Once the image of a view with caustics is done and on screen, renders it again with
+    /// another round of photons in the map, until the map holds [`MAX_ROUNDS`] rounds, starting
+    /// at block size 1 so that the picture only sharpens.
+    fn sharpen_caustics(&mut self, shown: &Shown, max_side: u32) {
+        let Some(r) = &self.rendering else {
+            return;
+        };
+        let done = r.settled && r.report.outcome() == Some(Outcome::Finished);
+        let per_round = r.controls.settings.caustic_photons;
+        if !done || per_round == 0 {
+            return;
+        }
+        let rounds = r.report.photons() / per_round;
+        if rounds >= MAX_ROUNDS {
+            return;
+        }
+        if let Ok(mut setup) = shown.controls.setup(max_side) {
+            setup.caustic_round = rounds;
+            setup.settings.block_size = 1;
+            self.submit(shown, setup, Instant::now());
+        }
+    }
+
+    /// Starts rendering `shown` as `setup` says, on the film of the render before when it has
+    /// the same size.
+    fn submit(&mut self, shown: &Shown, setup: TraceSetup, changed_at: Instant) {
+        let caustic_round = setup.caustic_round;
         let (width, height) = (setup.settings.width, setup.settings.height);
         let film = match &self.rendering {
             // The film is reused at the same size: the new render's first pass paints over
@@ -93,8 +130,8 @@ impl Tracing {
             first_image_shown: false,
             block_one_shown: false,
             settled: false,
+            caustic_round,
         });
-        true
     }
 
     /// Keeps the picked pixel on the shown scene and controls; the error says why the pick was
@@ -120,8 +157,12 @@ impl Tracing {
         }
     }
 
-    /// Notes what a frame just put on screen: the film as it was at `uploaded`, if it was read.
+    /// Notes what a frame just put on screen: the film as it was at `uploaded`, if it was read,
+    /// and the caustic photons shot for it.
     pub fn on_screen(&mut self, uploaded: Option<Progress>, timing: &mut Timing) {
+        if let Some(shot) = self.rendering.as_ref().and_then(|r| r.report.take_shot()) {
+            timing.caustics(&shot);
+        }
         if let (Some(r), Some(progress)) = (&mut self.rendering, uploaded) {
             r.reached_screen(progress, timing);
             if matches!(r.report.outcome(), Some(Outcome::Failed(_))) {
@@ -158,6 +199,7 @@ impl Tracing {
             rays: r.control.rays(),
             elapsed,
             fps,
+            photons: r.report.photons(),
         })
     }
 }

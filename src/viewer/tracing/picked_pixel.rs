@@ -7,6 +7,7 @@
 use std::sync::Arc;
 use std::time::Duration;
 
+use super::caustics::SharedCaustics;
 use super::ray_tree_thread::{Answer, ObjectIds, RayTreeThread, Request, TracedTree};
 use super::working_scene::TraceSetup;
 use crate::viewer::scene::controls::Controls;
@@ -37,8 +38,12 @@ pub struct PickedPixel {
 impl PickedPixel {
     /// Starts the thread (with `threads` threads for the object ids, 0: one per core);
     /// `wake` tells the window an answer has come.
-    pub fn start(threads: usize, wake: impl Fn() + Send + 'static) -> Result<PickedPixel, String> {
-        let thread = RayTreeThread::start(threads, wake)?;
+    pub fn start(
+        threads: usize,
+        caustics: SharedCaustics,
+        wake: impl Fn() + Send + 'static,
+    ) -> Result<PickedPixel, String> {
+        let thread = RayTreeThread::start(threads, caustics, wake)?;
         Ok(PickedPixel {
             pixel: None,
             tree: None,
@@ -230,7 +235,7 @@ mod tests {
         let scene = Arc::new(source::load(None, None).unwrap());
         let mut controls = Controls::from_scene(&scene.scene);
         (controls.settings.width, controls.settings.height) = (32, 32);
-        let mut picked = PickedPixel::start(1, || {}).unwrap();
+        let mut picked = PickedPixel::start(1, SharedCaustics::default(), || {}).unwrap();
         picked.pick((5, 7));
         for eye_shift in [Vec3::ZERO, Vec3::X] {
             controls.camera.eye += eye_shift;

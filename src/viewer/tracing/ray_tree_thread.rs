@@ -12,6 +12,7 @@ use std::time::{Duration, Instant};
 use raylab::camera::Camera;
 use raylab::inspect::{self, RayTree};
 
+use super::caustics::SharedCaustics;
 use super::worker::{low_priority_pool, panic_message};
 use super::working_scene::{TraceSetup, WorkingScene};
 use crate::viewer::scene::source::LoadedScene;
@@ -61,7 +62,12 @@ pub struct RayTreeThread {
 impl RayTreeThread {
     /// Starts the thread (with `threads` threads for the object ids, 0: one per core);
     /// `wake` tells the window an answer has come. The thread ends with its `RayTreeThread`.
-    pub fn start(threads: usize, wake: impl Fn() + Send + 'static) -> Result<Self, String> {
+    /// The trees include the caustics of the render worker's map, borrowed from `caustics`.
+    pub fn start(
+        threads: usize,
+        caustics: SharedCaustics,
+        wake: impl Fn() + Send + 'static,
+    ) -> Result<Self, String> {
         let pool = low_priority_pool(threads, "ray-tree")?;
         let (requests, inbox) = mpsc::channel();
         let (outbox, answers) = mpsc::channel();
@@ -69,7 +75,7 @@ impl RayTreeThread {
         let newest = latest.clone();
         std::thread::Builder::new()
             .name("ray-tree".into())
-            .spawn(move || run(&pool, &inbox, &outbox, &newest, wake))
+            .spawn(move || run(&pool, &inbox, &outbox, &newest, &caustics, wake))
             .map_err(|e| format!("cannot start the ray tree thread: {e}"))?;
         Ok(RayTreeThread {
             requests,
@@ -98,6 +104,7 @@ fn run(
     inbox: &Receiver<Request>,
     outbox: &Sender<Answer>,
     latest: &AtomicU64,
+    caustics: &SharedCaustics,
     wake: impl Fn(),
 ) {
     let mut working = WorkingScene::default();
@@ -105,7 +112,8 @@ fn run(
         if request.key < latest.load(Ordering::Relaxed) {
             continue;
         }
-        let tracer = working.tracer(&request.scene, &request.setup);
+        let map = caustics.current(&request.scene, &request.setup);
+        let tracer = working.tracer(&request.scene, &request.setup, map);
         let size = (request.setup.settings.width, request.setup.settings.height);
         let start = Instant::now();
         let answer = if request.object_ids {

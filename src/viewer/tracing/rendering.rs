@@ -26,6 +26,8 @@ pub struct Rendering {
     pub block_one_shown: bool,
     /// The last pass is on screen (or the render failed): nothing more will come.
     pub settled: bool,
+    /// The rounds of caustic photons added for this view before this render (0: a new view).
+    pub caustic_round: u32,
 }
 
 impl Rendering {
@@ -39,8 +41,13 @@ impl Rendering {
         self.controls.settings.block_size.max(1).ilog2() + 1
     }
 
-    /// Notes what a frame just put on screen: the film as it was at `progress`.
+    /// Notes what a frame just put on screen: the film as it was at `progress`. The renders
+    /// that sharpen caustics are not timed: nothing changed before them.
     pub fn reached_screen(&mut self, progress: Progress, timing: &mut Timing) {
+        if self.caustic_round > 0 {
+            self.settled |= progress.finished;
+            return;
+        }
         let after = self.changed_at.elapsed();
         if !self.first_image_shown && (progress.pass >= 1 || progress.finished) {
             self.first_image_shown = true;

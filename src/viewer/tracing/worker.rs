@@ -4,6 +4,7 @@
 //! sleeps on its channel, so an idle viewer uses no CPU.
 
 use std::panic::AssertUnwindSafe;
+use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
@@ -13,6 +14,7 @@ use raylab::film::Film;
 use raylab::inspect::Legend;
 use raylab::progressive::{self, PassStats, RenderControl};
 
+use super::caustics::{JobMap, SharedCaustics, Shot};
 use super::working_scene::{TraceSetup, WorkingScene};
 use crate::viewer::scene::source::LoadedScene;
 
@@ -42,6 +44,10 @@ pub struct JobReport {
     outcome: Mutex<Option<Outcome>>,
     /// What the colours of the job's debug view mean, for the heat maps.
     legend: Mutex<Option<Legend>>,
+    /// The caustic photons the job shot, if it shot any.
+    caustics: Mutex<Option<Shot>>,
+    /// Photons in the caustic map the job traces with (0: caustics off).
+    photons: AtomicU32,
 }
 
 impl JobReport {
@@ -51,7 +57,19 @@ impl JobReport {
             passes: Mutex::new(Vec::new()),
             outcome: Mutex::new(None),
             legend: Mutex::new(None),
+            caustics: Mutex::new(None),
+            photons: AtomicU32::new(0),
         }
+    }
+
+    /// The caustic photons the job shot (taken: each shot is heard once).
+    pub fn take_shot(&self) -> Option<Shot> {
+        self.caustics.lock().ok().and_then(|mut s| s.take())
+    }
+
+    /// Photons shot for the caustic map the job traces with (0: caustics off).
+    pub fn photons(&self) -> u32 {
+        self.photons.load(Ordering::Relaxed)
     }
 
     /// The passes finished so far.
@@ -90,13 +108,14 @@ pub struct Worker {
 }
 
 impl Worker {
-    /// Starts the worker with `threads` tracing threads (0: one per core).
-    pub fn start(threads: usize) -> Result<Worker, String> {
+    /// Starts the worker with `threads` tracing threads (0: one per core), keeping its caustic
+    /// map in `caustics`.
+    pub fn start(threads: usize, caustics: SharedCaustics) -> Result<Worker, String> {
         let pool = low_priority_pool(threads, "tracer")?;
         let (jobs, inbox) = mpsc::channel();
         let thread = std::thread::Builder::new()
             .name("render worker".into())
-            .spawn(move || run(&pool, &inbox))
+            .spawn(move || run(&pool, &inbox, &caustics))
             .map_err(|e| format!("cannot start the render worker: {e}"))?;
         Ok(Worker {
             jobs: Some(jobs),
@@ -123,8 +142,9 @@ impl Drop for Worker {
     }
 }
 
-/// The worker's loop: take the newest job, render it, repeat; end when the channel closes.
-fn run(pool: &rayon::ThreadPool, inbox: &Receiver<Job>) {
+/// The worker's loop: take the newest job, make or grow its caustic map, render it, repeat; end
+/// when the channel closes.
+fn run(pool: &rayon::ThreadPool, inbox: &Receiver<Job>, caustics: &SharedCaustics) {
     let mut working = WorkingScene::default();
     while let Ok(mut job) = inbox.recv() {
         // Jobs queued behind this one supersede it.
@@ -136,7 +156,31 @@ fn run(pool: &rayon::ThreadPool, inbox: &Receiver<Job>) {
             job.report.finish(Outcome::Cancelled);
             continue;
         }
-        let tracer = working.tracer(&job.scene, &job.setup);
+        let tracer = working.tracer(&job.scene, &job.setup, None);
+        let grown = std::panic::catch_unwind(AssertUnwindSafe(|| {
+            pool.install(|| caustics.grow(&job.scene, &job.setup, &tracer))
+        }));
+        let map = match grown {
+            Ok(Ok(grown)) => grown.map(|JobMap { map, shot }| {
+                job.report
+                    .photons
+                    .store(map.shot() as u32, Ordering::Relaxed);
+                if let Ok(mut s) = job.report.caustics.lock() {
+                    *s = shot;
+                }
+                map
+            }),
+            Ok(Err(e)) => {
+                job.report.finish(Outcome::Failed(e));
+                continue;
+            }
+            Err(panic) => {
+                job.report
+                    .finish(Outcome::Failed(panic_message(panic.as_ref())));
+                continue;
+            }
+        };
+        let tracer = working.tracer(&job.scene, &job.setup, map);
         if let Ok(mut legend) = job.report.legend.lock() {
             *legend = job.setup.view.legend(&tracer);
         }
@@ -217,6 +261,7 @@ mod tests {
                 settings,
                 light_scale: 1.0,
                 view: Default::default(),
+                caustic_round: 0,
             },
             film: Arc::new(Film::new(size, size)),
             control: Arc::new(RenderControl::default()),
@@ -241,7 +286,7 @@ mod tests {
     #[test]
     fn a_job_renders_every_pass_into_its_film() {
         let scene = Arc::new(source::load(None, None).unwrap());
-        let worker = Worker::start(2).unwrap();
+        let worker = Worker::start(2, SharedCaustics::default()).unwrap();
         let j = job(&scene, 32);
         let (film, report, control) = (j.film.clone(), j.report.clone(), j.control.clone());
         worker.submit(j).unwrap();
@@ -258,7 +303,7 @@ mod tests {
     #[test]
     fn a_cancelled_job_stops_and_the_next_one_runs() {
         let scene = Arc::new(source::load(None, None).unwrap());
-        let worker = Worker::start(1).unwrap();
+        let worker = Worker::start(1, SharedCaustics::default()).unwrap();
         let first = job(&scene, 1024);
         let (first_control, first_report) = (first.control.clone(), first.report.clone());
         worker.submit(first).unwrap();
@@ -279,7 +324,7 @@ mod tests {
             object.material = 9999;
         }
         let broken = Arc::new(broken);
-        let worker = Worker::start(1).unwrap();
+        let worker = Worker::start(1, SharedCaustics::default()).unwrap();
         let failing = job(&broken, 16);
         let report = failing.report.clone();
         worker.submit(failing).unwrap();

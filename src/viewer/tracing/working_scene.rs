@@ -1,12 +1,14 @@
 //! The scene as the controls show it: a copy of a loaded scene given the controls' camera,
-//! settings, light intensity and debug view. The threads that trace (the render worker, the ray
-//! tree thread) each keep one, copied once per loaded scene and updated in place for each job, so
-//! that moving the camera copies no geometry.
+//! settings, light intensity and debug view, and the caustic photon map it is traced with. The
+//! threads that trace (the render worker, the ray tree thread) each keep one, copied once per
+//! loaded scene and updated in place for each job, so that moving the camera copies no
+//! geometry.
 
 use std::sync::Arc;
 
 use raylab::camera::Camera;
 use raylab::inspect::DebugView;
+use raylab::photon::PhotonMap;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::whitted::Tracer;
@@ -22,17 +24,28 @@ pub struct TraceSetup {
     pub light_scale: f32,
     /// What the image shows.
     pub view: DebugView,
+    /// The rounds of caustic photons the map holds already, of which the render wants one more
+    /// (see `caustics`): 0 for a new view, which takes the map as it is if it has any.
+    pub caustic_round: u32,
 }
 
 /// A thread's copy of the scene it traces.
 #[derive(Default)]
 pub struct WorkingScene {
     copy: Option<(Arc<LoadedScene>, Scene)>,
+    /// The caustic photon map of the last tracer.
+    caustics: Option<Arc<PhotonMap>>,
 }
 
 impl WorkingScene {
-    /// A tracer for `loaded` as `setup` shows it.
-    pub fn tracer<'a>(&'a mut self, loaded: &Arc<LoadedScene>, setup: &TraceSetup) -> Tracer<'a> {
+    /// A tracer for `loaded` as `setup` shows it, adding the light of the photon map
+    /// `caustics` if given.
+    pub fn tracer<'a>(
+        &'a mut self,
+        loaded: &Arc<LoadedScene>,
+        setup: &TraceSetup,
+        caustics: Option<Arc<PhotonMap>>,
+    ) -> Tracer<'a> {
         if !self
             .copy
             .as_ref()
@@ -51,6 +64,11 @@ impl WorkingScene {
             .iter()
             .map(|l| l.scaled(setup.light_scale))
             .collect();
-        Tracer::new(scene, &loaded.bvh)
+        self.caustics = caustics;
+        let tracer = Tracer::new(scene, &loaded.bvh);
+        match &self.caustics {
+            Some(map) => tracer.with_caustics(map),
+            None => tracer,
+        }
     }
 }

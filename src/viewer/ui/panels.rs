@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use egui::{Color32, DragValue, Slider};
 use raylab::inspect::{DebugView, Legend};
-use raylab::settings::{MAX_BLOCK_SIZE, MAX_DEPTH_LIMIT, MAX_SAMPLES};
+use raylab::settings::{MAX_BLOCK_SIZE, MAX_CAUSTIC_GATHER, MAX_DEPTH_LIMIT, MAX_SAMPLES};
 
 use super::legend_bar;
 use crate::viewer::input::action::Action;
@@ -232,8 +232,24 @@ fn tracing_section(
                 ui.checkbox(&mut s.transmission, "transmission");
                 ui.checkbox(&mut s.textures, "textures");
             });
+            // Caustics: photons shot per round (0 turns them off) and gathered per estimate.
+            ui.add(
+                Slider::new(&mut s.caustic_photons, 0..=CAUSTIC_PHOTONS_SLIDER_MAX)
+                    .logarithmic(true)
+                    .smallest_positive(1000.0)
+                    .text("caustic photons"),
+            );
+            ui.add_enabled(
+                s.caustic_photons > 0,
+                Slider::new(&mut s.caustic_gather, 1..=MAX_CAUSTIC_GATHER)
+                    .logarithmic(true)
+                    .text("photons per estimate"),
+            );
         });
 }
+
+/// The caustic photons per round the slider reaches (a scene file may ask for more).
+const CAUSTIC_PHOTONS_SLIDER_MAX: u32 = 4_000_000;
 
 fn lights_section(ui: &mut egui::Ui, controls: &mut Controls, light_count: usize) {
     egui::CollapsingHeader::new("Lights")

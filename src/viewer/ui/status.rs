@@ -17,6 +17,8 @@ pub struct RenderStatus {
     pub elapsed: Duration,
     /// Frames per second of the window.
     pub fps: f32,
+    /// Photons in the caustic map (0: caustics off).
+    pub photons: u32,
 }
 
 /// Two lines of text.
@@ -54,9 +56,14 @@ pub fn status_line(s: &RenderStatus) -> String {
     } else {
         String::new()
     };
+    let caustics = if s.photons > 0 {
+        format!(" · caustics: {} photons", s.photons)
+    } else {
+        String::new()
+    };
     format!(
-        "{state} · ms per pass: {pass_times}\nrays: {} eye ({} hit), {} shadow, {} reflected, {} \
-         transmitted{over_budget} · {mrays:.2} Mrays/s · {:.0} fps",
+        "{state} · ms per pass: {pass_times}{caustics}\nrays: {} eye ({} hit), {} shadow, {} \
+         reflected, {} transmitted{over_budget} · {mrays:.2} Mrays/s · {:.0} fps",
         r.primary, r.primary_hits, r.shadow, r.reflected, r.transmitted, s.fps
     )
 }
@@ -87,6 +94,7 @@ mod tests {
             },
             elapsed: Duration::from_secs(1),
             fps: 59.6,
+            photons: 0,
         };
         let line = status_line(&s);
         assert!(line.starts_with("pass 2/5 · block 8 · 25%"), "{line}");
@@ -100,6 +108,20 @@ mod tests {
             "{line}"
         );
         assert!(line.contains("2.00 Mrays/s · 60 fps"), "{line}");
+        assert!(!line.contains("caustics"), "{line}");
+    }
+
+    #[test]
+    fn with_caustics_on_the_photon_count_shows() {
+        let s = RenderStatus {
+            photons: 40_000,
+            ..RenderStatus::default()
+        };
+        let line = status_line(&s);
+        assert!(
+            line.contains("ms per pass: – · caustics: 40000 photons\n"),
+            "{line}"
+        );
     }
 
     #[test]
