@@ -84,6 +84,14 @@ fn write_ray(out: &mut String, pad: &str, index: usize, node: &RayNode) {
             let _ = writeln!(out, "{pad}  missed: background");
         }
     }
+    if let Some(fog) = &node.fog {
+        let _ = writeln!(
+            out,
+            "{pad}  fog: transmittance {:.4}, in-scattered light {}",
+            fog.transmittance,
+            vec3(fog.in_scattered)
+        );
+    }
     let _ = writeln!(
         out,
         "{pad}  local {} × factor {} = contribution {}; returns {}",
