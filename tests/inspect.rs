@@ -351,5 +351,9 @@ fn in_fog_each_ray_outside_objects_shows_its_transmittance_and_in_scattered_ligh
     assert!(close(tree.sum_of_contributions(), tree.color, 1e-5));
     // The glass ray's colour reaches the pixel through the eye ray's fog.
     let inside = &tree.nodes[1];
-    assert!(close(inside.factor, eye.transmittance * 0.9 * Color::ONE, 1e-5));
+    assert!(close(
+        inside.factor,
+        eye.transmittance * 0.9 * Color::ONE,
+        1e-5
+    ));
 }

@@ -35,7 +35,8 @@ use crate::stats::RayCounts;
 impl Tracer<'_> {
     /// What reaches the start of `ray` when `color` leaves its point at parameter `t_end` (the
     /// hit; infinity for the background): `color` attenuated by the fog in between, plus the
-    /// light the fog scatters into the ray. Unchanged without fog.
+    /// light the fog scatters into the ray. Unchanged without fog: only this test is inlined
+    /// into the tracer, so that scenes without fog trace as fast as before.
     #[inline(always)]
     pub(super) fn through_fog<O: TreeObserver>(
         &self,
@@ -45,9 +46,23 @@ impl Tracer<'_> {
         counts: &mut RayCounts,
         observer: &mut O,
     ) -> Color {
-        let Some(fog) = &self.fog else {
-            return color;
-        };
+        match &self.fog {
+            Some(fog) => self.through(fog, ray, t_end, color, counts, observer),
+            None => color,
+        }
+    }
+
+    /// [`Self::through_fog`] in `fog`.
+    #[inline(never)]
+    fn through<O: TreeObserver>(
+        &self,
+        fog: &Fog,
+        ray: &Ray,
+        t_end: f32,
+        color: Color,
+        counts: &mut RayCounts,
+        observer: &mut O,
+    ) -> Color {
         let length = ray.dir.length();
         let dir = ray.dir / length;
         let Some(segment) = fog.segment(ray.origin, dir, 0.0, t_end * length) else {
@@ -100,7 +115,7 @@ impl Tracer<'_> {
         counts: &mut RayCounts,
         observer: &mut O,
     ) -> Color {
-        let sample = light.sample(point);
+        let mut sample = light.sample(point);
         if sample.color == Color::ZERO {
             return Color::ZERO;
         }
@@ -116,27 +131,24 @@ impl Tracer<'_> {
         if passed == Color::ZERO {
             return Color::ZERO;
         }
-        passed * fogged(fog, point, sample).color
+        dim(fog, point, &mut sample);
+        passed * sample.color
     }
 
-    /// `sample`, the light arriving at the surface point `point`, attenuated by the fog along
-    /// the shadow ray; unchanged without fog.
+    /// Dims `sample`, the light arriving at the surface point `point`, by the fog along the
+    /// shadow ray; leaves it without fog (only this test is inlined into the shading).
     #[inline(always)]
-    pub(super) fn light_through_fog(&self, point: Vec3, sample: LightSample) -> LightSample {
-        match &self.fog {
-            Some(fog) => fogged(fog, point, sample),
-            None => sample,
+    pub(super) fn dim_by_fog(&self, point: Vec3, sample: &mut LightSample) {
+        if let Some(fog) = &self.fog {
+            dim(fog, point, sample);
         }
     }
 }
 
-/// `sample`, the light arriving at `point`, attenuated by `fog` on the way from the light.
-fn fogged(fog: &Fog, point: Vec3, sample: LightSample) -> LightSample {
-    let passed = fog.transmittance(point, sample.dir, 0.0, sample.distance);
-    LightSample {
-        color: sample.color * passed,
-        ..sample
-    }
+/// Dims `sample`, the light arriving at `point`, by `fog` on its way from the light.
+#[inline(never)]
+fn dim(fog: &Fog, point: Vec3, sample: &mut LightSample) {
+    sample.color *= fog.transmittance(point, sample.dir, 0.0, sample.distance);
 }
 
 /// How a light's sample points are spread along a fog segment. Each sample at distance `s`
