@@ -102,6 +102,20 @@ fn light_reaching_a_surface_is_dimmed_on_its_way_from_the_light() {
     assert_close(see(&foggy, -Vec3::Z), Color::splat(expected), 1e-5);
 }
 
+#[test]
+fn a_directional_lights_light_is_dimmed_from_where_it_enters_the_fog() {
+    // Without point lights the fog's box runs from the wall (z = −5) to the eye (z = 0): light
+    // from straight ahead crosses five units of it to reach the wall, and five more back.
+    let lit_wall = "color = [1, 1, 1]\nambient = 0\ndiffuse = 1\nspecular = 0";
+    let light = "[[lights]]\ntype = \"directional\"\ndirection = [0, 0, 1]";
+    let foggy = scene(
+        lit_wall,
+        &format!("{light}\n[atmosphere]\ndensity = {DENSITY}\nalbedo = 0"),
+    );
+    let expected = (-DENSITY * (5.0 + 5.0)).exp();
+    assert_close(see(&foggy, -Vec3::Z), Color::splat(expected), 1e-5);
+}
+
 /// The light scattered towards the origin by the fog along the ray to the black wall, with
 /// nothing in the way of the light, which sends `arriving(point)` to each point (before the fog
 /// between): the integral of `T(s) · σ_s · colour · 1/(4π) · arriving · T_light(s)` over the
