@@ -20,8 +20,9 @@ const BACKGROUND: Color = Color::new(0.2, 0.4, 0.8);
 const WALL: Color = Color::new(0.5, 0.25, 1.0);
 
 /// A wall, the triangle (−5, −5, −5), (5, −5, −5), (0, 5, −5) facing +z, five units in front of
-/// the eye at the origin, and the `rest` of a scene file. The fog fills the box around the
-/// wall, the eye and the lights: with a point light at (0, 0, 5), from (−5, −5, −5) to (5, 5, 5).
+/// the eye at the origin, and the `rest` of a scene file. The fog fills the ball around the box
+/// of the wall, the eye and the lights: with a point light at (0, 0, 5), the box from
+/// (−5, −5, −5) to (5, 5, 5) and the ball of radius 5·√3 around the origin.
 fn scene(wall: &str, rest: &str) -> Scene {
     let text = format!(
         r#"
@@ -82,11 +83,12 @@ fn what_lies_at_distance_d_is_dimmed_by_exp_minus_sigma_d() {
     );
     let t5 = (-DENSITY * 5.0).exp();
     assert_close(see(&foggy, -Vec3::Z), WALL * t5, 1e-5);
-    // The background, seen through the five units of fog up to where the ray leaves the box.
-    assert_close(see(&foggy, Vec3::X), BACKGROUND * t5, 1e-5);
-    // Diagonally towards the corner (5, 5, 5) of the box: 5·√3 of fog.
-    let t_diagonal = (-DENSITY * 5.0 * 3f32.sqrt()).exp();
-    assert_close(see(&foggy, Vec3::ONE), BACKGROUND * t_diagonal, 1e-5);
+    // The background, seen through the fog up to where the ray leaves the ball, 5·√3 away in
+    // every direction.
+    let t_ball = (-DENSITY * 5.0 * 3f32.sqrt()).exp();
+    for dir in [Vec3::X, Vec3::ONE, Vec3::new(-1.0, 2.0, 0.5)] {
+        assert_close(see(&foggy, dir), BACKGROUND * t_ball, 1e-5);
+    }
 }
 
 #[test]
@@ -104,15 +106,17 @@ fn light_reaching_a_surface_is_dimmed_on_its_way_from_the_light() {
 
 #[test]
 fn a_directional_lights_light_is_dimmed_from_where_it_enters_the_fog() {
-    // Without point lights the fog's box runs from the wall (z = −5) to the eye (z = 0): light
-    // from straight ahead crosses five units of it to reach the wall, and five more back.
+    // Without point lights the fog fills the ball around the box from the wall (z = −5) to the
+    // eye (z = 0), centred at z = −2.5 with radius √(10² + 10² + 5²) / 2 = 7.5: light from
+    // straight ahead crosses ten units of it, from z = 5, to reach the wall, and the wall is
+    // seen through five more.
     let lit_wall = "color = [1, 1, 1]\nambient = 0\ndiffuse = 1\nspecular = 0";
     let light = "[[lights]]\ntype = \"directional\"\ndirection = [0, 0, 1]";
     let foggy = scene(
         lit_wall,
         &format!("{light}\n[atmosphere]\ndensity = {DENSITY}\nalbedo = 0"),
     );
-    let expected = (-DENSITY * (5.0 + 5.0)).exp();
+    let expected = (-DENSITY * (10.0 + 5.0)).exp();
     assert_close(see(&foggy, -Vec3::Z), Color::splat(expected), 1e-5);
 }
 

@@ -343,9 +343,12 @@ fn in_fog_each_ray_outside_objects_shows_its_transmittance_and_in_scattered_ligh
     // From the eye at z = 5 to the ball's front at z = 1.
     assert!((eye.transmittance - (-density * 4.0).exp()).abs() < 1e-4);
     assert!(eye.in_scattered.min_element() > 0.0);
-    // The ray leaving the ball at z = −1 runs to the back of the fog's box, z = −1 too (the
-    // box is the ball's, the light's and the eye's): no fog left.
-    assert_eq!(leaving.transmittance, 1.0);
+    // The ray leaving the glass at z = −1 runs through fog again, to the edge of the fog's
+    // ball around the box from (−1, −1, −1) to (1, 5, 5) (the glass's, the light's and the
+    // eye's): centre (0, 2, 2), radius √76 / 2, which it leaves √15 − 3 further on.
+    let beyond = 15f32.sqrt() - 3.0;
+    assert!((leaving.transmittance - (-density * beyond).exp()).abs() < 1e-4);
+    assert!(leaving.in_scattered.min_element() > 0.0);
     assert!(tree.to_text().contains("fog: transmittance"));
     // The fog's share is in the contributions, which still add up to the pixel.
     assert!(close(tree.sum_of_contributions(), tree.color, 1e-5));
