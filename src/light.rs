@@ -46,6 +46,20 @@ impl Spot {
         }
     }
 
+    /// [`Light::sample`] of the spot: the inverse-square law times the cone.
+    #[inline(never)]
+    fn sample(&self, point: Vec3) -> LightSample {
+        let to_light = self.position - point;
+        let distance_squared = to_light.length_squared();
+        let distance = distance_squared.sqrt();
+        let dir = to_light / distance;
+        LightSample {
+            dir,
+            distance,
+            color: self.color * (self.cone(-dir) / distance_squared),
+        }
+    }
+
     /// The share of the light that leaves towards the unit vector `dir` (from the light): 1
     /// inside the full cone, 0 outside the cone, a smoothstep across the soft edge.
     pub fn cone(&self, dir: Vec3) -> f32 {
@@ -71,6 +85,9 @@ pub struct LightSample {
 }
 
 impl Light {
+    /// Inlined into the shading, as it was before spot lights came; a spot's own sampling is
+    /// not, to keep the shading's code small.
+    #[inline(always)]
     pub fn sample(&self, point: Vec3) -> LightSample {
         match *self {
             Light::Point { position, color } => {
@@ -87,17 +104,7 @@ impl Light {
                 distance: f32::INFINITY,
                 color,
             },
-            Light::Spot(spot) => {
-                let to_light = spot.position - point;
-                let distance_squared = to_light.length_squared();
-                let distance = distance_squared.sqrt();
-                let dir = to_light / distance;
-                LightSample {
-                    dir,
-                    distance,
-                    color: spot.color * (spot.cone(-dir) / distance_squared),
-                }
-            }
+            Light::Spot(spot) => spot.sample(point),
         }
     }
 

@@ -9,19 +9,22 @@
 //! into it, see `whitted/fog.rs`.
 //!
 //! Where the fog ends: fog filling all of space would swallow the background and the light of
-//! directional lights (which comes from infinitely far) whole, however thin. So the fog fills
-//! the scene's box: the box around its bounded objects, its point and spot lights and the
-//! camera's eye ([`Fog::new`]). A ray is attenuated by the length it travels inside that box: a
-//! ray to the background by the distance to where it leaves the box (so a backdrop at distance
-//! `d` and the background seen past the box's wall at distance `d` are both dimmed by exactly
-//! `exp(−σ·d)`), and a shadow ray to a directional light likewise. Infinite planes reach beyond
-//! the box: past it they are seen through the fog between them and the box only.
+//! directional lights (which comes from infinitely far) whole, however thin. So the fog fills a
+//! ball around the scene: the smallest ball around the box of its bounded objects, its point
+//! and spot lights and the camera's eye ([`Fog::new`]); a ball rather than that box, because
+//! the box's edges would show as creases in the fog over an infinite floor. A ray is attenuated
+//! by the length it travels inside the ball: a ray to the background by the distance to where
+//! it leaves the ball (a backdrop at distance `d`, and the background past the ball's surface
+//! at distance `d`, are both dimmed by exactly `exp(−σ·d)`), and a shadow ray to a directional
+//! light likewise. Infinite planes reach beyond the ball: past it they are seen through the fog
+//! between them and the ball only.
 
 use glam::Vec3;
 
 use crate::aabb::Aabb;
 use crate::color::Color;
 use crate::light::Light;
+use crate::shapes::solve_quadratic;
 
 /// The isotropic phase function: the share of scattered light that leaves into each unit of
 /// solid angle, the same in every direction.
@@ -66,12 +69,13 @@ impl Atmosphere {
     }
 }
 
-/// The atmosphere of a scene and the box it fills.
+/// The atmosphere of a scene and the ball it fills.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Fog {
     pub atmosphere: Atmosphere,
-    /// The box the fog fills: around the bounded objects, the point and spot lights and the eye.
-    pub region: Aabb,
+    /// The centre of the ball the fog fills.
+    pub center: Vec3,
+    pub radius: f32,
 }
 
 /// Where a ray runs through the fog: from distance `start` to `end` along a unit direction.
@@ -88,8 +92,8 @@ impl FogSegment {
 }
 
 impl Fog {
-    /// The fog of `atmosphere` in the box around `object_bounds`, the positions of `lights` and
-    /// `eye`; `None` in clear air.
+    /// The fog of `atmosphere` in the ball around the box of `object_bounds`, the positions of
+    /// `lights` and `eye`; `None` in clear air.
     pub fn new(
         atmosphere: Atmosphere,
         object_bounds: Option<Aabb>,
@@ -104,36 +108,24 @@ impl Fog {
             Light::Spot(spot) => Some(spot.position),
             Light::Directional { .. } => None,
         });
-        let region = Aabb::from_points(light_positions)
+        let bounds = Aabb::from_points(light_positions)
             .grow(eye)
             .union(object_bounds.unwrap_or(Aabb::EMPTY));
-        Some(Fog { atmosphere, region })
+        Some(Fog {
+            atmosphere,
+            center: bounds.center(),
+            radius: bounds.extent().length() / 2.0,
+        })
     }
 
     /// The part of the ray `origin + s·dir` (`dir` a unit vector), `start ≤ s ≤ end`, that
-    /// lies in the fog; `None` if it misses the fog's box there. This is the slab test, written
-    /// out so that a ray parallel to a slab (a zero component of `dir`) is inside it or not by
-    /// its origin alone, without the not-a-number of `0·∞`.
-    pub fn segment(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        mut start: f32,
-        mut end: f32,
-    ) -> Option<FogSegment> {
-        for axis in 0..3 {
-            let (o, d) = (origin[axis], dir[axis]);
-            let (low, high) = (self.region.min[axis], self.region.max[axis]);
-            if d == 0.0 {
-                if o < low || o > high {
-                    return None;
-                }
-                continue;
-            }
-            let (t_low, t_high) = ((low - o) / d, (high - o) / d);
-            start = start.max(t_low.min(t_high));
-            end = end.min(t_low.max(t_high));
-        }
+    /// lies in the fog; `None` if it misses the fog's ball there. The ray is inside the ball
+    /// between the roots of `|origin + s·dir − center|² = radius²`.
+    pub fn segment(&self, origin: Vec3, dir: Vec3, start: f32, end: f32) -> Option<FogSegment> {
+        let to_origin = origin - self.center;
+        let c = to_origin.length_squared() - self.radius * self.radius;
+        let (enter, leave) = solve_quadratic(1.0, to_origin.dot(dir), c)?;
+        let (start, end) = (start.max(enter), end.min(leave));
         (start < end).then_some(FogSegment { start, end })
     }
 
@@ -168,7 +160,7 @@ mod tests {
     }
 
     #[test]
-    fn the_fog_fills_the_box_of_the_objects_the_point_lights_and_the_eye() {
+    fn the_fog_fills_the_ball_around_the_objects_the_point_lights_and_the_eye() {
         let objects = Aabb::new(Vec3::ZERO, Vec3::ONE);
         let lights = [
             Light::Point {
@@ -180,10 +172,11 @@ mod tests {
                 color: Color::ONE,
             },
         ];
-        let eye = Vec3::new(0.5, 0.5, -2.0);
+        // The box from (0, 0, −4) to (1, 5, 1), whose diagonal is √51.
+        let eye = Vec3::new(0.5, 0.5, -4.0);
         let f = Fog::new(fog(1.0), Some(objects), &lights, eye).unwrap();
-        let expected = Aabb::new(Vec3::new(0.0, 0.0, -2.0), Vec3::new(1.0, 5.0, 1.0));
-        assert_eq!(f.region, expected);
+        assert_eq!(f.center, Vec3::new(0.5, 2.5, -1.5));
+        assert!((f.radius - 51f32.sqrt() / 2.0).abs() < 1e-6);
         let clear = Atmosphere::default();
         assert_eq!(Fog::new(clear, Some(objects), &lights, eye), None);
         // Only a directional light (and maybe infinite planes): the fog is the eye's point, and
@@ -193,19 +186,26 @@ mod tests {
     }
 
     #[test]
-    fn a_ray_is_attenuated_only_inside_the_box() {
-        let box_ = Some(Aabb::new(Vec3::ZERO, Vec3::splat(2.0)));
-        let f = Fog::new(fog(1.0), box_, &[], Vec3::ONE).unwrap();
-        // From outside, through the box: two units of fog.
-        let origin = Vec3::new(-3.0, 1.0, 1.0);
+    fn a_ray_is_attenuated_only_inside_the_ball() {
+        // The box from (−1, −1, −1) to (1, 1, 1): the ball of radius √3 around the origin.
+        let box_ = Some(Aabb::new(-Vec3::ONE, Vec3::ONE));
+        let f = Fog::new(fog(1.0), box_, &[], Vec3::ZERO).unwrap();
+        let r = 3f32.sqrt();
+        // From outside, through the centre: a diameter of fog.
+        let origin = Vec3::new(-5.0, 0.0, 0.0);
         let through = f.segment(origin, Vec3::X, 0.0, f32::INFINITY).unwrap();
-        assert_eq!((through.start, through.end), (3.0, 5.0));
-        assert!(
-            (f.transmittance(origin, Vec3::X, 0.0, f32::INFINITY) - (-2f32).exp()).abs() < 1e-6
-        );
-        // Stopped halfway in, or turned away.
-        assert_eq!(f.segment(origin, Vec3::X, 0.0, 4.0).unwrap().length(), 1.0);
+        assert!((through.start - (5.0 - r)).abs() < 1e-5 && (through.end - (5.0 + r)).abs() < 1e-5);
+        let t = f.transmittance(origin, Vec3::X, 0.0, f32::INFINITY);
+        assert!((t - (-2.0 * r).exp()).abs() < 1e-5);
+        // Stopped at the centre, from the centre out, or turned away.
+        assert!((f.segment(origin, Vec3::X, 0.0, 5.0).unwrap().length() - r).abs() < 1e-5);
+        assert!((f.segment(Vec3::ZERO, Vec3::Y, 0.0, 9.0).unwrap().length() - r).abs() < 1e-6);
         assert_eq!(f.segment(origin, -Vec3::X, 0.0, f32::INFINITY), None);
         assert_eq!(f.transmittance(origin, -Vec3::X, 0.0, f32::INFINITY), 1.0);
+        // Passing beside the ball.
+        assert_eq!(
+            f.segment(Vec3::new(-5.0, 2.0, 0.0), Vec3::X, 0.0, 9.0),
+            None
+        );
     }
 }

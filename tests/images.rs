@@ -144,6 +144,12 @@ fn csg_torus_and_room_scenes_match_their_references() {
 }
 
 #[test]
+fn fog_scene_matches_its_reference() {
+    // Spot light shafts in a fog-filled room: in-scattering, a shadowed shaft, Beer–Lambert.
+    check(SIZE, vec![("fog_spot".into(), shipped("fog_spot"))]);
+}
+
+#[test]
 fn the_room_in_sdl_looks_like_the_room_in_toml() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
     let toml = shipped("room");

@@ -10,6 +10,7 @@ use raylab::color::Color;
 use raylab::inspect::{RayTree, trace_ray_tree};
 use raylab::light::Light;
 use raylab::material::Material;
+use raylab::medium::Atmosphere;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::{Plane, Shape, Sphere};
@@ -323,4 +324,39 @@ fn switched_off_reflections_are_cut_and_said_so() {
     let tree = centre_tree(&scene);
     assert_eq!(tree.nodes.len(), 1);
     assert_eq!(tree.nodes[0].cuts[0].reason, StopReason::Disabled);
+}
+
+#[test]
+fn in_fog_each_ray_outside_objects_shows_its_transmittance_and_in_scattered_light() {
+    let mut scene = glass_ball(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO);
+    let density = 0.2;
+    scene.atmosphere = Atmosphere {
+        density,
+        albedo: 0.5,
+        color: Color::ONE,
+    };
+    let tree = centre_tree(&scene);
+    let fogs: Vec<_> = tree.nodes.iter().map(|n| n.fog).collect();
+    let [Some(eye), None, Some(leaving)] = fogs[..] else {
+        panic!("fog outside the ball only: {}", tree.to_text());
+    };
+    // From the eye at z = 5 to the ball's front at z = 1.
+    assert!((eye.transmittance - (-density * 4.0).exp()).abs() < 1e-4);
+    assert!(eye.in_scattered.min_element() > 0.0);
+    // The ray leaving the glass at z = −1 runs through fog again, to the edge of the fog's
+    // ball around the box from (−1, −1, −1) to (1, 5, 5) (the glass's, the light's and the
+    // eye's): centre (0, 2, 2), radius √76 / 2, which it leaves √15 − 3 further on.
+    let beyond = 15f32.sqrt() - 3.0;
+    assert!((leaving.transmittance - (-density * beyond).exp()).abs() < 1e-4);
+    assert!(leaving.in_scattered.min_element() > 0.0);
+    assert!(tree.to_text().contains("fog: transmittance"));
+    // The fog's share is in the contributions, which still add up to the pixel.
+    assert!(close(tree.sum_of_contributions(), tree.color, 1e-5));
+    // The glass ray's colour reaches the pixel through the eye ray's fog.
+    let inside = &tree.nodes[1];
+    assert!(close(
+        inside.factor,
+        eye.transmittance * 0.9 * Color::ONE,
+        1e-5
+    ));
 }

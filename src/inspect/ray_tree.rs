@@ -57,6 +57,16 @@ pub struct NodeHit {
     pub entering: bool,
 }
 
+/// What the fog did to a ray on its way back to its parent (only in scenes with fog).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct NodeFog {
+    /// The share of the ray's colour (its local colour and its children's) that the fog lets
+    /// through: `exp(−σ·d)` over the length `d` it runs in the fog.
+    pub transmittance: f32,
+    /// The light the fog scattered into the ray on the way.
+    pub in_scattered: Color,
+}
+
 /// A child ray that was not traced, and why.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Cut {
@@ -77,7 +87,8 @@ pub struct RayNode {
     /// The weight this ray carries (adaptive depth control compares it with `min_weight`).
     pub weight: f32,
     /// What this ray's colour is multiplied by on its way to the pixel: the product of the
-    /// reflection coefficients `kr` and tinted transmission coefficients `kt·colour` above it.
+    /// reflection coefficients `kr` and tinted transmission coefficients `kt·colour` above it,
+    /// and in fog the transmittances of the fog along it and the rays above it.
     pub factor: Color,
     /// `None`: the ray missed (`stop` is `Miss`, `local_color` the background).
     pub hit: Option<NodeHit>,
@@ -86,8 +97,12 @@ pub struct RayNode {
     pub local_color: Color,
     /// The colour this ray returns to its parent: local colour plus its children's, weighted.
     pub color: Color,
-    /// `factor × local_color`: this node's own share of the pixel.
+    /// `factor × local_color`, plus in fog the in-scattered light times the factor before the
+    /// ray's own fog: this node's own share of the pixel.
     pub contribution: Color,
+    /// What the fog did to the ray; `None` in clear air.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fog: Option<NodeFog>,
     /// Set where the branch ended at this ray: `Miss`, or `MaxDepth` at a reflective or
     /// transparent surface.
     pub stop: Option<StopReason>,

@@ -4,7 +4,7 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::ray_tree::{Blocker, Cut, NodeHit, RayNode, RayTree, ShadowRay};
+use super::ray_tree::{Blocker, Cut, NodeFog, NodeHit, RayNode, RayTree, ShadowRay};
 use crate::bvh::cost::TraversalCost;
 use crate::camera::PIXEL_CENTRE;
 use crate::color::Color;
@@ -123,6 +123,7 @@ impl TreeObserver for Recorder<'_> {
             local_color: Color::ZERO,
             color: Color::ZERO,
             contribution: Color::ZERO,
+            fog: None,
             stop: None,
             cuts: Vec::new(),
             children: Vec::new(),
@@ -200,10 +201,27 @@ impl TreeObserver for Recorder<'_> {
         });
     }
 
+    fn fog(&mut self, transmittance: f32, in_scattered: Color) {
+        // The fog dims the ray's whole colour: its local colour and all its descendants' (the
+        // nodes after it, since it is heard once they are done).
+        let index = *self.open.last().expect("fog is heard before `done`");
+        for node in &mut self.nodes[index + 1..] {
+            node.factor *= transmittance;
+            node.contribution *= transmittance;
+        }
+        self.current().fog = Some(NodeFog {
+            transmittance,
+            in_scattered,
+        });
+    }
+
     fn done(&mut self, color: Color) {
         let node = self.current();
         node.color = color;
-        node.contribution = node.factor * node.local_color;
+        node.contribution = match node.fog {
+            Some(fog) => node.factor * (fog.transmittance * node.local_color + fog.in_scattered),
+            None => node.factor * node.local_color,
+        };
         self.open.pop();
     }
 }

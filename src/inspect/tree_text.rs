@@ -84,10 +84,22 @@ fn write_ray(out: &mut String, pad: &str, index: usize, node: &RayNode) {
             let _ = writeln!(out, "{pad}  missed: background");
         }
     }
+    // In fog, what the ray brings back of its local colour is dimmed and gains the light the
+    // fog scattered into it.
+    let mut local = vec3(node.local_color);
+    if let Some(fog) = &node.fog {
+        let _ = writeln!(
+            out,
+            "{pad}  fog: transmittance {:.4}, in-scattered light {}",
+            fog.transmittance,
+            vec3(fog.in_scattered)
+        );
+        let through = fog.transmittance * node.local_color + fog.in_scattered;
+        local = format!("{local} through the fog {}", vec3(through));
+    }
     let _ = writeln!(
         out,
-        "{pad}  local {} × factor {} = contribution {}; returns {}",
-        vec3(node.local_color),
+        "{pad}  local {local} × factor {} = contribution {}; returns {}",
         vec3(node.factor),
         vec3(node.contribution),
         vec3(node.color)

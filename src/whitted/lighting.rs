@@ -34,7 +34,7 @@ impl Tracer<'_> {
         let mut color = material.ambient * base * settings.ambient;
         let shadow_origin = offset_origin(surface.point, geometric_normal);
         for (light_index, light) in self.scene.lights.iter().enumerate() {
-            let sample = light.sample(surface.point);
+            let mut sample = light.sample(surface.point);
             // A light behind the surface (as seen from the ray's side), or a spot turned away
             // from it, adds nothing and needs no shadow ray.
             let cos_l = normal.dot(sample.dir);
@@ -44,7 +44,7 @@ impl Tracer<'_> {
             {
                 continue;
             }
-            let sample = self.light_through_fog(surface.point, sample);
+            self.dim_by_fog(surface.point, &mut sample);
             let light_color = if settings.shadows {
                 counts.shadow += 1;
                 let shadow_ray = Ray::new(shadow_origin, sample.dir);

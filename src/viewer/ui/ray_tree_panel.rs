@@ -161,6 +161,12 @@ fn node_fields(ui: &mut egui::Ui, node: &RayNode) {
         let side = if hit.entering { "front" } else { "back" };
         row("side", side.to_string());
     }
+    if let Some(fog) = &node.fog {
+        row("fog transmittance", format!("{:.4}", fog.transmittance));
+        ui.label("fog in-scattered");
+        swatch(ui, fog.in_scattered);
+        ui.end_row();
+    }
     for (name, value) in [
         ("local colour", node.local_color),
         ("factor", node.factor),
