@@ -9,6 +9,7 @@ use glam::Vec3;
 use raylab::bvh::Bvh;
 use raylab::camera::Camera;
 use raylab::color::Color;
+use raylab::inspect::trace_ray_tree;
 use raylab::light::Light;
 use raylab::material::Material;
 use raylab::photon::{PhotonMap, caustic_map};
@@ -290,4 +291,53 @@ fn the_caustic_under_a_glass_ball_is_brighter_than_the_light_without_it() {
         "{}",
         stored_power(&map)
     );
+}
+
+#[test]
+fn the_inspector_shows_the_caustic_light_at_each_diffuse_hit() {
+    let mut scene = empty_scene();
+    let (g, d) = (
+        scene.add_material(glass(1.5)),
+        scene.add_material(diffuse()),
+    );
+    let ball = Sphere::new(Vec3::new(0.0, 1.5, 0.0), 1.0).unwrap();
+    scene.add_object(Shape::Sphere(ball), None, g);
+    scene.add_object(plane(Vec3::ZERO, Vec3::Y), None, d);
+    scene.lights.push(Light::Directional {
+        direction: Vec3::Y,
+        color: Color::ONE,
+    });
+    scene.settings.ambient = Color::ZERO;
+    scene.settings.width = 64;
+    scene.settings.height = 64;
+    // Looking down at the focus under the ball, from beside it.
+    scene.camera = Camera::new(raylab::camera::CameraSpec {
+        eye: Vec3::new(3.0, 0.5, 0.0),
+        look_at: Vec3::ZERO,
+        ..Default::default()
+    })
+    .unwrap();
+    let bvh = Bvh::build(&scene.geometry);
+    let tracer = Tracer::new(&scene, &bvh);
+    let map = caustic_map(&tracer, 50_000).unwrap();
+    let tree = trace_ray_tree(&tracer.with_caustics(&map), 32, 32);
+    let eye = &tree.nodes[0];
+    let caustic = eye.caustic.expect("the floor gathers caustic photons");
+    assert!(
+        caustic.x > 3.0,
+        "brighter than the bare light (1): {caustic}"
+    );
+    // The floor's local colour is its diffuse share of the caustic: no light reaches it
+    // directly through the glass, and there is no ambient light.
+    let material = &scene.materials[d as usize];
+    let expected = material.diffuse * material.color * caustic;
+    assert!((eye.local_color - expected).length() < 1e-3 * expected.length());
+    assert!(
+        tree.to_text().contains("caustic irradiance"),
+        "{}",
+        tree.to_text()
+    );
+    // Without caustics, no such line.
+    let plain = trace_ray_tree(&tracer, 32, 32);
+    assert_eq!(plain.nodes[0].caustic, None);
 }

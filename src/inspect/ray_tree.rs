@@ -103,6 +103,10 @@ pub struct RayNode {
     /// What the fog did to the ray; `None` in clear air.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fog: Option<NodeFog>,
+    /// The irradiance the caustic photons bring to the hit (with caustics on, at a diffuse
+    /// surface); the local colour holds its diffuse share.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub caustic: Option<Color>,
     /// Set where the branch ended at this ray: `Miss`, or `MaxDepth` at a reflective or
     /// transparent surface.
     pub stop: Option<StopReason>,

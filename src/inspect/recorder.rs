@@ -124,6 +124,7 @@ impl TreeObserver for Recorder<'_> {
             color: Color::ZERO,
             contribution: Color::ZERO,
             fog: None,
+            caustic: None,
             stop: None,
             cuts: Vec::new(),
             children: Vec::new(),
@@ -183,6 +184,10 @@ impl TreeObserver for Recorder<'_> {
             blocked: shadow.arrived == Color::ZERO,
             light_color: shadow.arrived,
         });
+    }
+
+    fn caustic(&mut self, irradiance: Color) {
+        self.current().caustic = Some(irradiance);
     }
 
     fn local(&mut self, color: Color) {

@@ -84,6 +84,9 @@ fn write_ray(out: &mut String, pad: &str, index: usize, node: &RayNode) {
             let _ = writeln!(out, "{pad}  missed: background");
         }
     }
+    if let Some(caustic) = node.caustic {
+        let _ = writeln!(out, "{pad}  caustic irradiance {}", vec3(caustic));
+    }
     // In fog, what the ray brings back of its local colour is dimmed and gains the light the
     // fog scattered into it.
     let mut local = vec3(node.local_color);

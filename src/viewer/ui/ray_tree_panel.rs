@@ -167,6 +167,11 @@ fn node_fields(ui: &mut egui::Ui, node: &RayNode) {
         swatch(ui, fog.in_scattered);
         ui.end_row();
     }
+    if let Some(caustic) = node.caustic {
+        ui.label("caustic irradiance");
+        swatch(ui, caustic);
+        ui.end_row();
+    }
     for (name, value) in [
         ("local colour", node.local_color),
         ("factor", node.factor),
