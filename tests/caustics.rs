@@ -255,7 +255,7 @@ fn with_caustics_on_shadow_rays_no_longer_pass_glass_that_bends_light() {
         let shade = |tracer: &Tracer| tracer.trace_eye(&ray, &mut Default::default());
         assert!(shade(&tracer).x > 0.5, "ior {ior}: lit through the glass");
         let empty = PhotonMap::default();
-        let lit = shade(&tracer.with_caustics(&empty)).x > 0.5;
+        let lit = shade(&tracer.with_caustics(Some(&empty))).x > 0.5;
         assert_eq!(lit, passes_with_caustics, "ior {ior}");
     }
 }
@@ -320,7 +320,7 @@ fn the_inspector_shows_the_caustic_light_at_each_diffuse_hit() {
     let bvh = Bvh::build(&scene.geometry);
     let tracer = Tracer::new(&scene, &bvh);
     let map = caustic_map(&tracer, 50_000).unwrap();
-    let tree = trace_ray_tree(&tracer.with_caustics(&map), 32, 32);
+    let tree = trace_ray_tree(&tracer.with_caustics(Some(&map)), 32, 32);
     let eye = &tree.nodes[0];
     let caustic = eye.caustic.expect("the floor gathers caustic photons");
     assert!(

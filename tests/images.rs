@@ -14,6 +14,7 @@ use raylab::formats::image::save_image;
 use raylab::formats::nff::NffLighting;
 use raylab::formats::toml::{default_scene, load_scene};
 use raylab::formats::{load_any, load_any_with};
+use raylab::photon::scene_caustics;
 use raylab::progressive;
 use raylab::scene::Scene;
 use raylab::whitted::Tracer;
@@ -32,7 +33,9 @@ fn render_small(mut scene: Scene, (width, height): (u32, u32)) -> Vec<u8> {
     scene.settings.width = width;
     scene.settings.height = height;
     let bvh = Bvh::build(&scene.geometry);
-    let (pixels, _) = progressive::render_image(&Tracer::new(&scene, &bvh));
+    let tracer = Tracer::new(&scene, &bvh);
+    let caustics = scene_caustics(&tracer).unwrap();
+    let (pixels, _) = progressive::render_image(&tracer.with_caustics(caustics.as_ref()));
     to_srgb8(&pixels)
 }
 
@@ -167,6 +170,15 @@ fn the_room_in_sdl_looks_like_the_room_in_toml() {
         mean < 0.1 && far < 0.001,
         "{mean:.3} levels, {:.2}% of pixels far off",
         far * 100.0
+    );
+}
+
+#[test]
+fn caustic_scenes_match_their_references() {
+    let names = ["caustic_glass_ball", "caustic_ring"];
+    check(
+        SIZE,
+        names.map(|name| (name.to_string(), shipped(name))).into(),
     );
 }
 

@@ -7,7 +7,7 @@ use raylab::bvh::Bvh;
 use raylab::formats::SceneFormat;
 use raylab::formats::nff::NffLighting;
 use raylab::inspect::trace_ray_tree;
-use raylab::photon::caustic_map;
+use raylab::photon::scene_caustics;
 use raylab::settings::SettingsOverrides;
 use raylab::whitted::Tracer;
 
@@ -57,14 +57,8 @@ pub fn run(args: InspectArgs) -> Result<(), String> {
     }
     let bvh = Bvh::build(&scene.geometry);
     let tracer = Tracer::new(&scene, &bvh);
-    let caustics = match scene.settings.caustic_photons {
-        0 => None,
-        count => Some(caustic_map(&tracer, count)?),
-    };
-    let tree = match &caustics {
-        Some(map) => trace_ray_tree(&tracer.with_caustics(map), x, y),
-        None => trace_ray_tree(&tracer, x, y),
-    };
+    let caustics = scene_caustics(&tracer)?;
+    let tree = trace_ray_tree(&tracer.with_caustics(caustics.as_ref()), x, y);
     let text = if args.json {
         let json = serde_json::to_string_pretty(&tree)
             .map_err(|e| format!("cannot write the tree as JSON: {e}"))?;

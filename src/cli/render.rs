@@ -13,7 +13,7 @@ use raylab::formats::image::{check_image_path, save_image};
 use raylab::formats::nff::NffLighting;
 use raylab::inspect::DebugView;
 use raylab::memory;
-use raylab::photon::caustic_map;
+use raylab::photon::scene_caustics;
 use raylab::progressive::{self, RenderControl, RenderStats};
 use raylab::settings::{RenderSettings, SettingsOverrides};
 use raylab::whitted::{RAY_BUDGET, Tracer};
@@ -73,15 +73,9 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     let control = RenderControl::default();
     let tracer = Tracer::new(&scene, &bvh);
     let caustics_start = Instant::now();
-    let caustics = match settings.caustic_photons {
-        0 => None,
-        count => Some(pool.install(|| caustic_map(&tracer, count))?),
-    };
+    let caustics = pool.install(|| scene_caustics(&tracer))?;
     let caustics_time = caustics_start.elapsed();
-    let tracer = match &caustics {
-        Some(map) => tracer.with_caustics(map),
-        None => tracer,
-    };
+    let tracer = tracer.with_caustics(caustics.as_ref());
     let legend = args.view.legend(&tracer);
     let legend_path = args.output.with_extension("legend.png");
     if legend.is_some() {

@@ -76,12 +76,9 @@ impl<'a> Tracer<'a> {
 
     /// The same tracer adding the light of the caustic photon map `caustics` at diffuse hits,
     /// and no longer letting shadow rays through glass that bends light (the photons bring
-    /// that light, in the right place).
-    pub fn with_caustics(self, caustics: &'a PhotonMap) -> Self {
-        Tracer {
-            caustics: Some(caustics),
-            ..self
-        }
+    /// that light, in the right place); `None` leaves caustics off.
+    pub fn with_caustics(self, caustics: Option<&'a PhotonMap>) -> Self {
+        Tracer { caustics, ..self }
     }
 
     /// The closest hit along `ray` beyond `t_min`.

@@ -65,10 +65,6 @@ impl WorkingScene {
             .map(|l| l.scaled(setup.light_scale))
             .collect();
         self.caustics = caustics;
-        let tracer = Tracer::new(scene, &loaded.bvh);
-        match &self.caustics {
-            Some(map) => tracer.with_caustics(map),
-            None => tracer,
-        }
+        Tracer::new(scene, &loaded.bvh).with_caustics(self.caustics.as_deref())
     }
 }
