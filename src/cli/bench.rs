@@ -1,6 +1,8 @@
 //! `raylab bench`: renders a fixed set of scenes headless and reports, per scene, primitives,
 //! BVH build time, render time to block size 1 (and of the coarsest pass), rays by kind,
-//! Mrays/s and memory; `--json` writes the same as JSON ([`super::bench_report`]).
+//! Mrays/s and memory, and for a scene with caustics what they cost (photons shot per second,
+//! the map's build time, the time of one estimate, the render with and without them); `--json`
+//! writes the same as JSON ([`super::bench_report`]).
 //!
 //! Timings on a shared machine vary from run to run, so each scene is built and rendered
 //! `--repeat` times and the medians are reported; `--scaling` also renders each scene on one
@@ -12,15 +14,17 @@ use std::time::{Duration, Instant};
 
 use clap::Args;
 use raylab::bvh::Bvh;
+use raylab::color::Color;
 use raylab::formats::load_any;
 use raylab::formats::toml::default_scene;
 use raylab::large_mesh::{bumpy_sphere_scene, check_bumpy_triangles};
 use raylab::output::{check_writable, write_atomically};
+use raylab::photon::{Caustics, PhotonMap};
 use raylab::progressive;
 use raylab::scene::Scene;
 use raylab::whitted::Tracer;
 
-use super::bench_report::{self, BenchResult};
+use super::bench_report::{self, BenchResult, CausticBench};
 
 #[derive(Args, Debug)]
 pub struct BenchArgs {
@@ -131,10 +135,19 @@ fn bench_scene(
         bvh = pool.install(|| Bvh::build(&scene.geometry));
         builds.push(start.elapsed());
     }
-    let tracer = Tracer::new(&scene, &bvh);
+    let plain = Tracer::new(&scene, &bvh);
+    let caustics = match scene.settings.caustic_photons {
+        0 => None,
+        _ => Some(bench_caustics(&plain, args, pool, single)?),
+    };
+    let tracer = plain.with_caustics(caustics.as_ref().map(|(map, _)| map));
     let (mut renders, mut first_passes, mut single_renders) = (Vec::new(), Vec::new(), Vec::new());
+    let mut renders_off = Vec::new();
     let mut rays = Default::default();
     for _ in 0..args.repeat {
+        if caustics.is_some() {
+            renders_off.push(pool.install(|| progressive::render_image(&plain)).1.time);
+        }
         let (_, stats) = pool.install(|| progressive::render_image(&tracer));
         renders.push(stats.time);
         first_passes.push(stats.passes.first().map_or(Duration::ZERO, |p| p.time));
@@ -154,7 +167,65 @@ fn bench_scene(
         rays,
         scene_bytes: scene.geometry.memory_bytes() + bvh.memory_bytes(),
         peak_rss_bytes: peak_rss_bytes(),
+        caustics: caustics.map(|(_, c)| CausticBench {
+            render_off: median(renders_off),
+            ..c
+        }),
     })
+}
+
+/// How many estimates the gather cost is the mean of.
+const GATHER_QUERIES: usize = 20_000;
+
+/// Shoots the scene's caustic photons `--repeat` times (on all threads, and on one with
+/// `--scaling`), builds their map, and times estimates at the points where photons landed. The
+/// map, and what it cost (its `render_off` left for the caller).
+fn bench_caustics(
+    tracer: &Tracer,
+    args: &BenchArgs,
+    pool: &rayon::ThreadPool,
+    single: Option<&rayon::ThreadPool>,
+) -> Result<(PhotonMap, CausticBench), String> {
+    let settings = &tracer.scene.settings;
+    let photons = settings.caustic_photons;
+    let (mut shots, mut single_shots, mut builds) = (Vec::new(), Vec::new(), Vec::new());
+    let mut map = PhotonMap::default();
+    for _ in 0..args.repeat {
+        let mut caustics = Caustics::new(tracer);
+        let start = Instant::now();
+        pool.install(|| caustics.shoot(tracer, photons))?;
+        shots.push(start.elapsed());
+        if let Some(single) = single {
+            let mut caustics = Caustics::new(tracer);
+            let start = Instant::now();
+            single.install(|| caustics.shoot(tracer, photons))?;
+            single_shots.push(start.elapsed());
+        }
+        let start = Instant::now();
+        map = caustics.map();
+        builds.push(start.elapsed());
+    }
+    // On one thread, at the photons' own landing points, seen from the side they came from.
+    let stride = (map.len() / GATHER_QUERIES).max(1);
+    let points: Vec<_> = map.photons().iter().step_by(stride).collect();
+    let k = settings.caustic_gather as usize;
+    let start = Instant::now();
+    let total: Color = points
+        .iter()
+        .map(|p| map.irradiance(p.position, -p.dir, k))
+        .sum();
+    std::hint::black_box(total);
+    let gather = start.elapsed() / points.len().max(1) as u32;
+    let bench = CausticBench {
+        photons,
+        stored: map.len(),
+        shoot: median(shots),
+        shoot_one_thread: single.map(|_| median(single_shots)),
+        build: median(builds),
+        gather,
+        render_off: Duration::ZERO,
+    };
+    Ok((map, bench))
 }
 
 fn median(mut times: Vec<Duration>) -> Duration {

@@ -1,5 +1,5 @@
-//! What `raylab bench` measured for a scene, and how it is shown: a table row on the terminal,
-//! and JSON.
+//! What `raylab bench` measured for a scene, and how it is shown: a table row on the terminal
+//! (with a line for the caustics of a scene that has them), and JSON.
 
 use std::io::{self, Write};
 use std::time::Duration;
@@ -24,6 +24,31 @@ pub struct BenchResult {
     pub scene_bytes: usize,
     /// Peak resident memory while the scene was loaded, built and rendered.
     pub peak_rss_bytes: Option<u64>,
+    /// For a scene with caustics on; `render` is then the render with them.
+    pub caustics: Option<CausticBench>,
+}
+
+/// What the caustics of a scene cost (times are medians over the repeats).
+pub struct CausticBench {
+    /// Photons shot, and of them stored in the map.
+    pub photons: u32,
+    pub stored: usize,
+    /// Shooting the photons on all threads, and on one with `--scaling`.
+    pub shoot: Duration,
+    pub shoot_one_thread: Option<Duration>,
+    /// Building the kd-tree.
+    pub build: Duration,
+    /// One estimate (`caustic_gather` photons) at a diffuse point.
+    pub gather: Duration,
+    /// The render with caustics off.
+    pub render_off: Duration,
+}
+
+impl CausticBench {
+    /// Millions of photons shot per second in `time`.
+    fn mphotons_per_second(&self, time: Duration) -> f64 {
+        f64::from(self.photons) / time.as_secs_f64() / 1e6
+    }
 }
 
 impl BenchResult {
@@ -98,6 +123,54 @@ pub fn write_row(out: &mut impl Write, r: &BenchResult) -> io::Result<()> {
         " {:>7.1} {:>8}",
         r.bytes_per_primitive(),
         mib(r.peak_rss_bytes)
+    )?;
+    if let Some(c) = &r.caustics {
+        write!(
+            out,
+            "  caustics: {} photons ({} stored), shot at {:.2} M/s",
+            c.photons,
+            c.stored,
+            c.mphotons_per_second(c.shoot)
+        )?;
+        if let Some(one) = c.shoot_one_thread {
+            write!(
+                out,
+                " ({:.2} M/s on one thread)",
+                c.mphotons_per_second(one)
+            )?;
+        }
+        writeln!(
+            out,
+            ", map built in {:.1} ms, {:.2} µs per estimate; render {:.1} ms with, {:.1} ms without",
+            ms(c.build),
+            c.gather.as_secs_f64() * 1e6,
+            ms(r.render),
+            ms(c.render_off)
+        )?;
+    }
+    Ok(())
+}
+
+/// The caustics' JSON object, or `null`.
+fn caustics_json(c: Option<&CausticBench>) -> String {
+    let Some(c) = c else {
+        return "null".into();
+    };
+    format!(
+        concat!(
+            "{{\"photons\": {}, \"stored\": {}, \"shoot_ms\": {:.3}, \"shoot_one_thread_ms\": {}, ",
+            "\"mphotons_per_s\": {:.3}, \"build_ms\": {:.3}, \"gather_us\": {:.3}, ",
+            "\"render_off_ms\": {:.3}}}"
+        ),
+        c.photons,
+        c.stored,
+        ms(c.shoot),
+        c.shoot_one_thread
+            .map_or("null".into(), |d| format!("{:.3}", ms(d))),
+        c.mphotons_per_second(c.shoot),
+        ms(c.build),
+        c.gather.as_secs_f64() * 1e6,
+        ms(c.render_off),
     )
 }
 
@@ -113,7 +186,8 @@ pub fn to_json(results: &[BenchResult], size: u32, threads: usize) -> String {
                     "\"render_one_thread_ms\": {}, \"scaling\": {}, ",
                     "\"eye_rays\": {}, \"eye_hits\": {}, \"shadow_rays\": {}, ",
                     "\"reflected_rays\": {}, \"transmitted_rays\": {}, \"mrays_per_s\": {:.3}, ",
-                    "\"scene_bytes\": {}, \"bytes_per_primitive\": {:.1}, \"peak_rss_bytes\": {}}}"
+                    "\"scene_bytes\": {}, \"bytes_per_primitive\": {:.1}, \"peak_rss_bytes\": {}, ",
+                    "\"caustics\": {}}}"
                 ),
                 r.name,
                 r.primitives,
@@ -132,6 +206,7 @@ pub fn to_json(results: &[BenchResult], size: u32, threads: usize) -> String {
                 r.scene_bytes,
                 r.bytes_per_primitive(),
                 null_or(r.peak_rss_bytes.map(|b| b.to_string())),
+                caustics_json(r.caustics.as_ref()),
             )
         })
         .collect();

@@ -1,11 +1,16 @@
 //! The photon map: the stored photons in a kd-tree, and the irradiance estimate from the
 //! photons nearest a point. The tree is implicit: the photons are ordered so that the middle
 //! photon of every range splits it along the axis stored beside it, the lower half before it
-//! and the upper half after it, so the tree needs no pointers and a search no allocation.
+//! and the upper half after it, so the tree needs no pointers and a search no allocation. A
+//! search skips every part of the tree whose region lies farther than the photons found so far
+//! (the distance to a region is kept up to date as the search crosses splitting planes, after
+//! Arya and Mount), and a point farther than that from the box around all the photons costs
+//! nothing.
 
 use arrayvec::ArrayVec;
 use glam::Vec3;
 
+use crate::aabb::Aabb;
 use crate::color::Color;
 use crate::settings::MAX_CAUSTIC_GATHER;
 
@@ -27,6 +32,8 @@ pub struct PhotonMap {
     photons: Vec<Photon>,
     /// The splitting axis of the node at the same index.
     axes: Vec<u8>,
+    /// The box around all the photons.
+    bounds: Aabb,
     /// How many photons were shot: each stored photon's share of its light's power.
     shot: u64,
     /// How far an estimate looks for photons at most.
@@ -39,9 +46,11 @@ impl PhotonMap {
     pub fn build(mut photons: Vec<Photon>, shot: u64, max_radius: f32) -> PhotonMap {
         let mut axes = vec![0; photons.len()];
         split(&mut photons, &mut axes);
+        let bounds = Aabb::from_points(photons.iter().map(|p| p.position));
         PhotonMap {
             photons,
             axes,
+            bounds,
             shot,
             max_radius,
         }
@@ -76,7 +85,22 @@ impl PhotonMap {
             return Color::ZERO;
         }
         let mut nearest = Nearest::new(k.min(MAX_GATHER), self.max_radius * self.max_radius);
-        self.gather(0, self.photons.len(), point, &mut nearest);
+        // How far outside the photons' box the point is, along each axis.
+        let outside = (self.bounds.min - point)
+            .max(point - self.bounds.max)
+            .max(Vec3::ZERO);
+        let distance2 = outside.length_squared();
+        if distance2 >= nearest.max_d2 {
+            return Color::ZERO;
+        }
+        self.gather(
+            0,
+            self.photons.len(),
+            point,
+            outside,
+            distance2,
+            &mut nearest,
+        );
         let r2 = if nearest.is_full() {
             nearest.max_d2
         } else {
@@ -97,9 +121,19 @@ impl PhotonMap {
         sum / (std::f32::consts::PI * r2 / 3.0 * self.shot as f32)
     }
 
-    /// Offers the photons of the range `lo..hi` to `nearest`, skipping the half-ranges that
-    /// lie further away than its current radius.
-    fn gather(&self, lo: usize, hi: usize, point: Vec3, nearest: &mut Nearest) {
+    /// Offers the photons of the range `lo..hi` to `nearest`, skipping the half-ranges whose
+    /// region lies farther away than its current radius. `offsets` are the distances from the
+    /// point to the range's region along each axis (0 where the point lies within its slab), and
+    /// `distance2` the sum of their squares: the squared distance to the region.
+    fn gather(
+        &self,
+        lo: usize,
+        hi: usize,
+        point: Vec3,
+        offsets: Vec3,
+        distance2: f32,
+        nearest: &mut Nearest,
+    ) {
         if lo >= hi {
             return;
         }
@@ -112,10 +146,14 @@ impl PhotonMap {
         } else {
             ((mid + 1, hi), (lo, mid))
         };
-        self.gather(near.0, near.1, point, nearest);
+        self.gather(near.0, near.1, point, offsets, distance2, nearest);
         nearest.offer(point.distance_squared(photon.position), mid as u32);
-        if delta * delta < nearest.max_d2 {
-            self.gather(far.0, far.1, point, nearest);
+        // Across the splitting plane, the region is at least |delta| away along its axis.
+        let far_distance2 = distance2 - offsets[axis] * offsets[axis] + delta * delta;
+        if far_distance2 < nearest.max_d2 {
+            let mut far_offsets = offsets;
+            far_offsets[axis] = delta.abs();
+            self.gather(far.0, far.1, point, far_offsets, far_distance2, nearest);
         }
     }
 }
@@ -231,7 +269,7 @@ mod tests {
         for q in 0..50 {
             let point = Vec3::new(unit(9000 + q), unit(9100 + q), unit(9200 + q));
             let mut nearest = Nearest::new(20, 100.0);
-            map.gather(0, map.len(), point, &mut nearest);
+            map.gather(0, map.len(), point, Vec3::ZERO, 0.0, &mut nearest);
             let mut found: Vec<f32> = nearest.heap.iter().map(|&(d2, _)| d2).collect();
             found.sort_by(f32::total_cmp);
             let mut all: Vec<f32> = photons
