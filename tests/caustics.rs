@@ -72,6 +72,27 @@ fn plane(point: Vec3, normal: Vec3) -> Shape {
     Shape::Plane(Plane { point, normal })
 }
 
+/// A glass ball of index `ior` and radius 1 around `center`, on a diffuse floor at y = 0, lit by
+/// `light`; and the floor's material.
+fn ball_on_floor(ior: f32, center: Vec3, light: Light) -> (Scene, u32) {
+    let mut scene = empty_scene();
+    let (g, d) = (
+        scene.add_material(glass(ior)),
+        scene.add_material(diffuse()),
+    );
+    let ball = Sphere::new(center, 1.0).unwrap();
+    scene.add_object(Shape::Sphere(ball), None, g);
+    scene.add_object(plane(Vec3::ZERO, Vec3::Y), None, d);
+    scene.lights.push(light);
+    (scene, d)
+}
+
+/// Light falling straight down.
+const OVERHEAD: Light = Light::Directional {
+    direction: Vec3::Y,
+    color: Color::ONE,
+};
+
 fn map_of(scene: &Scene, photons: u32) -> PhotonMap {
     let bvh = Bvh::build(&scene.geometry);
     caustic_map(&Tracer::new(scene, &bvh), photons).unwrap()
@@ -204,17 +225,11 @@ fn a_glass_ball_focuses_light_where_paraxial_optics_says() {
 
 #[test]
 fn photons_are_the_same_whatever_the_thread_count() {
-    let mut scene = empty_scene();
-    let (g, d) = (
-        scene.add_material(glass(1.5)),
-        scene.add_material(diffuse()),
-    );
-    scene.add_object(Shape::Sphere(Sphere::new(Vec3::Y, 1.0).unwrap()), None, g);
-    scene.add_object(plane(Vec3::ZERO, Vec3::Y), None, d);
-    scene.lights.push(Light::Point {
+    let light = Light::Point {
         position: Vec3::new(1.0, 5.0, 0.0),
         color: Color::ONE,
-    });
+    };
+    let (scene, _) = ball_on_floor(1.5, Vec3::Y, light);
     let on = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -233,21 +248,11 @@ fn with_caustics_on_shadow_rays_no_longer_pass_glass_that_bends_light() {
     // the ball (tinted by nothing: clear glass); with them on, only the photons would bring it,
     // and an empty map brings none. Glass of index 1 still lets it through.
     for (ior, passes_with_caustics) in [(1.5, false), (1.0, true)] {
-        let mut scene = empty_scene();
-        let (g, d) = (
-            scene.add_material(glass(ior)),
-            scene.add_material(diffuse()),
-        );
-        scene.add_object(
-            Shape::Sphere(Sphere::new(Vec3::new(0.0, 3.0, 0.0), 1.0).unwrap()),
-            None,
-            g,
-        );
-        scene.add_object(plane(Vec3::ZERO, Vec3::Y), None, d);
-        scene.lights.push(Light::Point {
+        let light = Light::Point {
             position: Vec3::new(0.0, 6.0, 0.0),
             color: Color::ONE,
-        });
+        };
+        let (mut scene, _) = ball_on_floor(ior, Vec3::new(0.0, 3.0, 0.0), light);
         scene.settings.ambient = Color::ZERO;
         let bvh = Bvh::build(&scene.geometry);
         let tracer = Tracer::new(&scene, &bvh);
@@ -263,29 +268,15 @@ fn with_caustics_on_shadow_rays_no_longer_pass_glass_that_bends_light() {
 #[test]
 fn the_caustic_under_a_glass_ball_is_brighter_than_the_light_without_it() {
     // Light focused by the ball lands on a small spot: far more irradiance than the bare light.
-    let mut scene = empty_scene();
-    let (g, d) = (
-        scene.add_material(glass(1.5)),
-        scene.add_material(diffuse()),
-    );
-    scene.add_object(
-        Shape::Sphere(Sphere::new(Vec3::new(0.0, 1.5, 0.0), 1.0).unwrap()),
-        None,
-        g,
-    );
-    scene.add_object(plane(Vec3::ZERO, Vec3::Y), None, d);
-    scene.lights.push(Light::Directional {
-        direction: Vec3::Y,
-        color: Color::ONE,
-    });
+    let (scene, _) = ball_on_floor(1.5, Vec3::new(0.0, 1.5, 0.0), OVERHEAD);
     let map = map_of(&scene, 100_000);
     let focus = map.irradiance(Vec3::ZERO, Vec3::Y, 64).x;
     assert!(
         focus > 10.0,
         "the focus gets {focus} times the light's irradiance"
     );
-    // Energy: the disc of radius 1 that the ball intercepts (π), less what reflects... no
-    // reflection here: all of it lands.
+    // Energy: the light the ball intercepts, a disc of radius 1 (π), all lands on the floor
+    // (this glass reflects nothing).
     assert!(
         (stored_power(&map) / PI - 1.0).abs() < 0.02,
         "{}",
@@ -295,18 +286,7 @@ fn the_caustic_under_a_glass_ball_is_brighter_than_the_light_without_it() {
 
 #[test]
 fn the_inspector_shows_the_caustic_light_at_each_diffuse_hit() {
-    let mut scene = empty_scene();
-    let (g, d) = (
-        scene.add_material(glass(1.5)),
-        scene.add_material(diffuse()),
-    );
-    let ball = Sphere::new(Vec3::new(0.0, 1.5, 0.0), 1.0).unwrap();
-    scene.add_object(Shape::Sphere(ball), None, g);
-    scene.add_object(plane(Vec3::ZERO, Vec3::Y), None, d);
-    scene.lights.push(Light::Directional {
-        direction: Vec3::Y,
-        color: Color::ONE,
-    });
+    let (mut scene, d) = ball_on_floor(1.5, Vec3::new(0.0, 1.5, 0.0), OVERHEAD);
     scene.settings.ambient = Color::ZERO;
     scene.settings.width = 64;
     scene.settings.height = 64;
