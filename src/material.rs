@@ -1,7 +1,9 @@
 //! Materials: how a surface answers light, in the terms of the lecture's shading model
-//! (ambient, Lambert diffuse, Phong specular) plus mirror reflection and transparency.
+//! (ambient, Lambert diffuse, Phong specular) plus mirror reflection and transparency, and the
+//! medium that may fill the object inside.
 
 use crate::color::Color;
+use crate::medium::Medium;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
@@ -27,6 +29,9 @@ pub struct Material {
     /// Use Schlick's approximation of the Fresnel equations to trade reflection for
     /// transmission with the angle of incidence.
     pub fresnel: bool,
+    /// The medium filling the object inside the surface (smoky glass, coloured liquid); `None`
+    /// for clear material. See [`crate::medium`] for when a ray is inside it.
+    pub medium: Option<Medium>,
 }
 
 impl Default for Material {
@@ -43,6 +48,7 @@ impl Default for Material {
             transparency: 0.0,
             ior: 1.0,
             fresnel: false,
+            medium: None,
         }
     }
 }

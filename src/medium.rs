@@ -1,12 +1,22 @@
-//! Participating media: a homogeneous fog filling the scene ([`Atmosphere`], the scene file's
-//! `[atmosphere]`), and the part of space it fills ([`Fog`]).
+//! Participating media: homogeneous [`Medium`]s, one filling the scene (the fog, the scene
+//! file's `[atmosphere]`, in the part of space [`Fog`] says) and one inside each object whose
+//! material has a `medium` (smoky glass, coloured liquid); and which of them a ray runs
+//! through ([`Within`]).
 //!
-//! Light travelling a distance `d` through fog of extinction coefficient `σ` (its `density`,
-//! per unit length) keeps the fraction `T(d) = exp(−σ·d)` (Beer–Lambert); of what is lost, the
-//! share `albedo` is scattered (`σ_s = albedo·σ`) and the rest absorbed. Scattered light leaves
-//! evenly in every direction (the isotropic phase function `1/(4π)`), tinted by `color`. The
-//! tracer ([`crate::whitted`]) attenuates every ray by `T` and adds the light the fog scatters
-//! into it, see `whitted/fog.rs`.
+//! Light travelling a distance `d` through a medium of extinction coefficient `σ` (its
+//! `density`, per unit length) keeps the fraction `T(d) = exp(−σ·d)` (Beer–Lambert); of what is
+//! lost, the share `albedo` is scattered (`σ_s = albedo·σ`) and the rest absorbed. Scattered
+//! light leaves evenly in every direction (the isotropic phase function `1/(4π)`), tinted by
+//! `color`. The tracer ([`crate::whitted`]) attenuates every ray by `T` and adds the light the
+//! medium scatters into it, see `whitted/fog.rs`.
+//!
+//! Which medium a ray is in: eye rays start in the fog; a ray that passes into an object
+//! (through a surface whose normal faces it) is inside that surface's material's medium, or in
+//! clear material if it has none; a ray that passes out of a surface is back in the fog.
+//! Reflected rays stay where their parent was. Nested media are not tracked: a ray leaving a
+//! ball of liquid inside a smoky ball is taken to be in the fog, not in the smoke, so nested
+//! objects should have clear material between them (a glass cup and the liquid in it with a
+//! thin gap of air). Rays inside an object are in no fog.
 //!
 //! Where the fog ends: fog filling all of space would swallow the background and the light of
 //! directional lights (which comes from infinitely far) whole, however thin. So the fog fills a
@@ -24,15 +34,17 @@ use glam::Vec3;
 use crate::aabb::Aabb;
 use crate::color::Color;
 use crate::light::Light;
+use crate::material::Material;
 use crate::shapes::solve_quadratic;
 
 /// The isotropic phase function: the share of scattered light that leaves into each unit of
 /// solid angle, the same in every direction.
 pub const ISOTROPIC_PHASE: f32 = 1.0 / (4.0 * std::f32::consts::PI);
 
-/// A homogeneous fog: the scene file's `[atmosphere]`. A density of zero is clear air.
+/// A homogeneous medium: the scene file's `[atmosphere]` or a material's `medium`. A density
+/// of zero is clear air.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Atmosphere {
+pub struct Medium {
     /// Extinction coefficient σ, per unit length.
     pub density: f32,
     /// Share of the extinction that is scattering, not absorption (0 to 1).
@@ -41,10 +53,13 @@ pub struct Atmosphere {
     pub color: Color,
 }
 
-impl Default for Atmosphere {
+/// The medium filling the scene between objects: the fog.
+pub type Atmosphere = Medium;
+
+impl Default for Medium {
     /// Clear air.
     fn default() -> Self {
-        Atmosphere {
+        Medium {
             density: 0.0,
             albedo: 1.0,
             color: Color::ONE,
@@ -52,13 +67,13 @@ impl Default for Atmosphere {
     }
 }
 
-impl Atmosphere {
-    /// Whether there is no fog at all.
+impl Medium {
+    /// Whether there is no medium at all.
     pub fn is_clear(&self) -> bool {
         self.density == 0.0
     }
 
-    /// The fraction of light that passes `distance` of this fog (Beer–Lambert).
+    /// The fraction of light that passes `distance` of this medium (Beer–Lambert).
     pub fn transmittance(&self, distance: f32) -> f32 {
         (-self.density * distance).exp()
     }
@@ -78,14 +93,14 @@ pub struct Fog {
     pub radius: f32,
 }
 
-/// Where a ray runs through the fog: from distance `start` to `end` along a unit direction.
+/// Where a ray runs through a medium: from distance `start` to `end` along a unit direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FogSegment {
+pub struct Segment {
     pub start: f32,
     pub end: f32,
 }
 
-impl FogSegment {
+impl Segment {
     pub fn length(&self) -> f32 {
         self.end - self.start
     }
@@ -121,12 +136,12 @@ impl Fog {
     /// The part of the ray `origin + s·dir` (`dir` a unit vector), `start ≤ s ≤ end`, that
     /// lies in the fog; `None` if it misses the fog's ball there. The ray is inside the ball
     /// between the roots of `|origin + s·dir − center|² = radius²`.
-    pub fn segment(&self, origin: Vec3, dir: Vec3, start: f32, end: f32) -> Option<FogSegment> {
+    pub fn segment(&self, origin: Vec3, dir: Vec3, start: f32, end: f32) -> Option<Segment> {
         let to_origin = origin - self.center;
         let c = to_origin.length_squared() - self.radius * self.radius;
         let (enter, leave) = solve_quadratic(1.0, to_origin.dot(dir), c)?;
         let (start, end) = (start.max(enter), end.min(leave));
-        (start < end).then_some(FogSegment { start, end })
+        (start < end).then_some(Segment { start, end })
     }
 
     /// The fraction of light that passes along the ray from `start` to `end`.
@@ -135,6 +150,54 @@ impl Fog {
             .map_or(1.0, |segment| {
                 self.atmosphere.transmittance(segment.length())
             })
+    }
+}
+
+/// Which medium a ray runs through, as the tracer follows it from surface to surface (the
+/// rule of the module's comment).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Within {
+    /// Between objects: the scene's fog, if it has one.
+    Fog,
+    /// Inside an object filled with this medium.
+    Medium(Medium),
+    /// Inside an object of clear material.
+    Clear,
+}
+
+impl Within {
+    /// Where a ray is after passing through a surface of `material`: `entering` the object, in
+    /// its medium; leaving it, back in the fog.
+    pub fn after_crossing(material: &Material, entering: bool) -> Within {
+        match material.medium {
+            _ if !entering => Within::Fog,
+            Some(medium) => Within::Medium(medium),
+            None => Within::Clear,
+        }
+    }
+
+    /// The medium along the ray from `origin` along the unit vector `dir` up to distance `end`
+    /// (the next surface; infinity for none), with the segment of the ray inside it; `None`
+    /// where there is no medium. The fog is `fog`, the scene's. Inside an object the segment
+    /// runs from the origin to the next surface; a ray inside an object that finds no further
+    /// surface (an object that is not closed) is taken to have left it and is not attenuated.
+    pub fn segment(
+        &self,
+        fog: Option<&Fog>,
+        origin: Vec3,
+        dir: Vec3,
+        end: f32,
+    ) -> Option<(Medium, Segment)> {
+        match self {
+            Within::Fog => {
+                let fog = fog?;
+                Some((fog.atmosphere, fog.segment(origin, dir, 0.0, end)?))
+            }
+            Within::Medium(medium) if end.is_finite() => {
+                Some((*medium, Segment { start: 0.0, end }))
+            }
+            Within::Medium(_) | Within::Clear => None,
+        }
     }
 }
 

@@ -14,7 +14,7 @@ use raylab::formats::SceneError;
 use raylab::formats::toml::{DEFAULT_MATERIAL, load_scene, parse_scene};
 use raylab::light::Light;
 use raylab::material::Material;
-use raylab::medium::Atmosphere;
+use raylab::medium::{Atmosphere, Medium};
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::Shape;
@@ -355,6 +355,7 @@ fn full_feature_file_numbers_materials_and_textures_by_name() {
             transparency: 0.5,
             ior: 1.33,
             fresnel: true,
+            medium: None,
         }
     );
     assert!(matches!(
@@ -1242,4 +1243,72 @@ fn atmosphere_mistakes_are_errors_at_their_value() {
         "fog_steps must be between 1 and 1024",
     );
     assert_error("[render]\nfog_steps = 2000\n", 2, 13, "fog_steps");
+}
+
+#[test]
+fn a_material_medium_is_read_with_defaults_for_what_it_leaves_out() {
+    let scene = parse(
+        "[materials.smoke]\ntransparency = 1\n\
+         medium = { density = 0.5, albedo = 0.25, color = [1, 0.5, 0] }\n\
+         [materials.ink]\nmedium = { density = 2 }\n[materials.clear]\n",
+    )
+    .unwrap();
+    // Materials are numbered in name order after the default: clear, ink, smoke.
+    let media: Vec<_> = scene.materials.iter().map(|m| m.medium).collect();
+    assert_eq!(
+        media,
+        [
+            None,
+            None,
+            Some(Medium {
+                density: 2.0,
+                ..Medium::default()
+            }),
+            Some(Medium {
+                density: 0.5,
+                albedo: 0.25,
+                color: Color::new(1.0, 0.5, 0.0),
+            }),
+        ]
+    );
+}
+
+#[test]
+fn material_medium_mistakes_are_errors_at_their_value() {
+    assert_error(
+        "[materials.m]\nmedium = { density = -1 }\n",
+        2,
+        22,
+        "zero or more",
+    );
+    assert_error(
+        "[materials.m]\nmedium = { density = 1, albedo = 2 }\n",
+        2,
+        34,
+        "from 0 to 1",
+    );
+    assert_error(
+        "[materials.m]\nmedium = { density = 1, color = [0, -1, 0] }\n",
+        2,
+        33,
+        "non-negative",
+    );
+    assert_error(
+        "[materials.m]\nmedium = { albedo = 0.5 }\n",
+        2,
+        10,
+        "missing field `density`",
+    );
+    assert_error(
+        "[materials.m]\nmedium = { density = 1, densty = 1 }\n",
+        2,
+        25,
+        "`density`",
+    );
+    assert_error(
+        "[materials.m]\nmedium = 0.5\n",
+        2,
+        10,
+        "expected a medium: a table like { density = 0.5",
+    );
 }

@@ -2,7 +2,9 @@
 //! stored if it has been turned by a specular surface before and the surface has a diffuse
 //! part, then carries on by the surface's reflection or transmission, picked by Russian
 //! roulette with the same weights the Whitted tracer gives its reflected and transmitted rays,
-//! so that the power the photons carry on average is the power the light keeps.
+//! so that the power the photons carry on average is the power the light keeps. Between
+//! surfaces a photon loses power to the medium it runs through, the fog or the medium inside
+//! an object, by Beer–Lambert (the same rule as the Whitted tracer's, see [`crate::medium`]).
 
 use rayon::prelude::*;
 
@@ -11,6 +13,7 @@ use super::map::Photon;
 use crate::aabb::Aabb;
 use crate::color::Color;
 use crate::material::Material;
+use crate::medium::Within;
 use crate::primitive::PrimId;
 use crate::ray::{Ray, offset_origin};
 use crate::sampling::random;
@@ -92,6 +95,7 @@ impl PhotonSource {
         let (mut ray, power) = self.emitters[light].emit([u(1), u(2), u(3)]);
         let mut power = power / self.chances[light];
         let mut turned = false;
+        let mut within = Within::Fog;
         let scene = tracer.scene;
         let settings = &scene.settings;
         for bounce in 0..MAX_BOUNCES {
@@ -102,8 +106,10 @@ impl PhotonSource {
                 return;
             };
             let dir = ray.dir.normalize();
-            if let Some(fog) = &tracer.fog {
-                power *= fog.transmittance(ray.origin, dir, 0.0, hit.t * ray.dir.length());
+            let fog = tracer.fog.as_ref();
+            let end = hit.t * ray.dir.length();
+            if let Some((medium, segment)) = within.segment(fog, ray.origin, dir, end) {
+                power *= medium.transmittance(segment.length());
             }
             let surface = scene.geometry.surface(&ray, &hit);
             let material = &scene.materials[surface.material as usize];
@@ -143,6 +149,7 @@ impl PhotonSource {
             } else if let Some(refracted) = refracted {
                 power *= tracer.base_color(material, &surface) * (kept / survive);
                 ray = Ray::new(offset_origin(surface.point, -geometric_normal), refracted);
+                within = Within::after_crossing(material, entering);
                 // Glass that does not bend light (index 1) lets shadow rays through instead.
                 turned |= bends_light(material);
             }

@@ -1,18 +1,21 @@
-//! Fog along the rays of the ray tree (the scene's [`crate::medium::Fog`]): every ray that
-//! runs through it is attenuated by Beer–Lambert and gains the light the fog scatters into it
-//! (single scattering), and light reaching a surface is attenuated on its way from the light.
+//! Fog and other media along the rays of the ray tree (the scene's [`crate::medium::Fog`], and
+//! the media inside objects): every ray that runs through one is attenuated by Beer–Lambert and
+//! gains the light the medium scatters into it (single scattering), and light reaching a
+//! surface is attenuated by the fog on its way from the light (and by the media inside the
+//! objects it passes, see `lighting`).
 //!
-//! The light scattered towards the start of a ray by the fog between `a` and `b` (distances
+//! The light scattered towards the start of a ray by the medium between `a` and `b` (distances
 //! along the ray) is
 //!
 //! ```text
 //! L_s = ∫ₐᵇ T(s − a) · σ_s · phase · Σ_lights L_light(x(s)) · V(x(s)) · T_light(x(s)) ds
 //! ```
 //!
-//! with `T` the transmittance of the fog, `σ_s` its scattering coefficient (times its colour),
-//! `phase` the isotropic phase function, and for each light what arrives at the point `x(s)`:
-//! its colour `L_light`, `V` what a shadow ray from `x(s)` lets through (0 in shadow, so
-//! shadows cast dark beams) and `T_light` the fog's transmittance along that shadow ray. The
+//! with `T` the transmittance of the medium, `σ_s` its scattering coefficient (times its
+//! colour), `phase` the isotropic phase function, and for each light what arrives at the point
+//! `x(s)`: its colour `L_light`, `V` what a shadow ray from `x(s)` lets through (0 in shadow, so
+//! shadows cast dark beams; the media of the objects it passes dim it) and `T_light` the fog's
+//! transmittance along that shadow ray. The
 //! integral is estimated light by light with `fog_steps` stratified samples: the samples'
 //! range is cut into equal strata and each is sampled at one jittered point, spread evenly
 //! along the ray or, for spot lights, equiangularly ([`Spread`]). The jitter is a hash of the
@@ -20,14 +23,15 @@
 //! pixels' errors differ, which the eye sees as fine noise rather than bands.
 //!
 //! Rays inside objects (a transmitted ray in a glass ball) are in no fog: the fog fills the
-//! space between objects.
+//! space between objects. Inside an object whose material has a medium, the segment is the
+//! ray's, from its start to the next surface, and the medium is the material's.
 
 use glam::Vec3;
 
 use super::{Tracer, TreeObserver};
 use crate::color::Color;
 use crate::light::{Light, LightSample};
-use crate::medium::{Fog, FogSegment, ISOTROPIC_PHASE};
+use crate::medium::{Fog, ISOTROPIC_PHASE, Medium, Segment, Within};
 use crate::ray::Ray;
 use crate::sampling::{hash, jitter};
 use crate::stats::RayCounts;
@@ -47,16 +51,17 @@ impl Tracer<'_> {
         observer: &mut O,
     ) -> Color {
         match &self.fog {
-            Some(fog) => self.through(fog, ray, t_end, color, counts, observer),
+            Some(_) => self.through_medium(Within::Fog, ray, t_end, color, counts, observer),
             None => color,
         }
     }
 
-    /// [`Self::through_fog`] in `fog`.
+    /// [`Self::through_fog`] for a ray in the medium `within` says: the fog, or the medium
+    /// inside an object.
     #[inline(never)]
-    fn through<O: TreeObserver>(
+    pub(super) fn through_medium<O: TreeObserver>(
         &self,
-        fog: &Fog,
+        within: Within,
         ray: &Ray,
         t_end: f32,
         color: Color,
@@ -65,29 +70,29 @@ impl Tracer<'_> {
     ) -> Color {
         let length = ray.dir.length();
         let dir = ray.dir / length;
-        let Some(segment) = fog.segment(ray.origin, dir, 0.0, t_end * length) else {
+        let fog = self.fog.as_ref();
+        let Some((medium, segment)) = within.segment(fog, ray.origin, dir, t_end * length) else {
             observer.fog(1.0, Color::ZERO);
             return color;
         };
-        let transmittance = fog.atmosphere.transmittance(segment.length());
-        let in_scattered = self.in_scattered(fog, ray.origin, dir, segment, counts, observer);
+        let transmittance = medium.transmittance(segment.length());
+        let in_scattered = self.in_scattered(&medium, ray.origin, dir, segment, counts, observer);
         observer.fog(transmittance, in_scattered);
         transmittance * color + in_scattered
     }
 
-    /// The light the fog scatters towards `origin` from the `segment` of the ray along the unit
-    /// vector `dir`: the integral of the module's comment, light by light, each by `fog_steps`
-    /// stratified samples spread as [`Spread`] says.
+    /// The light `medium` scatters towards `origin` from the `segment` of the ray along the
+    /// unit vector `dir`: the integral of the module's comment, light by light, each by
+    /// `fog_steps` stratified samples spread as [`Spread`] says.
     fn in_scattered<O: TreeObserver>(
         &self,
-        fog: &Fog,
+        medium: &Medium,
         origin: Vec3,
         dir: Vec3,
-        segment: FogSegment,
+        segment: Segment,
         counts: &mut RayCounts,
         observer: &mut O,
     ) -> Color {
-        let atmosphere = &fog.atmosphere;
         let steps = self.scene.settings.fog_steps;
         let (seed_origin, seed_dir) = (hash_vec3(origin), hash_vec3(dir));
         let mut gathered = Color::ZERO;
@@ -98,18 +103,17 @@ impl Tracer<'_> {
                 let (u, _) = jitter(seed_origin, seed_dir, index as u32 * steps + k);
                 let (s, weight) = spread.at((k as f32 + u) / steps as f32);
                 let point = origin + dir * s;
-                let arriving = self.light_in_fog(fog, light, point, counts, observer);
-                gathered += (weight * atmosphere.transmittance(s - segment.start)) * arriving;
+                let arriving = self.light_in_medium(light, point, counts, observer);
+                gathered += (weight * medium.transmittance(s - segment.start)) * arriving;
             }
         }
-        gathered * atmosphere.scattering() * (ISOTROPIC_PHASE / steps as f32)
+        gathered * medium.scattering() * (ISOTROPIC_PHASE / steps as f32)
     }
 
-    /// The light of `light` that arrives at `point`, a point in the fog: what a shadow ray lets
+    /// The light of `light` that arrives at `point`, a point in a medium: what a shadow ray lets
     /// through, attenuated by the fog along it.
-    fn light_in_fog<O: TreeObserver>(
+    fn light_in_medium<O: TreeObserver>(
         &self,
-        fog: &Fog,
         light: &Light,
         point: Vec3,
         counts: &mut RayCounts,
@@ -131,7 +135,7 @@ impl Tracer<'_> {
         if passed == Color::ZERO {
             return Color::ZERO;
         }
-        dim(fog, point, &mut sample);
+        self.dim_by_fog(point, &mut sample);
         passed * sample.color
     }
 
@@ -172,7 +176,7 @@ enum Spread {
 }
 
 impl Spread {
-    fn new(light: &Light, origin: Vec3, dir: Vec3, segment: FogSegment) -> Spread {
+    fn new(light: &Light, origin: Vec3, dir: Vec3, segment: Segment) -> Spread {
         let uniform = Spread::Uniform {
             start: segment.start,
             length: segment.length(),

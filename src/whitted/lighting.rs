@@ -1,7 +1,8 @@
 //! The local colour at a hit (the lecture's shading model): ambient light, plus the diffuse
 //! (Lambert) and specular (Phong) light of every light that a shadow ray reaches, plus, with
 //! caustics on, the diffuse light of the caustic photons nearby. Transparent blockers tint the
-//! light that passes them.
+//! light that passes them, and those filled with a medium dim it by the length the shadow ray
+//! travels inside them (Beer–Lambert).
 
 use std::ops::ControlFlow;
 
@@ -14,6 +15,7 @@ use crate::material::Material;
 use crate::photon::bends_light;
 use crate::primitive::{Hit, PrimId, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
+use crate::shapes::Shape;
 use crate::stats::RayCounts;
 
 impl Tracer<'_> {
@@ -123,8 +125,9 @@ impl Tracer<'_> {
 
     /// The transmittance along `ray` up to `distance`: zero if an opaque object is in between,
     /// otherwise the product of the transparent blockers' tints (`transparency × colour`, once
-    /// per object); and the opaque primitive that ended the search, if one did. `on_blocker`
-    /// hears of each primitive met, with its tint.
+    /// per object) times the transmittance `exp(−τ)` of the media inside them, `τ` the sum of
+    /// their optical depths ([`Self::optical_depth`]); and the opaque primitive that ended the
+    /// search, if one did. `on_blocker` hears of each primitive met, with its tint.
     pub(super) fn transmittance_and_blocker(
         &self,
         ray: &Ray,
@@ -134,6 +137,7 @@ impl Tracer<'_> {
     ) -> (Color, Option<PrimId>) {
         let mut passed = Color::ONE;
         let mut blocker = None;
+        let mut depth = 0.0;
         self.bvh
             .any_hit_counted(&self.scene.geometry, ray, 0.0, distance, cost, |hit| {
                 let tint = self.tint(hit);
@@ -141,12 +145,72 @@ impl Tracer<'_> {
                 passed *= tint;
                 if passed == Color::ZERO {
                     blocker = (tint == Color::ZERO).then_some(hit.prim);
-                    ControlFlow::Break(())
-                } else {
-                    ControlFlow::Continue(())
+                    return ControlFlow::Break(());
                 }
+                if self.media {
+                    depth += self.optical_depth(ray, distance, hit);
+                }
+                ControlFlow::Continue(())
             });
+        if depth > 0.0 {
+            passed *= (-depth).exp();
+        }
         (passed, blocker)
+    }
+
+    /// The optical depth `σ·length` that the shadow `ray` (up to `distance`) adds by running
+    /// through the medium inside the primitive of `hit`, the first hit the search met on it.
+    ///
+    /// The hits come in no particular order, but the length inside an object is the sum of
+    /// `+t` at each crossing out of it and `−t` at each crossing into it (a ray that starts
+    /// inside has only the crossing out). A mesh triangle is met once and adds its own term; an
+    /// object (a sphere, a box, a CSG solid) is met once, at its first crossing, so its later
+    /// crossings are found here by intersecting it again past each one. Inside an object the
+    /// medium is that of the surface the ray entered by (the one it leaves by, if it starts
+    /// inside). A light inside an object is taken to be outside it: the object's part adds
+    /// nothing then, the sum being kept from going below zero.
+    fn optical_depth(&self, ray: &Ray, distance: f32, hit: &Hit) -> f32 {
+        let geometry = &self.scene.geometry;
+        let materials = &self.scene.materials;
+        // The density of the medium behind the crossing at `crossing`, and whether the ray
+        // passes out there.
+        let crossing = |crossing: &Hit| {
+            let surface = geometry.surface(ray, crossing);
+            let medium = materials[surface.material as usize].medium;
+            let density = medium.map_or(0.0, |m| m.density);
+            (density, ray.dir.dot(surface.geometric_normal) > 0.0)
+        };
+        let has_medium = materials[geometry.material(hit) as usize].medium.is_some();
+        let length = ray.dir.length();
+        let object = match hit.prim.kind() {
+            Ok(o) => &geometry.objects[o],
+            Err(_) if !has_medium => return 0.0,
+            Err(_) => {
+                let (density, leaving) = crossing(hit);
+                let sign = if leaving { 1.0 } else { -1.0 };
+                return sign * density * hit.t * length;
+            }
+        };
+        // A CSG solid's operands may differ in material; any other object has one.
+        if !has_medium && !matches!(object.shape, Shape::Csg(_)) {
+            return 0.0;
+        }
+        let mut depth = 0.0;
+        // Where the ray entered, with the density inside: the ray's start if it starts inside.
+        let mut inside: Option<(f32, f32)> = None;
+        let mut next = Some(*hit);
+        while let Some(at) = next {
+            let (density, leaving) = crossing(&at);
+            if leaving {
+                let (start, density) = inside.unwrap_or((0.0, density));
+                depth += density * (at.t - start) * length;
+                inside = None;
+            } else {
+                inside = Some((at.t, density));
+            }
+            next = geometry.intersect(hit.prim, ray, at.t, distance);
+        }
+        depth
     }
 
     /// What a primitive lets through of the light behind it: `transparency × colour`; nothing

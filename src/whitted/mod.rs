@@ -7,6 +7,9 @@
 //!
 //! In a scene with fog (`[atmosphere]`), every ray is attenuated by the fog it crosses and
 //! gains the light the fog scatters into it, and shadow rays are attenuated too ([`fog`]).
+//! Rays inside an object whose material has a medium run through that medium the same way
+//! ([`crate::medium`] says which medium a ray is in), and shadow rays are attenuated by the
+//! length they travel inside such objects (`lighting`).
 //!
 //! Shadow rays try first the primitive that last blocked the same light on the same thread
 //! (the shadow cache of Haines and Greenberg, `shadow_cache`).
@@ -28,7 +31,7 @@ use crate::bvh::Bvh;
 use crate::bvh::packet::PACKET_SIZE;
 use crate::color::Color;
 use crate::material::Material;
-use crate::medium::Fog;
+use crate::medium::{Fog, Within};
 use crate::photon::PhotonMap;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
@@ -56,6 +59,8 @@ pub struct Tracer<'a> {
     pub fog: Option<Fog>,
     /// The caustic photon map, with caustics on ([`Self::with_caustics`]).
     pub caustics: Option<&'a PhotonMap>,
+    /// Whether any material has a medium: shadow rays in scenes without look for none.
+    pub media: bool,
 }
 
 impl<'a> Tracer<'a> {
@@ -71,6 +76,7 @@ impl<'a> Tracer<'a> {
             bvh,
             fog,
             caustics: None,
+            media: scene.materials.iter().any(|m| m.medium.is_some()),
         }
     }
 
@@ -133,7 +139,7 @@ impl<'a> Tracer<'a> {
             depth: 1,
             weight: 1.0,
             budget_end: counts.reflected + counts.transmitted + RAY_BUDGET,
-            in_fog: true,
+            within: Within::Fog,
         };
         let color = match hit {
             Some(hit) => {
@@ -164,11 +170,13 @@ impl<'a> Tracer<'a> {
             Some(hit) => self.shade(ray, &hit, branch, counts, observer),
             None => self.miss(ray, observer),
         };
-        let color = if branch.in_fog {
-            let t_end = hit.map_or(f32::INFINITY, |hit| hit.t);
-            self.through_fog(ray, t_end, color, counts, observer)
-        } else {
-            color
+        let t_end = hit.map_or(f32::INFINITY, |hit| hit.t);
+        let color = match branch.within {
+            Within::Fog => self.through_fog(ray, t_end, color, counts, observer),
+            Within::Medium(_) => {
+                self.through_medium(branch.within, ray, t_end, color, counts, observer)
+            }
+            Within::Clear => color,
         };
         observer.done(color);
         color
@@ -288,9 +296,10 @@ impl<'a> Tracer<'a> {
                     transmit_weight,
                     scale,
                 );
-                // A ray that enters a surface travels inside the object, where there is no fog.
+                // A ray that enters a surface travels inside the object, in its medium if it
+                // has one and in no fog.
                 let child = Branch {
-                    in_fog: !entering,
+                    within: Within::after_crossing(material, entering),
                     ..branch.child(transmit_weight)
                 };
                 color += scale * self.trace(&transmitted, child, counts, observer);
@@ -342,8 +351,9 @@ struct Branch {
     /// The tree's budget runs out when the counts of reflected plus transmitted rays reach
     /// this ([`RAY_BUDGET`] past their value when the eye ray started).
     budget_end: u64,
-    /// Whether the ray runs through the fog (if the scene has any): not inside objects.
-    in_fog: bool,
+    /// The medium the ray runs through: the fog (if the scene has any) between objects, the
+    /// object's medium or none inside them.
+    within: Within,
 }
 
 impl Branch {

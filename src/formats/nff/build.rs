@@ -186,6 +186,7 @@ fn material(fill: &Fill) -> Material {
         // Opaque materials carry 0 or 1 here; only transmitters use it.
         ior: if transmits { fill.ior as f32 } else { 1.0 },
         fresnel: false,
+        medium: None,
     }
 }
 

@@ -103,6 +103,7 @@ impl SdlMaterial {
             transparency: self.transparency,
             ior: 1.0 / self.speed_of_light,
             fresnel: false,
+            medium: None,
         }
     }
 }

@@ -10,7 +10,7 @@ use glam::{Vec2, Vec3};
 use toml::Spanned;
 
 use super::file::{
-    AtmosphereFile, CameraFile, CsgOperationFile, LightFile, MaterialFile, ObjectFile, RenderFile,
+    CameraFile, CsgOperationFile, LightFile, MaterialFile, MediumFile, ObjectFile, RenderFile,
     SceneFile, ShapeFile, TextureFile, TransformStepFile, WrapFile,
 };
 use super::values::{ColorValue, Direction, Exact, NonNegative, TexCoord, Vector};
@@ -22,7 +22,7 @@ use crate::formats::{SceneError, Source};
 use crate::light::{Light, Spot};
 use crate::limits;
 use crate::material::Material;
-use crate::medium::Atmosphere;
+use crate::medium::{Atmosphere, Medium};
 use crate::mesh::{Mesh, MeshError};
 use crate::primitive::{Geometry, Object};
 use crate::scene::Scene;
@@ -57,9 +57,7 @@ pub(crate) fn build_scene(
         .into_iter()
         .map(|light| build_light(light, source))
         .collect::<Result<_, _>>()?;
-    let atmosphere = file
-        .atmosphere
-        .map_or(Atmosphere::default(), build_atmosphere);
+    let atmosphere = file.atmosphere.map_or(Atmosphere::default(), build_medium);
 
     let texture_names = Names::new("texture", file.textures.keys(), 0);
     let material_names = Names::new("material", file.materials.keys(), DEFAULT_MATERIAL + 1);
@@ -295,12 +293,12 @@ fn build_light(light: LightFile, source: Source) -> Result<Light, SceneError> {
     })
 }
 
-fn build_atmosphere(atmosphere: AtmosphereFile) -> Atmosphere {
-    let clear = Atmosphere::default();
-    Atmosphere {
-        density: atmosphere.density.0,
-        albedo: atmosphere.albedo.map_or(clear.albedo, |a| a.0),
-        color: atmosphere.color.map_or(clear.color, |c| c.0),
+fn build_medium(medium: MediumFile) -> Medium {
+    let clear = Medium::default();
+    Medium {
+        density: medium.density.0,
+        albedo: medium.albedo.map_or(clear.albedo, |a| a.0),
+        color: medium.color.map_or(clear.color, |c| c.0),
     }
 }
 
@@ -374,6 +372,7 @@ fn build_material(
         transparency: material.transparency.map_or(default.transparency, |x| x.0),
         ior: material.ior.map_or(default.ior, |x| x.0),
         fresnel: material.fresnel.unwrap_or(default.fresnel),
+        medium: material.medium.map(build_medium),
     })
 }
 

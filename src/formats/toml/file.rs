@@ -26,7 +26,7 @@ pub struct SceneFile {
     pub camera: Option<Spanned<CameraFile>>,
     #[serde(default)]
     pub lights: Vec<LightFile>,
-    pub atmosphere: Option<AtmosphereFile>,
+    pub atmosphere: Option<MediumFile>,
     /// By name; the scene's textures are numbered in name order.
     #[serde(default)]
     pub textures: BTreeMap<String, TextureFile>,
@@ -66,10 +66,14 @@ pub struct RenderFile {
     pub caustic_gather: Option<Spanned<u32>>,
 }
 
-/// `[atmosphere]`: the fields of [`crate::medium::Atmosphere`]; `density` is required.
+/// `[atmosphere]` and a material's `medium = { … }`: the fields of [`crate::medium::Medium`];
+/// `density` is required.
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct AtmosphereFile {
+#[serde(
+    deny_unknown_fields,
+    expecting = "a medium: a table like { density = 0.5, albedo = 0.8, color = [1, 1, 1] }"
+)]
+pub struct MediumFile {
     pub density: NonNegative,
     pub albedo: Option<Fraction>,
     pub color: Option<ColorValue>,
@@ -164,6 +168,8 @@ pub struct MaterialFile {
     pub transparency: Option<Fraction>,
     pub ior: Option<Positive>,
     pub fresnel: Option<bool>,
+    /// The medium filling the object inside.
+    pub medium: Option<MediumFile>,
 }
 
 /// `[[objects]]`: a shape with a material and a placement.
