@@ -183,6 +183,12 @@ fn caustic_scenes_match_their_references() {
 }
 
 #[test]
+fn the_smoky_glass_scene_matches_its_reference() {
+    // Media inside objects: a smoky ball glowing under a spot light, red liquid in a glass.
+    check(SIZE, vec![("smoky_glass".into(), shipped("smoky_glass"))]);
+}
+
+#[test]
 fn the_sdl_texture_scene_matches_its_reference() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/sdl_textures.dat");
     let scene = load_any(path.to_str().unwrap()).unwrap_or_else(|e| panic!("{e}"));
