@@ -133,6 +133,22 @@ impl Tracer<'_> {
         ray: &Ray,
         distance: f32,
         cost: &mut impl crate::bvh::cost::TraversalCost,
+        on_blocker: impl FnMut(&Hit, Color),
+    ) -> (Color, Option<PrimId>) {
+        // A flag checked once: in scenes without media the search adds up no optical depths.
+        if self.media {
+            self.blockers_transmittance::<true>(ray, distance, cost, on_blocker)
+        } else {
+            self.blockers_transmittance::<false>(ray, distance, cost, on_blocker)
+        }
+    }
+
+    /// [`Self::transmittance_and_blocker`], with the media inside the blockers if `MEDIA`.
+    fn blockers_transmittance<const MEDIA: bool>(
+        &self,
+        ray: &Ray,
+        distance: f32,
+        cost: &mut impl crate::bvh::cost::TraversalCost,
         mut on_blocker: impl FnMut(&Hit, Color),
     ) -> (Color, Option<PrimId>) {
         let mut passed = Color::ONE;
@@ -147,12 +163,12 @@ impl Tracer<'_> {
                     blocker = (tint == Color::ZERO).then_some(hit.prim);
                     return ControlFlow::Break(());
                 }
-                if self.media {
+                if MEDIA {
                     depth += self.optical_depth(ray, distance, hit);
                 }
                 ControlFlow::Continue(())
             });
-        if depth > 0.0 {
+        if MEDIA && depth > 0.0 {
             passed *= (-depth).exp();
         }
         (passed, blocker)
