@@ -159,31 +159,34 @@ impl Fog {
 pub enum Within {
     /// Between objects: the scene's fog, if it has one.
     Fog,
-    /// Inside an object filled with this medium.
-    Medium(Medium),
+    /// Inside an object filled with a medium: that of this material (an index into the scene's
+    /// materials; an index keeps the tracer's record of a ray as small as a flag's).
+    Medium(u32),
     /// Inside an object of clear material.
     Clear,
 }
 
 impl Within {
-    /// Where a ray is after passing through a surface of `material`: `entering` the object, in
-    /// its medium; leaving it, back in the fog.
-    pub fn after_crossing(material: &Material, entering: bool) -> Within {
-        match material.medium {
+    /// Where a ray is after passing through a surface of material `material` (of
+    /// `materials`): `entering` the object, in its medium; leaving it, back in the fog.
+    pub fn after_crossing(materials: &[Material], material: u32, entering: bool) -> Within {
+        match materials[material as usize].medium {
             _ if !entering => Within::Fog,
-            Some(medium) => Within::Medium(medium),
+            Some(_) => Within::Medium(material),
             None => Within::Clear,
         }
     }
 
     /// The medium along the ray from `origin` along the unit vector `dir` up to distance `end`
     /// (the next surface; infinity for none), with the segment of the ray inside it; `None`
-    /// where there is no medium. The fog is `fog`, the scene's. Inside an object the segment
+    /// where there is no medium. The fog is `fog`, the scene's, and the materials `materials`.
+    /// Inside an object the segment
     /// runs from the origin to the next surface; a ray inside an object that finds no further
     /// surface (an object that is not closed) is taken to have left it and is not attenuated.
     pub fn segment(
         &self,
         fog: Option<&Fog>,
+        materials: &[Material],
         origin: Vec3,
         dir: Vec3,
         end: f32,
@@ -193,8 +196,9 @@ impl Within {
                 let fog = fog?;
                 Some((fog.atmosphere, fog.segment(origin, dir, 0.0, end)?))
             }
-            Within::Medium(medium) if end.is_finite() => {
-                Some((*medium, Segment { start: 0.0, end }))
+            Within::Medium(material) if end.is_finite() => {
+                let medium = materials[*material as usize].medium?;
+                Some((medium, Segment { start: 0.0, end }))
             }
             Within::Medium(_) | Within::Clear => None,
         }

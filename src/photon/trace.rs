@@ -108,7 +108,8 @@ impl PhotonSource {
             let dir = ray.dir.normalize();
             let fog = tracer.fog.as_ref();
             let end = hit.t * ray.dir.length();
-            if let Some((medium, segment)) = within.segment(fog, ray.origin, dir, end) {
+            let materials = &scene.materials;
+            if let Some((medium, segment)) = within.segment(fog, materials, ray.origin, dir, end) {
                 power *= medium.transmittance(segment.length());
             }
             let surface = scene.geometry.surface(&ray, &hit);
@@ -149,7 +150,7 @@ impl PhotonSource {
             } else if let Some(refracted) = refracted {
                 power *= tracer.base_color(material, &surface) * (kept / survive);
                 ray = Ray::new(offset_origin(surface.point, -geometric_normal), refracted);
-                within = Within::after_crossing(material, entering);
+                within = Within::after_crossing(&scene.materials, surface.material, entering);
                 // Glass that does not bend light (index 1) lets shadow rays through instead.
                 turned |= bends_light(material);
             }

@@ -70,8 +70,9 @@ impl Tracer<'_> {
     ) -> Color {
         let length = ray.dir.length();
         let dir = ray.dir / length;
-        let fog = self.fog.as_ref();
-        let Some((medium, segment)) = within.segment(fog, ray.origin, dir, t_end * length) else {
+        let (fog, materials) = (self.fog.as_ref(), &self.scene.materials);
+        let end = t_end * length;
+        let Some((medium, segment)) = within.segment(fog, materials, ray.origin, dir, end) else {
             observer.fog(1.0, Color::ZERO);
             return color;
         };

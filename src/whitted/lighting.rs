@@ -135,25 +135,29 @@ impl Tracer<'_> {
         cost: &mut impl crate::bvh::cost::TraversalCost,
         on_blocker: impl FnMut(&Hit, Color),
     ) -> (Color, Option<PrimId>) {
-        // A flag checked once: in scenes without media the search adds up no optical depths.
-        if self.media {
-            self.blockers_transmittance::<true>(ray, distance, cost, on_blocker)
-        } else {
-            self.blockers_transmittance::<false>(ray, distance, cost, on_blocker)
+        // A flag checked once: in scenes without media the search sums no optical depths.
+        if !self.media {
+            return self.tints(ray, distance, cost, on_blocker, |_| {});
         }
+        let mut depth = 0.0;
+        let add_depth = |hit: &Hit| depth += self.optical_depth(ray, distance, hit);
+        let (passed, blocker) = self.tints(ray, distance, cost, on_blocker, add_depth);
+        (passed * (-depth.max(0.0)).exp(), blocker)
     }
 
-    /// [`Self::transmittance_and_blocker`], with the media inside the blockers if `MEDIA`.
-    fn blockers_transmittance<const MEDIA: bool>(
+    /// The product of the tints of the blockers along `ray` up to `distance`, and the opaque
+    /// primitive that ended the search, if one did; `on_blocker` hears of each primitive met,
+    /// with its tint, and `on_passed` of each the light passes.
+    fn tints(
         &self,
         ray: &Ray,
         distance: f32,
         cost: &mut impl crate::bvh::cost::TraversalCost,
         mut on_blocker: impl FnMut(&Hit, Color),
+        mut on_passed: impl FnMut(&Hit),
     ) -> (Color, Option<PrimId>) {
         let mut passed = Color::ONE;
         let mut blocker = None;
-        let mut depth = 0.0;
         self.bvh
             .any_hit_counted(&self.scene.geometry, ray, 0.0, distance, cost, |hit| {
                 let tint = self.tint(hit);
@@ -161,16 +165,12 @@ impl Tracer<'_> {
                 passed *= tint;
                 if passed == Color::ZERO {
                     blocker = (tint == Color::ZERO).then_some(hit.prim);
-                    return ControlFlow::Break(());
+                    ControlFlow::Break(())
+                } else {
+                    on_passed(hit);
+                    ControlFlow::Continue(())
                 }
-                if MEDIA {
-                    depth += self.optical_depth(ray, distance, hit);
-                }
-                ControlFlow::Continue(())
             });
-        if MEDIA && depth > 0.0 {
-            passed *= (-depth).exp();
-        }
         (passed, blocker)
     }
 

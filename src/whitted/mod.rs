@@ -299,7 +299,11 @@ impl<'a> Tracer<'a> {
                 // A ray that enters a surface travels inside the object, in its medium if it
                 // has one and in no fog.
                 let child = Branch {
-                    within: Within::after_crossing(material, entering),
+                    within: Within::after_crossing(
+                        &self.scene.materials,
+                        surface.material,
+                        entering,
+                    ),
                     ..branch.child(transmit_weight)
                 };
                 color += scale * self.trace(&transmitted, child, counts, observer);
