@@ -1271,6 +1271,14 @@ fn a_material_medium_is_read_with_defaults_for_what_it_leaves_out() {
             }),
         ]
     );
+    // Ink is opaque: nothing enters it to see its medium.
+    assert_eq!(
+        scene.warnings,
+        [
+            "test.toml: material `ink` has a medium but is opaque (transparency 0): no light passes \
+          into it, so the medium shows nowhere"
+        ]
+    );
 }
 
 #[test]

@@ -67,9 +67,9 @@ pub trait TreeObserver: TraversalCost {
     /// on); the local colour includes it.
     #[inline(always)]
     fn caustic(&mut self, irradiance: Color) {}
-    /// The ray ran through fog: its colour was multiplied by `transmittance` and gained
-    /// `in_scattered`, the light the fog scattered into it. Heard just before `done`, only in
-    /// scenes with fog.
+    /// The ray ran through fog, or through the medium inside an object: its colour was
+    /// multiplied by `transmittance` and gained `in_scattered`, the light the medium scattered
+    /// into it. Heard just before `done`, only for rays where there is fog or a medium.
     #[inline(always)]
     fn fog(&mut self, transmittance: f32, in_scattered: Color) {}
     /// The ray returns `color` to its parent.

@@ -63,9 +63,18 @@ pub(crate) fn build_scene(
     let material_names = Names::new("material", file.materials.keys(), DEFAULT_MATERIAL + 1);
     let mut names = vec!["default".to_string()];
     names.extend(file.materials.keys().cloned());
+    let mut warnings = Vec::new();
     let mut materials = vec![Material::default()];
-    for material in file.materials.into_values() {
-        materials.push(build_material(material, &texture_names, source)?);
+    for (name, material) in file.materials {
+        let material = build_material(material, &texture_names, source)?;
+        if material.medium.is_some() && material.transparency == 0.0 {
+            warnings.push(format!(
+                "{}: material `{name}` has a medium but is opaque (transparency 0): no light \
+                 passes into it, so the medium shows nowhere",
+                source.origin.display()
+            ));
+        }
+        materials.push(material);
     }
 
     // Only the textures a material uses are loaded (an image can be large), renumbered in
@@ -76,7 +85,6 @@ pub(crate) fn build_scene(
             *t = used.range(..*t).count() as u32;
         }
     }
-    let mut warnings = Vec::new();
     let mut textures = Vec::new();
     for (index, (name, texture)) in file.textures.into_iter().enumerate() {
         if used.contains(&(index as u32)) {
