@@ -16,7 +16,9 @@
 //!   [`formats`] reads from TOML, OBJ, NFF, SPD and SDL files (or [`large_mesh`] generates, for
 //!   benchmarks).
 //! - Tracing: [`bvh::Bvh`] finds what a ray hits; [`whitted`] builds each eye ray's ray tree,
-//!   counts its rays ([`stats`]) and tells a [`whitted::TreeObserver`] what it does.
+//!   counts its rays ([`stats`]) and tells a [`whitted::TreeObserver`] what it does, adding with
+//!   caustics on the light of a [`photon_map::PhotonMap`], which [`photon`] fills beforehand by
+//!   shooting photons from the lights with the same tracer.
 //! - Rendering: [`progressive`] refines the image pass after pass on all cores into a
 //!   [`film::Film`], each pixel sample coloured by a [`progressive::Shader`] (the shaded image
 //!   is [`progressive::Shaded`]); [`formats::image`] saves it.
@@ -42,6 +44,7 @@ pub mod mesh;
 pub mod noise;
 pub mod output;
 pub mod photon;
+pub mod photon_map;
 pub mod primitive;
 pub mod progressive;
 pub mod ray;

@@ -54,6 +54,12 @@ impl Default for Material {
 }
 
 impl Material {
+    /// Whether the material is transparent and bends the light that passes it (index not 1):
+    /// a shadow ray cannot follow that light; caustic photons do.
+    pub fn bends_light(&self) -> bool {
+        self.transparency > 0.0 && self.ior != 1.0
+    }
+
     /// Schlick's reflectance for a ray meeting the surface with `cos_i = |d·n|`, going from index
     /// `n1` into `n2`.
     pub fn schlick(cos_i: f32, n1: f32, n2: f32) -> f32 {

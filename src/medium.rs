@@ -1,7 +1,7 @@
 //! Participating media: homogeneous [`Medium`]s, one filling the scene (the fog, the scene
 //! file's `[atmosphere]`, in the part of space [`Fog`] says) and one inside each object whose
-//! material has a `medium` (smoky glass, coloured liquid); and which of them a ray runs
-//! through ([`Within`]).
+//! material has a `medium` (smoky glass, coloured liquid). Which of them a ray runs through
+//! the tracer keeps track of (`whitted::Within`, by the rule below).
 //!
 //! Light travelling a distance `d` through a medium of extinction coefficient `σ` (its
 //! `density`, per unit length) keeps the fraction `T(d) = exp(−σ·d)` (Beer–Lambert); of what is
@@ -34,7 +34,6 @@ use glam::Vec3;
 use crate::aabb::Aabb;
 use crate::color::Color;
 use crate::light::Light;
-use crate::material::Material;
 use crate::shapes::solve_quadratic;
 
 /// The isotropic phase function: the share of scattered light that leaves into each unit of
@@ -150,58 +149,6 @@ impl Fog {
             .map_or(1.0, |segment| {
                 self.atmosphere.transmittance(segment.length())
             })
-    }
-}
-
-/// Which medium a ray runs through, as the tracer follows it from surface to surface (the
-/// rule of the module's comment).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Within {
-    /// Between objects: the scene's fog, if it has one.
-    Fog,
-    /// Inside an object filled with a medium: that of this material (an index into the scene's
-    /// materials; an index keeps the tracer's record of a ray as small as a flag's).
-    Medium(u32),
-    /// Inside an object of clear material.
-    Clear,
-}
-
-impl Within {
-    /// Where a ray is after passing through a surface of material `material` (of
-    /// `materials`): `entering` the object, in its medium; leaving it, back in the fog.
-    pub fn after_crossing(materials: &[Material], material: u32, entering: bool) -> Within {
-        match materials[material as usize].medium {
-            _ if !entering => Within::Fog,
-            Some(_) => Within::Medium(material),
-            None => Within::Clear,
-        }
-    }
-
-    /// The medium along the ray from `origin` along the unit vector `dir` up to distance `end`
-    /// (the next surface; infinity for none), with the segment of the ray inside it; `None`
-    /// where there is no medium. The fog is `fog`, the scene's, and the materials `materials`.
-    /// Inside an object the segment
-    /// runs from the origin to the next surface; a ray inside an object that finds no further
-    /// surface (an object that is not closed) is taken to have left it and is not attenuated.
-    pub fn segment(
-        &self,
-        fog: Option<&Fog>,
-        materials: &[Material],
-        origin: Vec3,
-        dir: Vec3,
-        end: f32,
-    ) -> Option<(Medium, Segment)> {
-        match self {
-            Within::Fog => {
-                let fog = fog?;
-                Some((fog.atmosphere, fog.segment(origin, dir, 0.0, end)?))
-            }
-            Within::Medium(material) if end.is_finite() => {
-                let medium = materials[*material as usize].medium?;
-                Some((medium, Segment { start: 0.0, end }))
-            }
-            Within::Medium(_) | Within::Clear => None,
-        }
     }
 }
 

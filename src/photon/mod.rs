@@ -2,7 +2,7 @@
 //! mirrors and glass, which the Whitted tracer's shadow rays cannot find. Before the image is
 //! traced, photons leave the lights towards the specular objects (`emit`), follow their
 //! reflections and refractions (`trace`), and are stored where they land on diffuse surfaces
-//! after at least one specular turn: the caustic photon map (`map`), a kd-tree. At each diffuse
+//! after at least one specular turn: the caustic photon map ([`crate::photon_map`]), a kd-tree. At each diffuse
 //! hit the tracer adds the irradiance of the nearest photons ([`PhotonMap::irradiance`]).
 //!
 //! The photons carry light as it really spreads, falling off with the square of the distance:
@@ -12,11 +12,10 @@
 //! lights and objects only, not on the camera.
 
 mod emit;
-mod map;
 mod trace;
 
-pub use map::{Photon, PhotonMap};
-pub use trace::{PhotonSource, bends_light};
+pub use crate::photon_map::{Photon, PhotonMap};
+pub use trace::PhotonSource;
 
 use crate::memory;
 use crate::whitted::Tracer;

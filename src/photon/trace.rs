@@ -9,17 +9,16 @@
 use rayon::prelude::*;
 
 use super::emit::{Emitter, Sphere};
-use super::map::Photon;
 use crate::aabb::Aabb;
 use crate::color::Color;
 use crate::material::Material;
-use crate::medium::Within;
+use crate::photon_map::Photon;
 use crate::primitive::PrimId;
 use crate::ray::{Ray, offset_origin};
 use crate::sampling::random;
 use crate::scene::Scene;
 use crate::shapes::Shape;
-use crate::whitted::{Tracer, reflect, scattering};
+use crate::whitted::{Tracer, Within, reflect, scattering};
 
 /// The most surfaces a photon visits.
 const MAX_BOUNCES: u32 = 16;
@@ -152,15 +151,10 @@ impl PhotonSource {
                 ray = Ray::new(offset_origin(surface.point, -geometric_normal), refracted);
                 within = Within::after_crossing(&scene.materials, surface.material, entering);
                 // Glass that does not bend light (index 1) lets shadow rays through instead.
-                turned |= bends_light(material);
+                turned |= material.bends_light();
             }
         }
     }
-}
-
-/// Whether a transparent material bends the light that passes it (a shadow ray cannot follow).
-pub fn bends_light(material: &Material) -> bool {
-    material.transparency > 0.0 && material.ior != 1.0
 }
 
 /// Whether a material turns light specularly: a mirror or glass.

@@ -28,10 +28,11 @@
 
 use glam::Vec3;
 
+use super::Within;
 use super::{Tracer, TreeObserver};
 use crate::color::Color;
 use crate::light::{Light, LightSample};
-use crate::medium::{Fog, ISOTROPIC_PHASE, Medium, Segment, Within};
+use crate::medium::{Fog, ISOTROPIC_PHASE, Medium, Segment};
 use crate::ray::Ray;
 use crate::sampling::{hash, jitter};
 use crate::stats::RayCounts;

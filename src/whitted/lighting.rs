@@ -12,7 +12,6 @@ use super::shadow_cache;
 use super::{ShadowEvent, Tracer, TreeObserver, reflect};
 use crate::color::Color;
 use crate::material::Material;
-use crate::photon::bends_light;
 use crate::primitive::{Hit, PrimId, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
 use crate::shapes::Shape;
@@ -233,7 +232,7 @@ impl Tracer<'_> {
     /// through glass that bends light when the caustic photons bring that light instead.
     fn tint(&self, hit: &Hit) -> Color {
         let material = &self.scene.materials[self.scene.geometry.material(hit) as usize];
-        if self.caustics.is_some() && bends_light(material) {
+        if self.caustics.is_some() && material.bends_light() {
             return Color::ZERO;
         }
         material.transparency * material.color

@@ -6,7 +6,7 @@
 //! control), or the tree has used up its [`RAY_BUDGET`].
 //!
 //! In a scene with fog (`[atmosphere]`), every ray is attenuated by the fog it crosses and
-//! gains the light the fog scatters into it, and shadow rays are attenuated too ([`fog`]).
+//! gains the light the fog scatters into it, and shadow rays are attenuated too (`fog`).
 //! Rays inside an object whose material has a medium run through that medium the same way
 //! ([`crate::medium`] says which medium a ray is in), and shadow rays are attenuated by the
 //! length they travel inside such objects (`lighting`).
@@ -23,16 +23,18 @@ mod lighting;
 mod observer;
 mod scattering;
 mod shadow_cache;
+mod within;
 
 pub use observer::{RayKind, ShadowEvent, StopReason, TreeObserver};
 pub use scattering::{Scattering, reflect, refract, scattering};
+pub use within::Within;
 
 use crate::bvh::Bvh;
 use crate::bvh::packet::PACKET_SIZE;
 use crate::color::Color;
 use crate::material::Material;
-use crate::medium::{Fog, Within};
-use crate::photon::PhotonMap;
+use crate::medium::Fog;
+use crate::photon_map::PhotonMap;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
 use crate::scene::Scene;

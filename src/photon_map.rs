@@ -1,4 +1,4 @@
-//! The photon map: the stored photons in a kd-tree, and the irradiance estimate from the
+//! The photon map: the photons [`crate::photon`] stored, in a kd-tree, and the irradiance estimate from the
 //! photons nearest a point. The tree is implicit: the photons are ordered so that the middle
 //! photon of every range splits it along the axis stored beside it, the lower half before it
 //! and the upper half after it, so the tree needs no pointers and a search no allocation. A
