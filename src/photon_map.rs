@@ -4,15 +4,20 @@
 //! and the upper half after it, so the tree needs no pointers and a search no allocation. A
 //! search skips every part of the tree whose region lies farther than the photons found so far
 //! (the distance to a region is kept up to date as the search crosses splitting planes, after
-//! Arya and Mount), and a point farther than that from the box around all the photons costs
-//! nothing.
+//! Arya and Mount), reads 16 bytes a node (the position and the splitting axis, apart from the
+//! photons' power and direction), and scans small ranges straight through; a point farther than
+//! the largest radius from the box around all the photons costs nothing.
 
 use arrayvec::ArrayVec;
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 use crate::aabb::Aabb;
 use crate::color::Color;
 use crate::settings::MAX_CAUSTIC_GATHER;
+
+/// Ranges of this many photons or fewer are searched one photon after another, without
+/// descending further.
+const LEAF_SIZE: usize = 8;
 
 /// The most photons one estimate may gather.
 const MAX_GATHER: usize = MAX_CAUSTIC_GATHER as usize;
@@ -30,8 +35,9 @@ pub struct Photon {
 #[derive(Clone, Debug, Default)]
 pub struct PhotonMap {
     photons: Vec<Photon>,
-    /// The splitting axis of the node at the same index.
-    axes: Vec<u8>,
+    /// The tree as a search reads it, 16 bytes a node: the photon's position at the same index,
+    /// and in `w` the axis (0, 1 or 2) its node splits.
+    nodes: Vec<Vec4>,
     /// The box around all the photons.
     bounds: Aabb,
     /// How many photons were shot: each stored photon's share of its light's power.
@@ -47,9 +53,14 @@ impl PhotonMap {
         let mut axes = vec![0; photons.len()];
         split(&mut photons, &mut axes);
         let bounds = Aabb::from_points(photons.iter().map(|p| p.position));
+        let nodes = photons
+            .iter()
+            .zip(&axes)
+            .map(|(p, &axis)| p.position.extend(f32::from(axis)))
+            .collect();
         PhotonMap {
             photons,
-            axes,
+            nodes,
             bounds,
             shot,
             max_radius,
@@ -134,20 +145,23 @@ impl PhotonMap {
         distance2: f32,
         nearest: &mut Nearest,
     ) {
-        if lo >= hi {
+        if hi - lo <= LEAF_SIZE {
+            for (i, node) in self.nodes[lo..hi].iter().enumerate() {
+                nearest.offer(point.distance_squared(node.truncate()), (lo + i) as u32);
+            }
             return;
         }
         let mid = (lo + hi) / 2;
-        let photon = &self.photons[mid];
-        let axis = self.axes[mid] as usize;
-        let delta = point[axis] - photon.position[axis];
+        let node = self.nodes[mid];
+        let axis = node.w as usize;
+        let delta = point[axis] - node[axis];
         let (near, far) = if delta < 0.0 {
             ((lo, mid), (mid + 1, hi))
         } else {
             ((mid + 1, hi), (lo, mid))
         };
         self.gather(near.0, near.1, point, offsets, distance2, nearest);
-        nearest.offer(point.distance_squared(photon.position), mid as u32);
+        nearest.offer(point.distance_squared(node.truncate()), mid as u32);
         // Across the splitting plane, the region is at least |delta| away along its axis.
         let far_distance2 = distance2 - offsets[axis] * offsets[axis] + delta * delta;
         if far_distance2 < nearest.max_d2 {

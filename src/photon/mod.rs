@@ -24,9 +24,9 @@ use crate::whitted::Tracer;
 /// diagonal of its bounded objects' box).
 const MAX_RADIUS_SHARE: f32 = 0.05;
 
-/// Memory one stored photon takes at most while its map is built (a copy in the list and one
-/// in the tree).
-const BYTES_PER_PHOTON: u64 = 2 * std::mem::size_of::<Photon>() as u64 + 1;
+/// Memory one stored photon takes at most while its map is built: a copy in the list, one in the
+/// tree, and its 16-byte node.
+const BYTES_PER_PHOTON: u64 = 2 * std::mem::size_of::<Photon>() as u64 + 16;
 
 /// The caustic photon map of the tracer's scene from `count` photons shot; an empty map when no
 /// light reaches anything specular. The error says the photons would not fit in memory.
