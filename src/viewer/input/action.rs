@@ -7,6 +7,8 @@ use std::path::PathBuf;
 use glam::Vec3;
 use raylab::inspect::DebugView;
 
+use crate::viewer::scene::edits::{LightEdit, MaterialEdit};
+
 #[derive(Clone, Debug, PartialEq)]
 pub enum Action {
     /// Turn around the look-at point, in degrees.
@@ -42,4 +44,10 @@ pub enum Action {
     PrintCamera,
     /// Ask for a new window size, in logical pixels (scripts only).
     ResizeWindow { width: u32, height: u32 },
+    /// Change a field of the material of this name.
+    EditMaterial { name: String, edit: MaterialEdit },
+    /// Change a field of light `number` (counted from 1, in the file's order).
+    EditLight { number: usize, edit: LightEdit },
+    /// Write the edited materials and lights into the TOML scene file.
+    SaveScene,
 }

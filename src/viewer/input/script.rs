@@ -13,7 +13,13 @@
 //! - `pick X Y`: inspects image pixel (X, Y) (from the top left); `click X Y`: a left click at the
 //!   centre of that pixel, through the window's input like a mouse's; `close-inspector`;
 //!   `print-tree`: prints the ray tree panel's node headings on the terminal;
-//! - `view NAME`: shows a debug view (`shaded`, `normals`, `depth`, …).
+//! - `view NAME`: shows a debug view (`shaded`, `normals`, `depth`, …);
+//! - `material NAME FIELD VALUE…`: changes a field of the material called NAME: `color R G B`,
+//!   `ka`, `kd`, `ks`, `shininess`, `kr`, `kt`, `ior` (one number each), `specular_color R G B`,
+//!   `fresnel on|off` (e.g. `material red kd 0.2`, `material red color 1 0 0`);
+//! - `light N FIELD VALUE…`: changes light N (counted from 1, in the file's order):
+//!   `position X Y Z`, `direction X Y Z`, `color R G B` (its brightest channel 1), `intensity I`;
+//! - `save-scene`: writes the edited materials and lights into the TOML scene file.
 
 use std::collections::VecDeque;
 use std::path::PathBuf;
@@ -22,6 +28,7 @@ use glam::Vec3;
 use raylab::inspect::DebugView;
 
 use super::action::Action;
+use crate::viewer::scene::edits::{LightEdit, MaterialEdit};
 
 #[derive(Clone, Debug, PartialEq)]
 enum Step {
@@ -86,16 +93,7 @@ fn parse_step(step: &str) -> Result<Step, String> {
     let mut words = step.split_whitespace();
     let command = words.next().unwrap_or_default();
     let args: Vec<&str> = words.collect();
-    let numbers = || -> Result<Vec<f32>, String> {
-        args.iter()
-            .map(|a| {
-                a.parse::<f32>()
-                    .ok()
-                    .filter(|v| v.is_finite())
-                    .ok_or_else(|| format!("`{a}` is not a number"))
-            })
-            .collect()
-    };
+    let numbers = || numbers_of(&args);
     let count = |n: Vec<f32>, needed: usize, optional: usize| -> Result<Vec<f32>, String> {
         if n.len() < needed || n.len() > needed + optional {
             Err(format!(
@@ -195,18 +193,61 @@ fn parse_step(step: &str) -> Result<Step, String> {
                 seconds: n[3],
             })
         }
-        "wait" | "frame" | "reset" | "save" | "print-camera" | "close-inspector" | "print-tree" => {
+        "material" if args.len() >= 2 => {
+            let flag = match args[2..] {
+                ["on" | "true"] => Some(true),
+                ["off" | "false"] => Some(false),
+                _ => None,
+            };
+            let values = if flag.is_some() {
+                Vec::new()
+            } else {
+                numbers_of(&args[2..])?
+            };
+            once(Action::EditMaterial {
+                name: args[0].to_string(),
+                edit: MaterialEdit::parse(args[1], &values, flag)?,
+            })
+        }
+        "material" => return Err("takes a material's name, a field and its value".into()),
+        "light" if args.len() >= 2 => {
+            let number = args[0]
+                .parse::<usize>()
+                .ok()
+                .filter(|&n| n >= 1)
+                .ok_or_else(|| format!("`{}` is not a light number (from 1)", args[0]))?;
+            once(Action::EditLight {
+                number,
+                edit: LightEdit::parse(args[1], &numbers_of(&args[2..])?)?,
+            })
+        }
+        "light" => return Err("takes a light's number, a field and its value".into()),
+        "save-scene" if args.is_empty() => once(Action::SaveScene),
+        "wait" | "frame" | "reset" | "save" | "print-camera" | "close-inspector" | "print-tree"
+        | "save-scene" => {
             return Err("takes no arguments".into());
         }
         _ => {
             return Err(
                 "unknown step (use wait, wait-load, orbit, pan, dolly, fly, frame, reset, \
                  save, print-camera, open, resize, pick, click, close-inspector, print-tree, \
-                 view)"
+                 view, material, light, save-scene)"
                     .into(),
             );
         }
     })
+}
+
+/// The finite numbers `args` write; the error names the first that is not one.
+fn numbers_of(args: &[&str]) -> Result<Vec<f32>, String> {
+    args.iter()
+        .map(|a| {
+            a.parse::<f32>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| format!("`{a}` is not a number"))
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -299,5 +340,51 @@ mod tests {
             assert!(err.contains(text), "{text}: {err}");
         }
         assert!(Script::parse("").unwrap().is_done());
+    }
+
+    #[test]
+    fn material_light_and_save_scene_steps_parse() {
+        use raylab::color::Color;
+
+        let mut script = Script::parse(
+            "material red kd 0.2; material red color 1 0 0; material glass fresnel on; \
+             light 2 intensity 3; light 1 position 0 5 -1; save-scene",
+        )
+        .unwrap();
+        let all: Vec<_> = std::iter::from_fn(|| script.next(true, 0)).collect();
+        let material = |name: &str, edit| Action::EditMaterial {
+            name: name.into(),
+            edit,
+        };
+        assert_eq!(
+            all,
+            vec![
+                material("red", MaterialEdit::Diffuse(0.2)),
+                material("red", MaterialEdit::Color(Color::new(1.0, 0.0, 0.0))),
+                material("glass", MaterialEdit::Fresnel(true)),
+                Action::EditLight {
+                    number: 2,
+                    edit: LightEdit::Intensity(3.0)
+                },
+                Action::EditLight {
+                    number: 1,
+                    edit: LightEdit::Position(Vec3::new(0.0, 5.0, -1.0))
+                },
+                Action::SaveScene,
+            ]
+        );
+        for (text, expected) in [
+            ("material red", "takes a material's name"),
+            ("material red kd", "takes one number"),
+            ("material red color 1 0", "three numbers"),
+            ("material red shine 3", "unknown material field"),
+            ("material red kd x", "`x` is not a number"),
+            ("light 0 intensity 1", "not a light number"),
+            ("light 1 brightness 1", "unknown light field"),
+            ("save-scene now", "takes no arguments"),
+        ] {
+            let err = Script::parse(text).unwrap_err();
+            assert!(err.contains(expected), "{text}: {err}");
+        }
     }
 }

@@ -1,13 +1,16 @@
-//! What the user controls: the camera, the render settings, the lights' intensity and the debug
-//! view. The panels
+//! What the user controls: the camera, the render settings, the lights' intensity, the debug
+//! view, and the scene's materials and lights as edited. The panels
 //! and the navigation edit a [`Controls`]; whenever it differs from the one being rendered, the
 //! app restarts refinement with it.
 
 use raylab::camera::{Camera, CameraSpec};
 use raylab::inspect::DebugView;
+use raylab::light::Light;
+use raylab::material::Material;
 use raylab::scene::Scene;
 use raylab::settings::{RenderSettings, SettingsOverrides};
 
+use super::edits;
 use crate::viewer::tracing::working_scene::TraceSetup;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -18,6 +21,11 @@ pub struct Controls {
     pub light_scale: f32,
     /// What the image shows: the shaded colour or a debug view.
     pub view: DebugView,
+    /// The scene's materials, index for index, as the Materials panel edits them.
+    pub materials: Vec<Material>,
+    /// The scene's lights, index for index, as the Lights panel edits them (before
+    /// `light_scale`).
+    pub lights: Vec<Light>,
 }
 
 impl Controls {
@@ -28,6 +36,8 @@ impl Controls {
             settings: scene.settings.clone(),
             light_scale: 1.0,
             view: DebugView::Shaded,
+            materials: scene.materials.clone(),
+            lights: scene.lights.clone(),
         }
     }
 
@@ -61,11 +71,19 @@ impl Controls {
                 self.light_scale
             ));
         }
+        for (index, material) in self.materials.iter().enumerate() {
+            edits::check_material(material).map_err(|e| format!("material {index}: {e}"))?;
+        }
+        for (index, light) in self.lights.iter().enumerate() {
+            edits::check_light(light).map_err(|e| format!("light {}: {e}", index + 1))?;
+        }
         Ok(TraceSetup {
             camera: Camera::new(self.camera).map_err(|e| format!("camera: {e}"))?,
             settings: self.settings.clone(),
             light_scale: self.light_scale,
             view: self.view,
+            materials: self.materials.clone(),
+            lights: self.lights.iter().map(edits::normalized).collect(),
             caustic_round: 0,
         })
     }
