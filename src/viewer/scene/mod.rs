@@ -276,12 +276,11 @@ impl SceneSlot {
             _ => return Err(cannot_save(&shown.scene)),
         };
         let names = &shown.scene.scene.material_names;
-        let looks = |c: &'_ Controls| Looks {
-            names,
-            materials: &c.materials,
-            lights: &c.lights,
-        };
-        let saved = save_edits(&path, looks(&shown.file_controls), looks(&shown.controls))?;
+        let saved = save_edits(
+            &path,
+            looks(names, &shown.file_controls),
+            looks(names, &shown.controls),
+        )?;
         // The file has the edits now: a reload compares with them.
         shown.file_controls.materials = shown.controls.materials.clone();
         shown.file_controls.lights = shown.controls.lights.clone();
@@ -328,6 +327,15 @@ impl SceneSlot {
             (self.overrides.width, self.overrides.height) = (Some(size.0), Some(size.1));
         }
         self.view = view;
+    }
+}
+
+/// The materials (called `names`) and lights of `controls`.
+fn looks<'a>(names: &'a [String], controls: &'a Controls) -> Looks<'a> {
+    Looks {
+        names,
+        materials: &controls.materials,
+        lights: &controls.lights,
     }
 }
 
