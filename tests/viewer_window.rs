@@ -940,11 +940,14 @@ fn a_debug_view_chosen_in_the_viewer_renders_as_on_the_cpu() {
 fn a_material_edited_in_the_viewer_changes_the_image_and_saves_into_the_file_with_its_comments() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("ball.toml");
-    let original = format!("# A ball for the materials test.\n{}", ball_scene([0.0, 2.0, 6.0]))
-        .replace(
-            "[materials.red]\ncolor = [0.8, 0.2, 0.1]\n",
-            "[materials.red]  # the ball\ncolor = [0.8, 0.2, 0.1]  # brick red\n",
-        );
+    let original = format!(
+        "# A ball for the materials test.\n{}",
+        ball_scene([0.0, 2.0, 6.0])
+    )
+    .replace(
+        "[materials.red]\ncolor = [0.8, 0.2, 0.1]\n",
+        "[materials.red]  # the ball\ncolor = [0.8, 0.2, 0.1]  # brick red\n",
+    );
     std::fs::write(&path, &original).unwrap();
     let before = load_scene(&path).unwrap();
     // After the save, a few idle frames give the watcher time to report the viewer's own write
@@ -961,7 +964,11 @@ fn a_material_edited_in_the_viewer_changes_the_image_and_saves_into_the_file_wit
     ) else {
         return;
     };
-    assert!(run.stdout.contains("saved the scene's materials"), "{}", run.stdout);
+    assert!(
+        run.stdout.contains("saved the scene's materials"),
+        "{}",
+        run.stdout
+    );
     // The file has the new colour in place of the old, and every comment.
     let saved = std::fs::read_to_string(&path).unwrap();
     assert_eq!(
@@ -979,5 +986,10 @@ fn a_material_edited_in_the_viewer_changes_the_image_and_saves_into_the_file_wit
     let expected = cpu_render(&after, 64, after.camera.spec);
     assert_eq!(mismatches(&shot, rect, 64, &expected), 0);
     // The scene was loaded once: the viewer did not reload what it wrote itself.
-    assert_eq!(run.stderr.matches("stats: loaded").count(), 1, "{}", run.stderr);
+    assert_eq!(
+        run.stderr.matches("stats: loaded").count(),
+        1,
+        "{}",
+        run.stderr
+    );
 }

@@ -132,7 +132,11 @@ fn write_material(table: &mut dyn TableLike, old: &Material, new: &Material) {
         set(table, "color", triple(new.color.to_array()));
     }
     if old.specular_color != new.specular_color {
-        set(table, "specular_color", triple(new.specular_color.to_array()));
+        set(
+            table,
+            "specular_color",
+            triple(new.specular_color.to_array()),
+        );
     }
     if old.fresnel != new.fresnel {
         set(table, "fresnel", Value::from(new.fresnel));
@@ -283,7 +287,12 @@ material = \"red\"
         materials[red].diffuse = 0.2;
         materials[red].color = Color::new(0.0, 0.5, 1.0);
         materials[red].fresnel = true;
-        let saved = edit_text(FILE, Looks::of(&before), edited(&before, &materials, &before.lights)).unwrap();
+        let saved = edit_text(
+            FILE,
+            Looks::of(&before),
+            edited(&before, &materials, &before.lights),
+        )
+        .unwrap();
         assert!(saved.unsaved.is_empty(), "{:?}", saved.unsaved);
         // Only the edited lines change; a key the table lacked comes at its end.
         let expected = FILE
@@ -308,16 +317,29 @@ material = \"red\"
             direction: Vec3::X,
             color: Color::splat(2.0),
         };
-        let saved = edit_text(FILE, Looks::of(&before), edited(&before, &before.materials, &lights)).unwrap();
+        let saved = edit_text(
+            FILE,
+            Looks::of(&before),
+            edited(&before, &before.materials, &lights),
+        )
+        .unwrap();
         assert!(
-            saved
-                .text
-                .contains("position = [1.0, 4.0, 0.0]  # above\nintensity = 0.5\ncolor = [1.0, 0.5, 0.0]\n"),
+            saved.text.contains(
+                "position = [1.0, 4.0, 0.0]  # above\nintensity = 0.5\ncolor = [1.0, 0.5, 0.0]\n"
+            ),
             "{}",
             saved.text
         );
-        assert!(saved.text.contains("direction = [1.0, 0.0, 0.0]\ncolor = [2.0, 2.0, 2.0]\n"));
-        assert!(saved.text.starts_with("# A test scene: its comments must stay.\n"));
+        assert!(
+            saved
+                .text
+                .contains("direction = [1.0, 0.0, 0.0]\ncolor = [2.0, 2.0, 2.0]\n")
+        );
+        assert!(
+            saved
+                .text
+                .starts_with("# A test scene: its comments must stay.\n")
+        );
         assert_eq!(read(&saved.text).lights, lights);
     }
 
@@ -326,10 +348,19 @@ material = \"red\"
         let before = read(FILE);
         let mut materials = before.materials.clone();
         materials[0].diffuse = 0.1;
-        let saved = edit_text(FILE, Looks::of(&before), edited(&before, &materials, &before.lights)).unwrap();
+        let saved = edit_text(
+            FILE,
+            Looks::of(&before),
+            edited(&before, &materials, &before.lights),
+        )
+        .unwrap();
         assert_eq!(saved.text, FILE);
         assert_eq!(saved.unsaved.len(), 1);
-        assert!(saved.unsaved[0].contains("`default`"), "{:?}", saved.unsaved);
+        assert!(
+            saved.unsaved[0].contains("`default`"),
+            "{:?}",
+            saved.unsaved
+        );
     }
 
     #[test]
@@ -340,7 +371,12 @@ material = \"red\"
         let before = read(FILE);
         let mut materials = before.materials.clone();
         materials[index(&before, "glass")].ior = 1.33;
-        let saved = save_edits(&path, Looks::of(&before), edited(&before, &materials, &before.lights)).unwrap();
+        let saved = save_edits(
+            &path,
+            Looks::of(&before),
+            edited(&before, &materials, &before.lights),
+        )
+        .unwrap();
         assert_eq!(std::fs::read_to_string(&path).unwrap(), saved.text);
         assert!(saved.text.contains("ior = 1.33\n"), "{}", saved.text);
         // Nothing but the scene is left in the folder (no temporary file).
@@ -349,7 +385,12 @@ material = \"red\"
         permissions.set_readonly(true);
         std::fs::set_permissions(&path, permissions).unwrap();
         materials[index(&before, "glass")].ior = 2.0;
-        let error = save_edits(&path, Looks::of(&before), edited(&before, &materials, &before.lights)).unwrap_err();
+        let error = save_edits(
+            &path,
+            Looks::of(&before),
+            edited(&before, &materials, &before.lights),
+        )
+        .unwrap_err();
         assert!(error.contains("scene.toml"), "{error}");
         assert_eq!(std::fs::read_to_string(&path).unwrap(), saved.text);
     }

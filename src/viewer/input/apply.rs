@@ -11,8 +11,8 @@ use super::navigation;
 use super::pick;
 use crate::viewer::app::App;
 use crate::viewer::save;
-use crate::viewer::scene::edits::{LightEdit, MaterialEdit};
 use crate::viewer::scene::Shown;
+use crate::viewer::scene::edits::{LightEdit, MaterialEdit};
 use crate::viewer::ui::layout::{PixelRect, window_point};
 use crate::viewer::ui::ray_tree_panel;
 
@@ -93,7 +93,10 @@ impl App {
             return;
         };
         let count = s.controls.lights.len();
-        let result = match number.checked_sub(1).and_then(|i| s.controls.lights.get_mut(i)) {
+        let result = match number
+            .checked_sub(1)
+            .and_then(|i| s.controls.lights.get_mut(i))
+        {
             Some(light) => edit.apply(light),
             None => Err(format!("the scene has {count} lights")),
         };

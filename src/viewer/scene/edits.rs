@@ -105,7 +105,9 @@ impl LightEdit {
                 [x] => Ok(LightEdit::Intensity(*x)),
                 _ => Err("`intensity` takes one number".into()),
             },
-            _ => Err(format!("unknown light field `{field}` (use {LIGHT_FIELDS})")),
+            _ => Err(format!(
+                "unknown light field `{field}` (use {LIGHT_FIELDS})"
+            )),
         }
     }
 
@@ -229,7 +231,9 @@ mod tests {
     #[test]
     fn material_fields_parse_by_either_name_and_apply() {
         let mut m = Material::default();
-        MaterialEdit::parse("kd", &[0.25], None).unwrap().apply(&mut m);
+        MaterialEdit::parse("kd", &[0.25], None)
+            .unwrap()
+            .apply(&mut m);
         MaterialEdit::parse("colour", &[1.0, 0.0, 0.5], None)
             .unwrap()
             .apply(&mut m);
@@ -250,7 +254,10 @@ mod tests {
             position: Vec3::ZERO,
             color: Color::new(2.0, 1.0, 0.0),
         };
-        assert_eq!(color_and_intensity(&light), (Color::new(1.0, 0.5, 0.0), 2.0));
+        assert_eq!(
+            color_and_intensity(&light),
+            (Color::new(1.0, 0.5, 0.0), 2.0)
+        );
         LightEdit::Intensity(4.0).apply(&mut light).unwrap();
         LightEdit::Position(Vec3::X).apply(&mut light).unwrap();
         assert_eq!(

@@ -284,7 +284,10 @@ impl SceneSlot {
         // The file has the edits now: a reload compares with them.
         shown.file_controls.materials = shown.controls.materials.clone();
         shown.file_controls.lights = shown.controls.lights.clone();
-        let mut message = format!("saved the scene's materials and lights in {}", path.display());
+        let mut message = format!(
+            "saved the scene's materials and lights in {}",
+            path.display()
+        );
         for line in saved.unsaved {
             message += &format!("\n{line}");
         }

@@ -65,7 +65,7 @@ fn material_fields(ui: &mut egui::Ui, m: &mut Material) {
         None => color(ui, "colour", &mut m.color),
     }
     let coefficient = |ui: &mut egui::Ui, x: &mut f32, text: &str| {
-        ui.add(Slider::new(x, 0.0..=1.0).clamping(egui::SliderClamping::Never).text(text));
+        ui.add(Slider::new(x, 0.0..=1.0).text(text));
     };
     coefficient(ui, &mut m.ambient, "ka ambient");
     coefficient(ui, &mut m.diffuse, "kd diffuse");
@@ -105,7 +105,11 @@ fn light_fields(ui: &mut egui::Ui, light: &mut Light) {
     color(ui, "colour", &mut rgb);
     ui.horizontal(|ui| {
         ui.label("intensity");
-        ui.add(DragValue::new(&mut intensity).speed(0.01).range(0.0..=f32::MAX));
+        ui.add(
+            DragValue::new(&mut intensity)
+                .speed(0.01)
+                .range(0.0..=f32::MAX),
+        );
     });
     if (rgb, intensity) != before {
         // The colour and the intensity together are the colour the light shines.
@@ -118,7 +122,12 @@ fn color(ui: &mut egui::Ui, label: &str, c: &mut raylab::color::Color) {
     ui.horizontal(|ui| {
         ui.label(label);
         for x in [&mut c.x, &mut c.y, &mut c.z] {
-            ui.add(DragValue::new(x).speed(0.005).range(0.0..=f32::MAX).max_decimals(3));
+            ui.add(
+                DragValue::new(x)
+                    .speed(0.005)
+                    .range(0.0..=f32::MAX)
+                    .max_decimals(3),
+            );
         }
     });
     swatch(ui, *c);
