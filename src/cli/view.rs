@@ -50,7 +50,7 @@ pub struct ViewArgs {
     /// fly X Y Z SECONDS, frame, reset, save, print-camera, open [PATH], resize W H, pick X Y
     /// (inspect image pixel X Y), click X Y (a left click on that pixel), close-inspector,
     /// print-tree (print the inspector's node headings), view NAME,
-    /// material NAME FIELD VALUE… (e.g. `material red kd 0.2`, `material red color 1 0 0`; fields
+    /// material NAME|#K FIELD VALUE… (e.g. `material red kd 0.2`, `material red color 1 0 0`; fields
     /// color, ka, kd, ks, specular_color, shininess, kr, kt, ior, fresnel on|off), light N FIELD
     /// VALUE… (N from 1; position, direction, color, intensity), save-scene (write the edited
     /// materials and lights into the TOML scene file).

@@ -68,13 +68,16 @@ impl App {
         }
     }
 
-    /// Changes a field of the material called `name` (the script's `material` step).
+    /// Changes a field of the material called `name`, or numbered `#K` (the script's `material`
+    /// step).
     fn edit_material(&mut self, name: &str, edit: MaterialEdit) {
         let Some(s) = self.scene.shown_mut() else {
             return;
         };
         let names = &s.scene.scene.material_names;
-        match names.iter().position(|n| n == name) {
+        let number = || name.strip_prefix('#')?.parse::<usize>().ok();
+        let index = names.iter().position(|n| n == name).or_else(number);
+        match index.filter(|&i| i < names.len()) {
             Some(index) => edit.apply(&mut s.controls.materials[index]),
             None => {
                 let message = format!(

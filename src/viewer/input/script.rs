@@ -14,7 +14,8 @@
 //!   centre of that pixel, through the window's input like a mouse's; `close-inspector`;
 //!   `print-tree`: prints the ray tree panel's node headings on the terminal;
 //! - `view NAME`: shows a debug view (`shaded`, `normals`, `depth`, …);
-//! - `material NAME FIELD VALUE…`: changes a field of the material called NAME: `color R G B`,
+//! - `material NAME FIELD VALUE…`: changes a field of the material called NAME (or numbered `#K`,
+//!   as in the Materials panel; 0 is the TOML reader's default material): `color R G B`,
 //!   `ka`, `kd`, `ks`, `shininess`, `kr`, `kt`, `ior` (one number each), `specular_color R G B`,
 //!   `fresnel on|off` (e.g. `material red kd 0.2`, `material red color 1 0 0`);
 //! - `light N FIELD VALUE…`: changes light N (counted from 1, in the file's order):

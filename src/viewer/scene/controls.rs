@@ -55,6 +55,18 @@ impl Controls {
         Ok(controls)
     }
 
+    /// Whether the edited materials and lights can be traced (and saved); the error says which
+    /// is wrong and how.
+    pub fn check_edits(&self) -> Result<(), String> {
+        for (index, material) in self.materials.iter().enumerate() {
+            edits::check_material(material).map_err(|e| format!("material {index}: {e}"))?;
+        }
+        for (index, light) in self.lights.iter().enumerate() {
+            edits::check_light(light).map_err(|e| format!("light {}: {e}", index + 1))?;
+        }
+        Ok(())
+    }
+
     /// What these controls change in the scene, if they are all valid; otherwise what is wrong.
     /// `max_side` is the largest texture the GPU takes.
     pub fn setup(&self, max_side: u32) -> Result<TraceSetup, String> {
@@ -71,12 +83,7 @@ impl Controls {
                 self.light_scale
             ));
         }
-        for (index, material) in self.materials.iter().enumerate() {
-            edits::check_material(material).map_err(|e| format!("material {index}: {e}"))?;
-        }
-        for (index, light) in self.lights.iter().enumerate() {
-            edits::check_light(light).map_err(|e| format!("light {}: {e}", index + 1))?;
-        }
+        self.check_edits()?;
         Ok(TraceSetup {
             camera: Camera::new(self.camera).map_err(|e| format!("camera: {e}"))?,
             settings: self.settings.clone(),
@@ -161,5 +168,12 @@ mod tests {
         let mut c = controls();
         c.light_scale = f32::NAN;
         assert!(c.setup(4096).is_err());
+        let mut c = controls();
+        c.materials.push(raylab::material::Material {
+            transparency: 2.0,
+            ..Default::default()
+        });
+        assert!(c.setup(4096).unwrap_err().contains("kt"));
+        assert!(c.check_edits().unwrap_err().contains("material 0"));
     }
 }

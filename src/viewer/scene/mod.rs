@@ -275,6 +275,7 @@ impl SceneSlot {
             Some(path) if shown.scene.toml_file => path.clone(),
             _ => return Err(cannot_save(&shown.scene)),
         };
+        shown.controls.check_edits()?;
         let names = &shown.scene.scene.material_names;
         let saved = save_edits(
             &path,

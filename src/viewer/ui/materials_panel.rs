@@ -9,7 +9,7 @@ use raylab::light::Light;
 use raylab::material::Material;
 
 use super::panels::vector;
-use super::swatch::swatch;
+use super::swatch::color32;
 use crate::viewer::input::action::Action;
 use crate::viewer::scene::controls::Controls;
 use crate::viewer::scene::edits::{color_and_intensity, set_color};
@@ -24,17 +24,17 @@ pub fn show(
 ) {
     let names = &scene.scene.scene.material_names;
     egui::CollapsingHeader::new("Materials")
-        .default_open(false)
+        .default_open(true)
         .show(ui, |ui| {
             for (index, material) in controls.materials.iter_mut().enumerate() {
                 let name = names.get(index).map_or("?", String::as_str);
-                egui::CollapsingHeader::new(name)
+                egui::CollapsingHeader::new(format!("#{index} {name}"))
                     .id_salt(("material", index))
                     .show(ui, |ui| material_fields(ui, material));
             }
         });
     egui::CollapsingHeader::new("Each light")
-        .default_open(false)
+        .default_open(true)
         .show(ui, |ui| {
             for (index, light) in controls.lights.iter_mut().enumerate() {
                 let kind = match light {
@@ -117,7 +117,7 @@ fn light_fields(ui: &mut egui::Ui, light: &mut Light) {
     }
 }
 
-/// Three channels of a linear colour and its swatch.
+/// Three channels of a linear colour and a swatch of it.
 fn color(ui: &mut egui::Ui, label: &str, c: &mut raylab::color::Color) {
     ui.horizontal(|ui| {
         ui.label(label);
@@ -129,6 +129,6 @@ fn color(ui: &mut egui::Ui, label: &str, c: &mut raylab::color::Color) {
                     .max_decimals(3),
             );
         }
+        egui::color_picker::show_color(ui, color32(*c), egui::vec2(22.0, 12.0));
     });
-    swatch(ui, *c);
 }
