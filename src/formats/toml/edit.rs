@@ -394,4 +394,33 @@ material = \"red\"
         assert!(error.contains("scene.toml"), "{error}");
         assert_eq!(std::fs::read_to_string(&path).unwrap(), saved.text);
     }
+
+    #[test]
+    fn inline_tables_take_edits_too() {
+        let text = "lights = [{ type = \"point\", position = [0, 5, 0] }]  # one lamp\n\n\
+                    [materials]\nred = { color = [1, 0, 0], diffuse = 0.7 } # red\n";
+        let before = read(text);
+        let mut materials = before.materials.clone();
+        materials[index(&before, "red")].diffuse = 0.25;
+        let lights = [Light::Point {
+            position: Vec3::ZERO,
+            color: Color::ONE,
+        }];
+        let saved = edit_text(
+            text,
+            Looks::of(&before),
+            edited(&before, &materials, &lights),
+        )
+        .unwrap();
+        assert_eq!(
+            saved.text,
+            "lights = [{ type = \"point\", position = [0.0, 0.0, 0.0] }]  # one lamp\n\n\
+             [materials]\nred = { color = [1, 0, 0], diffuse = 0.25 } # red\n"
+        );
+        let after = read(&saved.text);
+        assert_eq!(
+            (after.materials, after.lights),
+            (materials, lights.to_vec())
+        );
+    }
 }

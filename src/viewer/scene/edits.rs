@@ -25,7 +25,7 @@ pub enum MaterialEdit {
 }
 
 /// The field names a script's `material` step takes.
-pub const MATERIAL_FIELDS: &str = "color, ka (ambient), kd (diffuse), ks (specular), \
+const MATERIAL_FIELDS: &str = "color, ka (ambient), kd (diffuse), ks (specular), \
     specular_color, shininess, kr (reflectivity), kt (transparency), ior, fresnel";
 
 impl MaterialEdit {
@@ -88,7 +88,7 @@ pub enum LightEdit {
 }
 
 /// The field names a script's `light` step takes.
-pub const LIGHT_FIELDS: &str = "position, direction, color, intensity";
+const LIGHT_FIELDS: &str = "position, direction, color, intensity";
 
 impl LightEdit {
     /// `FIELD VALUE…`: three numbers, one for `intensity`.
@@ -148,6 +148,7 @@ fn shone(light: &Light) -> Color {
     }
 }
 
+/// Makes `light` shine `shone` (its colour times its intensity).
 pub fn set_color(light: &mut Light, shone: Color) {
     match light {
         Light::Point { color, .. } | Light::Directional { color, .. } => *color = shone,
