@@ -103,6 +103,7 @@ impl App {
             self.tracing.rendering.as_ref(),
             &mut self.clock.timing,
             screenshot,
+            self.ui.panel.display.uniforms(),
         );
         if let Some(e) = painted.screenshot_error {
             self.ended = Some(Err(e));

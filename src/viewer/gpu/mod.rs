@@ -20,6 +20,7 @@ use winit::window::Window;
 
 use self::device::Gpu;
 use self::painter::{FrameContent, Painter};
+use self::quad::Display;
 use self::surface::{Acquired, WindowSurface};
 use self::upload::{Uploader, write_texture};
 use crate::viewer::frame::timing::Timing;
@@ -118,7 +119,7 @@ impl Graphics {
     }
 
     /// Paints a frame: egui's `output` over the image (the film of `rendering`, uploaded if it
-    /// changed) shown at `shown`, presented in the window; then, if it was presented and
+    /// changed) shown at `shown` through `display` (the split only if there is a snapshot), presented in the window; then, if it was presented and
     /// `screenshot` is given, saved there as a PNG.
     pub fn paint(
         &mut self,
@@ -128,6 +129,7 @@ impl Graphics {
         rendering: Option<&Rendering>,
         timing: &mut Timing,
         screenshot: Option<&Path>,
+        display: Display,
     ) -> Painted {
         let egui::FullOutput {
             platform_output,
@@ -141,6 +143,13 @@ impl Graphics {
         let primitives = egui.tessellate(shapes, pixels_per_point);
         self.painter.set_textures(&self.gpu, &mut textures_delta);
         let uploaded = rendering.and_then(|r| self.upload(r, timing));
+        let quad = &self.painter.quad;
+        let divider = if quad.snapshot_size().is_some() {
+            display.divider
+        } else {
+            0.0
+        };
+        quad.set_display(&self.gpu.queue, Display { divider, ..display });
         let content = FrameContent {
             primitives: &primitives,
             pixels_per_point,
@@ -167,6 +176,14 @@ impl Graphics {
             uploaded,
             screenshot_error,
         }
+    }
+
+    /// Keeps the image texture as it is now as the snapshot to compare with; returns its size
+    /// (none before the first image).
+    pub fn snapshot(&mut self) -> Option<(u32, u32)> {
+        self.painter
+            .quad
+            .take_snapshot(&self.gpu.device, &self.gpu.queue)
     }
 
     /// Uploads the film if it changed; returns how far the render was when the film was read
