@@ -51,7 +51,11 @@ impl App {
                     s.controls.view = view;
                 }
             }
-            other if self.ui.panel.display.apply(&other) => {}
+            display @ (Action::Compare(_)
+            | Action::ToggleCompare
+            | Action::Divider(_)
+            | Action::Exposure(_)
+            | Action::ToneCurve(_)) => self.ui.panel.display.apply(display),
             other => {
                 if let Some(s) = self.scene.shown_mut() {
                     navigate(s, other, shown);

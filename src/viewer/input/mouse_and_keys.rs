@@ -322,4 +322,16 @@ mod tests {
         ]);
         assert_eq!(actions, vec![Action::Save]);
     }
+
+    #[test]
+    fn b_keeps_a_snapshot_and_v_turns_the_split_on_and_off() {
+        let mut h = Harness::new();
+        let actions = h.frame(vec![key(Key::B, true, Modifiers::NONE)]);
+        assert_eq!(actions, vec![Action::Snapshot]);
+        let actions = h.frame(vec![
+            key(Key::B, false, Modifiers::NONE),
+            key(Key::V, true, Modifiers::NONE),
+        ]);
+        assert_eq!(actions, vec![Action::ToggleCompare]);
+    }
 }

@@ -49,10 +49,9 @@ impl DisplayControls {
         self.compare && self.snapshot.is_some()
     }
 
-    /// Carries out a display action; says so in `message` where the user should hear of it.
-    /// Returns false for actions that are not about the display.
-    pub fn apply(&mut self, action: &Action) -> bool {
-        match *action {
+    /// Carries out a display action (others do nothing here).
+    pub fn apply(&mut self, action: Action) {
+        match action {
             Action::Compare(on) => self.compare = on,
             Action::ToggleCompare => self.compare = !self.compare,
             Action::Divider(fraction) => self.divider = fraction.clamp(0.0, 1.0),
@@ -61,14 +60,14 @@ impl DisplayControls {
                     stops.clamp(*Tone::EXPOSURE_RANGE.start(), *Tone::EXPOSURE_RANGE.end());
             }
             Action::ToneCurve(curve) => self.tone.curve = curve,
-            _ => return false,
+            _ => {}
         }
-        true
     }
 
-    /// Forgets the snapshot if the image no longer has its size; returns whether it did.
+    /// Forgets the snapshot if the image (when there is one) no longer has its size; returns
+    /// whether it did.
     pub fn drop_stale_snapshot(&mut self, image_size: (u32, u32)) -> bool {
-        let stale = self.snapshot.is_some_and(|s| s != image_size);
+        let stale = image_size != (0, 0) && self.snapshot.is_some_and(|s| s != image_size);
         if stale {
             self.snapshot = None;
         }
@@ -137,14 +136,12 @@ pub fn split_view(ui: &mut egui::Ui, display: &mut DisplayControls, image: egui:
     let x = image.left() + display.divider * image.width();
     let painter = ui.painter_at(image);
     painter.vline(x, image.y_range(), Stroke::new(2.0, Color32::WHITE));
-    let label = |pos, align, text: &str| {
-        painter.text(
-            pos,
-            align,
-            text,
-            egui::FontId::proportional(14.0),
-            Color32::WHITE,
-        );
+    // White on a dark shadow, readable over any image.
+    let label = |pos: egui::Pos2, align, text: &str| {
+        for (offset, color) in [(1.0, Color32::BLACK), (0.0, Color32::WHITE)] {
+            let at = pos + egui::vec2(offset, offset);
+            painter.text(at, align, text, egui::FontId::proportional(14.0), color);
+        }
     };
     let top = image.top() + 4.0;
     label(
@@ -153,4 +150,50 @@ pub fn split_view(ui: &mut egui::Ui, display: &mut DisplayControls, image: egui:
         "snapshot",
     );
     label(egui::pos2(x + 6.0, top), egui::Align2::LEFT_TOP, "live");
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_split_shows_only_with_a_snapshot_and_compare_on() {
+        let mut d = DisplayControls::default();
+        d.apply(Action::Divider(0.3));
+        d.apply(Action::Compare(true));
+        assert_eq!(d.uniforms().divider, 0.0, "no snapshot yet");
+        d.snapshot = Some((4, 3));
+        assert_eq!(d.uniforms().divider, 0.3);
+        d.apply(Action::ToggleCompare);
+        assert_eq!(d.uniforms().divider, 0.0);
+        d.apply(Action::Divider(7.0));
+        assert_eq!(d.divider, 1.0);
+    }
+
+    #[test]
+    fn exposure_and_curve_go_to_the_shader() {
+        let mut d = DisplayControls::default();
+        d.apply(Action::Exposure(2.0));
+        d.apply(Action::ToneCurve(ToneCurve::Reinhard));
+        assert_eq!(
+            d.uniforms().tone,
+            Tone::new(2.0, ToneCurve::Reinhard).unwrap()
+        );
+    }
+
+    #[test]
+    fn a_new_image_size_drops_the_snapshot() {
+        let mut d = DisplayControls {
+            snapshot: Some((4, 3)),
+            ..DisplayControls::default()
+        };
+        assert!(!d.drop_stale_snapshot((4, 3)));
+        assert!(
+            !d.drop_stale_snapshot((0, 0)),
+            "no image: nothing to compare"
+        );
+        assert_eq!(d.snapshot, Some((4, 3)));
+        assert!(d.drop_stale_snapshot((8, 3)));
+        assert_eq!(d.snapshot, None);
+    }
 }
