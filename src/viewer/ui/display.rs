@@ -196,4 +196,62 @@ mod tests {
         assert!(d.drop_stale_snapshot((8, 3)));
         assert_eq!(d.snapshot, None);
     }
+
+    /// Drags the left button from `from` to `to` over a 100×100 image area with the split view
+    /// on; returns where the divider ends and whether the image itself was dragged.
+    fn drag(from: egui::Pos2, to: egui::Pos2) -> (f32, bool) {
+        let ctx = egui::Context::default();
+        let mut display = DisplayControls {
+            compare: true,
+            snapshot: Some((10, 10)),
+            ..DisplayControls::default()
+        };
+        let button = |pos, pressed| egui::Event::PointerButton {
+            pos,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        };
+        let mut frames = vec![
+            vec![egui::Event::PointerMoved(from)],
+            vec![button(from, true)],
+        ];
+        for k in 1..=5 {
+            frames.push(vec![egui::Event::PointerMoved(
+                from + (to - from) * k as f32 / 5.0,
+            )]);
+        }
+        frames.push(vec![button(to, false)]);
+        let mut image_dragged = false;
+        for (k, events) in frames.into_iter().enumerate() {
+            let input = egui::RawInput {
+                screen_rect: Some(egui::Rect::from_min_size(
+                    egui::Pos2::ZERO,
+                    egui::vec2(100.0, 100.0),
+                )),
+                time: Some(k as f64 / 60.0),
+                events,
+                ..Default::default()
+            };
+            let mut output = ctx.run_ui(input, |ui| {
+                let rect = ui.available_rect_before_wrap();
+                let image = ui.allocate_rect(rect, egui::Sense::click_and_drag());
+                image_dragged |= image.dragged();
+                split_view(ui, &mut display, rect);
+            });
+            output.textures_delta.clear();
+        }
+        (display.divider, image_dragged)
+    }
+
+    #[test]
+    fn dragging_the_divider_moves_it_and_does_not_orbit() {
+        let (divider, image_dragged) = drag(egui::pos2(51.0, 50.0), egui::pos2(81.0, 40.0));
+        assert!((divider - 0.8).abs() < 0.02, "{divider}");
+        assert!(!image_dragged);
+        // Away from the divider a drag is the image's (it orbits) and leaves the divider alone.
+        let (divider, image_dragged) = drag(egui::pos2(20.0, 50.0), egui::pos2(40.0, 50.0));
+        assert_eq!(divider, 0.5);
+        assert!(image_dragged);
+    }
 }
