@@ -49,7 +49,12 @@ impl ToneCurve {
 
     /// The curve at linear value `x`, in [0, 1] (negative values and NaN give 0).
     pub fn apply(self, x: f32) -> f32 {
-        let x = x.max(0.0).min(CURVE_INPUT_MAX);
+        // NaN counts as 0, as in `srgb8`.
+        let x = if x.is_nan() {
+            0.0
+        } else {
+            x.clamp(0.0, CURVE_INPUT_MAX)
+        };
         match self {
             ToneCurve::Clamp => x.min(1.0),
             ToneCurve::Reinhard => x / (1.0 + x),

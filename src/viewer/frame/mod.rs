@@ -96,6 +96,7 @@ impl App {
             return false;
         };
         let screenshot = self.input.screenshot().filter(|_| frame.finishing);
+        gfx.set_display(self.ui.panel.display.uniforms());
         let painted = gfx.paint(
             &self.ui.egui,
             frame.output,
@@ -103,7 +104,6 @@ impl App {
             self.tracing.rendering.as_ref(),
             &mut self.clock.timing,
             screenshot,
-            self.ui.panel.display.uniforms(),
         );
         if let Some(e) = painted.screenshot_error {
             self.ended = Some(Err(e));

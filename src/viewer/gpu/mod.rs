@@ -36,6 +36,8 @@ pub struct Graphics {
     egui_state: egui_winit::State,
     /// What of the film the image texture shows.
     uploader: Uploader,
+    /// How the image is shown (exposure, tone curve, split).
+    display: Display,
 }
 
 /// What painting a frame did.
@@ -81,6 +83,7 @@ impl Graphics {
             painter,
             egui_state,
             uploader: Uploader::new(),
+            display: Display::default(),
         })
     }
 
@@ -118,8 +121,14 @@ impl Graphics {
         self.surface.size() != (size.width, size.height)
     }
 
+    /// Shows the image through `display` from the next frame on (the split only while there is
+    /// a snapshot).
+    pub fn set_display(&mut self, display: Display) {
+        self.display = display;
+    }
+
     /// Paints a frame: egui's `output` over the image (the film of `rendering`, uploaded if it
-    /// changed) shown at `shown` through `display` (the split only if there is a snapshot), presented in the window; then, if it was presented and
+    /// changed) shown at `shown`, presented in the window; then, if it was presented and
     /// `screenshot` is given, saved there as a PNG.
     pub fn paint(
         &mut self,
@@ -129,7 +138,6 @@ impl Graphics {
         rendering: Option<&Rendering>,
         timing: &mut Timing,
         screenshot: Option<&Path>,
-        display: Display,
     ) -> Painted {
         let egui::FullOutput {
             platform_output,
@@ -145,11 +153,17 @@ impl Graphics {
         let uploaded = rendering.and_then(|r| self.upload(r, timing));
         let quad = &self.painter.quad;
         let divider = if quad.snapshot_size().is_some() {
-            display.divider
+            self.display.divider
         } else {
             0.0
         };
-        quad.set_display(&self.gpu.queue, Display { divider, ..display });
+        quad.set_display(
+            &self.gpu.queue,
+            Display {
+                divider,
+                ..self.display
+            },
+        );
         let content = FrameContent {
             primitives: &primitives,
             pixels_per_point,

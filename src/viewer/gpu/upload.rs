@@ -89,7 +89,7 @@ mod tests {
         film.set(1, 0, Color::ONE);
         film.touch();
         let mut uploader = Uploader::new();
-        let mut expected = vec![0; 2 * TEXEL_BYTES];
+        let mut expected = [0; 2 * TEXEL_BYTES];
         texel(Color::ZERO, &mut expected[..TEXEL_BYTES]);
         texel(Color::ONE, &mut expected[TEXEL_BYTES..]);
         assert_eq!(uploader.changed_pixels(&film), Some(&expected[..]));
