@@ -1,5 +1,6 @@
 //! What the user sees besides the image (egui): the side panel, the status line, the ray tree
-//! panel, the overlay drawn over the image, the legend's colour bar, colour swatches, and where
+//! panel, the overlay drawn over the image, the display's controls (exposure, tone curve,
+//! snapshot) and the split view's divider, the legend's colour bar, colour swatches, and where
 //! the image sits in the window.
 
 pub mod display;
