@@ -28,7 +28,9 @@ pub struct OverrideArgs {
     /// Starting block size of progressive refinement (power of two, 1 to 64).
     #[arg(long)]
     block_size: Option<u32>,
-    /// Samples per pixel (more than 1 anti-aliases after block size 1).
+    /// Samples per pixel (more than 1 anti-aliases after block size 1); with --aa-threshold, the
+    /// most a pixel takes. The viewer, given neither, refines a scene that asks for 1 up to 16
+    /// with --aa-threshold 0.03.
     #[arg(long)]
     samples: Option<u32>,
     /// Adaptive anti-aliasing: only pixels whose colour differs from a neighbour's by more than
