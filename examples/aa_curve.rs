@@ -114,9 +114,10 @@ fn plot(points: &[Point]) -> RgbImage {
     let mut image = RgbImage::from_pixel(PLOT_SIZE.0, PLOT_SIZE.1, Rgb([255, 255, 255]));
     let (left, top, right, bottom) = FRAME;
     let x_of = |p: &Point| (p.rays as f64).log2();
-    let (x_min, x_max) = points.iter().map(x_of).fold((f64::MAX, f64::MIN), |(lo, hi), x| {
-        (lo.min(x), hi.max(x))
-    });
+    let (x_min, x_max) = points
+        .iter()
+        .map(x_of)
+        .fold((f64::MAX, f64::MIN), |(lo, hi), x| (lo.min(x), hi.max(x)));
     let y_max = points.iter().map(|p| p.rmse).fold(0.0, f64::max) * 1.1;
     let to_pixel = |x: f64, y: f64| {
         let px = left + (x - x_min) / (x_max - x_min).max(1e-9) * (right - left);
@@ -160,7 +161,13 @@ fn plot(points: &[Point]) -> RgbImage {
         let row = THRESHOLDS.iter().position(|&t| t == threshold).unwrap_or(0);
         let (lx, ly) = (right - 90.0, top + 10.0 + 18.0 * row as f64);
         square(&mut image, lx, ly, 5, color);
-        text(&mut image, lx + 12.0, ly - 5.0, &format!("{threshold}"), color);
+        text(
+            &mut image,
+            lx + 12.0,
+            ly - 5.0,
+            &format!("{threshold}"),
+            color,
+        );
     }
     image
 }

@@ -1206,7 +1206,15 @@ fn the_anti_aliasing_threshold_is_taken_and_checked() {
     let dir = tempfile::tempdir().unwrap();
     let out = raylab(
         &[
-            "render", "-o", "aa.png", "--size", "32", "--samples", "4", "--aa-threshold", "0.03",
+            "render",
+            "-o",
+            "aa.png",
+            "--size",
+            "32",
+            "--samples",
+            "4",
+            "--aa-threshold",
+            "0.03",
         ],
         dir.path(),
     );

@@ -383,5 +383,5 @@ fn adaptive_renders_are_the_same_whatever_the_thread_count() {
         assert!(other == image, "{threads} threads: other pixels");
         assert!(other_counts == counts, "{threads} threads: other samples");
     }
-    assert!(counts.iter().any(|&n| n == 8) && counts.iter().any(|&n| n == 1));
+    assert!(counts.contains(&8) && counts.contains(&1));
 }

@@ -1085,7 +1085,13 @@ fn left_alone_the_viewer_refines_the_default_scene_close_to_a_256_spp_reference(
     let size = 96;
     let Some((run, shot)) = run_to_screenshot(
         dir.path(),
-        &["--size", &size.to_string(), "--window", "700x500", "--stats"],
+        &[
+            "--size",
+            &size.to_string(),
+            "--window",
+            "700x500",
+            "--stats",
+        ],
     ) else {
         return;
     };
@@ -1119,12 +1125,22 @@ fn with_a_threshold_of_zero_the_viewer_shows_what_render_saves() {
     };
     let saved = dir.path().join("render.png");
     let render = Command::new(env!("CARGO_BIN_EXE_raylab"))
-        .args([&["render", "-o", saved.to_str().unwrap(), "--size", "64"][..], &sampling].concat())
+        .args(
+            [
+                &["render", "-o", saved.to_str().unwrap(), "--size", "64"][..],
+                &sampling,
+            ]
+            .concat(),
+        )
         .output()
         .unwrap();
     assert!(render.status.success(), "{render:?}");
     let rendered = image::open(&saved).unwrap().to_rgb8().into_raw();
-    assert_eq!(rendered, cpu_render_sampled(size, 4, 0.0), "uniform sampling");
+    assert_eq!(
+        rendered,
+        cpu_render_sampled(size, 4, 0.0),
+        "uniform sampling"
+    );
     assert_ne!(rendered, cpu_render_sampled(size, 1, 0.0));
     assert_eq!(
         mismatches(&shot, image_rect(&run.stdout), size, &rendered),
