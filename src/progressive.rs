@@ -42,6 +42,7 @@ use crate::color::{Color, srgb8};
 use crate::film::Film;
 use crate::ray::Ray;
 use crate::sampling::jitter;
+use crate::settings::RenderSettings;
 use crate::stats::{RayCounts, SharedRayCounts};
 use crate::whitted::Tracer;
 
@@ -262,6 +263,14 @@ pub fn render(
     stats.time = start.elapsed();
     control.finished.store(true, Ordering::Relaxed);
     Ok(stats)
+}
+
+/// The memory a render of `settings` takes besides its film: the copy of the film as shown that
+/// the anti-aliasing rounds compare neighbours in (none with uniform sampling).
+pub fn memory_bytes(settings: &RenderSettings) -> u64 {
+    let adaptive = settings.aa_threshold > 0.0 && settings.samples > 1;
+    let pixels = u64::from(settings.width) * u64::from(settings.height);
+    if adaptive { pixels * 3 } else { 0 }
 }
 
 /// Runs one pass over the whole image (an anti-aliasing round compares the pixels as the film
