@@ -977,6 +977,8 @@ fn exposure_and_tone_curve_show_in_the_window_and_save_as_shown() {
             &size.to_string(),
             "--save",
             saved.to_str().unwrap(),
+            "--samples",
+            "1",
             "--script",
             "exposure 1.5; tonemap filmic; wait; save",
         ],
@@ -1005,6 +1007,8 @@ fn a_snapshot_shows_left_of_the_divider_and_the_live_image_right_of_it() {
         &[
             "--size",
             &size.to_string(),
+            "--samples",
+            "1",
             "--script",
             "wait; snapshot; view normals; divider 0.5; wait",
         ],
