@@ -49,7 +49,9 @@ pub struct ViewArgs {
     /// N scene loads, the first included), orbit YAW PITCH [FRAMES], pan DX DY [FRAMES], dolly STEPS,
     /// fly X Y Z SECONDS, frame, reset, save, print-camera, open [PATH], resize W H, pick X Y
     /// (inspect image pixel X Y), click X Y (a left click on that pixel), close-inspector,
-    /// print-tree (print the inspector's node headings), view NAME,
+    /// print-tree (print the inspector's node headings), view NAME, exposure STOPS, tonemap
+    /// CURVE (clamp, reinhard, filmic), snapshot (keep the image to compare with, as the key B),
+    /// compare on|off (the split view: snapshot left, live right), divider FRACTION (0 to 1),
     /// material NAME|#K FIELD VALUE… (e.g. `material red kd 0.2`, `material red color 1 0 0`; fields
     /// color, ka, kd, ks, specular_color, shininess, kr, kt, ior, fresnel on|off), light N FIELD
     /// VALUE… (N from 1; position, direction, color, intensity), save-scene (write the edited

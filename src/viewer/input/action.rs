@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 use raylab::inspect::DebugView;
+use raylab::tone::ToneCurve;
 
 use crate::viewer::scene::edits::{LightEdit, MaterialEdit};
 
@@ -44,6 +45,18 @@ pub enum Action {
     PrintCamera,
     /// Ask for a new window size, in logical pixels (scripts only).
     ResizeWindow { width: u32, height: u32 },
+    /// Keep the image as it is now, to compare with (and show the split view).
+    Snapshot,
+    /// Show the split view (snapshot left, live image right) or not.
+    Compare(bool),
+    /// Turn the split view on or off.
+    ToggleCompare,
+    /// Put the split view's divider at this fraction of the image's width.
+    Divider(f32),
+    /// Show the image at this exposure, in stops.
+    Exposure(f32),
+    /// Show the image through this tone curve.
+    ToneCurve(ToneCurve),
     /// Change a field of the material of this name.
     EditMaterial { name: String, edit: MaterialEdit },
     /// Change a field of light `number` (counted from 1, in the file's order).

@@ -14,6 +14,10 @@
 //!   centre of that pixel, through the window's input like a mouse's; `close-inspector`;
 //!   `print-tree`: prints the ray tree panel's node headings on the terminal;
 //! - `view NAME`: shows a debug view (`shaded`, `normals`, `depth`, …);
+//! - `exposure STOPS`, `tonemap NAME` (`clamp`, `reinhard`, `filmic`): how the image is shown;
+//! - `snapshot`: keeps the image on screen to compare with (as the key B), and shows the split;
+//!   `compare on|off`: the split view (snapshot left, live right); `divider FRACTION`: where the
+//!   split is, from 0 (left edge) to 1 (right edge);
 //! - `material NAME FIELD VALUE…`: changes a field of the material called NAME (or numbered `#K`,
 //!   as in the Materials panel; 0 is the TOML reader's default material): `color R G B`,
 //!   `ka`, `kd`, `ks`, `shininess`, `kr`, `kt`, `ior` (one number each), `specular_color R G B`,
@@ -27,6 +31,7 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 use raylab::inspect::DebugView;
+use raylab::tone::{Tone, ToneCurve};
 
 use super::action::Action;
 use crate::viewer::scene::edits::{LightEdit, MaterialEdit};
@@ -172,6 +177,27 @@ fn parse_step(step: &str) -> Result<Step, String> {
         }
         "view" if args.len() == 1 => once(Action::SetView(args[0].parse::<DebugView>()?)),
         "view" => return Err("takes one view name".into()),
+        "snapshot" if args.is_empty() => once(Action::Snapshot),
+        "compare" => match args[..] {
+            ["on"] => once(Action::Compare(true)),
+            ["off"] => once(Action::Compare(false)),
+            _ => return Err("takes `on` or `off`".into()),
+        },
+        "divider" => {
+            let n = count(numbers()?, 1, 0)?[0];
+            if !(0.0..=1.0).contains(&n) {
+                return Err(format!(
+                    "takes a fraction of the image's width from 0 to 1, got {n}"
+                ));
+            }
+            once(Action::Divider(n))
+        }
+        "exposure" => {
+            let n = count(numbers()?, 1, 0)?[0];
+            once(Action::Exposure(Tone::new(n, ToneCurve::Clamp)?.exposure))
+        }
+        "tonemap" if args.len() == 1 => once(Action::ToneCurve(args[0].parse::<ToneCurve>()?)),
+        "tonemap" => return Err("takes one tone curve name".into()),
         "close-inspector" if args.is_empty() => once(Action::CloseRayTree),
         "print-tree" if args.is_empty() => once(Action::PrintTree),
         "dolly" => once(Action::Dolly(count(numbers()?, 1, 0)?[0])),
@@ -225,14 +251,14 @@ fn parse_step(step: &str) -> Result<Step, String> {
         "light" => return Err("takes a light's number, a field and its value".into()),
         "save-scene" if args.is_empty() => once(Action::SaveScene),
         "wait" | "frame" | "reset" | "save" | "print-camera" | "close-inspector" | "print-tree"
-        | "save-scene" => {
+        | "snapshot" | "save-scene" => {
             return Err("takes no arguments".into());
         }
         _ => {
             return Err(
                 "unknown step (use wait, wait-load, orbit, pan, dolly, fly, frame, reset, \
                  save, print-camera, open, resize, pick, click, close-inspector, print-tree, \
-                 view, material, light, save-scene)"
+                 view, exposure, tonemap, snapshot, compare, divider, material, light, save-scene)"
                     .into(),
             );
         }
@@ -341,6 +367,39 @@ mod tests {
             assert!(err.contains(text), "{text}: {err}");
         }
         assert!(Script::parse("").unwrap().is_done());
+    }
+
+    #[test]
+    fn display_steps_parse_and_say_what_is_wrong() {
+        let mut script = Script::parse(
+            "exposure -1.5; tonemap filmic; snapshot; compare off; compare on; divider 0.25",
+        )
+        .unwrap();
+        let all: Vec<_> = std::iter::from_fn(|| script.next(true, 0)).collect();
+        assert_eq!(
+            all,
+            vec![
+                Action::Exposure(-1.5),
+                Action::ToneCurve(ToneCurve::Filmic),
+                Action::Snapshot,
+                Action::Compare(false),
+                Action::Compare(true),
+                Action::Divider(0.25),
+            ]
+        );
+        for (text, expected) in [
+            ("exposure", "takes 1 number"),
+            ("exposure 99", "exposure must be from -16 to 16 stops"),
+            ("tonemap aces", "unknown tone curve `aces`"),
+            ("tonemap", "takes one tone curve name"),
+            ("snapshot now", "takes no arguments"),
+            ("compare", "takes `on` or `off`"),
+            ("compare yes", "takes `on` or `off`"),
+            ("divider 1.5", "from 0 to 1"),
+        ] {
+            let err = Script::parse(text).unwrap_err();
+            assert!(err.contains(expected), "{text}: {err}");
+        }
     }
 
     #[test]
