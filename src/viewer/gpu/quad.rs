@@ -163,7 +163,7 @@ mod tests {
     use super::*;
     use crate::viewer::gpu::device::Gpu;
     use crate::viewer::gpu::screenshot::{offscreen_target, read_texture};
-    use crate::viewer::gpu::upload::write_texture;
+    use crate::viewer::gpu::upload::write_rows;
     use crate::viewer::ui::layout::letterbox;
 
     const CLEAR: [u8; 4] = [0, 0, 255, 255];
@@ -186,7 +186,7 @@ mod tests {
             .collect();
         let (texture, created) = quad.image_texture(&gpu.device, iw, ih);
         assert!(created);
-        write_texture(&gpu.queue, texture, &image);
+        write_rows(&gpu.queue, texture, &image, &[0..ih]);
         let target = offscreen_target(&gpu.device, "target", (tw, th), format);
         let area = PixelRect {
             x: 0.0,

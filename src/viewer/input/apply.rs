@@ -1,6 +1,6 @@
 //! Carrying out [`Action`]s: navigation moves the camera (through [`navigation`]), picking a
-//! surface point sets the orbit centre, picking a pixel shows its ray tree, and the scene, save
-//! and print actions do what they say.
+//! surface point sets the orbit centre, picking a pixel shows its ray tree, skip and pause steer
+//! refinement, and the scene, save and print actions do what they say.
 
 use std::path::PathBuf;
 
@@ -44,6 +44,18 @@ impl App {
             Action::CloseRayTree => self.tracing.picked.close(),
             Action::PrintTree => self.print_tree(),
             Action::Click { x, y } => self.click(x, y, shown),
+            Action::Skip => {
+                if let Some(shown) = self.scene.shown() {
+                    self.tracing.skip(shown, self.ui.panel.max_side);
+                }
+            }
+            Action::TogglePause => self.pause(!self.tracing.paused()),
+            Action::Pause => self.pause(true),
+            Action::Resume => self.pause(false),
+            Action::PrintStatus => {
+                let status = self.tracing.status(self.scene.loading(), self.clock.fps());
+                println!("status: {}", status.replace('\n', " · "));
+            }
             Action::SetView(view) => {
                 if let Some(s) = self.scene.shown_mut() {
                     s.controls.view = view;
@@ -54,6 +66,13 @@ impl App {
                     navigate(s, other, shown);
                 }
             }
+        }
+    }
+
+    /// Pauses or resumes refinement, saying so with `--stats`.
+    fn pause(&mut self, paused: bool) {
+        if self.tracing.set_paused(paused) && self.clock.timing.enabled() {
+            eprintln!("stats: {}", if paused { "paused" } else { "resumed" });
         }
     }
 

@@ -2,7 +2,8 @@
 //! right- or middle-drag pans, the wheel dollies, W/A/S/D/Q/E fly, F frames the scene,
 //! double-click sets the orbit centre; Ctrl+S saves and C prints the camera. A click that is not
 //! a drag (or the key I) picks the pixel under the cursor (its ray tree is shown), Esc closes the
-//! tree. Turns one frame's egui input into [`Action`]s.
+//! tree. Enter skips the coarse passes (block size 1 at once), Space pauses and resumes
+//! refinement. Turns one frame's egui input into [`Action`]s.
 
 use egui::{Key, Modifiers, MouseWheelUnit, PointerButton};
 use glam::Vec3;
@@ -145,6 +146,12 @@ fn key_actions(ctx: &egui::Context, seconds: f32) -> Vec<Action> {
         }
         if i.consume_key(Modifiers::NONE, Key::Escape) {
             actions.push(Action::CloseRayTree);
+        }
+        if i.consume_key(Modifiers::NONE, Key::Enter) {
+            actions.push(Action::Skip);
+        }
+        if i.consume_key(Modifiers::NONE, Key::Space) {
+            actions.push(Action::TogglePause);
         }
         actions
     })
@@ -315,5 +322,15 @@ mod tests {
             key(Key::S, true, Modifiers::COMMAND),
         ]);
         assert_eq!(actions, vec![Action::Save]);
+    }
+
+    #[test]
+    fn enter_skips_the_preview_and_space_pauses() {
+        let mut h = Harness::new();
+        let actions = h.frame(vec![
+            key(Key::Enter, true, Modifiers::NONE),
+            key(Key::Space, true, Modifiers::NONE),
+        ]);
+        assert_eq!(actions, vec![Action::Skip, Action::TogglePause]);
     }
 }
