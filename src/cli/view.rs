@@ -41,8 +41,8 @@ pub struct ViewArgs {
     /// Exit once the script has run and refinement has reached its last pass (for tests).
     #[arg(long)]
     exit_when_done: bool,
-    /// Print the UI's frame rate and the time from each change to the first image and to block
-    /// size 1 on screen.
+    /// Print the UI's frame rate, the film's upload time, the time from each change to the
+    /// first image (and the block size it started at) and to block size 1 on screen, and pauses.
     #[arg(long)]
     stats: bool,
     /// Scripted input, steps separated by `;`: wait (for refinement to finish), wait-load N (for
