@@ -1119,3 +1119,28 @@ fn pause_stops_refinement_and_resume_finishes_it() {
     assert!(stats.find("stats: paused").expect(stats) < resumed);
     assert!(stats.find("block size 1 at 256×256").expect(stats) > resumed);
 }
+
+#[test]
+fn a_fitted_image_on_a_hidpi_window_has_its_physical_pixels() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("hidpi_fit.png");
+    let Some(run) = run_viewer_watching(
+        &[
+            "--window",
+            "560x360",
+            "--stats",
+            "--exit-when-done",
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ],
+        &[("WINIT_X11_SCALE_FACTOR", "2")],
+        |_, _| {},
+    ) else {
+        return;
+    };
+    run.assert_success();
+    // Rendered at the view area's physical size (twice its logical one), shown 1:1.
+    let rect = assert_fills_the_view_area(&run, 1120.0);
+    let expected = cpu_render_sized(rect.2 as u32, rect.3 as u32);
+    assert_eq!(mismatches_one_to_one(&shot, rect, &expected), 0);
+}
