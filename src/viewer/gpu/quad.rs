@@ -186,7 +186,7 @@ mod tests {
             .collect();
         let (texture, created) = quad.image_texture(&gpu.device, iw, ih);
         assert!(created);
-        write_rows(&gpu.queue, texture, &image, &[0..ih]);
+        write_rows(&gpu.queue, texture, &image, std::slice::from_ref(&(0..ih)));
         let target = offscreen_target(&gpu.device, "target", (tw, th), format);
         let area = PixelRect {
             x: 0.0,

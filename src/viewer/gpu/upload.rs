@@ -103,7 +103,7 @@ impl Uploader {
         let (w, h) = (film.width() as usize, film.height());
         let rows = match &self.uploaded {
             Some((last, _)) if Arc::ptr_eq(last, film) => changed,
-            _ => vec![0..h],
+            _ => std::iter::once(0..h).collect(),
         };
         self.bytes.resize(w * h as usize * 4, 255);
         for y in rows.iter().flat_map(|run| run.clone()) {
@@ -193,7 +193,10 @@ mod tests {
         let mut uploader = Uploader::new();
         assert_eq!(
             uploader.changed_pixels(&film),
-            Some((&[0, 0, 0, 255, 255, 255, 255, 255][..], vec![0..1]))
+            Some((
+                &[0, 0, 0, 255, 255, 255, 255, 255][..],
+                std::iter::once(0..1).collect::<Vec<_>>()
+            ))
         );
         assert_eq!(uploader.changed_pixels(&film), None);
         film.touch();
@@ -211,13 +214,13 @@ mod tests {
         film.touch_rows(1..2);
         // A film not uploaded before goes up whole.
         let (_, rows) = uploader.changed_pixels(&film).unwrap();
-        assert_eq!(rows, vec![0..4]);
+        assert_eq!(rows, std::iter::once(0..4).collect::<Vec<_>>());
         // Row 3 is written but not marked: it is not converted.
         film.set(0, 2, Color::ONE);
         film.set(0, 3, Color::ONE);
         film.touch_rows(2..3);
         let (bytes, rows) = uploader.changed_pixels(&film).unwrap();
-        assert_eq!(rows, vec![2..3]);
+        assert_eq!(rows, std::iter::once(2..3).collect::<Vec<_>>());
         assert_eq!(bytes[8..16], [255, 255, 255, 255, 0, 0, 0, 255]);
     }
 }
