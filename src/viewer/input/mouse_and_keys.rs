@@ -28,7 +28,8 @@ const FLY_KEYS: [(Key, Vec3); 6] = [
 
 /// Where the image is and how big, for turning cursor positions into image points.
 pub struct ImageArea {
-    /// The letterboxed image, in physical pixels.
+    /// Where the image is shown (letterboxed, or filling the area in fit mode), in physical
+    /// pixels.
     pub shown: PixelRect,
     pub pixels_per_point: f32,
     pub image_size: (u32, u32),
