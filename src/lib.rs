@@ -9,8 +9,9 @@
 //! and the modules depend on each other in that order only, each on those before it:
 //!
 //! - Basics: [`color`] (linear RGB and its 8-bit sRGB encoding), [`ray`], [`aabb`],
-//!   [`transform`], [`limits`], [`memory`], [`output`] (writing files safely), [`camera`] (the
-//!   one place a pixel becomes an eye ray) and [`sampling`] (where a pixel's samples lie).
+//!   [`tone`] (exposure and tone curves), [`transform`], [`limits`], [`memory`], [`output`]
+//!   (writing files safely), [`camera`] (the one place a pixel becomes an eye ray) and
+//!   [`sampling`] (where a pixel's samples lie).
 //! - The scene: [`shapes`], [`mesh`], [`primitive`], [`material`], [`texture`] (with
 //!   [`noise`]), [`light`], [`medium`] (fog), [`settings`] and [`scene::Scene`], which
 //!   [`formats`] reads from TOML, OBJ, NFF, SPD and SDL files (or [`large_mesh`] generates, for
@@ -54,5 +55,6 @@ pub mod settings;
 pub mod shapes;
 pub mod stats;
 pub mod texture;
+pub mod tone;
 pub mod transform;
 pub mod whitted;

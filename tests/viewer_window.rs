@@ -274,6 +274,8 @@ fn the_window_shows_the_default_scene_as_the_cpu_renders_it() {
             "view",
             "--size",
             &size.to_string(),
+            "--samples",
+            "1",
             "--window",
             "700x500",
             "--stats",
@@ -313,6 +315,8 @@ fn the_viewer_reads_a_scene_in_the_format_given_whatever_its_name() {
         dir.path(),
         &[
             path.to_str().unwrap(),
+            "--samples",
+            "1",
             "--format",
             "sdl",
             "--size",
@@ -415,6 +419,8 @@ fn the_viewer_takes_a_width_alone_and_a_min_weight_as_render_does() {
             path.to_str().unwrap(),
             "--width",
             "64",
+            "--samples",
+            "1",
             "--min-weight",
             "0.5",
             "--stats",
@@ -450,6 +456,8 @@ fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
         &[
             "--size",
             &size.to_string(),
+            "--samples",
+            "1",
             "--block-size",
             "8",
             "--stats",
@@ -500,6 +508,8 @@ fn a_resized_window_letterboxes_the_same_image() {
             &size.to_string(),
             "--window",
             "700x500",
+            "--samples",
+            "1",
             "--script",
             "wait; resize 480 640; wait",
         ],
@@ -532,6 +542,8 @@ fn a_hidpi_window_draws_in_physical_pixels() {
             &size.to_string(),
             "--window",
             "560x360",
+            "--samples",
+            "1",
             "--exit-when-done",
             "--screenshot",
             shot.to_str().unwrap(),
@@ -581,6 +593,8 @@ fn a_broken_scene_file_shows_its_error_and_keeps_the_last_good_scene() {
             good.to_str().unwrap(),
             "--size",
             "64",
+            "--samples",
+            "1",
             "--script",
             &format!("wait; open {}; wait", broken.display()),
         ],
@@ -620,6 +634,8 @@ fn saving_the_watched_scene_file_renders_it_again() {
             "64",
             "--stats",
             "--exit-when-done",
+            "--samples",
+            "1",
             "--script",
             "wait; wait-load 2; wait; print-camera",
             "--screenshot",
@@ -719,9 +735,10 @@ fn cpu_ticks(pid: u32) -> u64 {
 fn an_idle_viewer_uses_no_cpu() {
     let measured = Arc::new(Mutex::new(None));
     let result = measured.clone();
-    // Once refinement is done, measure the viewer's CPU time for two seconds, then close it.
+    // Once refinement is done (anti-aliasing included), measure the viewer's CPU time for two
+    // seconds, then close it.
     let on_line = move |line: &str, child: u32| {
-        if line.contains("block size 1 at") && result.lock().unwrap().is_none() {
+        if line.contains("refined at") && result.lock().unwrap().is_none() {
             let pid = viewer_pid(child).expect("the viewer's process");
             std::thread::sleep(Duration::from_millis(500));
             let before = cpu_ticks(pid);
@@ -842,6 +859,8 @@ fn a_click_on_a_pixel_shows_its_ray_tree_and_draws_it_over_the_image() {
             &size.to_string(),
             "--window",
             "1000x600",
+            "--samples",
+            "1",
             "--script",
             &format!("wait; click {x} {y}; wait; print-tree"),
         ],
@@ -917,6 +936,8 @@ fn a_debug_view_chosen_in_the_viewer_renders_as_on_the_cpu() {
         &[
             "--size",
             &size.to_string(),
+            "--samples",
+            "1",
             "--view",
             "depth",
             "--stats",
@@ -938,6 +959,201 @@ fn a_debug_view_chosen_in_the_viewer_renders_as_on_the_cpu() {
     assert_eq!(mismatches(&shot, rect, size, &normals), 0);
     let shaded = cpu_render(&scene, size, scene.camera.spec);
     assert!(mismatches(&shot, rect, size, &shaded) > (size * size / 4) as usize);
+}
+
+/// The default scene rendered on the CPU at `size × size`, as linear colours.
+fn cpu_render_linear(size: u32) -> Vec<raylab::color::Color> {
+    let scene = default_scene().unwrap();
+    let (scene, bvh) = sized(&scene, size, scene.camera.spec);
+    progressive::render_image_with(&Tracer::new(&scene, &bvh), &DebugView::Shaded).0
+}
+
+#[test]
+fn exposure_and_tone_curve_show_in_the_window_and_save_as_shown() {
+    use raylab::tone::{Tone, ToneCurve};
+    let dir = tempfile::tempdir().unwrap();
+    let saved = dir.path().join("saved.png");
+    let size = 64;
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            &size.to_string(),
+            "--save",
+            saved.to_str().unwrap(),
+            "--samples",
+            "1",
+            "--script",
+            "exposure 1.5; tonemap filmic; wait; save",
+        ],
+    ) else {
+        return;
+    };
+    let rect = image_rect(&run.stdout);
+    let saved_bytes = image::open(&saved).unwrap().to_rgb8().into_raw();
+    assert_eq!(saved_bytes.len(), (size * size * 3) as usize);
+    // What is saved is what the window shows.
+    assert_eq!(mismatches(&shot, rect, size, &saved_bytes), 0);
+    // And it is the library's tone mapping of the traced image.
+    let linear = cpu_render_linear(size);
+    let tone = Tone::new(1.5, ToneCurve::Filmic).unwrap();
+    assert_eq!(mismatches(&shot, rect, size, &tone.to_srgb8(&linear)), 0);
+    let plain = to_srgb8(&linear);
+    assert!(mismatches(&shot, rect, size, &plain) > (size * size / 4) as usize);
+}
+
+#[test]
+fn a_snapshot_shows_left_of_the_divider_and_the_live_image_right_of_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = 64;
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            &size.to_string(),
+            "--samples",
+            "1",
+            "--script",
+            "wait; snapshot; view normals; divider 0.5; wait",
+        ],
+    ) else {
+        return;
+    };
+    let scene = default_scene().unwrap();
+    let shaded = cpu_render(&scene, size, scene.camera.spec);
+    let normals = cpu_render_view(&scene, size, scene.camera.spec, DebugView::Normals);
+    // Left half the snapshot (shaded), right half the live normals; the top rows hold the
+    // labels, the divider runs between the halves' pixel centres.
+    let half = (size / 2) as usize;
+    let split: Vec<u8> = shaded
+        .chunks_exact(3)
+        .zip(normals.chunks_exact(3))
+        .enumerate()
+        .flat_map(|(i, (s, n))| if i % size as usize >= half { n } else { s }.to_vec())
+        .collect();
+    let shot_image = image::open(&shot).unwrap().to_rgb8();
+    let (x0, y0, w, h) = image_rect(&run.stdout);
+    let mut bad = 0;
+    for j in 4..size {
+        for i in 0..size {
+            let sx = (x0 + (i as f32 + 0.5) * w / size as f32) as u32;
+            let sy = (y0 + (j as f32 + 0.5) * h / size as f32) as u32;
+            let got = shot_image.get_pixel(sx, sy).0;
+            let k = ((j * size + i) * 3) as usize;
+            if (0..3).any(|c| got[c].abs_diff(split[k + c]) > 2) {
+                bad += 1;
+            }
+        }
+    }
+    assert_eq!(bad, 0, "the split view shows snapshot | live");
+    // Both halves are really there: the picture is neither all shaded nor all normals.
+    let rect = (x0, y0, w, h);
+    assert!(mismatches(&shot, rect, size, &shaded) > (size * size / 8) as usize);
+    assert!(mismatches(&shot, rect, size, &normals) > (size * size / 8) as usize);
+}
+
+/// The screenshot's image area sampled at the centre of each of the `size × size` image pixels,
+/// as sRGB bytes.
+fn shown_pixels(screenshot: &Path, rect: (f32, f32, f32, f32), size: u32) -> Vec<u8> {
+    let shot = image::open(screenshot).unwrap().to_rgb8();
+    let (x0, y0, w, h) = rect;
+    let at = |i: u32, j: u32| {
+        let sx = (x0 + (i as f32 + 0.5) * w / size as f32) as u32;
+        let sy = (y0 + (j as f32 + 0.5) * h / size as f32) as u32;
+        shot.get_pixel(sx, sy).0
+    };
+    (0..size)
+        .flat_map(|j| (0..size).map(move |i| (i, j)))
+        .flat_map(|(i, j)| at(i, j))
+        .collect()
+}
+
+/// The default scene rendered on the CPU at `size × size` with `samples` per pixel and
+/// `aa_threshold`, as sRGB bytes.
+fn cpu_render_sampled(size: u32, samples: u32, aa_threshold: f32) -> Vec<u8> {
+    let scene = default_scene().unwrap();
+    let (mut scene, bvh) = sized(&scene, size, scene.camera.spec);
+    (scene.settings.samples, scene.settings.aa_threshold) = (samples, aa_threshold);
+    to_srgb8(&progressive::render_image(&Tracer::new(&scene, &bvh)).0)
+}
+
+/// Root mean square difference of two sRGB images, on a 0–1 scale.
+fn rmse(a: &[u8], b: &[u8]) -> f64 {
+    let sum: f64 = a
+        .iter()
+        .zip(b)
+        .map(|(&p, &q)| ((f64::from(p) - f64::from(q)) / 255.0).powi(2))
+        .sum();
+    (sum / a.len() as f64).sqrt()
+}
+
+#[test]
+fn left_alone_the_viewer_refines_the_default_scene_close_to_a_256_spp_reference() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = 96;
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            &size.to_string(),
+            "--window",
+            "700x500",
+            "--stats",
+        ],
+    ) else {
+        return;
+    };
+    assert!(run.stderr.contains("refined at 96×96"), "{}", run.stderr);
+    let shown = shown_pixels(&shot, image_rect(&run.stdout), size);
+    let reference = cpu_render_sampled(size, 256, 0.0);
+    let one_sample = cpu_render_sampled(size, 1, 0.0);
+    let (shown_error, one_error) = (rmse(&shown, &reference), rmse(&one_sample, &reference));
+    assert!(
+        shown_error < 0.5 * one_error,
+        "RMSE against 256 spp: the viewer {shown_error:.4}, one sample {one_error:.4}"
+    );
+    // The viewer's default (16 samples at most, threshold 0.03) is the CPU's, pixel for pixel.
+    let adaptive = cpu_render_sampled(size, 16, 0.03);
+    assert_eq!(
+        mismatches(&shot, image_rect(&run.stdout), size, &adaptive),
+        0
+    );
+}
+
+#[test]
+fn with_a_threshold_of_zero_the_viewer_shows_what_render_saves() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = 64;
+    let sampling = ["--samples", "4", "--aa-threshold", "0"];
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[&["--size", "64", "--window", "600x400"][..], &sampling].concat(),
+    ) else {
+        return;
+    };
+    let saved = dir.path().join("render.png");
+    let render = Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .args(
+            [
+                &["render", "-o", saved.to_str().unwrap(), "--size", "64"][..],
+                &sampling,
+            ]
+            .concat(),
+        )
+        .output()
+        .unwrap();
+    assert!(render.status.success(), "{render:?}");
+    let rendered = image::open(&saved).unwrap().to_rgb8().into_raw();
+    assert_eq!(
+        rendered,
+        cpu_render_sampled(size, 4, 0.0),
+        "uniform sampling"
+    );
+    assert_ne!(rendered, cpu_render_sampled(size, 1, 0.0));
+    assert_eq!(
+        mismatches(&shot, image_rect(&run.stdout), size, &rendered),
+        0
+    );
 }
 
 /// The default scene rendered on the CPU at `width × height` with its own camera, as sRGB bytes.
@@ -993,8 +1209,10 @@ fn assert_fills_the_view_area(run: &Run, window_width: f32) -> (f32, f32, f32, f
 fn the_viewer_starts_fitted_to_the_window_whatever_the_scenes_size() {
     let dir = tempfile::tempdir().unwrap();
     // The default scene says 640×480; the window's view area is another shape.
-    let Some((run, shot)) = run_to_screenshot(dir.path(), &["--window", "700x500", "--stats"])
-    else {
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &["--window", "700x500", "--samples", "1", "--stats"],
+    ) else {
         return;
     };
     let rect = assert_fills_the_view_area(&run, 700.0);
@@ -1015,6 +1233,8 @@ fn a_scripted_resize_renders_again_at_the_new_size() {
         &[
             "--window",
             "700x500",
+            "--samples",
+            "1",
             "--stats",
             "--script",
             "wait; resize 560 400; wait",
@@ -1049,6 +1269,8 @@ fn skip_traces_at_block_size_one_at_once() {
             &size.to_string(),
             "--block-size",
             "16",
+            "--samples",
+            "1",
             "--stats",
             "--script",
             "wait-load 1; skip; wait; print-status",
@@ -1089,6 +1311,8 @@ fn pause_stops_refinement_and_resume_finishes_it() {
         &[
             "--size",
             "256",
+            "--samples",
+            "1",
             "--stats",
             "--script",
             "wait-load 1; pause; print-status; sleep 0.5; print-status; resume; wait; print-status",
@@ -1128,6 +1352,8 @@ fn a_fitted_image_on_a_hidpi_window_has_its_physical_pixels() {
         &[
             "--window",
             "560x360",
+            "--samples",
+            "1",
             "--stats",
             "--exit-when-done",
             "--screenshot",

@@ -49,8 +49,10 @@ pub struct ViewArgs {
     /// N scene loads, the first included), orbit YAW PITCH [FRAMES], pan DX DY [FRAMES], dolly STEPS,
     /// fly X Y Z SECONDS, frame, reset, save, print-camera, open [PATH], resize W H, pick X Y
     /// (inspect image pixel X Y), click X Y (a left click on that pixel), close-inspector,
-    /// print-tree (print the inspector's node headings), view NAME, skip (block size 1 at
-    /// once), pause, resume, sleep SECONDS, print-status.
+    /// print-tree (print the inspector's node headings), view NAME, exposure STOPS, tonemap
+    /// CURVE (clamp, reinhard, filmic), snapshot (keep the image to compare with, as the key B),
+    /// compare on|off (the split view: snapshot left, live right), divider FRACTION (0 to 1),
+    /// skip (block size 1 at once), pause, resume, sleep SECONDS, print-status.
     #[arg(long, value_name = "STEPS", value_parser = Script::parse)]
     script: Option<Script>,
     /// Most frames per second while refining.

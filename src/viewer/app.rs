@@ -77,6 +77,7 @@ impl App {
             message: None,
             resolution: Resolution::at_start(overrides.width, overrides.height),
             max_side: 2048,
+            display: Default::default(),
         };
         Ok(App {
             gpu: None,

@@ -1,67 +1,27 @@
 //! Texture upload: copies the film into the GPU texture, at most once per frame and only when the
 //! film's [`version`](raylab::film::Film::version) says its pixels changed, and then only the
 //! rows the film says changed ([`Film::take_changed_rows`]), one write per run of rows (the
-//! whole image for a new film or texture). Linear floats become sRGB bytes through a table indexed by the float's top bits,
-//! which gives exactly the library's conversion without a `powf` per channel.
+//! whole image for a new film or texture). The texture holds the film's linear floats unchanged ([`texel`]); the quad's
+//! shader applies exposure, tone curve and sRGB encoding.
 
 use std::ops::Range;
 use std::sync::Arc;
 
-use raylab::color::srgb8 as srgb_byte;
+use raylab::color::Color;
 use raylab::film::Film;
 
-/// Bucket of a linear value in [0, 1): its bit pattern without the lowest bits. Each bucket is
-/// 1/128 of an octave wide, narrower than the gap between two byte thresholds, so it holds at
-/// most one of them.
-const BUCKET_SHIFT: u32 = 16;
+/// Bytes of one texel of [`IMAGE_FORMAT`](super::quad::IMAGE_FORMAT): four floats.
+pub const TEXEL_BYTES: usize = 16;
 
-/// Linear → sRGB byte by table: for each bucket of values, the byte of its lowest value and the
-/// value (if any) from which the byte is one more.
-pub struct SrgbEncoder {
-    buckets: Vec<(u8, f32)>,
-}
-
-impl SrgbEncoder {
-    pub fn new() -> SrgbEncoder {
-        let buckets = (0..1f32.to_bits() >> BUCKET_SHIFT)
-            .map(|k| {
-                let (lo, hi) = (k << BUCKET_SHIFT, ((k + 1) << BUCKET_SHIFT) - 1);
-                let base = srgb_byte(f32::from_bits(lo));
-                if srgb_byte(f32::from_bits(hi)) == base {
-                    return (base, f32::INFINITY);
-                }
-                // Bit patterns of non-negative floats are ordered like the floats.
-                let (mut lo, mut hi) = (lo, hi);
-                while lo < hi {
-                    let mid = lo + (hi - lo) / 2;
-                    if srgb_byte(f32::from_bits(mid)) > base {
-                        hi = mid;
-                    } else {
-                        lo = mid + 1;
-                    }
-                }
-                (base, f32::from_bits(lo))
-            })
-            .collect();
-        SrgbEncoder { buckets }
-    }
-
-    pub fn encode(&self, v: f32) -> u8 {
-        if v.is_nan() || v <= 0.0 {
-            // Zero, negative or NaN, as the library clamps them.
-            return 0;
-        }
-        if v >= 1.0 {
-            return 255;
-        }
-        let (base, step) = self.buckets[(v.to_bits() >> BUCKET_SHIFT) as usize];
-        base + u8::from(v >= step)
+/// One film pixel as its texel of [`IMAGE_FORMAT`](super::quad::IMAGE_FORMAT): the linear colour and an opaque alpha.
+pub fn texel(c: Color, out: &mut [u8]) {
+    for (bytes, v) in out.chunks_exact_mut(4).zip([c.x, c.y, c.z, 1.0]) {
+        bytes.copy_from_slice(&v.to_ne_bytes());
     }
 }
 
 /// Keeps the texture in step with a film.
 pub struct Uploader {
-    encoder: SrgbEncoder,
     /// The film last uploaded and its version then.
     uploaded: Option<(Arc<Film>, u64)>,
     bytes: Vec<u8>,
@@ -70,7 +30,6 @@ pub struct Uploader {
 impl Uploader {
     pub fn new() -> Uploader {
         Uploader {
-            encoder: SrgbEncoder::new(),
             uploaded: None,
             bytes: Vec::new(),
         }
@@ -89,9 +48,10 @@ impl Uploader {
         self.uploaded = None;
     }
 
-    /// The film as RGBA8 sRGB bytes, row 0 at the top, with the runs of rows that changed since
-    /// the last call (all of them for a film not uploaded before), if any did; the caller writes
-    /// those rows to the texture ([`write_rows`]).
+    /// The film as texels of [`IMAGE_FORMAT`](super::quad::IMAGE_FORMAT), row 0 at the top,
+    /// with the runs of rows that changed since the last call (all of them for a film not
+    /// uploaded before), if any did; the caller writes those rows to the texture
+    /// ([`write_rows`]).
     pub fn changed_pixels(&mut self, film: &Arc<Film>) -> Option<(&[u8], Vec<Range<u32>>)> {
         if !self.is_stale(film) {
             return None;
@@ -105,14 +65,12 @@ impl Uploader {
             Some((last, _)) if Arc::ptr_eq(last, film) => changed,
             _ => std::iter::once(0..h).collect(),
         };
-        self.bytes.resize(w * h as usize * 4, 255);
+        self.bytes.resize(w * h as usize * TEXEL_BYTES, 0);
+        let row_bytes = w * TEXEL_BYTES;
         for y in rows.iter().flat_map(|run| run.clone()) {
-            let row = &mut self.bytes[y as usize * w * 4..(y as usize + 1) * w * 4];
-            for (x, rgba) in row.chunks_exact_mut(4).enumerate() {
-                let c = film.get(x as u32, y);
-                rgba[0] = self.encoder.encode(c.x);
-                rgba[1] = self.encoder.encode(c.y);
-                rgba[2] = self.encoder.encode(c.z);
+            let row = &mut self.bytes[y as usize * row_bytes..(y as usize + 1) * row_bytes];
+            for (x, out) in row.chunks_exact_mut(TEXEL_BYTES).enumerate() {
+                texel(film.get(x as u32, y), out);
             }
         }
         self.uploaded = Some((film.clone(), version));
@@ -158,32 +116,7 @@ pub fn write_rows(
 
 #[cfg(test)]
 mod tests {
-    use raylab::color::Color;
-
     use super::*;
-
-    #[test]
-    fn the_table_encodes_exactly_like_the_library() {
-        let encoder = SrgbEncoder::new();
-        let mut v = 1e-7f32;
-        while v < 1.5 {
-            assert_eq!(encoder.encode(v), srgb_byte(v), "{v}");
-            v *= 1.0007;
-        }
-        for &(base, step) in &encoder.buckets {
-            if step.is_finite() {
-                let below = f32::from_bits(step.to_bits() - 1);
-                assert_eq!(encoder.encode(step), srgb_byte(step));
-                assert_eq!(encoder.encode(step), base + 1, "one step per bucket");
-                assert_eq!(encoder.encode(below), srgb_byte(below));
-            }
-        }
-        let steps = encoder.buckets.iter().filter(|b| b.1.is_finite()).count();
-        assert_eq!(steps, 255, "every byte boundary is in the table once");
-        for v in [-1.0, 0.0, f32::NAN, f32::INFINITY, 1.0] {
-            assert_eq!(encoder.encode(v), srgb_byte(v), "{v}");
-        }
-    }
 
     #[test]
     fn pixels_are_given_once_per_change() {
@@ -191,13 +124,18 @@ mod tests {
         film.set(1, 0, Color::ONE);
         film.touch();
         let mut uploader = Uploader::new();
+        let mut expected = [0; 2 * TEXEL_BYTES];
+        texel(Color::ZERO, &mut expected[..TEXEL_BYTES]);
+        texel(Color::ONE, &mut expected[TEXEL_BYTES..]);
         assert_eq!(
             uploader.changed_pixels(&film),
-            Some((
-                &[0, 0, 0, 255, 255, 255, 255, 255][..],
-                std::iter::once(0..1).collect::<Vec<_>>()
-            ))
+            Some((&expected[..], std::iter::once(0..1).collect()))
         );
+        let floats: Vec<f32> = expected
+            .chunks_exact(4)
+            .map(|b| f32::from_ne_bytes([b[0], b[1], b[2], b[3]]))
+            .collect();
+        assert_eq!(floats, [0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0]);
         assert_eq!(uploader.changed_pixels(&film), None);
         film.touch();
         assert!(uploader.changed_pixels(&film).is_some());
@@ -221,6 +159,13 @@ mod tests {
         film.touch_rows(2..3);
         let (bytes, rows) = uploader.changed_pixels(&film).unwrap();
         assert_eq!(rows, std::iter::once(2..3).collect::<Vec<_>>());
-        assert_eq!(bytes[8..16], [255, 255, 255, 255, 0, 0, 0, 255]);
+        let mut one = [0; TEXEL_BYTES];
+        texel(Color::ONE, &mut one);
+        assert_eq!(bytes[2 * TEXEL_BYTES..3 * TEXEL_BYTES], one);
+        assert_eq!(
+            bytes[3 * TEXEL_BYTES..],
+            [0; TEXEL_BYTES],
+            "row 3 not converted"
+        );
     }
 }

@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 use raylab::inspect::DebugView;
+use raylab::tone::ToneCurve;
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Action {
@@ -52,4 +53,16 @@ pub enum Action {
     Resume,
     /// Print the status line on the terminal (scripts only).
     PrintStatus,
+    /// Keep the image as it is now, to compare with (and show the split view).
+    Snapshot,
+    /// Show the split view (snapshot left, live image right) or not.
+    Compare(bool),
+    /// Turn the split view on or off.
+    ToggleCompare,
+    /// Put the split view's divider at this fraction of the image's width.
+    Divider(f32),
+    /// Show the image at this exposure, in stops.
+    Exposure(f32),
+    /// Show the image through this tone curve.
+    ToneCurve(ToneCurve),
 }

@@ -2,8 +2,9 @@
 //! right- or middle-drag pans, the wheel dollies, W/A/S/D/Q/E fly, F frames the scene,
 //! double-click sets the orbit centre; Ctrl+S saves and C prints the camera. A click that is not
 //! a drag (or the key I) picks the pixel under the cursor (its ray tree is shown), Esc closes the
-//! tree. Enter skips the coarse passes (block size 1 at once), Space pauses and resumes
-//! refinement. Turns one frame's egui input into [`Action`]s.
+//! tree. B keeps a snapshot to compare with, V turns the split view on and off. Enter skips the
+//! coarse passes (block size 1 at once), Space pauses and resumes refinement. Turns one frame's
+//! egui input into [`Action`]s.
 
 use egui::{Key, Modifiers, MouseWheelUnit, PointerButton};
 use glam::Vec3;
@@ -153,6 +154,12 @@ fn key_actions(ctx: &egui::Context, seconds: f32) -> Vec<Action> {
         }
         if i.consume_key(Modifiers::NONE, Key::Space) {
             actions.push(Action::TogglePause);
+        }
+        if i.consume_key(Modifiers::NONE, Key::B) {
+            actions.push(Action::Snapshot);
+        }
+        if i.consume_key(Modifiers::NONE, Key::V) {
+            actions.push(Action::ToggleCompare);
         }
         actions
     })
@@ -333,5 +340,17 @@ mod tests {
             key(Key::Space, true, Modifiers::NONE),
         ]);
         assert_eq!(actions, vec![Action::Skip, Action::TogglePause]);
+    }
+
+    #[test]
+    fn b_keeps_a_snapshot_and_v_turns_the_split_on_and_off() {
+        let mut h = Harness::new();
+        let actions = h.frame(vec![key(Key::B, true, Modifiers::NONE)]);
+        assert_eq!(actions, vec![Action::Snapshot]);
+        let actions = h.frame(vec![
+            key(Key::B, false, Modifiers::NONE),
+            key(Key::V, true, Modifiers::NONE),
+        ]);
+        assert_eq!(actions, vec![Action::ToggleCompare]);
     }
 }

@@ -7,7 +7,7 @@
 
 use std::time::Duration;
 
-use raylab::progressive::PassStats;
+use raylab::progressive::{Pass, PassStats};
 use raylab::settings::MAX_BLOCK_SIZE;
 
 /// How long the first (coarse) pass may take: half a frame at 60 frames per second, leaving the
@@ -26,9 +26,10 @@ pub struct StartBlock {
 }
 
 impl StartBlock {
-    /// Takes the passes of a render into the measurement.
+    /// Takes the block passes of a render into the measurement (the anti-aliasing passes after
+    /// them cost differently: they compare neighbours and sample only some pixels).
     pub fn observe(&mut self, passes: &[PassStats]) {
-        for pass in passes {
+        for pass in passes.iter().filter(|p| matches!(p.pass, Pass::Block(_))) {
             self.seconds += pass.time.as_secs_f64();
             self.pixels += pass.pixels as f64;
         }
@@ -63,8 +64,6 @@ impl StartBlock {
 
 #[cfg(test)]
 mod tests {
-    use raylab::progressive::Pass;
-
     use super::*;
 
     fn pass(pixels: u64, micros: u64) -> PassStats {
@@ -88,8 +87,12 @@ mod tests {
     fn the_first_pass_fits_the_budget_at_any_size() {
         // 0.5 µs a pixel: 16 000 pixels in 8 ms.
         let mut start = StartBlock::default();
-        start.observe(&[pass(100_000, 20_000), pass(300_000, 180_000)]);
-        assert_eq!(start.seconds_per_pixel(), Some(0.5e-6));
+        let refine = PassStats {
+            pass: Pass::Refine(1),
+            ..pass(1_000, 50_000)
+        };
+        start.observe(&[pass(100_000, 20_000), pass(300_000, 180_000), refine]);
+        assert_eq!(start.seconds_per_pixel(), Some(0.5e-6), "block passes only");
         // 512²: block 8 traces 4 096 pixels; block 4 would trace 16 384.
         assert_eq!(start.choose(512, 512, 1), 8);
         // 2560×1440: block 16 traces 14 400 pixels; block 8 would trace 57 600.

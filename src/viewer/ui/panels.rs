@@ -7,6 +7,7 @@ use egui::{Color32, DragValue, Slider};
 use raylab::inspect::{DebugView, Legend};
 use raylab::settings::{MAX_BLOCK_SIZE, MAX_CAUSTIC_GATHER, MAX_DEPTH_LIMIT, MAX_SAMPLES};
 
+use super::display::{self, DisplayControls};
 use super::layout::Resolution;
 use super::legend_bar;
 use crate::viewer::input::action::Action;
@@ -25,6 +26,8 @@ pub struct PanelState {
     pub resolution: Resolution,
     /// Largest image side the GPU takes.
     pub max_side: u32,
+    /// Exposure, tone curve and the comparison with a snapshot.
+    pub display: DisplayControls,
 }
 
 /// Shows the side panel for `scene` (with the colour bar of the view being rendered, if it has
@@ -46,6 +49,7 @@ pub fn side_panel(
                 camera_section(ui, controls, &mut actions);
                 tracing_section(ui, controls, state, legend);
                 lights_section(ui, controls, scene.scene.scene.lights.len());
+                display::section(ui, &mut state.display, &mut actions);
                 save_section(ui, state, &mut actions);
             });
         });
@@ -273,6 +277,17 @@ fn tracing_section(
                 Slider::new(&mut s.samples, 1..=MAX_SAMPLES.min(256))
                     .logarithmic(true)
                     .text("samples per pixel"),
+            );
+            // Adaptive anti-aliasing: 0 gives every pixel all its samples.
+            ui.add(
+                Slider::new(&mut s.aa_threshold, 0.0..=1.0)
+                    .logarithmic(true)
+                    .smallest_positive(0.001)
+                    .text("AA threshold"),
+            )
+            .on_hover_text(
+                "supersample only pixels that differ from a neighbour by more than this \
+                 (0: every pixel takes all the samples)",
             );
             ui.horizontal_wrapped(|ui| {
                 ui.checkbox(&mut s.shadows, "shadows");
