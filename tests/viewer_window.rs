@@ -1330,9 +1330,10 @@ fn pause_stops_refinement_and_resume_finishes_it() {
         let rays = status.split("rays: ").nth(1).unwrap();
         rays.split_whitespace().next().unwrap().to_string()
     };
-    // Paused: the status says so, and half a second later nothing more has been traced.
+    // Paused (within the passes: the coarse ones may be done before the pause arrives): the
+    // status says so, and half a second later nothing more has been traced.
     for paused in &statuses[..2] {
-        assert!(paused.starts_with("paused · pass 1/"), "{paused}");
+        assert!(paused.starts_with("paused · pass "), "{paused}");
     }
     assert_eq!(eye_rays(statuses[0]), eye_rays(statuses[1]), "{statuses:?}");
     // Resumed: refinement runs to the end, and block size 1 reaches the screen only then.

@@ -159,13 +159,10 @@ mod tests {
         film.touch_rows(2..3);
         let (bytes, rows) = uploader.changed_pixels(&film).unwrap();
         assert_eq!(rows, std::iter::once(2..3).collect::<Vec<_>>());
-        let mut one = [0; TEXEL_BYTES];
+        let (mut one, mut zero) = ([0; TEXEL_BYTES], [0; TEXEL_BYTES]);
         texel(Color::ONE, &mut one);
+        texel(Color::ZERO, &mut zero);
         assert_eq!(bytes[2 * TEXEL_BYTES..3 * TEXEL_BYTES], one);
-        assert_eq!(
-            bytes[3 * TEXEL_BYTES..],
-            [0; TEXEL_BYTES],
-            "row 3 not converted"
-        );
+        assert_eq!(bytes[3 * TEXEL_BYTES..], zero, "row 3 is as first uploaded");
     }
 }
