@@ -1,7 +1,9 @@
 //! The film: the image being rendered, in linear RGB floats, with the number of samples averaged
 //! into each pixel, written by the tracer's threads and readable by anyone (the viewer, a
-//! progress display) while a pass is running.
+//! progress display) while a pass is running. It also keeps which rows changed since a reader
+//! last asked (one bit a row), so that a viewer copies only those.
 
+use std::ops::Range;
 use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
 
 use crate::color::Color;
@@ -18,6 +20,8 @@ pub struct Film {
     samples: Vec<AtomicU32>,
     /// Bumped whenever pixels change, so a viewer uploads only when there is something new.
     version: AtomicU64,
+    /// One bit per row, set when the row's pixels changed and cleared when a reader takes it.
+    changed_rows: Vec<AtomicU64>,
 }
 
 impl Film {
@@ -34,6 +38,9 @@ impl Film {
             channels: (0..n * 3).map(|_| AtomicU32::new(0)).collect(),
             samples: (0..n).map(|_| AtomicU32::new(0)).collect(),
             version: AtomicU64::new(0),
+            changed_rows: (0..height.div_ceil(64))
+                .map(|_| AtomicU64::new(0))
+                .collect(),
         }
     }
 
@@ -96,9 +103,43 @@ impl Film {
         self.samples[self.pixel(x, y)].store(n + 1, Ordering::Relaxed);
     }
 
-    /// Marks the image as changed (the renderer calls it once per band of rows, not per pixel).
+    /// Marks the whole image as changed.
     pub fn touch(&self) {
+        self.touch_rows(0..self.height);
+    }
+
+    /// Marks `rows` (clipped to the image) as changed, after writing their pixels. The renderer
+    /// calls it once per band of rows, not per pixel: a few atomic operations.
+    pub fn touch_rows(&self, rows: Range<u32>) {
+        let rows = rows.start.min(self.height)..rows.end.min(self.height);
+        let mut row = rows.start;
+        while row < rows.end {
+            // The rows of this 64-row word, as bits.
+            let (word, first) = (row / 64, row % 64);
+            let last = (rows.end - word * 64).min(64);
+            let bits = (u64::MAX >> (64 - (last - first))) << first;
+            self.changed_rows[word as usize].fetch_or(bits, Ordering::Release);
+            row = (word + 1) * 64;
+        }
         self.version.fetch_add(1, Ordering::Release);
+    }
+
+    /// The rows changed since the last call, as ascending runs of rows, and forgets them: a row
+    /// written after this call is in the next one's answer.
+    pub fn take_changed_rows(&self) -> Vec<Range<u32>> {
+        let mut runs: Vec<Range<u32>> = Vec::new();
+        for (word, bits) in self.changed_rows.iter().enumerate() {
+            let mut bits = bits.swap(0, Ordering::Acquire);
+            while bits != 0 {
+                let row = word as u32 * 64 + bits.trailing_zeros();
+                bits &= bits - 1;
+                match runs.last_mut() {
+                    Some(run) if run.end == row => run.end += 1,
+                    _ => runs.push(row..row + 1),
+                }
+            }
+        }
+        runs
     }
 
     pub fn version(&self) -> u64 {
@@ -111,5 +152,35 @@ impl Film {
             .flat_map(|y| (0..self.width).map(move |x| (x, y)))
             .map(|(x, y)| self.get(x, y))
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn changed_rows_are_given_once_as_runs() {
+        let film = Film::new(3, 200);
+        assert!(film.take_changed_rows().is_empty());
+        let before = film.version();
+        film.touch_rows(10..20);
+        film.touch_rows(60..70);
+        film.touch_rows(70..72);
+        film.touch_rows(190..260);
+        assert!(film.version() > before);
+        assert_eq!(film.take_changed_rows(), vec![10..20, 60..72, 190..200]);
+        assert!(film.take_changed_rows().is_empty(), "taken once");
+        film.touch_rows(127..129);
+        film.touch_rows(5..5);
+        assert_eq!(
+            film.take_changed_rows(),
+            std::iter::once(127..129).collect::<Vec<_>>()
+        );
+        film.touch();
+        assert_eq!(
+            film.take_changed_rows(),
+            std::iter::once(0..200).collect::<Vec<_>>()
+        );
     }
 }

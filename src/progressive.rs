@@ -26,11 +26,13 @@
 //! Passes run on all of rayon's threads, band by band of 8 rows of the pass's grid (8 rows of
 //! `b × b` blocks, so 8·b rows of pixels in block pass `b`), each band tile by tile of 8 × 8
 //! pixels whose eye rays are traced together, up to 64 at a time ([`crate::bvh::packet`]). They
-//! report their progress and statistics ([`PassStats`], [`RenderStats`]) as they go, and stop at
-//! the next band when cancelled from another thread.
+//! report their progress and statistics ([`PassStats`], [`RenderStats`]) as they go, stop at the
+//! next band when cancelled from another thread, and wait before the next band, without using
+//! the CPU, while paused. Each band marks its rows of the film as changed ([`Film::touch_rows`]).
 
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
+use std::sync::{Condvar, Mutex};
 use std::time::{Duration, Instant};
 
 use arrayvec::ArrayVec;
@@ -152,10 +154,13 @@ pub struct Progress {
     pub finished: bool,
 }
 
-/// Lets other threads cancel a render and watch its progress.
+/// Lets other threads cancel, pause and resume a render and watch its progress.
 #[derive(Debug, Default)]
 pub struct RenderControl {
     cancelled: AtomicBool,
+    /// While set, the tracing threads wait (asleep on `resumed`) before their next band.
+    paused: Mutex<bool>,
+    resumed: Condvar,
     pass: AtomicU32,
     passes: AtomicU32,
     block_size: AtomicU32,
@@ -167,8 +172,35 @@ pub struct RenderControl {
 }
 
 impl RenderControl {
+    /// Stops the render at the next band (a paused render too).
     pub fn cancel(&self) {
         self.cancelled.store(true, Ordering::Relaxed);
+        // Under the lock, so that a thread about to wait sees the flag or hears this.
+        let _paused = self.paused.lock();
+        self.resumed.notify_all();
+    }
+
+    /// Holds the render before its next band until [`resume`](Self::resume) (or a cancel).
+    pub fn pause(&self) {
+        *self.paused.lock().unwrap_or_else(|e| e.into_inner()) = true;
+    }
+
+    pub fn resume(&self) {
+        *self.paused.lock().unwrap_or_else(|e| e.into_inner()) = false;
+        self.resumed.notify_all();
+    }
+
+    pub fn is_paused(&self) -> bool {
+        *self.paused.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Sleeps while the render is paused and not cancelled.
+    fn wait_while_paused(&self) {
+        let paused = self.paused.lock().unwrap_or_else(|e| e.into_inner());
+        let _resumed = self
+            .resumed
+            .wait_while(paused, |paused| *paused && !self.is_cancelled())
+            .unwrap_or_else(|e| e.into_inner());
     }
 
     pub fn is_cancelled(&self) -> bool {
@@ -332,6 +364,7 @@ fn run_pass(
     (0..rows.div_ceil(TILE))
         .into_par_iter()
         .try_for_each(|band| {
+            control.wait_while_paused();
             if control.is_cancelled() {
                 return Err(Cancelled);
             }
@@ -350,7 +383,7 @@ fn run_pass(
             control
                 .rows_done
                 .fetch_add(band_rows.len() as u32, Ordering::Relaxed);
-            film.touch();
+            film.touch_rows(band_rows.start * step..band_rows.end * step);
             Ok(())
         })?;
     let rays = control.rays.get() - rays_before;

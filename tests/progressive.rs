@@ -181,6 +181,43 @@ fn progress_is_visible_while_a_render_runs() {
     assert!(film.version() > 0);
 }
 
+#[test]
+fn a_paused_render_waits_until_resumed_and_a_cancel_wakes_it() {
+    let scene = common::spheres_on_a_floor(48, 40);
+    let bvh = Bvh::build(&scene.geometry);
+    let tracer = Tracer::new(&scene, &bvh);
+    let control = RenderControl::default();
+    let film = Film::new(48, 40);
+    control.pause();
+    let traced_while_paused = std::thread::scope(|s| {
+        let render = s.spawn(|| progressive::render(&tracer, &Shaded, &film, &control, |_| {}));
+        std::thread::sleep(std::time::Duration::from_millis(100));
+        let traced = control.pixels_traced();
+        assert!(control.is_paused() && !control.progress().finished);
+        control.resume();
+        assert!(render.join().unwrap().is_ok());
+        traced
+    });
+    assert_eq!(traced_while_paused, 0, "nothing is traced while paused");
+    assert!(control.progress().finished);
+    // Every row the passes wrote is marked changed for the viewer, once.
+    assert_eq!(
+        film.take_changed_rows(),
+        std::iter::once(0..40).collect::<Vec<_>>()
+    );
+    assert!(film.take_changed_rows().is_empty());
+    // A cancel ends a paused render.
+    let paused = RenderControl::default();
+    paused.pause();
+    let result = std::thread::scope(|s| {
+        let render = s.spawn(|| progressive::render(&tracer, &Shaded, &film, &paused, |_| {}));
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        paused.cancel();
+        render.join().unwrap()
+    });
+    assert_eq!(result.unwrap_err(), Cancelled);
+}
+
 /// The default scene at `width × height` with `samples` per pixel and `aa_threshold`.
 fn default_scene(width: u32, height: u32, samples: u32, aa_threshold: f32) -> raylab::scene::Scene {
     let mut scene = raylab::formats::load_any("assets/scenes/default.toml").unwrap();

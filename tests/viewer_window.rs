@@ -591,6 +591,8 @@ fn a_broken_scene_file_shows_its_error_and_keeps_the_last_good_scene() {
         dir.path(),
         &[
             good.to_str().unwrap(),
+            "--size",
+            "64",
             "--samples",
             "1",
             "--script",
@@ -628,6 +630,8 @@ fn saving_the_watched_scene_file_renders_it_again() {
     let Some(run) = run_viewer_watching(
         &[
             path.to_str().unwrap(),
+            "--size",
+            "64",
             "--stats",
             "--exit-when-done",
             "--samples",
@@ -1152,6 +1156,222 @@ fn with_a_threshold_of_zero_the_viewer_shows_what_render_saves() {
     );
 }
 
+/// The default scene rendered on the CPU at `width × height` with its own camera, as sRGB bytes.
+fn cpu_render_sized(width: u32, height: u32) -> Vec<u8> {
+    let mut scene = default_scene().unwrap();
+    scene.settings.width = width;
+    scene.settings.height = height;
+    let bvh = Bvh::build(&scene.geometry);
+    let (pixels, _) = progressive::render_image(&Tracer::new(&scene, &bvh));
+    to_srgb8(&pixels)
+}
+
+/// The pixels of the image shown 1:1 at `rect` in the screenshot that differ (by more than 2
+/// levels) from `expected`, an image of the rectangle's size.
+fn mismatches_one_to_one(screenshot: &Path, rect: (f32, f32, f32, f32), expected: &[u8]) -> usize {
+    let shot = image::open(screenshot).unwrap().to_rgb8();
+    let (x0, y0, w, h) = (rect.0 as u32, rect.1 as u32, rect.2 as u32, rect.3 as u32);
+    assert_eq!(
+        expected.len(),
+        (w * h * 3) as usize,
+        "an image of the rectangle's size"
+    );
+    let mut bad = 0;
+    for j in 0..h {
+        for i in 0..w {
+            let got = shot.get_pixel(x0 + i, y0 + j).0;
+            let k = ((j * w + i) * 3) as usize;
+            if (0..3).any(|c| got[c].abs_diff(expected[k + c]) > 2) {
+                bad += 1;
+            }
+        }
+    }
+    bad
+}
+
+/// Where the fitted image sits in a window `window_width` wide: it must fill the view area (from
+/// the side panel to the right edge, from the top to the status line) at its own size.
+fn assert_fills_the_view_area(run: &Run, window_width: f32) -> (f32, f32, f32, f32) {
+    let (x, y, w, h) = image_rect(&run.stdout);
+    assert!(x > 0.0, "the side panel is on the left: {x}");
+    assert_eq!(
+        (y, x + w),
+        (0.0, window_width),
+        "no bars: {:?}",
+        (x, y, w, h)
+    );
+    let rendered = format!("block size 1 at {w}×{h}");
+    assert!(run.stderr.contains(&rendered), "{rendered}: {}", run.stderr);
+    (x, y, w, h)
+}
+
+#[test]
+fn the_viewer_starts_fitted_to_the_window_whatever_the_scenes_size() {
+    let dir = tempfile::tempdir().unwrap();
+    // The default scene says 640×480; the window's view area is another shape.
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &["--window", "700x500", "--samples", "1", "--stats"],
+    ) else {
+        return;
+    };
+    let rect = assert_fills_the_view_area(&run, 700.0);
+    assert!(
+        rect.3 > 400.0,
+        "all the height but the status line: {rect:?}"
+    );
+    // Shown 1:1, every pixel of the area the image's.
+    let expected = cpu_render_sized(rect.2 as u32, rect.3 as u32);
+    assert_eq!(mismatches_one_to_one(&shot, rect, &expected), 0);
+}
+
+#[test]
+fn a_scripted_resize_renders_again_at_the_new_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--window",
+            "700x500",
+            "--samples",
+            "1",
+            "--stats",
+            "--script",
+            "wait; resize 560 400; wait",
+        ],
+    ) else {
+        return;
+    };
+    let image = image::open(&shot).unwrap();
+    assert_eq!((image.width(), image.height()), (560, 400));
+    let rect = assert_fills_the_view_area(&run, 560.0);
+    // Refined to block size 1 at the first size, then again at the new one.
+    let sizes: Vec<&str> = run
+        .stderr
+        .lines()
+        .filter_map(|l| l.split("block size 1 at ").nth(1))
+        .map(|rest| rest.split_whitespace().next().unwrap())
+        .collect();
+    assert!(sizes.len() >= 2, "{}", run.stderr);
+    assert_ne!(sizes[0], sizes[sizes.len() - 1], "{sizes:?}");
+    let expected = cpu_render_sized(rect.2 as u32, rect.3 as u32);
+    assert_eq!(mismatches_one_to_one(&shot, rect, &expected), 0);
+}
+
+#[test]
+fn skip_traces_at_block_size_one_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = 256;
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            &size.to_string(),
+            "--block-size",
+            "16",
+            "--samples",
+            "1",
+            "--stats",
+            "--script",
+            "wait-load 1; skip; wait; print-status",
+        ],
+    ) else {
+        return;
+    };
+    // The first image on screen is already at block size 1: no coarse pass was shown.
+    let firsts: Vec<&str> = run
+        .stderr
+        .lines()
+        .filter(|l| l.contains("stats: first image"))
+        .collect();
+    assert!(!firsts.is_empty(), "{}", run.stderr);
+    assert!(
+        firsts.iter().all(|l| l.contains("(block size 1)")),
+        "{firsts:?}"
+    );
+    let status = run.stdout.lines().find(|l| l.starts_with("status: "));
+    let status = status.unwrap_or_else(|| panic!("no status in {}", run.stdout));
+    assert!(
+        status.starts_with("status: done: 1 passes · started at block 1 ·"),
+        "{status}"
+    );
+    let scene = default_scene().unwrap();
+    let expected = cpu_render(&scene, size, scene.camera.spec);
+    assert_eq!(
+        mismatches(&shot, image_rect(&run.stdout), size, &expected),
+        0
+    );
+}
+
+#[test]
+fn pause_stops_refinement_and_resume_finishes_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let Some((run, _)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            "256",
+            "--samples",
+            "1",
+            "--stats",
+            "--script",
+            "wait-load 1; pause; print-status; sleep 0.5; print-status; resume; wait; print-status",
+        ],
+    ) else {
+        return;
+    };
+    let statuses: Vec<&str> = run
+        .stdout
+        .lines()
+        .filter_map(|l| l.strip_prefix("status: "))
+        .collect();
+    assert_eq!(statuses.len(), 3, "{}", run.stdout);
+    let eye_rays = |status: &str| {
+        let rays = status.split("rays: ").nth(1).unwrap();
+        rays.split_whitespace().next().unwrap().to_string()
+    };
+    // Paused (within the passes: the coarse ones may be done before the pause arrives): the
+    // status says so, and half a second later nothing more has been traced.
+    for paused in &statuses[..2] {
+        assert!(paused.starts_with("paused · pass "), "{paused}");
+    }
+    assert_eq!(eye_rays(statuses[0]), eye_rays(statuses[1]), "{statuses:?}");
+    // Resumed: refinement runs to the end, and block size 1 reaches the screen only then.
+    assert!(statuses[2].starts_with("done: "), "{}", statuses[2]);
+    assert_eq!(eye_rays(statuses[2]), (256 * 256).to_string());
+    let stats = &run.stderr;
+    let resumed = stats.find("stats: resumed").expect(stats);
+    assert!(stats.find("stats: paused").expect(stats) < resumed);
+    assert!(stats.find("block size 1 at 256×256").expect(stats) > resumed);
+}
+
+#[test]
+fn a_fitted_image_on_a_hidpi_window_has_its_physical_pixels() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("hidpi_fit.png");
+    let Some(run) = run_viewer_watching(
+        &[
+            "--window",
+            "560x360",
+            "--samples",
+            "1",
+            "--stats",
+            "--exit-when-done",
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ],
+        &[("WINIT_X11_SCALE_FACTOR", "2")],
+        |_, _| {},
+    ) else {
+        return;
+    };
+    run.assert_success();
+    // Rendered at the view area's physical size (twice its logical one), shown 1:1.
+    let rect = assert_fills_the_view_area(&run, 1120.0);
+    let expected = cpu_render_sized(rect.2 as u32, rect.3 as u32);
+    assert_eq!(mismatches_one_to_one(&shot, rect, &expected), 0);
+}
+
 #[test]
 fn a_material_edited_in_the_viewer_changes_the_image_and_saves_into_the_file_with_its_comments() {
     let dir = tempfile::tempdir().unwrap();
@@ -1174,6 +1394,8 @@ fn a_material_edited_in_the_viewer_changes_the_image_and_saves_into_the_file_wit
         &[
             path.to_str().unwrap(),
             "--stats",
+            "--size",
+            "64",
             "--samples",
             "1",
             "--script",

@@ -41,8 +41,8 @@ pub struct ViewArgs {
     /// Exit once the script has run and refinement has reached its last pass (for tests).
     #[arg(long)]
     exit_when_done: bool,
-    /// Print the UI's frame rate and the time from each change to the first image and to block
-    /// size 1 on screen.
+    /// Print the UI's frame rate, the film's upload time, the time from each change to the
+    /// first image (and the block size it started at) and to block size 1 on screen, and pauses.
     #[arg(long)]
     stats: bool,
     /// Scripted input, steps separated by `;`: wait (for refinement to finish), wait-load N (for
@@ -55,7 +55,8 @@ pub struct ViewArgs {
     /// material NAME|#K FIELD VALUE… (e.g. `material red kd 0.2`, `material red color 1 0 0`; fields
     /// color, ka, kd, ks, specular_color, shininess, kr, kt, ior, fresnel on|off), light N FIELD
     /// VALUE… (N from 1; position, direction, color, intensity), save-scene (write the edited
-    /// materials and lights into the TOML scene file).
+    /// materials and lights into the TOML scene file), skip (block size 1 at once), pause, resume,
+    /// sleep SECONDS, print-status.
     #[arg(long, value_name = "STEPS", value_parser = Script::parse)]
     script: Option<Script>,
     /// Most frames per second while refining.

@@ -19,7 +19,7 @@ use crate::viewer::scene::SceneSlot;
 use crate::viewer::scene::source::LoadedScene;
 use crate::viewer::tracing::Tracing;
 use crate::viewer::ui::Ui;
-use crate::viewer::ui::layout::PixelRect;
+use crate::viewer::ui::layout::{PixelRect, Resolution};
 use crate::viewer::ui::panels::PanelState;
 
 /// What other threads tell the event loop.
@@ -75,7 +75,7 @@ impl App {
                 .unwrap_or_default(),
             save_field: save_path.display().to_string(),
             message: None,
-            square: overrides.width.is_some() && overrides.width == overrides.height,
+            resolution: Resolution::at_start(overrides.width, overrides.height),
             max_side: 2048,
             display: Default::default(),
         };

@@ -22,7 +22,7 @@ use self::device::Gpu;
 use self::painter::{FrameContent, Painter};
 use self::quad::Display;
 use self::surface::{Acquired, WindowSurface};
-use self::upload::{Uploader, write_texture};
+use self::upload::{Uploader, write_rows};
 use crate::viewer::frame::timing::Timing;
 use crate::viewer::tracing::rendering::Rendering;
 use crate::viewer::ui::layout::PixelRect;
@@ -212,8 +212,8 @@ impl Graphics {
             self.uploader.invalidate();
         }
         let start = Instant::now();
-        if let Some(rgba) = self.uploader.changed_pixels(&r.film) {
-            write_texture(&self.gpu.queue, texture, rgba);
+        if let Some((texels, rows)) = self.uploader.changed_pixels(&r.film) {
+            write_rows(&self.gpu.queue, texture, texels, &rows);
             timing.upload(start.elapsed());
             Some(progress)
         } else {

@@ -271,7 +271,7 @@ mod tests {
     use super::*;
     use crate::viewer::gpu::device::Gpu;
     use crate::viewer::gpu::screenshot::{offscreen_target, read_texture};
-    use crate::viewer::gpu::upload::{TEXEL_BYTES, texel, write_texture};
+    use crate::viewer::gpu::upload::{TEXEL_BYTES, texel, write_rows};
     use crate::viewer::ui::layout::letterbox;
 
     const CLEAR: [u8; 4] = [0, 0, 255, 255];
@@ -291,7 +291,12 @@ mod tests {
             texel(*c, out);
         }
         let (texture, _) = quad.image_texture(&gpu.device, width, height);
-        write_texture(&gpu.queue, texture, &bytes);
+        write_rows(
+            &gpu.queue,
+            texture,
+            &bytes,
+            std::slice::from_ref(&(0..height)),
+        );
     }
 
     /// Draws the quad's image letterboxed into a `tw × th` target; returns the target's RGBA

@@ -45,6 +45,16 @@ pub enum Action {
     PrintCamera,
     /// Ask for a new window size, in logical pixels (scripts only).
     ResizeWindow { width: u32, height: u32 },
+    /// Skip the coarse passes: trace the current view at block size 1 at once.
+    Skip,
+    /// Pause refinement if it runs, resume it if paused.
+    TogglePause,
+    /// Pause refinement (it waits, using no CPU, until resumed or restarted by a change).
+    Pause,
+    /// Resume paused refinement.
+    Resume,
+    /// Print the status line on the terminal (scripts only).
+    PrintStatus,
     /// Keep the image as it is now, to compare with (and show the split view).
     Snapshot,
     /// Show the split view (snapshot left, live image right) or not.

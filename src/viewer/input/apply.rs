@@ -1,7 +1,8 @@
 //! Carrying out [`Action`]s: navigation moves the camera (through [`navigation`]), picking a
-//! surface point sets the orbit centre, picking a pixel shows its ray tree, the display's actions
-//! (exposure, tone curve, snapshot, split view) change how the image is shown, material and light
-//! edits change the controls, and the scene, save and print actions do what they say.
+//! surface point sets the orbit centre, picking a pixel shows its ray tree, skip and pause steer
+//! refinement, the display's actions (exposure, tone curve, snapshot, split view) change how the
+//! image is shown, material and light edits change the controls, and the scene, save and print
+//! actions do what they say.
 
 use std::path::PathBuf;
 
@@ -46,6 +47,18 @@ impl App {
             Action::CloseRayTree => self.tracing.picked.close(),
             Action::PrintTree => self.print_tree(),
             Action::Click { x, y } => self.click(x, y, shown),
+            Action::Skip => {
+                if let Some(shown) = self.scene.shown() {
+                    self.tracing.skip(shown, self.ui.panel.max_side);
+                }
+            }
+            Action::TogglePause => self.pause(!self.tracing.paused()),
+            Action::Pause => self.pause(true),
+            Action::Resume => self.pause(false),
+            Action::PrintStatus => {
+                let status = self.tracing.status(self.scene.loading(), self.clock.fps());
+                println!("status: {}", status.replace('\n', " · "));
+            }
             Action::Snapshot => self.snapshot(),
             Action::SetView(view) => {
                 if let Some(s) = self.scene.shown_mut() {
@@ -114,6 +127,13 @@ impl App {
             let message = format!("cannot edit light {number}: {e}");
             eprintln!("{message}");
             self.ui.panel.message = Some(message);
+        }
+    }
+
+    /// Pauses or resumes refinement, saying so with `--stats`.
+    fn pause(&mut self, paused: bool) {
+        if self.tracing.set_paused(paused) && self.clock.timing.enabled() {
+            eprintln!("stats: {}", if paused { "paused" } else { "resumed" });
         }
     }
 

@@ -2,7 +2,9 @@
 //! right- or middle-drag pans, the wheel dollies, W/A/S/D/Q/E fly, F frames the scene,
 //! double-click sets the orbit centre; Ctrl+S saves and C prints the camera. A click that is not
 //! a drag (or the key I) picks the pixel under the cursor (its ray tree is shown), Esc closes the
-//! tree. B keeps a snapshot to compare with, V turns the split view on and off. Turns one frame's egui input into [`Action`]s.
+//! tree. B keeps a snapshot to compare with, V turns the split view on and off. Enter skips the
+//! coarse passes (block size 1 at once), Space pauses and resumes refinement. Turns one frame's
+//! egui input into [`Action`]s.
 
 use egui::{Key, Modifiers, MouseWheelUnit, PointerButton};
 use glam::Vec3;
@@ -27,7 +29,8 @@ const FLY_KEYS: [(Key, Vec3); 6] = [
 
 /// Where the image is and how big, for turning cursor positions into image points.
 pub struct ImageArea {
-    /// The letterboxed image, in physical pixels.
+    /// Where the image is shown (letterboxed, or filling the area in fit mode), in physical
+    /// pixels.
     pub shown: PixelRect,
     pub pixels_per_point: f32,
     pub image_size: (u32, u32),
@@ -145,6 +148,12 @@ fn key_actions(ctx: &egui::Context, seconds: f32) -> Vec<Action> {
         }
         if i.consume_key(Modifiers::NONE, Key::Escape) {
             actions.push(Action::CloseRayTree);
+        }
+        if i.consume_key(Modifiers::NONE, Key::Enter) {
+            actions.push(Action::Skip);
+        }
+        if i.consume_key(Modifiers::NONE, Key::Space) {
+            actions.push(Action::TogglePause);
         }
         if i.consume_key(Modifiers::NONE, Key::B) {
             actions.push(Action::Snapshot);
@@ -321,6 +330,16 @@ mod tests {
             key(Key::S, true, Modifiers::COMMAND),
         ]);
         assert_eq!(actions, vec![Action::Save]);
+    }
+
+    #[test]
+    fn enter_skips_the_preview_and_space_pauses() {
+        let mut h = Harness::new();
+        let actions = h.frame(vec![
+            key(Key::Enter, true, Modifiers::NONE),
+            key(Key::Space, true, Modifiers::NONE),
+        ]);
+        assert_eq!(actions, vec![Action::Skip, Action::TogglePause]);
     }
 
     #[test]

@@ -14,6 +14,11 @@
 //!   centre of that pixel, through the window's input like a mouse's; `close-inspector`;
 //!   `print-tree`: prints the ray tree panel's node headings on the terminal;
 //! - `view NAME`: shows a debug view (`shaded`, `normals`, `depth`, …);
+//! - `skip`: skips the coarse passes (block size 1 at once, as the Enter key);
+//! - `pause`, `resume`: pause and resume refinement (as the Space key); a `wait` while paused
+//!   waits for ever, so `resume` first;
+//! - `sleep SECONDS`: lets that much time pass (frames keep coming); `print-status`: prints the
+//!   status line on the terminal after `status: `;
 //! - `exposure STOPS`, `tonemap NAME` (`clamp`, `reinhard`, `filmic`): how the image is shown;
 //! - `snapshot`: keeps the image on screen to compare with (as the key B), and shows the split;
 //!   `compare on|off`: the split view (snapshot left, live right); `divider FRACTION`: where the
@@ -28,6 +33,7 @@
 
 use std::collections::VecDeque;
 use std::path::PathBuf;
+use std::time::{Duration, Instant};
 
 use glam::Vec3;
 use raylab::inspect::DebugView;
@@ -41,6 +47,11 @@ enum Step {
     Wait,
     /// Waits for this many scene loads to have finished.
     WaitLoad(u64),
+    /// Lets `time` pass from the frame it is first reached (`until`, then).
+    Sleep {
+        time: Duration,
+        until: Option<Instant>,
+    },
     /// The same action on each of `frames` frames.
     Repeat {
         action: Action,
@@ -82,6 +93,13 @@ impl Script {
                     self.steps.pop_front();
                 }
                 Step::WaitLoad(_) => return None,
+                Step::Sleep { time, until } => {
+                    let until = *until.get_or_insert_with(|| Instant::now() + *time);
+                    if Instant::now() < until {
+                        return None;
+                    }
+                    self.steps.pop_front();
+                }
                 Step::Repeat { action, frames } => {
                     let action = action.clone();
                     *frames -= 1;
@@ -213,6 +231,20 @@ fn parse_step(step: &str) -> Result<Step, String> {
                 height: n[1] as u32,
             })
         }
+        "skip" if args.is_empty() => once(Action::Skip),
+        "pause" if args.is_empty() => once(Action::Pause),
+        "resume" if args.is_empty() => once(Action::Resume),
+        "print-status" if args.is_empty() => once(Action::PrintStatus),
+        "sleep" => {
+            let n = count(numbers()?, 1, 0)?[0];
+            if !(0.0..=600.0).contains(&n) {
+                return Err(format!("takes seconds from 0 to 600, got {n}"));
+            }
+            Step::Sleep {
+                time: Duration::from_secs_f32(n),
+                until: None,
+            }
+        }
         "fly" => {
             let n = count(numbers()?, 4, 0)?;
             once(Action::Fly {
@@ -251,14 +283,15 @@ fn parse_step(step: &str) -> Result<Step, String> {
         "light" => return Err("takes a light's number, a field and its value".into()),
         "save-scene" if args.is_empty() => once(Action::SaveScene),
         "wait" | "frame" | "reset" | "save" | "print-camera" | "close-inspector" | "print-tree"
-        | "snapshot" | "save-scene" => {
+        | "snapshot" | "save-scene" | "skip" | "pause" | "resume" | "print-status" => {
             return Err("takes no arguments".into());
         }
         _ => {
             return Err(
                 "unknown step (use wait, wait-load, orbit, pan, dolly, fly, frame, reset, \
                  save, print-camera, open, resize, pick, click, close-inspector, print-tree, \
-                 view, exposure, tonemap, snapshot, compare, divider, material, light, save-scene)"
+                 view, exposure, tonemap, snapshot, compare, divider, material, light, save-scene, \
+                 skip, pause, resume, sleep, print-status)"
                     .into(),
             );
         }
@@ -367,6 +400,30 @@ mod tests {
             assert!(err.contains(text), "{text}: {err}");
         }
         assert!(Script::parse("").unwrap().is_done());
+    }
+
+    #[test]
+    fn skip_pause_resume_sleep_and_print_status_parse() {
+        let mut script =
+            Script::parse("skip; pause; print-status; sleep 0.05; resume; print-status").unwrap();
+        assert_eq!(script.next(false, 0), Some(Action::Skip));
+        assert_eq!(script.next(false, 0), Some(Action::Pause));
+        assert_eq!(script.next(false, 0), Some(Action::PrintStatus));
+        let slept = Instant::now();
+        while script.next(false, 0).is_none() {
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        assert!(slept.elapsed() >= Duration::from_millis(50), "it slept");
+        assert_eq!(script.next(false, 0), Some(Action::PrintStatus));
+        assert!(script.is_done());
+        for (text, expected) in [
+            ("pause 2", "takes no arguments"),
+            ("sleep", "takes 1 number"),
+            ("sleep -1", "from 0 to 600"),
+        ] {
+            let err = Script::parse(text).unwrap_err();
+            assert!(err.contains(expected), "{text}: {err}");
+        }
     }
 
     #[test]

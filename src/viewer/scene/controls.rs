@@ -32,6 +32,10 @@ pub struct Controls {
     /// The scene's lights, index for index, as the Lights panel edits them (before
     /// `light_scale`).
     pub lights: Vec<Light>,
+    /// The viewer picks the starting block size from the tracing speed
+    /// ([`crate::viewer::tracing::start_block`]); otherwise refinement starts at the settings'
+    /// `block_size` (given on the command line or chosen in the panel).
+    pub auto_block: bool,
 }
 
 impl Controls {
@@ -44,6 +48,7 @@ impl Controls {
             view: DebugView::Shaded,
             materials: scene.materials.clone(),
             lights: scene.lights.clone(),
+            auto_block: true,
         }
     }
 
@@ -68,6 +73,7 @@ impl Controls {
         overrides.apply(&mut controls.settings)?;
         controls.camera = overrides.apply_camera(controls.camera)?.spec;
         controls.view = view;
+        controls.auto_block = overrides.block_size.is_none();
         Ok(controls)
     }
 
@@ -140,6 +146,14 @@ mod tests {
         assert_eq!((c.settings.width, c.settings.height), (100, 480));
         assert_eq!(c.settings.min_weight, 0.5);
         assert_eq!(c.view, DebugView::Normals);
+        assert!(c.auto_block, "no --block-size: the viewer picks it");
+        let fixed_start = SettingsOverrides {
+            block_size: Some(4),
+            ..SettingsOverrides::default()
+        };
+        let c = Controls::with_overrides(&scene, &fixed_start, DebugView::Shaded).unwrap();
+        assert!(!c.auto_block);
+        assert_eq!(c.settings.block_size, 4);
         let looking = SettingsOverrides {
             eye: Some(Vec3::new(0.0, 1.0, 9.0)),
             view_angle: Some(20.0),

@@ -1,12 +1,15 @@
 //! The tracing behind the window: the render worker refining the image, the render in progress,
 //! the scene copies the tracing threads keep, the caustic photon map they share, and the picked
 //! pixel whose ray tree is traced on its own thread. [`Tracing`] keeps both in step with the
-//! shown scene and its controls, and, while they stay still, has the caustics sharpened.
+//! shown scene and its controls, and, while they stay still, has the caustics sharpened; it
+//! picks the starting block size from the measured tracing speed ([`start_block`]), and skips
+//! the preview or pauses and resumes refinement when asked.
 
 pub mod caustics;
 pub mod picked_pixel;
 pub mod ray_tree_thread;
 pub mod rendering;
+pub mod start_block;
 pub mod worker;
 pub mod working_scene;
 
@@ -19,6 +22,7 @@ use raylab::progressive::{Progress, RenderControl};
 use self::caustics::{MAX_ROUNDS, SharedCaustics};
 use self::picked_pixel::PickedPixel;
 use self::rendering::Rendering;
+use self::start_block::StartBlock;
 use self::worker::{Job, JobReport, Outcome, Worker};
 use self::working_scene::TraceSetup;
 use crate::viewer::frame::timing::Timing;
@@ -34,6 +38,8 @@ pub struct Tracing {
     pub picked: PickedPixel,
     /// Why the controls cannot be rendered as they are.
     pub control_error: Option<String>,
+    /// The tracing speed measured so far, which picks the starting block size.
+    start_block: StartBlock,
 }
 
 impl Tracing {
@@ -48,6 +54,7 @@ impl Tracing {
             rendering: None,
             picked,
             control_error: None,
+            start_block: StartBlock::default(),
         })
     }
 
@@ -59,7 +66,7 @@ impl Tracing {
             self.sharpen_caustics(shown, max_side);
             return false;
         }
-        let setup = match shown.controls.setup(max_side) {
+        let mut setup = match shown.controls.setup(max_side) {
             Ok(setup) => setup,
             Err(e) => {
                 self.control_error = Some(e);
@@ -67,7 +74,54 @@ impl Tracing {
             }
         };
         self.control_error = None;
+        if shown.controls.auto_block {
+            let s = &mut setup.settings;
+            s.block_size = self.start_block.choose(s.width, s.height, s.block_size);
+        }
         self.submit(shown, setup, changed_at);
+        true
+    }
+
+    /// Skips the coarse passes of the render of `shown`: unless it already runs (or ran) at
+    /// block size 1, it starts again there at once. A paused render resumes.
+    pub fn skip(&mut self, shown: &Shown, max_side: u32) {
+        let Some(r) = &self.rendering else {
+            return;
+        };
+        let progress = r.control.progress();
+        let at_one = progress.finished || progress.pass + 1 >= r.block_passes();
+        if at_one || !r.renders(shown) {
+            // A pending change restarts it anyway.
+            self.set_paused(false);
+            return;
+        }
+        if let Ok(mut setup) = shown.controls.setup(max_side) {
+            setup.settings.block_size = 1;
+            self.submit(shown, setup, Instant::now());
+        }
+    }
+
+    /// Refinement is paused: the tracing threads sleep until it resumes or a change restarts it.
+    pub fn paused(&self) -> bool {
+        self.rendering
+            .as_ref()
+            .is_some_and(|r| r.control.is_paused() && !r.control.progress().finished)
+    }
+
+    /// Pauses or resumes the running render; returns whether that changed anything (a finished
+    /// render has nothing to pause).
+    pub fn set_paused(&mut self, paused: bool) -> bool {
+        let Some(r) = &self.rendering else {
+            return false;
+        };
+        if r.settled || r.control.progress().finished || self.paused() == paused {
+            return false;
+        }
+        if paused {
+            r.control.pause();
+        } else {
+            r.control.resume();
+        }
         true
     }
 
@@ -97,7 +151,7 @@ impl Tracing {
     /// Starts rendering `shown` as `setup` says, on the film of the render before when it has
     /// the same size.
     fn submit(&mut self, shown: &Shown, setup: TraceSetup, changed_at: Instant) {
-        let caustic_round = setup.caustic_round;
+        let (caustic_round, start_block) = (setup.caustic_round, setup.settings.block_size);
         let (width, height) = (setup.settings.width, setup.settings.height);
         let film = match &self.rendering {
             // The film is reused at the same size: the new render's first pass paints over
@@ -131,6 +185,8 @@ impl Tracing {
             block_one_shown: false,
             settled: false,
             caustic_round,
+            start_block,
+            passes_measured: 0,
         });
     }
 
@@ -141,9 +197,9 @@ impl Tracing {
         self.picked.sync(&shown.scene, &shown.controls, setup)
     }
 
-    /// Refinement is under way: more passes will reach the screen.
+    /// Refinement is under way (not paused): more passes will reach the screen.
     pub fn refining(&self) -> bool {
-        self.rendering.as_ref().is_some_and(|r| !r.settled)
+        self.rendering.as_ref().is_some_and(|r| !r.settled) && !self.paused()
     }
 
     /// Refinement of `shown` is over and on screen (controls that cannot be rendered leave the
@@ -162,6 +218,12 @@ impl Tracing {
     pub fn on_screen(&mut self, uploaded: Option<Progress>, timing: &mut Timing) {
         if let Some(shot) = self.rendering.as_ref().and_then(|r| r.report.take_shot()) {
             timing.caustics(&shot);
+        }
+        if let Some(r) = &mut self.rendering {
+            let passes = r.report.passes();
+            self.start_block
+                .observe(passes.get(r.passes_measured..).unwrap_or_default());
+            r.passes_measured = passes.len();
         }
         if let (Some(r), Some(progress)) = (&mut self.rendering, uploaded) {
             r.reached_screen(progress, timing);
@@ -200,6 +262,9 @@ impl Tracing {
             elapsed,
             fps,
             photons: r.report.photons(),
+            start_block: r.start_block,
+            auto_block: r.controls.auto_block && r.caustic_round == 0,
+            paused: self.paused(),
         })
     }
 }

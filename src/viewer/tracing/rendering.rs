@@ -28,6 +28,10 @@ pub struct Rendering {
     pub settled: bool,
     /// The rounds of caustic photons added for this view before this render (0: a new view).
     pub caustic_round: u32,
+    /// The block size it starts at (the viewer's choice when the controls say auto).
+    pub start_block: u32,
+    /// Its finished passes already taken into the measured tracing speed.
+    pub passes_measured: usize,
 }
 
 impl Rendering {
@@ -37,8 +41,8 @@ impl Rendering {
     }
 
     /// Number of block passes (the block size 1 pass is the last of them).
-    fn block_passes(&self) -> u32 {
-        self.controls.settings.block_size.max(1).ilog2() + 1
+    pub fn block_passes(&self) -> u32 {
+        self.start_block.max(1).ilog2() + 1
     }
 
     /// Notes what a frame just put on screen: the film as it was at `progress`. The renders
@@ -51,7 +55,7 @@ impl Rendering {
         let after = self.changed_at.elapsed();
         if !self.first_image_shown && (progress.pass >= 1 || progress.finished) {
             self.first_image_shown = true;
-            timing.first_image(after, self.controls.settings.block_size);
+            timing.first_image(after, self.start_block);
         }
         if !self.block_one_shown && (progress.pass >= self.block_passes() || progress.finished) {
             self.block_one_shown = true;

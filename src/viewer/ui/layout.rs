@@ -1,6 +1,31 @@
-//! Where the image sits in the window: the largest rectangle of the image's aspect that fits the
-//! free area (letterboxing), in whole physical pixels, the way back from a cursor position to
+//! Where the image sits in the window: the whole view area when the image's size follows it (the
+//! [`Resolution::Fit`] mode), else the largest rectangle of the image's aspect that fits the
+//! free area (letterboxing), in whole physical pixels; the way back from a cursor position to
 //! a point or a pixel of the image, and the way from a point of the image to the window.
+
+/// How the viewer chooses the image's size (the resolution control).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Resolution {
+    /// The view area's physical pixels: the image fills the window beside the panels, and a
+    /// resized window renders at its new size.
+    Fit,
+    /// A fixed N×N image (width and height kept equal), letterboxed.
+    Square,
+    /// A fixed W×H image, letterboxed.
+    Free,
+}
+
+impl Resolution {
+    /// The mode the viewer starts in: fit, unless the command line gave a size (`--size`,
+    /// `--width`, `--height`), square when it gave equal sides.
+    pub fn at_start(width: Option<u32>, height: Option<u32>) -> Resolution {
+        match (width, height) {
+            (None, None) => Resolution::Fit,
+            (w, h) if w == h => Resolution::Square,
+            _ => Resolution::Free,
+        }
+    }
+}
 
 /// A rectangle in physical pixels, `x, y` its top-left corner.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,6 +72,18 @@ pub fn letterbox(area: PixelRect, image_width: u32, image_height: u32) -> PixelR
         y: (area.y + (area.height - height) / 2.0).round(),
         width,
         height,
+    }
+}
+
+/// The whole physical pixels of `area` (its edges rounded): where a fitted image goes, and that
+/// image's size.
+pub fn whole_pixels(area: PixelRect) -> PixelRect {
+    let (x, y) = (area.x.round(), area.y.round());
+    PixelRect {
+        x,
+        y,
+        width: ((area.x + area.width).round() - x).max(0.0),
+        height: ((area.y + area.height).round() - y).max(0.0),
     }
 }
 
@@ -135,6 +172,17 @@ mod tests {
     fn an_empty_area_shows_nothing() {
         assert!(letterbox(rect(0.0, 0.0, 0.0, 300.0), 10, 10).is_empty());
         assert!(letterbox(rect(0.0, 0.0, 300.0, 300.0), 0, 10).is_empty());
+    }
+
+    #[test]
+    fn a_fitted_image_covers_the_area_in_whole_pixels() {
+        let fitted = whole_pixels(rect(300.4, 0.0, 799.2, 690.6));
+        assert_eq!(fitted, rect(300.0, 0.0, 800.0, 691.0));
+        assert!(whole_pixels(rect(5.0, 5.0, 0.2, 10.0)).is_empty());
+        assert_eq!(Resolution::at_start(None, None), Resolution::Fit);
+        assert_eq!(Resolution::at_start(Some(64), Some(64)), Resolution::Square);
+        assert_eq!(Resolution::at_start(Some(64), None), Resolution::Free);
+        assert_eq!(Resolution::at_start(None, Some(48)), Resolution::Free);
     }
 
     #[test]

@@ -14,7 +14,7 @@ pub mod ray_tree_panel;
 pub mod status;
 pub mod swatch;
 
-use self::layout::{PixelRect, letterbox};
+use self::layout::{PixelRect, Resolution, letterbox, whole_pixels};
 use self::overlay::Overlay;
 use self::panels::PanelState;
 use crate::viewer::input::action::Action;
@@ -52,8 +52,12 @@ impl Ui {
         status: &str,
         seconds: f32,
     ) -> (Vec<Action>, PixelRect) {
-        let mut actions = Vec::new();
-        panels::status_bar(ui, status, tracing.control_error.as_deref());
+        let mut actions = panels::status_bar(
+            ui,
+            status,
+            tracing.control_error.as_deref(),
+            tracing.paused(),
+        );
         let legend = tracing.rendering.as_ref().and_then(|r| r.report.legend());
         if let Some((info, controls)) = scene.for_panel() {
             actions.extend(panels::side_panel(
@@ -85,7 +89,14 @@ impl Ui {
                 width: rect.width() * ppp,
                 height: rect.height() * ppp,
             };
-            shown = letterbox(area, image_size.0, image_size.1);
+            shown = if self.panel.resolution == Resolution::Fit {
+                fit_to(whole_pixels(area), scene, self.panel.max_side);
+                // The image fills the area; until the render of its new size comes, the last
+                // image is stretched over it.
+                whole_pixels(area)
+            } else {
+                letterbox(area, image_size.0, image_size.1)
+            };
             let image = egui::Rect::from_min_size(
                 egui::pos2(shown.x / ppp, shown.y / ppp),
                 egui::vec2(shown.width / ppp, shown.height / ppp),
@@ -108,5 +119,18 @@ impl Ui {
             actions.extend(mouse_and_keys::actions(ui.ctx(), &response, &area, seconds));
         });
         (actions, shown)
+    }
+}
+
+/// In fit mode, gives the shown scene the size of the view area `fitted` (at most `max_side` a
+/// side, the GPU's largest texture); a changed size restarts refinement once, in this frame.
+fn fit_to(fitted: PixelRect, scene: &mut SceneSlot, max_side: u32) {
+    if fitted.is_empty() {
+        return;
+    }
+    if let Some(s) = scene.shown_mut() {
+        let side = |v: f32| (v as u32).clamp(1, max_side);
+        s.controls.settings.width = side(fitted.width);
+        s.controls.settings.height = side(fitted.height);
     }
 }

@@ -8,6 +8,7 @@ use raylab::inspect::{DebugView, Legend};
 use raylab::settings::{MAX_BLOCK_SIZE, MAX_CAUSTIC_GATHER, MAX_DEPTH_LIMIT, MAX_SAMPLES};
 
 use super::display::{self, DisplayControls};
+use super::layout::Resolution;
 use super::{legend_bar, materials_panel};
 use crate::viewer::input::action::Action;
 use crate::viewer::scene::SceneInfo;
@@ -21,8 +22,8 @@ pub struct PanelState {
     pub save_field: String,
     /// The last thing the viewer did worth saying (saved, printed).
     pub message: Option<String>,
-    /// Width and height are kept equal.
-    pub square: bool,
+    /// How the image's size is chosen: fit to the window, N×N or W×H.
+    pub resolution: Resolution,
     /// Largest image side the GPU takes.
     pub max_side: u32,
     /// Exposure, tone curve and the comparison with a snapshot.
@@ -56,14 +57,40 @@ pub fn side_panel(
     actions
 }
 
-/// Shows the status line (and why the controls cannot be rendered, if so) at the bottom.
-pub fn status_bar(ui: &mut egui::Ui, line: &str, control_error: Option<&str>) {
+/// Shows the status line (and why the controls cannot be rendered, if so) at the bottom, with
+/// the buttons that skip the preview and pause or resume refinement (`paused`: it is paused);
+/// returns what they asked for.
+pub fn status_bar(
+    ui: &mut egui::Ui,
+    line: &str,
+    control_error: Option<&str>,
+    paused: bool,
+) -> Vec<Action> {
+    let mut actions = Vec::new();
     egui::Panel::bottom("status").show(ui, |ui| {
         if let Some(e) = control_error {
             ui.colored_label(Color32::from_rgb(255, 120, 80), e);
         }
+        ui.horizontal(|ui| {
+            if ui
+                .button("Skip preview (Enter)")
+                .on_hover_text("trace at block size 1 at once")
+                .clicked()
+            {
+                actions.push(Action::Skip);
+            }
+            let pause = if paused {
+                "Resume (Space)"
+            } else {
+                "Pause (Space)"
+            };
+            if ui.button(pause).clicked() {
+                actions.push(Action::TogglePause);
+            }
+        });
         ui.label(egui::RichText::new(line).monospace());
     });
+    actions
 }
 
 fn scene_section(
@@ -190,6 +217,7 @@ fn tracing_section(
             if let Some(legend) = legend {
                 legend_bar::show(ui, legend);
             }
+            let auto_block = &mut controls.auto_block;
             let s = &mut controls.settings;
             ui.add(Slider::new(&mut s.max_depth, 1..=MAX_DEPTH_LIMIT).text("max depth"));
             ui.add(
@@ -198,33 +226,53 @@ fn tracing_section(
                     .smallest_positive(1e-4)
                     .text("min weight"),
             );
+            let start = if *auto_block {
+                "auto".to_string()
+            } else {
+                s.block_size.to_string()
+            };
             egui::ComboBox::from_label("starting block size")
-                .selected_text(s.block_size.to_string())
+                .selected_text(start)
                 .show_ui(ui, |ui| {
+                    ui.selectable_value(auto_block, true, "auto")
+                        .on_hover_text("the first pass takes about 8 ms at the last passes' speed");
                     let sizes = std::iter::successors(Some(1), |b| {
                         (b * 2 <= MAX_BLOCK_SIZE).then_some(b * 2)
                     });
                     for b in sizes {
-                        ui.selectable_value(&mut s.block_size, b, b.to_string());
+                        let chosen = !*auto_block && s.block_size == b;
+                        if ui.selectable_label(chosen, b.to_string()).clicked() {
+                            *auto_block = false;
+                            s.block_size = b;
+                        }
                     }
                 });
             ui.horizontal(|ui| {
                 ui.label("resolution");
-                let range = 1..=state.max_side;
-                ui.add(DragValue::new(&mut s.width).range(range.clone()));
-                ui.label("×");
-                ui.add_enabled(!state.square, DragValue::new(&mut s.height).range(range));
-                ui.checkbox(&mut state.square, "N×N");
+                for (mode, name) in [
+                    (Resolution::Fit, "fit window"),
+                    (Resolution::Square, "N×N"),
+                    (Resolution::Free, "W×H"),
+                ] {
+                    ui.selectable_value(&mut state.resolution, mode, name);
+                }
             });
             ui.horizontal(|ui| {
+                let range = 1..=state.max_side;
+                let fixed = state.resolution != Resolution::Fit;
+                ui.add_enabled(fixed, DragValue::new(&mut s.width).range(range.clone()));
+                ui.label("×");
+                let free = state.resolution == Resolution::Free;
+                ui.add_enabled(free, DragValue::new(&mut s.height).range(range));
                 for n in [256, 512, 1024, 2048] {
                     if n <= state.max_side && ui.small_button(n.to_string()).clicked() {
                         s.width = n;
                         s.height = n;
+                        state.resolution = Resolution::Square;
                     }
                 }
             });
-            if state.square {
+            if state.resolution == Resolution::Square {
                 s.height = s.width;
             }
             ui.add(

@@ -1,5 +1,6 @@
-//! The status lines: the current pass and block size, progress within the pass, milliseconds per
-//! pass; then rays traced by kind, the tracing speed and the window's frame rate.
+//! The status lines: the current pass and block size, progress within the pass, the block size
+//! the render started at (and whether the viewer picked it), whether it is paused, milliseconds
+//! per pass; then rays traced by kind, the tracing speed and the window's frame rate.
 
 use std::time::Duration;
 
@@ -19,6 +20,11 @@ pub struct RenderStatus {
     pub fps: f32,
     /// Photons in the caustic map (0: caustics off).
     pub photons: u32,
+    /// The block size the render started at (0: not said), and whether the viewer picked it.
+    pub start_block: u32,
+    pub auto_block: bool,
+    /// Refinement is paused.
+    pub paused: bool,
 }
 
 /// Two lines of text.
@@ -39,6 +45,12 @@ pub fn status_line(s: &RenderStatus) -> String {
             p.block_size
         )
     };
+    let start = match (s.start_block, s.auto_block) {
+        (0, _) => String::new(),
+        (b, true) => format!(" · started at block {b} (auto)"),
+        (b, false) => format!(" · started at block {b}"),
+    };
+    let paused = if s.paused { "paused · " } else { "" };
     let pass_times = if s.pass_times.is_empty() {
         "–".to_string()
     } else {
@@ -62,7 +74,7 @@ pub fn status_line(s: &RenderStatus) -> String {
         String::new()
     };
     format!(
-        "{state} · ms per pass: {pass_times}{caustics}\nrays: {} eye ({} hit), {} shadow, {} \
+        "{paused}{state}{start} · ms per pass: {pass_times}{caustics}\nrays: {} eye ({} hit), {} shadow, {} \
          reflected, {} transmitted{over_budget} · {mrays:.2} Mrays/s · {:.0} fps",
         r.primary, r.primary_hits, r.shadow, r.reflected, r.transmitted, s.fps
     )
@@ -95,6 +107,9 @@ mod tests {
             elapsed: Duration::from_secs(1),
             fps: 59.6,
             photons: 0,
+            start_block: 0,
+            auto_block: false,
+            paused: false,
         };
         let line = status_line(&s);
         assert!(line.starts_with("pass 2/5 · block 8 · 25%"), "{line}");
@@ -122,6 +137,37 @@ mod tests {
             line.contains("ms per pass: – · caustics: 40000 photons\n"),
             "{line}"
         );
+    }
+
+    #[test]
+    fn the_starting_block_size_and_a_pause_show() {
+        let running = RenderStatus {
+            progress: Progress {
+                passes: 6,
+                block_size: 32,
+                rows: 10,
+                ..Progress::default()
+            },
+            start_block: 32,
+            auto_block: true,
+            paused: true,
+            ..RenderStatus::default()
+        };
+        let line = status_line(&running);
+        assert!(
+            line.starts_with("paused · pass 1/6 · block 32 · 0% · started at block 32 (auto) · "),
+            "{line}"
+        );
+        let fixed = RenderStatus {
+            start_block: 8,
+            ..RenderStatus::default()
+        };
+        let line = status_line(&fixed);
+        assert!(
+            line.contains(" · started at block 8 · ms per pass"),
+            "{line}"
+        );
+        assert!(!line.contains("paused"), "{line}");
     }
 
     #[test]
