@@ -24,6 +24,8 @@
 //!   is [`progressive::Shaded`]); [`formats::image`] saves it.
 //! - Looking inside: [`inspect`] records one pixel's ray tree with a tree observer and renders
 //!   debug views as shaders of the same renderer. Nothing above depends on it.
+//! - Image sequences: [`views`] holds a scene's bookmarked cameras and the cameras of each frame
+//!   of a turntable or of a path through them.
 //!
 //! Nothing here knows about windows or GPUs.
 
@@ -55,4 +57,5 @@ pub mod shapes;
 pub mod stats;
 pub mod texture;
 pub mod transform;
+pub mod views;
 pub mod whitted;

@@ -20,5 +20,5 @@ pub(crate) use error::Source;
 pub use files::{SceneFiles, ascii_text, utf8_text};
 pub use load_any::{
     SceneFormat, camera_file_beside, camera_path, load_any, load_any_as, load_any_with,
-    with_framing_camera,
+    views_path, with_framing_camera,
 };
