@@ -144,7 +144,7 @@ mod tests {
             ("[view.1]\neye = [0, 0]\n", "room.views.toml:2:7: expected 3 values, got 2"),
             (
                 "[view.1]\neye = [0, 0, 0]\n",
-                "room.views.toml:2:11: the eye and the look-at point coincide",
+                "room.views.toml:2:7: the eye and the look-at point coincide",
             ),
             ("[view.1]\nfov = 3\n", "room.views.toml:2:1: unknown field `fov`"),
             ("[views.1]\n", "room.views.toml:1:2: unknown field `views`"),

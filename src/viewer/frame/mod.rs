@@ -64,6 +64,7 @@ impl App {
         for action in actions {
             self.apply(action, shown);
         }
+        self.step_preview();
         self.sync_tracing(now);
         // The script sees what this frame's input started (a click's ray tree, say).
         if let Some(action) = self.input.next_step(self.idle(), self.scene.loads()) {
@@ -133,11 +134,12 @@ impl App {
 
     /// Refinement of the current scene and controls is over and on screen, no scene is loading,
     /// the picked pixel's tree is traced, no scripted click is playing, and the window has the
-    /// size it was last given.
+    /// size it was last given, and no preview of the views plays.
     fn idle(&self) -> bool {
         let resizing = self.gpu.as_ref().is_some_and(|g| g.resizing());
         let settled = self.tracing.settled_on(self.scene.shown());
         let picking = self.tracing.picked.busy() || self.input.clicking();
-        !self.scene.loading() && !resizing && settled && !picking
+        let previewing = self.scene.shown().is_some_and(|s| s.views.previewing());
+        !self.scene.loading() && !resizing && settled && !picking && !previewing
     }
 }

@@ -13,7 +13,11 @@
 //! - `pick X Y`: inspects image pixel (X, Y) (from the top left); `click X Y`: a left click at the
 //!   centre of that pixel, through the window's input like a mouse's; `close-inspector`;
 //!   `print-tree`: prints the ray tree panel's node headings on the terminal;
-//! - `view NAME`: shows a debug view (`shaded`, `normals`, `depth`, …).
+//! - `view NAME`: shows a debug view (`shaded`, `normals`, `depth`, …);
+//! - `bookmark N`: stores the camera as view N (1 to 9), as Ctrl+N; `recall N`: goes to it, as N;
+//! - `turntable FRAMES`: previews a turntable of FRAMES frames (as T, which plays 72);
+//!   `play-path [FRAMES]`: previews the path through the views (as P); while a preview plays,
+//!   either stops it, and `wait` waits for it to end.
 
 use std::collections::VecDeque;
 use std::path::PathBuf;
@@ -188,6 +192,24 @@ fn parse_step(step: &str) -> Result<Step, String> {
                 height: n[1] as u32,
             })
         }
+        "bookmark" | "recall" => {
+            let n = count(numbers()?, 1, 0)?[0];
+            if !((1.0..=9.0).contains(&n) && n.fract() == 0.0) {
+                return Err(format!("views are numbered 1 to 9, got {n}"));
+            }
+            once(match command {
+                "bookmark" => Action::StoreView(n as u8),
+                _ => Action::RecallView(n as u8),
+            })
+        }
+        "turntable" => {
+            let n = count(numbers()?, 1, 0)?;
+            once(Action::Turntable(frames(&n, 0)?))
+        }
+        "play-path" => {
+            let n = count(numbers()?, 0, 1)?;
+            once(Action::PlayPath(n.first().map(|_| frames(&n, 0)).transpose()?))
+        }
         "fly" => {
             let n = count(numbers()?, 4, 0)?;
             once(Action::Fly {
@@ -202,7 +224,7 @@ fn parse_step(step: &str) -> Result<Step, String> {
             return Err(
                 "unknown step (use wait, wait-load, orbit, pan, dolly, fly, frame, reset, \
                  save, print-camera, open, resize, pick, click, close-inspector, print-tree, \
-                 view)"
+                 view, bookmark, recall, turntable, play-path)"
                     .into(),
             );
         }
@@ -299,5 +321,33 @@ mod tests {
             assert!(err.contains(text), "{text}: {err}");
         }
         assert!(Script::parse("").unwrap().is_done());
+    }
+
+    #[test]
+    fn view_steps_parse() {
+        let mut script =
+            Script::parse("bookmark 1; recall 9; turntable 8; play-path; play-path 5").unwrap();
+        let all: Vec<_> = std::iter::from_fn(|| script.next(true, 0)).collect();
+        assert_eq!(
+            all,
+            vec![
+                Action::StoreView(1),
+                Action::RecallView(9),
+                Action::Turntable(8),
+                Action::PlayPath(None),
+                Action::PlayPath(Some(5)),
+            ]
+        );
+        for (text, expected) in [
+            ("bookmark 0", "views are numbered 1 to 9, got 0"),
+            ("recall 10", "views are numbered 1 to 9, got 10"),
+            ("recall", "takes 1 number"),
+            ("turntable 0", "frames must be a whole number from 1"),
+            ("turntable", "takes 1 number"),
+            ("play-path 1 2", "takes 0 numbers (and 1 optional)"),
+        ] {
+            let err = Script::parse(text).unwrap_err();
+            assert!(err.contains(expected), "{text}: {err}");
+        }
     }
 }

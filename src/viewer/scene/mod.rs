@@ -4,6 +4,7 @@
 
 pub mod controls;
 pub mod source;
+pub mod views;
 pub mod watch;
 
 use std::path::PathBuf;
@@ -16,6 +17,7 @@ use winit::event_loop::EventLoopProxy;
 
 use self::controls::Controls;
 use self::source::LoadedScene;
+use self::views::SceneViews;
 use self::watch::SceneWatcher;
 use crate::viewer::app::UserEvent;
 
@@ -27,6 +29,8 @@ pub struct Shown {
     /// The controls as the scene file gives them (no overrides), to tell which a reloaded file
     /// changed.
     pub file_controls: Controls,
+    /// The bookmarked views and their preview.
+    pub views: SceneViews,
 }
 
 /// Where the scene stands.
@@ -50,6 +54,8 @@ pub struct SceneInfo<'a> {
     pub load_error: Option<&'a str>,
     /// The scene files beside the one asked for.
     pub files_beside: &'a [PathBuf],
+    /// The bookmarked views.
+    pub views: &'a SceneViews,
 }
 
 /// The scene, the loads that bring it and the file watched for changes.
@@ -191,11 +197,13 @@ impl SceneSlot {
             }
             _ => with_overrides,
         };
+        let views = SceneViews::new(loaded.views.clone(), loaded.path.as_deref());
         let scene: Arc<LoadedScene> = Arc::from(loaded);
         self.state = SceneState::Loaded(Shown {
             scene: scene.clone(),
             controls,
             file_controls,
+            views,
         });
         Ok(scene)
     }
@@ -246,6 +254,7 @@ impl SceneSlot {
             scene: &shown.scene,
             load_error,
             files_beside: &self.files_beside,
+            views: &shown.views,
         };
         Some((info, &mut shown.controls))
     }
