@@ -119,10 +119,7 @@ pub fn path(stops: &[CameraSpec], frames: u32) -> Result<Vec<Camera>, String> {
     let specs = (0..u64::from(frames)).map(|k| {
         // Frame k is at stop (k · stretches / last_frame), kept as a whole part and a fraction.
         let position = k * stretches;
-        let (i, rest) = (
-            (position / last_frame) as usize,
-            position % last_frame,
-        );
+        let (i, rest) = ((position / last_frame) as usize, position % last_frame);
         if rest == 0 {
             return stops[i];
         }
@@ -176,13 +173,19 @@ mod tests {
             let offset = frame.spec.eye - frame.spec.look_at;
             assert_eq!(frame.spec.look_at, camera().look_at);
             assert!((offset.length() - start.length()).abs() < 1e-4, "{k}");
-            assert!((offset.y - start.y).abs() < 1e-5, "frame {k} keeps its height");
+            assert!(
+                (offset.y - start.y).abs() < 1e-5,
+                "frame {k} keeps its height"
+            );
             // Turned k·45° counter-clockwise about +y (seen from above).
             let angle = flat(start).angle_between(flat(offset));
             let expected = (k as f32 * 45.0).min(360.0 - k as f32 * 45.0).to_radians();
             assert!((angle - expected).abs() < 1e-3, "frame {k}: {angle}");
             let turn = flat(start).cross(flat(offset)).y;
-            assert!(k % 4 == 0 || (turn > 0.0) == (k < 4), "frame {k} turns the right way");
+            assert!(
+                k % 4 == 0 || (turn > 0.0) == (k < 4),
+                "frame {k} turns the right way"
+            );
         }
     }
 
@@ -252,11 +255,17 @@ mod tests {
     #[test]
     fn bad_sequences_are_errors() {
         for (result, expected) in [
-            (turntable(&camera(), 0), "a turntable takes 1 to 10000 frames, got 0"),
+            (
+                turntable(&camera(), 0),
+                "a turntable takes 1 to 10000 frames, got 0",
+            ),
             (turntable(&camera(), MAX_FRAMES + 1), "got 10001"),
             (path(&stops()[..1], 10), "at least 2 views, got 1"),
             (path(&[], 10), "at least 2 views, got 0"),
-            (path(&stops(), 1), "a camera path takes 2 to 10000 frames, got 1"),
+            (
+                path(&stops(), 1),
+                "a camera path takes 2 to 10000 frames, got 1",
+            ),
         ] {
             let error = result.unwrap_err();
             assert!(error.contains(expected), "{error}");
@@ -270,7 +279,10 @@ mod tests {
             },
         ];
         let error = path(&flipped, 3).unwrap_err();
-        assert!(error.starts_with("frame 1 of the path: the up vector"), "{error}");
+        assert!(
+            error.starts_with("frame 1 of the path: the up vector"),
+            "{error}"
+        );
     }
 
     #[test]
@@ -282,7 +294,12 @@ mod tests {
         assert_eq!(views.get(9), Some(camera()));
         assert_eq!(views.get(1), None);
         assert_eq!(views.cameras(), vec![stops()[1], camera()]);
-        assert!(views.set(0, camera()).unwrap_err().contains("1 to 9, got 0"));
+        assert!(
+            views
+                .set(0, camera())
+                .unwrap_err()
+                .contains("1 to 9, got 0")
+        );
         assert!(views.set(10, camera()).is_err());
     }
 }

@@ -65,6 +65,11 @@ fn the_kept_sdl_files_read_or_fail_cleanly() {
 }
 
 #[test]
+fn the_kept_views_files_read_or_fail_cleanly() {
+    replay("views", harness::views);
+}
+
+#[test]
 fn the_shipped_scenes_read_and_render_with_the_fuzz_targets_files() {
     read_all("assets/scenes", ".toml", harness::toml_scene);
 }

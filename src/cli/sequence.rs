@@ -140,7 +140,10 @@ mod tests {
     #[test]
     fn bad_patterns_are_errors() {
         for (output, expected) in [
-            ("out.png", "-o out.png names one file, but the sequence has 2 images"),
+            (
+                "out.png",
+                "-o out.png names one file, but the sequence has 2 images",
+            ),
             ("%s.png", "a frame number pattern is %d or %0Nd"),
             ("%4d.png", "a frame number pattern is %d or %0Nd"),
             ("%0", "a frame number pattern is %d or %0Nd"),

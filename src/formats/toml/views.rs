@@ -120,7 +120,10 @@ mod tests {
     #[test]
     fn a_views_file_reads_back_as_the_same_views() {
         let text = views_text(&views());
-        assert!(text.contains("[view.1]") && text.contains("[view.3]"), "{text}");
+        assert!(
+            text.contains("[view.1]") && text.contains("[view.3]"),
+            "{text}"
+        );
         assert!(text.find("[view.1]") < text.find("[view.3]"));
         assert_eq!(parse(&text).unwrap(), views());
         assert_eq!(parse("").unwrap(), Views::default());
@@ -139,14 +142,26 @@ mod tests {
     #[test]
     fn errors_are_at_their_line_and_column() {
         for (text, expected) in [
-            ("[view.0]\n", "room.views.toml:1:7: views are numbered 1 to 9, got `0`"),
-            ("[view.x1]\n", "room.views.toml:1:7: views are numbered 1 to 9, got `x1`"),
-            ("[view.1]\neye = [0, 0]\n", "room.views.toml:2:7: expected 3 values, got 2"),
+            (
+                "[view.0]\n",
+                "room.views.toml:1:7: views are numbered 1 to 9, got `0`",
+            ),
+            (
+                "[view.x1]\n",
+                "room.views.toml:1:7: views are numbered 1 to 9, got `x1`",
+            ),
+            (
+                "[view.1]\neye = [0, 0]\n",
+                "room.views.toml:2:7: expected 3 values, got 2",
+            ),
             (
                 "[view.1]\neye = [0, 0, 0]\n",
                 "room.views.toml:2:7: the eye and the look-at point coincide",
             ),
-            ("[view.1]\nfov = 3\n", "room.views.toml:2:1: unknown field `fov`"),
+            (
+                "[view.1]\nfov = 3\n",
+                "room.views.toml:2:1: unknown field `fov`",
+            ),
             ("[views.1]\n", "room.views.toml:1:2: unknown field `views`"),
             ("[view.1\n", "room.views.toml:1:"),
             ("view = 3\n", "room.views.toml:1:8:"),

@@ -66,8 +66,11 @@ impl App {
         }
         self.step_preview();
         self.sync_tracing(now);
-        // The script sees what this frame's input started (a click's ray tree, say).
-        if let Some(action) = self.input.next_step(self.idle(), self.scene.loads()) {
+        // The script sees what this frame's input started (a click's ray tree, say). Its steps
+        // start once the first scene has loaded (or failed to): before, there is no camera.
+        if self.scene.loads() > 0
+            && let Some(action) = self.input.next_step(self.idle(), self.scene.loads())
+        {
             self.apply(action, shown);
             self.sync_tracing(now);
         }

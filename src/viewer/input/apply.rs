@@ -132,7 +132,7 @@ impl App {
         };
         let camera = s.controls.camera;
         let done = match action {
-            Action::StoreView(n) => s.views.store(n, camera),
+            Action::StoreView(n) => s.views.store(n, camera).inspect(|m| println!("{m}")),
             Action::RecallView(n) => match s.views.views.get(n) {
                 Some(view) => {
                     s.controls.camera = view;

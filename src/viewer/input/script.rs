@@ -1,6 +1,6 @@
 //! Scripted input, for tests and demonstrations: `--script "wait; orbit 30 10 5; wait"` drives
 //! the viewer through the same [`Action`]s as the mouse and keys. Steps, separated by `;` or new
-//! lines:
+//! lines, starting once the first scene has loaded:
 //!
 //! - `wait`: until refinement has reached its last pass and the image is on screen;
 //! - `wait-load N`: until N scene loads (or failed loads) have finished since the start, the
@@ -208,7 +208,9 @@ fn parse_step(step: &str) -> Result<Step, String> {
         }
         "play-path" => {
             let n = count(numbers()?, 0, 1)?;
-            once(Action::PlayPath(n.first().map(|_| frames(&n, 0)).transpose()?))
+            once(Action::PlayPath(
+                n.first().map(|_| frames(&n, 0)).transpose()?,
+            ))
         }
         "fly" => {
             let n = count(numbers()?, 4, 0)?;

@@ -82,13 +82,17 @@ impl SceneViews {
         }
         let stops = self.views.cameras();
         let frames = frames.unwrap_or(PATH_FRAMES_PER_VIEW * (stops.len().max(2) as u32 - 1));
-        let cameras = specs(path(&stops, frames).map_err(|e| {
-            format!("{e} (Ctrl+1…9 stores the camera as a view)")
-        })?);
+        let cameras = specs(
+            path(&stops, frames)
+                .map_err(|e| format!("{e} (Ctrl+1…9 stores the camera as a view)"))?,
+        );
         self.preview = Some(Preview {
             cameras: cameras.into_iter(),
         });
-        Ok(format!("path through {} views in {frames} frames", stops.len()))
+        Ok(format!(
+            "path through {} views in {frames} frames",
+            stops.len()
+        ))
     }
 
     /// A preview is playing.
