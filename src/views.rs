@@ -55,10 +55,6 @@ impl Views {
     pub fn cameras(&self) -> Vec<CameraSpec> {
         self.views.values().copied().collect()
     }
-
-    pub fn is_empty(&self) -> bool {
-        self.views.is_empty()
-    }
 }
 
 /// Checks a sequence's frame count: from `least` to [`MAX_FRAMES`].
@@ -288,7 +284,6 @@ mod tests {
     #[test]
     fn views_are_numbered_1_to_9() {
         let mut views = Views::default();
-        assert!(views.is_empty());
         views.set(9, camera()).unwrap();
         views.set(2, stops()[1]).unwrap();
         assert_eq!(views.get(9), Some(camera()));

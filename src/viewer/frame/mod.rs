@@ -80,7 +80,8 @@ impl App {
         let animating = self.tracing.refining()
             || self.scene.loading()
             || mouse_and_keys::flying(&ctx)
-            || self.input.busy();
+            || self.input.busy()
+            || self.previewing();
         let egui_delay = output
             .viewport_output
             .get(&egui::ViewportId::ROOT)
@@ -142,7 +143,6 @@ impl App {
         let resizing = self.gpu.as_ref().is_some_and(|g| g.resizing());
         let settled = self.tracing.settled_on(self.scene.shown());
         let picking = self.tracing.picked.busy() || self.input.clicking();
-        let previewing = self.scene.shown().is_some_and(|s| s.views.previewing());
-        !self.scene.loading() && !resizing && settled && !picking && !previewing
+        !self.scene.loading() && !resizing && settled && !picking && !self.previewing()
     }
 }

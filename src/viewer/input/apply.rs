@@ -147,6 +147,11 @@ impl App {
         self.ui.panel.message = Some(done.unwrap_or_else(|e| e));
     }
 
+    /// A preview of the views is playing.
+    pub fn previewing(&self) -> bool {
+        self.scene.shown().is_some_and(|s| s.views.previewing())
+    }
+
     /// Moves the camera to the preview's next frame once the frame before is on screen.
     pub fn step_preview(&mut self) {
         let Some(s) = self.scene.shown() else { return };
