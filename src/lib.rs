@@ -10,7 +10,8 @@
 //!
 //! - Basics: [`color`] (linear RGB and its 8-bit sRGB encoding), [`ray`], [`aabb`],
 //!   [`transform`], [`limits`], [`memory`], [`output`] (writing files safely), [`camera`] (the
-//!   one place a pixel becomes an eye ray) and [`sampling`] (where a pixel's samples lie).
+//!   one place a pixel becomes an eye ray), [`views`] (bookmarked cameras, and the cameras of a
+//!   turntable or a path through them) and [`sampling`] (where a pixel's samples lie).
 //! - The scene: [`shapes`], [`mesh`], [`primitive`], [`material`], [`texture`] (with
 //!   [`noise`]), [`light`], [`medium`] (fog), [`settings`] and [`scene::Scene`], which
 //!   [`formats`] reads from TOML, OBJ, NFF, SPD and SDL files (or [`large_mesh`] generates, for
@@ -24,8 +25,6 @@
 //!   is [`progressive::Shaded`]); [`formats::image`] saves it.
 //! - Looking inside: [`inspect`] records one pixel's ray tree with a tree observer and renders
 //!   debug views as shaders of the same renderer. Nothing above depends on it.
-//! - Image sequences: [`views`] holds a scene's bookmarked cameras and the cameras of each frame
-//!   of a turntable or of a path through them.
 //!
 //! Nothing here knows about windows or GPUs.
 

@@ -1,6 +1,7 @@
 //! The scene being shown: loading scene files (or the built-in scene) in the background, watching
-//! the file for changes, and the controls (camera, settings, lights, view) the user edits. Where
-//! the scene stands is one [`SceneState`]: loading, failed or loaded.
+//! the file for changes, the controls (camera, settings, lights, view) the user edits, and the
+//! bookmarked views (`views`). Where the scene stands is one [`SceneState`]: loading, failed or
+//! loaded.
 
 pub mod controls;
 pub mod source;
