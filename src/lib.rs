@@ -9,9 +9,10 @@
 //! and the modules depend on each other in that order only, each on those before it:
 //!
 //! - Basics: [`color`] (linear RGB and its 8-bit sRGB encoding), [`ray`], [`aabb`],
-//!   [`transform`], [`limits`], [`memory`], [`output`] (writing files safely), [`camera`] (the
-//!   one place a pixel becomes an eye ray), [`views`] (bookmarked cameras, and the cameras of a
-//!   turntable or a path through them) and [`sampling`] (where a pixel's samples lie).
+//!   [`tone`] (exposure and tone curves), [`transform`], [`limits`], [`memory`], [`output`]
+//!   (writing files safely), [`camera`] (the one place a pixel becomes an eye ray), [`views`]
+//!   (bookmarked cameras, and the cameras of a turntable or a path through them) and
+//!   [`sampling`] (where a pixel's samples lie).
 //! - The scene: [`shapes`], [`mesh`], [`primitive`], [`material`], [`texture`] (with
 //!   [`noise`]), [`light`], [`medium`] (fog), [`settings`] and [`scene::Scene`], which
 //!   [`formats`] reads from TOML, OBJ, NFF, SPD and SDL files (or [`large_mesh`] generates, for
@@ -55,6 +56,7 @@ pub mod settings;
 pub mod shapes;
 pub mod stats;
 pub mod texture;
+pub mod tone;
 pub mod transform;
 pub mod views;
 pub mod whitted;

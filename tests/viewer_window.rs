@@ -936,6 +936,93 @@ fn a_debug_view_chosen_in_the_viewer_renders_as_on_the_cpu() {
     assert!(mismatches(&shot, rect, size, &shaded) > (size * size / 4) as usize);
 }
 
+/// The default scene rendered on the CPU at `size × size`, as linear colours.
+fn cpu_render_linear(size: u32) -> Vec<raylab::color::Color> {
+    let scene = default_scene().unwrap();
+    let (scene, bvh) = sized(&scene, size, scene.camera.spec);
+    progressive::render_image_with(&Tracer::new(&scene, &bvh), &DebugView::Shaded).0
+}
+
+#[test]
+fn exposure_and_tone_curve_show_in_the_window_and_save_as_shown() {
+    use raylab::tone::{Tone, ToneCurve};
+    let dir = tempfile::tempdir().unwrap();
+    let saved = dir.path().join("saved.png");
+    let size = 64;
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            &size.to_string(),
+            "--save",
+            saved.to_str().unwrap(),
+            "--script",
+            "exposure 1.5; tonemap filmic; wait; save",
+        ],
+    ) else {
+        return;
+    };
+    let rect = image_rect(&run.stdout);
+    let saved_bytes = image::open(&saved).unwrap().to_rgb8().into_raw();
+    assert_eq!(saved_bytes.len(), (size * size * 3) as usize);
+    // What is saved is what the window shows.
+    assert_eq!(mismatches(&shot, rect, size, &saved_bytes), 0);
+    // And it is the library's tone mapping of the traced image.
+    let linear = cpu_render_linear(size);
+    let tone = Tone::new(1.5, ToneCurve::Filmic).unwrap();
+    assert_eq!(mismatches(&shot, rect, size, &tone.to_srgb8(&linear)), 0);
+    let plain = to_srgb8(&linear);
+    assert!(mismatches(&shot, rect, size, &plain) > (size * size / 4) as usize);
+}
+
+#[test]
+fn a_snapshot_shows_left_of_the_divider_and_the_live_image_right_of_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = 64;
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            &size.to_string(),
+            "--script",
+            "wait; snapshot; view normals; divider 0.5; wait",
+        ],
+    ) else {
+        return;
+    };
+    let scene = default_scene().unwrap();
+    let shaded = cpu_render(&scene, size, scene.camera.spec);
+    let normals = cpu_render_view(&scene, size, scene.camera.spec, DebugView::Normals);
+    // Left half the snapshot (shaded), right half the live normals; the top rows hold the
+    // labels, the divider runs between the halves' pixel centres.
+    let half = (size / 2) as usize;
+    let split: Vec<u8> = shaded
+        .chunks_exact(3)
+        .zip(normals.chunks_exact(3))
+        .enumerate()
+        .flat_map(|(i, (s, n))| if i % size as usize >= half { n } else { s }.to_vec())
+        .collect();
+    let shot_image = image::open(&shot).unwrap().to_rgb8();
+    let (x0, y0, w, h) = image_rect(&run.stdout);
+    let mut bad = 0;
+    for j in 4..size {
+        for i in 0..size {
+            let sx = (x0 + (i as f32 + 0.5) * w / size as f32) as u32;
+            let sy = (y0 + (j as f32 + 0.5) * h / size as f32) as u32;
+            let got = shot_image.get_pixel(sx, sy).0;
+            let k = ((j * size + i) * 3) as usize;
+            if (0..3).any(|c| got[c].abs_diff(split[k + c]) > 2) {
+                bad += 1;
+            }
+        }
+    }
+    assert_eq!(bad, 0, "the split view shows snapshot | live");
+    // Both halves are really there: the picture is neither all shaded nor all normals.
+    let rect = (x0, y0, w, h);
+    assert!(mismatches(&shot, rect, size, &shaded) > (size * size / 8) as usize);
+    assert!(mismatches(&shot, rect, size, &normals) > (size * size / 8) as usize);
+}
+
 #[test]
 fn a_stored_view_is_recalled_saved_beside_the_scene_and_a_turntable_preview_ends_on_it() {
     let dir = tempfile::tempdir().unwrap();

@@ -10,13 +10,14 @@ use indicatif::{ProgressBar, ProgressStyle};
 use raylab::bvh::Bvh;
 use raylab::film::Film;
 use raylab::formats::SceneFormat;
-use raylab::formats::image::{check_image_path, save_image};
+use raylab::formats::image::{OutputFormat, check_image_path, save_image, save_toned_image};
 use raylab::formats::nff::NffLighting;
 use raylab::inspect::DebugView;
 use raylab::memory;
 use raylab::photon::scene_caustics;
 use raylab::progressive::{self, RenderControl, RenderStats};
 use raylab::settings::{RenderSettings, SettingsOverrides};
+use raylab::tone::{Tone, ToneCurve};
 use raylab::whitted::{RAY_BUDGET, Tracer};
 
 use super::overrides::OverrideArgs;
@@ -49,6 +50,19 @@ pub struct RenderArgs {
     /// ambient light, as SPD's POV-Ray exporter writes them).
     #[arg(long, default_value_t = NffLighting::default())]
     nff_lights: NffLighting,
+    /// Exposure in stops for .png and .ppm output: each stop doubles the linear values before
+    /// the tone curve (.exr and .hdr keep the linear values).
+    #[arg(
+        long,
+        value_name = "STOPS",
+        default_value_t = 0.0,
+        allow_hyphen_values = true
+    )]
+    exposure: f32,
+    /// Tone curve for .png and .ppm output: clamp (values above 1 are white), reinhard or
+    /// filmic (an ACES-like curve); .exr and .hdr keep the linear values.
+    #[arg(long, value_name = "CURVE", default_value_t = ToneCurve::Clamp)]
+    tonemap: ToneCurve,
     /// An image sequence instead of one image.
     #[command(flatten)]
     sequence: SequenceArgs,
@@ -58,6 +72,13 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     // Before any long work: the scene, the cameras and file names of the frames, the BVH, the
     // render.
     let format = check_image_path(&args.output).map_err(|e| e.to_string())?;
+    let tone = Tone::new(args.exposure, args.tonemap).map_err(|e| format!("--exposure: {e}"))?;
+    if tone != Tone::default() && matches!(format, OutputFormat::Exr | OutputFormat::Hdr) {
+        eprintln!(
+            "warning: --exposure and --tonemap shape 8-bit images only; {} keeps the linear values",
+            args.output.display()
+        );
+    }
     let mut scene = super::load_scene(args.scene.as_deref(), args.nff_lights, args.format)?;
     let overrides = SettingsOverrides::from(args.overrides);
     overrides.apply(&mut scene.settings)?;
@@ -102,7 +123,8 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
             bar.set_position(done + traced)
         })
         .and_then(|(film, frame_stats)| {
-            save_image(output, width, height, &film.pixels()).map_err(|e| e.to_string())?;
+            save_toned_image(output, width, height, &film.pixels(), tone)
+                .map_err(|e| e.to_string())?;
             written.push(output);
             Ok(frame_stats)
         });

@@ -49,10 +49,12 @@ pub struct ViewArgs {
     /// N scene loads, the first included), orbit YAW PITCH [FRAMES], pan DX DY [FRAMES], dolly STEPS,
     /// fly X Y Z SECONDS, frame, reset, save, print-camera, open [PATH], resize W H, pick X Y
     /// (inspect image pixel X Y), click X Y (a left click on that pixel), close-inspector,
-    /// print-tree (print the inspector's node headings), view NAME, bookmark N (store the camera
-    /// as view N, 1 to 9, as Ctrl+N), recall N (go to view N), turntable FRAMES (preview a
-    /// turntable), play-path [FRAMES] (preview the path through the views; while a preview plays,
-    /// either stops it, and wait waits for it to end).
+    /// print-tree (print the inspector's node headings), view NAME, exposure STOPS, tonemap
+    /// CURVE (clamp, reinhard, filmic), snapshot (keep the image to compare with, as the key B),
+    /// compare on|off (the split view: snapshot left, live right), divider FRACTION (0 to 1),
+    /// bookmark N (store the camera as view N, 1 to 9, as Ctrl+N), recall N (go to view N),
+    /// turntable FRAMES (preview a turntable), play-path [FRAMES] (preview the path through the
+    /// views; while a preview plays, either stops it, and wait waits for it to end).
     #[arg(long, value_name = "STEPS", value_parser = Script::parse)]
     script: Option<Script>,
     /// Most frames per second while refining.

@@ -1,5 +1,6 @@
 //! Writing the rendered image: PNG and PPM (8-bit sRGB) and OpenEXR and Radiance HDR (linear
-//! floats), chosen by the file's extension ([`save_image`]). A path can be checked before long
+//! floats), chosen by the file's extension ([`save_image`]); 8-bit images can be shown through
+//! an exposure and tone curve ([`save_toned_image`]). A path can be checked before long
 //! work ([`check_image_path`]). The file is written safely, as [`crate::output`] writes every
 //! file: atomically, through a symbolic link, never over a read-only file.
 
@@ -8,8 +9,9 @@ use std::path::{Path, PathBuf};
 use image::codecs::pnm::{PnmEncoder, PnmSubtype, SampleEncoding};
 use image::{DynamicImage, ImageFormat, Rgb32FImage, RgbImage};
 
-use crate::color::{Color, to_srgb8};
+use crate::color::Color;
 use crate::output::{check_writable, write_atomically};
+use crate::tone::Tone;
 
 /// The image formats raylab writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -95,6 +97,18 @@ pub fn save_image(
     height: u32,
     pixels: &[Color],
 ) -> Result<(), OutputError> {
+    save_toned_image(path, width, height, pixels, Tone::default())
+}
+
+/// As [`save_image`], with 8-bit formats (PNG, PPM) shown through `tone`; OpenEXR and Radiance
+/// HDR keep the linear values as they are.
+pub fn save_toned_image(
+    path: &Path,
+    width: u32,
+    height: u32,
+    pixels: &[Color],
+    tone: Tone,
+) -> Result<(), OutputError> {
     let format = check_image_path(path)?;
     let expected = width as usize * height as usize;
     if pixels.len() != expected {
@@ -108,7 +122,7 @@ pub fn save_image(
     write_atomically(path, io, |out| {
         match format {
             OutputFormat::Png | OutputFormat::Ppm => {
-                let srgb = RgbImage::from_raw(width, height, to_srgb8(pixels)).ok_or(
+                let srgb = RgbImage::from_raw(width, height, tone.to_srgb8(pixels)).ok_or(
                     OutputError::PixelCount {
                         expected,
                         got: pixels.len(),

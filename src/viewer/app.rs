@@ -77,6 +77,7 @@ impl App {
             message: None,
             square: overrides.width.is_some() && overrides.width == overrides.height,
             max_side: 2048,
+            display: Default::default(),
         };
         Ok(App {
             gpu: None,

@@ -1,5 +1,5 @@
-//! Saving what the viewer shows: the image as a PNG (atomically, through the library's
-//! [`save_image`]) and the camera as a `[camera]` snippet to paste into a scene file.
+//! Saving what the viewer shows: the image as a PNG, through the exposure and tone curve shown
+//! (atomically, through the library's [`save_toned_image`]) and the camera as a `[camera]` snippet to paste into a scene file.
 
 use std::io::Write;
 use std::path::Path;
@@ -7,9 +7,10 @@ use std::path::Path;
 use raylab::camera::CameraSpec;
 use raylab::film::Film;
 use raylab::formats::camera_path;
-use raylab::formats::image::save_image;
+use raylab::formats::image::save_toned_image;
 use raylab::formats::toml::camera_table;
 use raylab::output::write_atomically;
+use raylab::tone::Tone;
 
 /// The camera as a scene file's `[camera]` table. Numbers are written in full (Rust's shortest
 /// round-tripping form), so reading the snippet back gives exactly this camera.
@@ -17,10 +18,16 @@ pub fn camera_snippet(spec: &CameraSpec) -> String {
     camera_table("camera", spec)
 }
 
-/// Saves the film at `path` (its extension picks the format) and the camera beside it; returns
-/// a line saying what was written.
-pub fn save_view(path: &Path, film: &Film, camera: &CameraSpec) -> Result<String, String> {
-    save_image(path, film.width(), film.height(), &film.pixels()).map_err(|e| e.to_string())?;
+/// Saves the film at `path` (its extension picks the format; PNG and PPM through `tone`, as the
+/// window shows it) and the camera beside it; returns a line saying what was written.
+pub fn save_view(
+    path: &Path,
+    film: &Film,
+    camera: &CameraSpec,
+    tone: Tone,
+) -> Result<String, String> {
+    save_toned_image(path, film.width(), film.height(), &film.pixels(), tone)
+        .map_err(|e| e.to_string())?;
     let snippet_path = camera_path(path);
     let snippet = camera_snippet(camera);
     write_atomically(
@@ -74,7 +81,7 @@ mod tests {
         let film = Film::new(3, 2);
         film.set(0, 0, Color::ONE);
         let path = dir.path().join("view.png");
-        let message = save_view(&path, &film, &spec()).unwrap();
+        let message = save_view(&path, &film, &spec(), Tone::default()).unwrap();
         assert!(message.contains("view.png"), "{message}");
         let image = image::open(&path).unwrap().to_rgb8();
         assert_eq!(image.dimensions(), (3, 2));
@@ -86,6 +93,14 @@ mod tests {
     #[test]
     fn saving_to_a_missing_folder_is_an_error() {
         let film = Film::new(1, 1);
-        assert!(save_view(Path::new("/no/such/dir/x.png"), &film, &spec()).is_err());
+        assert!(
+            save_view(
+                Path::new("/no/such/dir/x.png"),
+                &film,
+                &spec(),
+                Tone::default()
+            )
+            .is_err()
+        );
     }
 }

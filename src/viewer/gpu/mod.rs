@@ -20,6 +20,7 @@ use winit::window::Window;
 
 use self::device::Gpu;
 use self::painter::{FrameContent, Painter};
+use self::quad::Display;
 use self::surface::{Acquired, WindowSurface};
 use self::upload::{Uploader, write_texture};
 use crate::viewer::frame::timing::Timing;
@@ -35,6 +36,8 @@ pub struct Graphics {
     egui_state: egui_winit::State,
     /// What of the film the image texture shows.
     uploader: Uploader,
+    /// How the image is shown (exposure, tone curve, split).
+    display: Display,
 }
 
 /// What painting a frame did.
@@ -80,6 +83,7 @@ impl Graphics {
             painter,
             egui_state,
             uploader: Uploader::new(),
+            display: Display::default(),
         })
     }
 
@@ -117,6 +121,12 @@ impl Graphics {
         self.surface.size() != (size.width, size.height)
     }
 
+    /// Shows the image through `display` from the next frame on (the split only while there is
+    /// a snapshot).
+    pub fn set_display(&mut self, display: Display) {
+        self.display = display;
+    }
+
     /// Paints a frame: egui's `output` over the image (the film of `rendering`, uploaded if it
     /// changed) shown at `shown`, presented in the window; then, if it was presented and
     /// `screenshot` is given, saved there as a PNG.
@@ -141,6 +151,19 @@ impl Graphics {
         let primitives = egui.tessellate(shapes, pixels_per_point);
         self.painter.set_textures(&self.gpu, &mut textures_delta);
         let uploaded = rendering.and_then(|r| self.upload(r, timing));
+        let quad = &self.painter.quad;
+        let divider = if quad.snapshot_size().is_some() {
+            self.display.divider
+        } else {
+            0.0
+        };
+        quad.set_display(
+            &self.gpu.queue,
+            Display {
+                divider,
+                ..self.display
+            },
+        );
         let content = FrameContent {
             primitives: &primitives,
             pixels_per_point,
@@ -167,6 +190,14 @@ impl Graphics {
             uploaded,
             screenshot_error,
         }
+    }
+
+    /// Keeps the image texture as it is now as the snapshot to compare with; returns its size
+    /// (none before the first image).
+    pub fn snapshot(&mut self) -> Option<(u32, u32)> {
+        self.painter
+            .quad
+            .take_snapshot(&self.gpu.device, &self.gpu.queue)
     }
 
     /// Uploads the film if it changed; returns how far the render was when the film was read

@@ -29,7 +29,7 @@ pub struct Painter {
 impl Painter {
     pub fn new(gpu: &Gpu, format: wgpu::TextureFormat) -> Painter {
         Painter {
-            quad: QuadRenderer::new(&gpu.device, format),
+            quad: QuadRenderer::new(&gpu.device, &gpu.queue, format),
             egui: egui_wgpu::Renderer::new(&gpu.device, format, Default::default()),
         }
     }

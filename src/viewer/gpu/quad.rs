@@ -1,47 +1,80 @@
-//! The GPU quad: one texture of the image's size, sampled with nearest filtering (so coarse
-//! passes show as fat pixels), drawn on two triangles by `shaders/quad.wgsl` into the letterboxed
-//! image rectangle, set as the render pass's viewport.
+//! The GPU quad: a texture of the image's size holding the film's linear colours (floats), and
+//! maybe a snapshot of it, drawn on two triangles by `shaders/quad.wgsl` into the letterboxed
+//! image rectangle, set as the render pass's viewport. The shader shows each screen pixel's
+//! nearest texel (so coarse passes show as fat pixels) through the exposure and tone curve of
+//! the [`Display`] uniforms, and the snapshot left of the divider when comparing.
+
+use raylab::color::srgb8_steps;
+use raylab::tone::Tone;
 
 use crate::viewer::ui::layout::PixelRect;
 
-/// The image texture and the bind group that samples it.
+/// The texture format of the image and the snapshot: the film's linear floats as they are.
+pub const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+/// Bytes of the uniforms before the sRGB steps: scale, curve, divider and one unused.
+const DISPLAY_HEADER_BYTES: usize = 16;
+/// The sRGB steps take 64 vectors of four (the last slot unused).
+const DISPLAY_BYTES: usize = DISPLAY_HEADER_BYTES + 64 * 16;
+
+/// How the quad shows the image: `Display` in `shaders/quad.wgsl`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Display {
+    pub tone: Tone,
+    /// Image x (0 left, 1 right) left of which the snapshot is shown; 0 shows none of it.
+    pub divider: f32,
+}
+
+/// The image texture, the snapshot (if any, of the same size) and the bind group that reads
+/// them.
 struct ImageTexture {
     texture: wgpu::Texture,
+    snapshot: Option<wgpu::Texture>,
     bind_group: wgpu::BindGroup,
 }
 
 pub struct QuadRenderer {
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
-    sampler: wgpu::Sampler,
+    display: wgpu::Buffer,
     image: Option<ImageTexture>,
 }
 
 impl QuadRenderer {
-    /// A renderer drawing into targets of `format` (which should not be sRGB: the texture
-    /// already holds sRGB bytes).
-    pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> QuadRenderer {
+    /// A renderer drawing into targets of `format` (which should not be sRGB: the shader
+    /// encodes sRGB itself).
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        format: wgpu::TextureFormat,
+    ) -> QuadRenderer {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("quad.wgsl"),
             source: wgpu::ShaderSource::Wgsl(include_str!("../../../shaders/quad.wgsl").into()),
         });
+        let texture_entry = |binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("image"),
             entries: &[
+                texture_entry(0),
+                texture_entry(1),
                 wgpu::BindGroupLayoutEntry {
-                    binding: 0,
+                    binding: 2,
                     visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
                     },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                     count: None,
                 },
             ],
@@ -72,22 +105,42 @@ impl QuadRenderer {
             multiview_mask: None,
             cache: None,
         });
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("nearest"),
-            mag_filter: wgpu::FilterMode::Nearest,
-            min_filter: wgpu::FilterMode::Nearest,
-            ..Default::default()
+        let display = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("display"),
+            size: DISPLAY_BYTES as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
         });
-        QuadRenderer {
+        let steps: Vec<u8> = srgb8_steps()
+            .into_iter()
+            .chain([f32::INFINITY])
+            .flat_map(f32::to_ne_bytes)
+            .collect();
+        queue.write_buffer(&display, DISPLAY_HEADER_BYTES as u64, &steps);
+        let quad = QuadRenderer {
             pipeline,
             layout,
-            sampler,
+            display,
             image: None,
-        }
+        };
+        quad.set_display(queue, Display::default());
+        quad
     }
 
-    /// The image texture, made `width × height` (a new, black one when the size changed). The
-    /// flag says whether it is new.
+    /// Shows the image through `display` from the next frame on.
+    pub fn set_display(&self, queue: &wgpu::Queue, display: Display) {
+        let header: Vec<u8> = [
+            display.tone.scale().to_ne_bytes(),
+            display.tone.curve.shader_index().to_ne_bytes(),
+            display.divider.to_ne_bytes(),
+            [0; 4],
+        ]
+        .concat();
+        queue.write_buffer(&self.display, 0, &header);
+    }
+
+    /// The image texture, made `width × height` (a new, black one without a snapshot when the
+    /// size changed). The flag says whether it is new.
     pub fn image_texture(
         &mut self,
         device: &wgpu::Device,
@@ -99,37 +152,11 @@ impl QuadRenderer {
             .as_ref()
             .is_some_and(|i| i.texture.width() == width && i.texture.height() == height);
         if !fits {
-            let texture = device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("image"),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba8Unorm,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
-            });
-            let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("image"),
-                layout: &self.layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: wgpu::BindingResource::TextureView(&view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::Sampler(&self.sampler),
-                    },
-                ],
-            });
+            let texture = image_texture(device, "image", width, height);
+            let bind_group = self.bind_group(device, &texture, None);
             self.image = Some(ImageTexture {
                 texture,
+                snapshot: None,
                 bind_group,
             });
         }
@@ -138,6 +165,64 @@ impl QuadRenderer {
             image.unwrap_or_else(|| unreachable!("the texture was just made")),
             !fits,
         )
+    }
+
+    /// Keeps a copy of the image texture as it is now, to compare with; returns its size (none
+    /// before the first image).
+    pub fn take_snapshot(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Option<(u32, u32)> {
+        let image = self.image.as_ref()?;
+        let size = image.texture.size();
+        let snapshot = image_texture(device, "snapshot", size.width, size.height);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        encoder.copy_texture_to_texture(
+            image.texture.as_image_copy(),
+            snapshot.as_image_copy(),
+            size,
+        );
+        queue.submit([encoder.finish()]);
+        let bind_group = self.bind_group(device, &image.texture, Some(&snapshot));
+        let image = self.image.as_mut()?;
+        image.snapshot = Some(snapshot);
+        image.bind_group = bind_group;
+        Some((size.width, size.height))
+    }
+
+    /// The size of the snapshot, if there is one (the image has the same).
+    pub fn snapshot_size(&self) -> Option<(u32, u32)> {
+        let snapshot = self.image.as_ref()?.snapshot.as_ref()?;
+        Some((snapshot.width(), snapshot.height()))
+    }
+
+    /// The bind group of `image` and `snapshot` (the image again if none) with the uniforms.
+    fn bind_group(
+        &self,
+        device: &wgpu::Device,
+        image: &wgpu::Texture,
+        snapshot: Option<&wgpu::Texture>,
+    ) -> wgpu::BindGroup {
+        let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("image"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&view(image)),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&view(snapshot.unwrap_or(image))),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: self.display.as_entire_binding(),
+                },
+            ],
+        })
     }
 
     /// Draws the image into `shown` (whole pixels, inside a target of `target_size`).
@@ -158,35 +243,61 @@ impl QuadRenderer {
     }
 }
 
+/// A `width × height` texture of [`IMAGE_FORMAT`] to upload into, copy from and read.
+fn image_texture(device: &wgpu::Device, label: &str, width: u32, height: u32) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: IMAGE_FORMAT,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_DST
+            | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    })
+}
+
 #[cfg(test)]
 mod tests {
+    use raylab::color::{Color, srgb_to_linear};
+    use raylab::tone::ToneCurve;
+
     use super::*;
     use crate::viewer::gpu::device::Gpu;
     use crate::viewer::gpu::screenshot::{offscreen_target, read_texture};
-    use crate::viewer::gpu::upload::write_texture;
+    use crate::viewer::gpu::upload::{TEXEL_BYTES, texel, write_texture};
     use crate::viewer::ui::layout::letterbox;
 
     const CLEAR: [u8; 4] = [0, 0, 255, 255];
 
-    /// Renders a `iw × ih` image of distinct texels into a `tw × th` target and returns the
-    /// target's RGBA bytes, the image and where it went.
-    fn render(iw: u32, ih: u32, tw: u32, th: u32) -> (Vec<u8>, Vec<u8>, PixelRect) {
+    /// A quad drawing into `Rgba8Unorm` targets on a software GPU.
+    fn quad() -> (Gpu, QuadRenderer) {
         let gpu = Gpu::headless().expect("a software GPU adapter (install mesa-vulkan-drivers)");
+        let quad = QuadRenderer::new(&gpu.device, &gpu.queue, wgpu::TextureFormat::Rgba8Unorm);
+        (gpu, quad)
+    }
+
+    /// Uploads `pixels` as the quad's `width`-wide image.
+    fn upload(gpu: &Gpu, quad: &mut QuadRenderer, width: u32, pixels: &[Color]) {
+        let height = pixels.len() as u32 / width;
+        let mut bytes = vec![0; pixels.len() * TEXEL_BYTES];
+        for (c, out) in pixels.iter().zip(bytes.chunks_exact_mut(TEXEL_BYTES)) {
+            texel(*c, out);
+        }
+        let (texture, _) = quad.image_texture(&gpu.device, width, height);
+        write_texture(&gpu.queue, texture, &bytes);
+    }
+
+    /// Draws the quad's image letterboxed into a `tw × th` target; returns the target's RGBA
+    /// bytes and where the image went.
+    fn draw(gpu: &Gpu, quad: &QuadRenderer, (tw, th): (u32, u32)) -> (Vec<u8>, PixelRect) {
         let format = wgpu::TextureFormat::Rgba8Unorm;
-        let mut quad = QuadRenderer::new(&gpu.device, format);
-        let image: Vec<u8> = (0..iw * ih)
-            .flat_map(|i| {
-                [
-                    (i * 37 % 256) as u8,
-                    (i * 11 % 256) as u8,
-                    (i % 7 * 40) as u8,
-                    255,
-                ]
-            })
-            .collect();
-        let (texture, created) = quad.image_texture(&gpu.device, iw, ih);
-        assert!(created);
-        write_texture(&gpu.queue, texture, &image);
         let target = offscreen_target(&gpu.device, "target", (tw, th), format);
         let area = PixelRect {
             x: 0.0,
@@ -194,7 +305,8 @@ mod tests {
             width: tw as f32,
             height: th as f32,
         };
-        let shown = letterbox(area, iw, ih);
+        let image = quad.image.as_ref().expect("an image").texture.size();
+        let shown = letterbox(area, image.width, image.height);
         let view = target.create_view(&wgpu::TextureViewDescriptor::default());
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         {
@@ -218,11 +330,33 @@ mod tests {
         }
         gpu.queue.submit([encoder.finish()]);
         let pixels = read_texture(&gpu.device, &gpu.queue, &target).expect("read back");
-        (pixels, image, shown)
+        (pixels, shown)
+    }
+
+    /// A `iw × ih` image of distinct sRGB bytes, and the linear colours that show as them.
+    fn distinct_image(iw: u32, ih: u32) -> (Vec<u8>, Vec<Color>) {
+        let bytes: Vec<u8> = (0..iw * ih)
+            .flat_map(|i| {
+                [
+                    (i * 37 % 256) as u8,
+                    (i * 11 % 256) as u8,
+                    (i % 7 * 40) as u8,
+                    255,
+                ]
+            })
+            .collect();
+        let linear = bytes
+            .chunks_exact(4)
+            .map(|b| Color::from_array([0, 1, 2].map(|c| srgb_to_linear(b[c] as f32 / 255.0))))
+            .collect();
+        (bytes, linear)
     }
 
     fn check(iw: u32, ih: u32, tw: u32, th: u32) {
-        let (pixels, image, shown) = render(iw, ih, tw, th);
+        let (gpu, mut quad) = quad();
+        let (image, linear) = distinct_image(iw, ih);
+        upload(&gpu, &mut quad, iw, &linear);
+        let (pixels, shown) = draw(&gpu, &quad, (tw, th));
         assert_eq!(pixels.len(), (tw * th * 4) as usize);
         for y in 0..th {
             for x in 0..tw {
@@ -260,13 +394,70 @@ mod tests {
 
     #[test]
     fn a_wide_target_letterboxes_left_and_right() {
-        let (_, _, shown) = render(4, 4, 60, 20);
-        assert_eq!((shown.x, shown.width), (20.0, 20.0));
         check(4, 4, 60, 20);
     }
 
     #[test]
     fn a_tall_target_letterboxes_above_and_below() {
         check(5, 3, 20, 50);
+    }
+
+    #[test]
+    fn the_shader_shows_the_librarys_tone_mapping() {
+        let (gpu, mut quad) = quad();
+        // Linear values from 0 to about 60, one per pixel, in a 64-wide image.
+        let values: Vec<f32> = (0..64 * 64).map(|i| 1e-4 * 1.003f32.powi(i)).collect();
+        let pixels: Vec<Color> = values
+            .iter()
+            .map(|&v| Color::new(v, v * 0.37, v * 2.9))
+            .collect();
+        upload(&gpu, &mut quad, 64, &pixels);
+        for curve in ToneCurve::ALL {
+            for exposure in [0.0, 1.0, -2.5] {
+                let tone = Tone::new(exposure, curve).unwrap();
+                quad.set_display(&gpu.queue, Display { tone, divider: 0.0 });
+                let (shown, _) = draw(&gpu, &quad, (64, 64));
+                let mut off = 0;
+                for (c, got) in pixels.iter().zip(shown.chunks_exact(4)) {
+                    let expected = tone.map(*c);
+                    for ch in 0..3 {
+                        let d = got[ch].abs_diff(expected[ch]);
+                        assert!(d <= 1, "{tone:?} at {c}: {got:?} vs {expected:?}");
+                        off += usize::from(d > 0);
+                    }
+                }
+                // Clamp needs only the exact multiply: the same bytes.
+                if curve == ToneCurve::Clamp {
+                    assert_eq!(off, 0, "{tone:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_snapshot_shows_left_of_the_divider() {
+        let (gpu, mut quad) = quad();
+        assert_eq!(quad.take_snapshot(&gpu.device, &gpu.queue), None);
+        upload(&gpu, &mut quad, 8, &[Color::ONE; 32]);
+        assert_eq!(quad.take_snapshot(&gpu.device, &gpu.queue), Some((8, 4)));
+        upload(&gpu, &mut quad, 8, &[Color::new(0.0, 1.0, 0.0); 32]);
+        let display = Display {
+            tone: Tone::default(),
+            divider: 0.25,
+        };
+        quad.set_display(&gpu.queue, display);
+        let (shown, _) = draw(&gpu, &quad, (8, 4));
+        for (i, got) in shown.chunks_exact(4).enumerate() {
+            let expected = if i % 8 < 2 {
+                [255, 255, 255, 255]
+            } else {
+                [0, 255, 0, 255]
+            };
+            assert_eq!(got, expected, "pixel {i}");
+        }
+        // A new size has no snapshot.
+        assert_eq!(quad.snapshot_size(), Some((8, 4)));
+        upload(&gpu, &mut quad, 4, &[Color::ONE; 4]);
+        assert_eq!(quad.snapshot_size(), None);
     }
 }

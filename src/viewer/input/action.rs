@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 use raylab::inspect::DebugView;
+use raylab::tone::ToneCurve;
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Action {
@@ -42,6 +43,18 @@ pub enum Action {
     PrintCamera,
     /// Ask for a new window size, in logical pixels (scripts only).
     ResizeWindow { width: u32, height: u32 },
+    /// Keep the image as it is now, to compare with (and show the split view).
+    Snapshot,
+    /// Show the split view (snapshot left, live image right) or not.
+    Compare(bool),
+    /// Turn the split view on or off.
+    ToggleCompare,
+    /// Put the split view's divider at this fraction of the image's width.
+    Divider(f32),
+    /// Show the image at this exposure, in stops.
+    Exposure(f32),
+    /// Show the image through this tone curve.
+    ToneCurve(ToneCurve),
     /// Store the camera as view 1…9 (in `NAME.views.toml` beside the scene file).
     StoreView(u8),
     /// Go to view 1…9.

@@ -1,6 +1,7 @@
 //! Carrying out [`Action`]s: navigation moves the camera (through [`navigation`]), picking a
-//! surface point sets the orbit centre, picking a pixel shows its ray tree, and the scene, save
-//! and print actions do what they say.
+//! surface point sets the orbit centre, picking a pixel shows its ray tree, the display's actions
+//! (exposure, tone curve, snapshot, split view) change how the image is shown, and the scene,
+//! save and print actions do what they say.
 
 use std::path::PathBuf;
 
@@ -44,11 +45,17 @@ impl App {
             Action::CloseRayTree => self.tracing.picked.close(),
             Action::PrintTree => self.print_tree(),
             Action::Click { x, y } => self.click(x, y, shown),
+            Action::Snapshot => self.snapshot(),
             Action::SetView(view) => {
                 if let Some(s) = self.scene.shown_mut() {
                     s.controls.view = view;
                 }
             }
+            display @ (Action::Compare(_)
+            | Action::ToggleCompare
+            | Action::Divider(_)
+            | Action::Exposure(_)
+            | Action::ToneCurve(_)) => self.ui.panel.display.apply(display),
             Action::StoreView(_)
             | Action::RecallView(_)
             | Action::Turntable(_)
@@ -116,10 +123,24 @@ impl App {
             return;
         };
         let path = PathBuf::from(self.ui.panel.save_field.trim());
-        let message = save::save_view(&path, &r.film, &r.controls.camera)
+        let tone = self.ui.panel.display.tone;
+        let message = save::save_view(&path, &r.film, &r.controls.camera, tone)
             .unwrap_or_else(|e| format!("cannot save: {e}"));
         println!("{message}");
         self.ui.panel.message = Some(message);
+    }
+
+    /// Keeps the image on screen as the snapshot and shows the split view.
+    fn snapshot(&mut self) {
+        let Some(gfx) = &mut self.gpu else { return };
+        let display = &mut self.ui.panel.display;
+        display.snapshot = gfx.snapshot();
+        display.compare = display.snapshot.is_some();
+        let message = match display.snapshot {
+            Some(_) => "snapshot kept: it shows left of the divider (V: split on or off)",
+            None => "no image to keep yet",
+        };
+        self.ui.panel.message = Some(message.into());
     }
 }
 

@@ -2,8 +2,9 @@
 //! right- or middle-drag pans, the wheel dollies, W/A/S/D/Q/E fly, F frames the scene,
 //! double-click sets the orbit centre; Ctrl+S saves and C prints the camera. A click that is not
 //! a drag (or the key I) picks the pixel under the cursor (its ray tree is shown), Esc closes the
-//! tree. Ctrl+1…9 stores the camera as a view, 1…9 recalls it; T previews a turntable and P the
-//! path through the views (again: stop). Turns one frame's egui input into [`Action`]s.
+//! tree. B keeps a snapshot to compare with, V turns the split view on and off.
+//! Ctrl+1…9 stores the camera as a view, 1…9 recalls it; T previews a turntable and P the path
+//! through the views (again: stop). Turns one frame's egui input into [`Action`]s.
 
 use egui::{Key, Modifiers, MouseWheelUnit, PointerButton};
 use glam::Vec3;
@@ -160,6 +161,12 @@ fn key_actions(ctx: &egui::Context, seconds: f32) -> Vec<Action> {
         }
         if i.consume_key(Modifiers::NONE, Key::Escape) {
             actions.push(Action::CloseRayTree);
+        }
+        if i.consume_key(Modifiers::NONE, Key::B) {
+            actions.push(Action::Snapshot);
+        }
+        if i.consume_key(Modifiers::NONE, Key::V) {
+            actions.push(Action::ToggleCompare);
         }
         for (number, key) in (1..).zip(VIEW_KEYS) {
             if i.consume_key(Modifiers::COMMAND, key) {
@@ -344,6 +351,18 @@ mod tests {
             key(Key::S, true, Modifiers::COMMAND),
         ]);
         assert_eq!(actions, vec![Action::Save]);
+    }
+
+    #[test]
+    fn b_keeps_a_snapshot_and_v_turns_the_split_on_and_off() {
+        let mut h = Harness::new();
+        let actions = h.frame(vec![key(Key::B, true, Modifiers::NONE)]);
+        assert_eq!(actions, vec![Action::Snapshot]);
+        let actions = h.frame(vec![
+            key(Key::B, false, Modifiers::NONE),
+            key(Key::V, true, Modifiers::NONE),
+        ]);
+        assert_eq!(actions, vec![Action::ToggleCompare]);
     }
 
     #[test]

@@ -14,6 +14,10 @@
 //!   centre of that pixel, through the window's input like a mouse's; `close-inspector`;
 //!   `print-tree`: prints the ray tree panel's node headings on the terminal;
 //! - `view NAME`: shows a debug view (`shaded`, `normals`, `depth`, …);
+//! - `exposure STOPS`, `tonemap NAME` (`clamp`, `reinhard`, `filmic`): how the image is shown;
+//! - `snapshot`: keeps the image on screen to compare with (as the key B), and shows the split;
+//!   `compare on|off`: the split view (snapshot left, live right); `divider FRACTION`: where the
+//!   split is, from 0 (left edge) to 1 (right edge).
 //! - `bookmark N`: stores the camera as view N (1 to 9), as Ctrl+N; `recall N`: goes to it, as N;
 //! - `turntable FRAMES`: previews a turntable of FRAMES frames (as T, which plays 72);
 //!   `play-path [FRAMES]`: previews the path through the views (as P); while a preview plays,
@@ -24,6 +28,7 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 use raylab::inspect::DebugView;
+use raylab::tone::{Tone, ToneCurve};
 
 use super::action::Action;
 
@@ -177,6 +182,27 @@ fn parse_step(step: &str) -> Result<Step, String> {
         }
         "view" if args.len() == 1 => once(Action::SetView(args[0].parse::<DebugView>()?)),
         "view" => return Err("takes one view name".into()),
+        "snapshot" if args.is_empty() => once(Action::Snapshot),
+        "compare" => match args[..] {
+            ["on"] => once(Action::Compare(true)),
+            ["off"] => once(Action::Compare(false)),
+            _ => return Err("takes `on` or `off`".into()),
+        },
+        "divider" => {
+            let n = count(numbers()?, 1, 0)?[0];
+            if !(0.0..=1.0).contains(&n) {
+                return Err(format!(
+                    "takes a fraction of the image's width from 0 to 1, got {n}"
+                ));
+            }
+            once(Action::Divider(n))
+        }
+        "exposure" => {
+            let n = count(numbers()?, 1, 0)?[0];
+            once(Action::Exposure(Tone::new(n, ToneCurve::Clamp)?.exposure))
+        }
+        "tonemap" if args.len() == 1 => once(Action::ToneCurve(args[0].parse::<ToneCurve>()?)),
+        "tonemap" => return Err("takes one tone curve name".into()),
         "close-inspector" if args.is_empty() => once(Action::CloseRayTree),
         "print-tree" if args.is_empty() => once(Action::PrintTree),
         "dolly" => once(Action::Dolly(count(numbers()?, 1, 0)?[0])),
@@ -219,14 +245,15 @@ fn parse_step(step: &str) -> Result<Step, String> {
                 seconds: n[3],
             })
         }
-        "wait" | "frame" | "reset" | "save" | "print-camera" | "close-inspector" | "print-tree" => {
+        "wait" | "frame" | "reset" | "save" | "print-camera" | "close-inspector" | "print-tree"
+        | "snapshot" => {
             return Err("takes no arguments".into());
         }
         _ => {
             return Err(
                 "unknown step (use wait, wait-load, orbit, pan, dolly, fly, frame, reset, \
                  save, print-camera, open, resize, pick, click, close-inspector, print-tree, \
-                 view, bookmark, recall, turntable, play-path)"
+                 view, exposure, tonemap, snapshot, compare, divider, bookmark, recall, turntable, play-path)"
                     .into(),
             );
         }
@@ -323,6 +350,39 @@ mod tests {
             assert!(err.contains(text), "{text}: {err}");
         }
         assert!(Script::parse("").unwrap().is_done());
+    }
+
+    #[test]
+    fn display_steps_parse_and_say_what_is_wrong() {
+        let mut script = Script::parse(
+            "exposure -1.5; tonemap filmic; snapshot; compare off; compare on; divider 0.25",
+        )
+        .unwrap();
+        let all: Vec<_> = std::iter::from_fn(|| script.next(true, 0)).collect();
+        assert_eq!(
+            all,
+            vec![
+                Action::Exposure(-1.5),
+                Action::ToneCurve(ToneCurve::Filmic),
+                Action::Snapshot,
+                Action::Compare(false),
+                Action::Compare(true),
+                Action::Divider(0.25),
+            ]
+        );
+        for (text, expected) in [
+            ("exposure", "takes 1 number"),
+            ("exposure 99", "exposure must be from -16 to 16 stops"),
+            ("tonemap aces", "unknown tone curve `aces`"),
+            ("tonemap", "takes one tone curve name"),
+            ("snapshot now", "takes no arguments"),
+            ("compare", "takes `on` or `off`"),
+            ("compare yes", "takes `on` or `off`"),
+            ("divider 1.5", "from 0 to 1"),
+        ] {
+            let err = Script::parse(text).unwrap_err();
+            assert!(err.contains(expected), "{text}: {err}");
+        }
     }
 
     #[test]

@@ -1,7 +1,9 @@
 //! What the user sees besides the image (egui): the side panel, the status line, the ray tree
-//! panel, the overlay drawn over the image, the legend's colour bar, colour swatches, and where
+//! panel, the overlay drawn over the image, the display's controls (exposure, tone curve,
+//! snapshot) and the split view's divider, the legend's colour bar, colour swatches, and where
 //! the image sits in the window.
 
+pub mod display;
 pub mod layout;
 pub mod legend_bar;
 pub mod overlay;
@@ -87,6 +89,11 @@ impl Ui {
                 egui::vec2(shown.width / ppp, shown.height / ppp),
             );
             self.overlay.paint(ui, picked, image, image_size, far);
+            if self.panel.display.drop_stale_snapshot(image_size) {
+                self.panel.message =
+                    Some("the snapshot was dropped: the image's size changed".into());
+            }
+            display::split_view(ui, &mut self.panel.display, image);
             if tracing.rendering.is_none() {
                 let text = scene.load_error().unwrap_or("loading the scene…");
                 ui.put(rect, egui::Label::new(text));

@@ -7,6 +7,7 @@ use egui::{Color32, DragValue, Slider};
 use raylab::inspect::{DebugView, Legend};
 use raylab::settings::{MAX_BLOCK_SIZE, MAX_CAUSTIC_GATHER, MAX_DEPTH_LIMIT, MAX_SAMPLES};
 
+use super::display::{self, DisplayControls};
 use super::legend_bar;
 use crate::viewer::input::action::Action;
 use crate::viewer::scene::SceneInfo;
@@ -25,6 +26,8 @@ pub struct PanelState {
     pub square: bool,
     /// Largest image side the GPU takes.
     pub max_side: u32,
+    /// Exposure, tone curve and the comparison with a snapshot.
+    pub display: DisplayControls,
 }
 
 /// Shows the side panel for `scene` (with the colour bar of the view being rendered, if it has
@@ -47,6 +50,7 @@ pub fn side_panel(
                 views_section(ui, scene.views, &mut actions);
                 tracing_section(ui, controls, state, legend);
                 lights_section(ui, controls, scene.scene.scene.lights.len());
+                display::section(ui, &mut state.display, &mut actions);
                 save_section(ui, state, &mut actions);
             });
         });
