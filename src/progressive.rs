@@ -2,7 +2,22 @@
 //! `b × b` block and paint the whole block, starting with a coarse `b` and halving it down to 1.
 //! Pass `b` traces exactly the pixels whose row and column are multiples of `b` and that no
 //! coarser pass traced, so all passes together trace every pixel once. After block size 1,
-//! optional passes add one jittered sample per pixel each (anti-aliasing).
+//! optional passes add jittered samples (anti-aliasing), in one of two ways:
+//!
+//! - uniform sampling (`aa_threshold = 0`): each pass adds one sample to every pixel, up to
+//!   `samples` per pixel;
+//! - adaptive anti-aliasing (`aa_threshold > 0`, as POV-Ray's): a Whitted image has no noise,
+//!   only edges, so each round supersamples only the pixels whose colour differs from one of
+//!   their four neighbours' by more than the threshold, bringing them to a number of samples
+//!   that doubles each round (2, 4, 8, … up to the `samples` cap). The colours compared are the
+//!   film's at the start of the round as they are saved and shown: 8-bit sRGB, clamped, the
+//!   largest difference of one channel, on a 0–1 scale (0.03 is about 8 levels of 255). A pixel
+//!   can join in any round (its neighbour changed), and flat regions keep their one sample.
+//!
+//! Either way the image depends only on the settings: samples are numbered and placed by the
+//! pixel ([`jitter`]), and a round decides from a snapshot of the film taken between passes, so
+//! the threads' order does not matter. A pixel given all `samples` samples by the adaptive rounds
+//! is exactly the uniform render's pixel.
 //!
 //! Each pixel sample is what the caller's [`Shader`] makes of its eye ray: the Whitted colour
 //! ([`Shaded`]), or another view of the scene (the inspector's debug views implement
@@ -10,9 +25,9 @@
 //!
 //! Passes run on all of rayon's threads, band by band of 8 rows of the pass's grid (8 rows of
 //! `b × b` blocks, so 8·b rows of pixels in block pass `b`), each band tile by tile of 8 × 8
-//! traced pixels whose eye rays are traced together ([`crate::bvh::packet`]). They report their
-//! progress and statistics ([`PassStats`], [`RenderStats`]) as they go, and stop at the next
-//! band when cancelled from another thread.
+//! pixels whose eye rays are traced together, up to 64 at a time ([`crate::bvh::packet`]). They
+//! report their progress and statistics ([`PassStats`], [`RenderStats`]) as they go, and stop at
+//! the next band when cancelled from another thread.
 
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
@@ -23,10 +38,11 @@ use rayon::prelude::*;
 
 use crate::bvh::packet::PACKET_SIZE;
 use crate::camera::PIXEL_CENTRE;
-use crate::color::Color;
+use crate::color::{Color, srgb8};
 use crate::film::Film;
 use crate::ray::Ray;
 use crate::sampling::jitter;
+use crate::settings::RenderSettings;
 use crate::stats::{RayCounts, SharedRayCounts};
 use crate::whitted::Tracer;
 
@@ -57,22 +73,36 @@ pub enum Pass {
     Block(u32),
     /// Add jittered sample number `k` (k ≥ 1; sample 0 is the pixel centre) to every pixel.
     Sample(u32),
+    /// A round of adaptive anti-aliasing: bring every pixel whose colour differs from a
+    /// neighbour's by more than the threshold up to `n` samples.
+    Refine(u32),
 }
 
-/// The passes of a render starting at `block_size` (a power of two) with `samples` per pixel.
-pub fn passes(block_size: u32, samples: u32) -> Vec<Pass> {
+/// The passes of a render starting at `block_size` (a power of two) with `samples` per pixel:
+/// after the block passes, one pass per sample, or with `adaptive` anti-aliasing rounds to 2, 4,
+/// 8, … samples, the last to `samples`.
+pub fn passes(block_size: u32, samples: u32, adaptive: bool) -> Vec<Pass> {
     let blocks = std::iter::successors(Some(block_size.max(1)), |&b| (b > 1).then_some(b / 2));
-    blocks
-        .map(Pass::Block)
-        .chain((1..samples).map(Pass::Sample))
-        .collect()
+    let sampling: Vec<Pass> = if adaptive {
+        let doubling = std::iter::successors(Some(2), |&n: &u32| Some(n.saturating_mul(2)));
+        doubling
+            .take_while(|&n| n < samples)
+            .chain((samples > 1).then_some(samples))
+            .map(Pass::Refine)
+            .collect()
+    } else {
+        (1..samples).map(Pass::Sample).collect()
+    };
+    blocks.map(Pass::Block).chain(sampling).collect()
 }
 
 /// What one pass of progressive rendering did.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PassStats {
     pub pass: Pass,
-    /// Pixels traced (not painted) in this pass.
+    /// Pixels that took samples in this pass: those traced (not painted) in a block pass, all
+    /// in a sample pass, those refined in an anti-aliasing round. Its samples are the eye rays
+    /// in `rays.primary`.
     pub pixels: u64,
     pub rays: RayCounts,
     pub time: Duration,
@@ -114,7 +144,7 @@ pub struct Progress {
     /// Index of the running pass, and how many there are.
     pub pass: u32,
     pub passes: u32,
-    /// Block size of the running pass (1 for sample passes).
+    /// Block size of the running pass (1 for sample and anti-aliasing passes).
     pub block_size: u32,
     /// Rows of blocks done in the running pass, and how many it has.
     pub rows_done: u32,
@@ -205,13 +235,27 @@ pub fn render(
     mut on_pass: impl FnMut(&PassStats),
 ) -> Result<RenderStats, Cancelled> {
     let settings = &tracer.scene.settings;
-    let plan = passes(settings.block_size, settings.samples);
+    let plan = passes(
+        settings.block_size,
+        settings.samples,
+        settings.aa_threshold > 0.0,
+    );
     control.passes.store(plan.len() as u32, Ordering::Relaxed);
     let start = Instant::now();
     let mut stats = RenderStats::default();
+    // The film as shown, for the anti-aliasing rounds to compare neighbours: allocated once.
+    let mut shown = Vec::new();
     for (i, &pass) in plan.iter().enumerate() {
         control.pass.store(i as u32, Ordering::Relaxed);
-        let pass_stats = render_pass(tracer, shader, film, control, pass, settings.block_size)?;
+        let pass_stats = run_pass(
+            tracer,
+            shader,
+            film,
+            control,
+            pass,
+            settings.block_size,
+            &mut shown,
+        )?;
         stats.rays += pass_stats.rays;
         stats.passes.push(pass_stats);
         on_pass(&pass_stats);
@@ -221,7 +265,16 @@ pub fn render(
     Ok(stats)
 }
 
-/// Runs one pass over the whole image.
+/// The memory a render of `settings` takes besides its film: the copy of the film as shown that
+/// the anti-aliasing rounds compare neighbours in (none with uniform sampling).
+pub fn memory_bytes(settings: &RenderSettings) -> u64 {
+    let adaptive = settings.aa_threshold > 0.0 && settings.samples > 1;
+    let pixels = u64::from(settings.width) * u64::from(settings.height);
+    if adaptive { pixels * 3 } else { 0 }
+}
+
+/// Runs one pass over the whole image (an anti-aliasing round compares the pixels as the film
+/// has them now).
 pub fn render_pass(
     tracer: &Tracer,
     shader: &dyn Shader,
@@ -230,24 +283,49 @@ pub fn render_pass(
     pass: Pass,
     start_block: u32,
 ) -> Result<PassStats, Cancelled> {
+    run_pass(
+        tracer,
+        shader,
+        film,
+        control,
+        pass,
+        start_block,
+        &mut Vec::new(),
+    )
+}
+
+/// [`render_pass`], keeping the film's shown colours in `shown` for an anti-aliasing round.
+fn run_pass(
+    tracer: &Tracer,
+    shader: &dyn Shader,
+    film: &Film,
+    control: &RenderControl,
+    pass: Pass,
+    start_block: u32,
+    shown: &mut Vec<[u8; 3]>,
+) -> Result<PassStats, Cancelled> {
     let started = Instant::now();
     let (width, height) = (film.width(), film.height());
     let step = match pass {
         Pass::Block(b) => b,
-        Pass::Sample(_) => 1,
+        Pass::Sample(_) | Pass::Refine(_) => 1,
     };
+    if let Pass::Refine(_) = pass {
+        take_snapshot(film, shown);
+    }
     let rows = height.div_ceil(step);
     control.block_size.store(step, Ordering::Relaxed);
     control.rows.store(rows, Ordering::Relaxed);
     control.rows_done.store(0, Ordering::Relaxed);
     let rays_before = control.rays.get();
-    let pixels_before = control.pixels.load(Ordering::Relaxed);
+    let pixels = AtomicU64::new(0);
     let grid = PassGrid {
         pass,
         start_block,
         step,
-        width,
-        height,
+        film,
+        shown,
+        threshold: tracer.scene.settings.aa_threshold,
     };
     let columns = width.div_ceil(step);
     // Bands of TILE rows of the grid go to the threads; each band is traced tile by tile.
@@ -259,23 +337,16 @@ pub fn render_pass(
             }
             let band_rows = band * TILE..((band + 1) * TILE).min(rows);
             let mut counts = RayCounts::default();
-            let pixels: u64 = (0..columns)
-                .step_by(TILE as usize)
-                .map(|c| {
-                    let tile_columns = c..(c + TILE).min(columns);
-                    trace_tile(
-                        tracer,
-                        shader,
-                        film,
-                        &grid,
-                        &band_rows,
-                        tile_columns,
-                        &mut counts,
-                    )
-                })
-                .sum();
+            let mut traced = Traced::default();
+            for c in (0..columns).step_by(TILE as usize) {
+                let tile_columns = c..(c + TILE).min(columns);
+                let tile = trace_tile(tracer, shader, &grid, &band_rows, tile_columns, &mut counts);
+                traced.pixels += tile.pixels;
+                traced.samples += tile.samples;
+            }
             control.rays.add(&counts);
-            control.pixels.fetch_add(pixels, Ordering::Relaxed);
+            control.pixels.fetch_add(traced.samples, Ordering::Relaxed);
+            pixels.fetch_add(traced.pixels, Ordering::Relaxed);
             control
                 .rows_done
                 .fetch_add(band_rows.len() as u32, Ordering::Relaxed);
@@ -285,79 +356,154 @@ pub fn render_pass(
     let rays = control.rays.get() - rays_before;
     Ok(PassStats {
         pass,
-        pixels: control.pixels.load(Ordering::Relaxed) - pixels_before,
+        pixels: pixels.into_inner(),
         rays,
         time: started.elapsed(),
     })
 }
 
+/// Puts the film's pixels as they are saved and shown (8-bit sRGB) into `shown`, row by row.
+fn take_snapshot(film: &Film, shown: &mut Vec<[u8; 3]>) {
+    let width = film.width() as usize;
+    shown.resize(width * film.height() as usize, [0; 3]);
+    shown
+        .par_chunks_mut(width)
+        .enumerate()
+        .for_each(|(y, row)| {
+            for (x, pixel) in row.iter_mut().enumerate() {
+                *pixel = film.get(x as u32, y as u32).to_array().map(srgb8);
+            }
+        });
+}
+
 /// The pixels of one pass: a grid of `step`-pixel blocks over the film, of which the pass traces
-/// the top-left pixel of each block it has not traced before (or adds a sample to every pixel).
-struct PassGrid {
+/// the top-left pixel of each block it has not traced before, or adds samples to pixels.
+struct PassGrid<'a> {
     pass: Pass,
     start_block: u32,
     step: u32,
-    width: u32,
-    height: u32,
+    film: &'a Film,
+    /// The film as shown when an anti-aliasing round started (empty for other passes).
+    shown: &'a [[u8; 3]],
+    threshold: f32,
 }
 
-impl PassGrid {
-    /// The samples the pass takes in `rows` × `columns` of its grid: the pixel (x, y), the offset
-    /// of the sample in it, and the sample's number (0 for the pixel's centre).
-    fn samples(
-        &self,
-        rows: &Range<u32>,
-        columns: Range<u32>,
-    ) -> impl Iterator<Item = (u32, u32, (f32, f32), u32)> {
-        let step = self.step;
-        rows.clone()
-            .flat_map(move |row| {
-                columns
-                    .clone()
-                    .map(move |column| (column * step, row * step))
-            })
-            .filter_map(|(x, y)| match self.pass {
-                Pass::Block(b) if traces_pixel(b, self.start_block, x, y) => {
-                    Some((x, y, PIXEL_CENTRE, 0))
+impl PassGrid<'_> {
+    /// The numbers of the samples the pass takes at pixel (x, y) (0 is the pixel's centre).
+    fn samples_at(&self, x: u32, y: u32) -> Range<u32> {
+        match self.pass {
+            Pass::Block(b) if traces_pixel(b, self.start_block, x, y) => 0..1,
+            Pass::Block(_) => 0..0,
+            Pass::Sample(k) => k..k + 1,
+            Pass::Refine(n) => {
+                let taken = self.film.samples(x, y);
+                if taken < n && self.differs_from_a_neighbour(x, y) {
+                    taken..n
+                } else {
+                    0..0
                 }
-                Pass::Block(_) => None,
-                Pass::Sample(k) => Some((x, y, jitter(x, y, k), k)),
-            })
+            }
+        }
+    }
+
+    /// Whether pixel (x, y) as shown differs from one of its four neighbours by more than the
+    /// threshold in some channel.
+    fn differs_from_a_neighbour(&self, x: u32, y: u32) -> bool {
+        let (width, height) = (self.film.width(), self.film.height());
+        let at = |x: u32, y: u32| self.shown[y as usize * width as usize + x as usize];
+        let pixel = at(x, y);
+        let neighbours = [
+            (x > 0).then(|| (x - 1, y)),
+            (x + 1 < width).then(|| (x + 1, y)),
+            (y > 0).then(|| (x, y - 1)),
+            (y + 1 < height).then(|| (x, y + 1)),
+        ];
+        neighbours.into_iter().flatten().any(|(nx, ny)| {
+            let neighbour = at(nx, ny);
+            (0..3).any(|c| f32::from(pixel[c].abs_diff(neighbour[c])) / 255.0 > self.threshold)
+        })
     }
 }
 
-/// Traces the samples of one tile of `grid` (at most [`PACKET_SIZE`]), the eye rays as one
-/// packet, and writes them to the film: a block painted, or a sample added to the pixel's mean.
-/// Returns how many it traced.
+/// What a tile (or a band) traced.
+#[derive(Clone, Copy, Debug, Default)]
+struct Traced {
+    /// Pixels that took samples.
+    pixels: u64,
+    samples: u64,
+}
+
+/// Up to [`PACKET_SIZE`] pixel samples whose eye rays are traced together: the pixel and the
+/// sample's number for each ray.
+#[derive(Default)]
+struct Packet {
+    samples: ArrayVec<(u32, u32, u32), PACKET_SIZE>,
+    rays: ArrayVec<Ray, PACKET_SIZE>,
+}
+
+impl Packet {
+    /// Traces the packet's rays and writes their colours to the film: a block painted for a
+    /// pixel's first sample, otherwise a sample added to the pixel's mean. Empties the packet.
+    fn trace(
+        &mut self,
+        tracer: &Tracer,
+        shader: &dyn Shader,
+        grid: &PassGrid,
+        counts: &mut RayCounts,
+    ) {
+        let mut colors = [Color::ZERO; PACKET_SIZE];
+        let colors = &mut colors[..self.rays.len()];
+        shader.shade(tracer, &self.rays, colors, counts);
+        for (&(x, y, sample), &color) in self.samples.iter().zip(colors.iter()) {
+            if sample == 0 {
+                grid.film.fill_block(x, y, grid.step, color);
+            } else {
+                grid.film.add_sample(x, y, color);
+            }
+        }
+        self.samples.clear();
+        self.rays.clear();
+    }
+}
+
+/// Traces the samples the pass takes in one tile of `grid` (`rows` × `columns` of it), the eye
+/// rays in packets of up to [`PACKET_SIZE`], and writes them to the film.
 fn trace_tile(
     tracer: &Tracer,
     shader: &dyn Shader,
-    film: &Film,
     grid: &PassGrid,
     rows: &Range<u32>,
     columns: Range<u32>,
     counts: &mut RayCounts,
-) -> u64 {
+) -> Traced {
     let camera = &tracer.scene.camera;
-    let (width, height) = (grid.width, grid.height);
-    let mut samples: ArrayVec<(u32, u32, u32), PACKET_SIZE> = ArrayVec::new();
-    let mut rays: ArrayVec<Ray, PACKET_SIZE> = ArrayVec::new();
-    for (x, y, offset, sample) in grid.samples(rows, columns) {
-        rays.push(camera.eye_ray((x, y), offset, (width, height)));
-        samples.push((x, y, sample));
-    }
-    let mut colors = [Color::ZERO; PACKET_SIZE];
-    let colors = &mut colors[..rays.len()];
-    shader.shade(tracer, &rays, colors, counts);
-    for (&(x, y, sample), &color) in samples.iter().zip(colors.iter()) {
-        if sample == 0 {
-            film.fill_block(x, y, grid.step, color);
-        } else {
-            let mean = film.get(x, y);
-            film.set(x, y, mean + (color - mean) / (sample + 1) as f32);
+    let size = (grid.film.width(), grid.film.height());
+    let mut packet = Packet::default();
+    let mut traced = Traced::default();
+    for row in rows.clone() {
+        for column in columns.clone() {
+            let (x, y) = (column * grid.step, row * grid.step);
+            let samples = grid.samples_at(x, y);
+            traced.pixels += u64::from(!samples.is_empty());
+            traced.samples += u64::from(samples.len() as u32);
+            for k in samples {
+                if packet.rays.is_full() {
+                    packet.trace(tracer, shader, grid, counts);
+                }
+                let offset = if k == 0 {
+                    PIXEL_CENTRE
+                } else {
+                    jitter(x, y, k)
+                };
+                packet.rays.push(camera.eye_ray((x, y), offset, size));
+                packet.samples.push((x, y, k));
+            }
         }
     }
-    rays.len() as u64
+    if !packet.rays.is_empty() {
+        packet.trace(tracer, shader, grid, counts);
+    }
+    traced
 }
 
 /// Renders the whole shaded image in one go (no progressive display), returning its pixels.

@@ -34,8 +34,14 @@ pub struct RenderSettings {
     pub min_weight: f32,
     /// Starting block size of progressive refinement: a power of two from 1 to 64.
     pub block_size: u32,
-    /// Samples per pixel; more than 1 adds jittered samples after the block size 1 pass.
+    /// Samples per pixel; more than 1 adds jittered samples after the block size 1 pass. With an
+    /// `aa_threshold` it is the cap: the most samples any pixel takes.
     pub samples: u32,
+    /// Adaptive anti-aliasing: after block size 1, only pixels whose displayed colour differs
+    /// from a neighbour's by more than this (in any channel, on the 0–1 scale of the 8-bit
+    /// sRGB values saved and shown) take more samples, in rounds up to `samples`
+    /// ([`crate::progressive`]). 0: every pixel takes `samples` samples (uniform sampling).
+    pub aa_threshold: f32,
     pub background: Color,
     /// Global ambient light.
     pub ambient: Color,
@@ -62,6 +68,7 @@ impl Default for RenderSettings {
             min_weight: 0.01,
             block_size: 16,
             samples: 1,
+            aa_threshold: 0.0,
             background: Color::new(0.05, 0.05, 0.08),
             ambient: Color::splat(0.2),
             shadows: true,
@@ -114,6 +121,12 @@ impl RenderSettings {
                 self.samples
             ));
         }
+        if !(0.0..=1.0).contains(&self.aa_threshold) {
+            return Err(format!(
+                "aa_threshold must be between 0 (uniform sampling) and 1, got {}",
+                self.aa_threshold
+            ));
+        }
         if self.fog_steps == 0 || self.fog_steps > MAX_FOG_STEPS {
             return Err(format!(
                 "fog_steps must be between 1 and {MAX_FOG_STEPS}, got {}",
@@ -148,6 +161,7 @@ pub struct SettingsOverrides {
     pub min_weight: Option<f32>,
     pub block_size: Option<u32>,
     pub samples: Option<u32>,
+    pub aa_threshold: Option<f32>,
     pub fog_steps: Option<u32>,
     pub caustic_photons: Option<u32>,
     pub caustic_gather: Option<u32>,
@@ -168,6 +182,7 @@ impl SettingsOverrides {
         s.min_weight = self.min_weight.unwrap_or(s.min_weight);
         s.block_size = self.block_size.unwrap_or(s.block_size);
         s.samples = self.samples.unwrap_or(s.samples);
+        s.aa_threshold = self.aa_threshold.unwrap_or(s.aa_threshold);
         s.fog_steps = self.fog_steps.unwrap_or(s.fog_steps);
         s.caustic_photons = self.caustic_photons.unwrap_or(s.caustic_photons);
         s.caustic_gather = self.caustic_gather.unwrap_or(s.caustic_gather);

@@ -1201,6 +1201,45 @@ fn bad_exposures_and_tone_curves_are_clear_errors() {
     );
 }
 
+#[test]
+fn the_anti_aliasing_threshold_is_taken_and_checked() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = raylab(
+        &[
+            "render",
+            "-o",
+            "aa.png",
+            "--size",
+            "32",
+            "--samples",
+            "4",
+            "--aa-threshold",
+            "0.03",
+        ],
+        dir.path(),
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(dir.path().join("aa.png").exists());
+    // Out of range: the settings' message (exit 1); not a number: the command line's (exit 2).
+    for (value, message, code) in [
+        (
+            "1.5",
+            "aa_threshold must be between 0 (uniform sampling) and 1, got 1.5",
+            1,
+        ),
+        ("-0.5", "aa_threshold must be between 0", 1),
+        ("lots", "`lots` is not a finite number", 2),
+    ] {
+        for command in [&["render"][..], &["inspect", "--pixel", "0,0"], &["view"]] {
+            let flag = format!("--aa-threshold={value}");
+            let out = raylab(&[command, &[flag.as_str()]].concat(), dir.path());
+            assert_eq!(out.status.code(), Some(code), "{command:?} {value}");
+            let error = stderr(&out);
+            assert!(error.contains(message), "{command:?} {value}: {error}");
+        }
+    }
+}
+
 /// The names of the files in `dir`, sorted.
 fn file_names(dir: &Path) -> Vec<String> {
     let mut names: Vec<String> = std::fs::read_dir(dir)

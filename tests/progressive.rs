@@ -1,17 +1,25 @@
 //! Progressive rendering by block size: every pixel traced exactly once over all passes, the
-//! finished image independent of the starting block size, blocks clipped at the edges.
+//! finished image independent of the starting block size, blocks clipped at the edges; then
+//! uniform or adaptive anti-aliasing.
 
 mod common;
 
 use raylab::bvh::Bvh;
+use raylab::camera::PIXEL_CENTRE;
+use raylab::color::{Color, to_srgb8};
 use raylab::film::Film;
-use raylab::progressive::{self, Cancelled, Pass, RenderControl, Shaded, passes, traces_pixel};
+use raylab::progressive::{
+    self, Cancelled, Pass, RenderControl, RenderStats, Shaded, Shader, passes, traces_pixel,
+};
+use raylab::ray::Ray;
+use raylab::sampling::jitter;
+use raylab::stats::RayCounts;
 use raylab::whitted::Tracer;
 
 #[test]
 fn passes_halve_the_block_size_then_add_samples() {
     assert_eq!(
-        passes(8, 3),
+        passes(8, 3, false),
         vec![
             Pass::Block(8),
             Pass::Block(4),
@@ -21,7 +29,7 @@ fn passes_halve_the_block_size_then_add_samples() {
             Pass::Sample(2)
         ]
     );
-    assert_eq!(passes(1, 1), vec![Pass::Block(1)]);
+    assert_eq!(passes(1, 1, false), vec![Pass::Block(1)]);
 }
 
 #[test]
@@ -29,7 +37,7 @@ fn every_pixel_is_traced_exactly_once_across_all_passes() {
     for start in [1, 2, 4, 8, 16, 32, 64] {
         for (w, h) in [(1, 1), (37, 23), (64, 64), (100, 7)] {
             let mut count = vec![0u32; w * h];
-            for pass in passes(start, 1) {
+            for pass in passes(start, 1, false) {
                 let Pass::Block(b) = pass else { unreachable!() };
                 for y in 0..h {
                     for x in 0..w {
@@ -171,4 +179,209 @@ fn progress_is_visible_while_a_render_runs() {
     }
     assert!(control.progress().finished);
     assert!(film.version() > 0);
+}
+
+/// The default scene at `width × height` with `samples` per pixel and `aa_threshold`.
+fn default_scene(width: u32, height: u32, samples: u32, aa_threshold: f32) -> raylab::scene::Scene {
+    let mut scene = raylab::formats::load_any("assets/scenes/default.toml").unwrap();
+    let s = &mut scene.settings;
+    (s.width, s.height, s.samples, s.aa_threshold) = (width, height, samples, aa_threshold);
+    scene
+}
+
+/// Renders `scene`, returning its pixels, how many samples each took and the render's stats.
+fn render_counting(scene: &raylab::scene::Scene) -> (Vec<Color>, Vec<u32>, RenderStats) {
+    let bvh = Bvh::build(&scene.geometry);
+    let (width, height) = (scene.settings.width, scene.settings.height);
+    let film = Film::new(width, height);
+    let stats = progressive::render(
+        &Tracer::new(scene, &bvh),
+        &Shaded,
+        &film,
+        &RenderControl::default(),
+        |_| {},
+    )
+    .unwrap();
+    let counts = (0..height)
+        .flat_map(|y| (0..width).map(move |x| (x, y)))
+        .map(|(x, y)| film.samples(x, y))
+        .collect();
+    (film.pixels(), counts, stats)
+}
+
+/// Root mean square difference of two images as shown (sRGB, 0 to 1).
+fn display_rmse(a: &[Color], b: &[Color]) -> f64 {
+    let (a, b) = (to_srgb8(a), to_srgb8(b));
+    let sum: f64 = a
+        .iter()
+        .zip(&b)
+        .map(|(&p, &q)| ((f64::from(p) - f64::from(q)) / 255.0).powi(2))
+        .sum();
+    (sum / a.len() as f64).sqrt()
+}
+
+#[test]
+fn anti_aliasing_rounds_double_the_samples_up_to_the_cap() {
+    let rounds = |samples| passes(4, samples, true)[2..].to_vec();
+    assert_eq!(rounds(1), vec![Pass::Block(1)]);
+    assert_eq!(rounds(2), vec![Pass::Block(1), Pass::Refine(2)]);
+    let to_16 = [1, 2, 4, 8, 16].map(|n| {
+        if n == 1 {
+            Pass::Block(1)
+        } else {
+            Pass::Refine(n)
+        }
+    });
+    assert_eq!(rounds(16), to_16);
+    assert_eq!(
+        rounds(6),
+        vec![
+            Pass::Block(1),
+            Pass::Refine(2),
+            Pass::Refine(4),
+            Pass::Refine(6)
+        ]
+    );
+}
+
+#[test]
+fn a_threshold_of_zero_samples_every_pixel_alike_as_before() {
+    let scene = default_scene(40, 30, 3, 0.0);
+    let (image, counts, stats) = render_counting(&scene);
+    assert!(
+        counts.iter().all(|&n| n == 3),
+        "every pixel takes every sample"
+    );
+    assert_eq!(stats.rays.primary, 40 * 30 * 3);
+    let kinds: Vec<Pass> = stats.passes.iter().map(|p| p.pass).collect();
+    assert_eq!(kinds, passes(16, 3, false));
+    // Each pixel is the mean of its centre and jittered samples 1 and 2, added in that order.
+    let bvh = Bvh::build(&scene.geometry);
+    let tracer = Tracer::new(&scene, &bvh);
+    let trace = |x, y, offset| {
+        let ray = scene.camera.eye_ray((x, y), offset, (40, 30));
+        let mut color = [Color::ZERO];
+        Shaded.shade(&tracer, &[ray], &mut color, &mut Default::default());
+        color[0]
+    };
+    for (x, y) in [(0, 0), (17, 11), (39, 29), (25, 20)] {
+        let mut mean = trace(x, y, PIXEL_CENTRE);
+        for k in 1..3 {
+            mean += (trace(x, y, jitter(x, y, k)) - mean) / (k + 1) as f32;
+        }
+        assert_eq!(image[(y * 40 + x) as usize], mean, "pixel ({x}, {y})");
+    }
+}
+
+#[test]
+fn adaptive_pixels_at_the_cap_are_the_uniform_renders_and_the_rest_the_one_sample_ones() {
+    let (uniform, _, _) = render_counting(&default_scene(64, 48, 4, 0.0));
+    let (one, _, _) = render_counting(&default_scene(64, 48, 1, 0.0));
+    let (adaptive, counts, stats) = render_counting(&default_scene(64, 48, 4, 0.03));
+    let total: u64 = counts.iter().map(|&n| u64::from(n)).sum();
+    assert_eq!(stats.rays.primary, total, "each sample is one eye ray");
+    let mut at_cap = 0;
+    for (i, &n) in counts.iter().enumerate() {
+        match n {
+            1 => assert_eq!(adaptive[i], one[i], "pixel {i}"),
+            4 => {
+                assert_eq!(adaptive[i], uniform[i], "pixel {i}");
+                at_cap += 1;
+            }
+            // Joined in the last round: one sample, then straight to the cap.
+            _ => assert!(n == 2, "pixel {i} took {n} samples"),
+        }
+    }
+    assert!(at_cap > 100, "the edges take the cap: {at_cap} pixels");
+    // PassStats: each round tells how many pixels it refined, fewer than there are.
+    for pass in &stats.passes[5..] {
+        assert!(matches!(pass.pass, Pass::Refine(_)));
+        assert!(pass.pixels > 0 && pass.pixels < 64 * 48, "{pass:?}");
+    }
+}
+
+/// Shows a vertical edge through the middle of the image: white right of the camera's view
+/// direction, black left of it.
+struct Edge;
+
+impl Shader for Edge {
+    fn shade(&self, tracer: &Tracer, rays: &[Ray], colors: &mut [Color], counts: &mut RayCounts) {
+        for (ray, color) in rays.iter().zip(colors) {
+            let right = ray.dir.dot(tracer.scene.camera.u) > 0.0;
+            *color = if right { Color::ONE } else { Color::ZERO };
+            counts.primary += 1;
+        }
+    }
+}
+
+#[test]
+fn flat_regions_take_one_sample_and_edges_the_cap() {
+    // 33 columns: the edge runs through the middle of column 16.
+    let mut scene = common::spheres_on_a_floor(33, 20);
+    (scene.settings.samples, scene.settings.aa_threshold) = (16, 0.03);
+    let bvh = Bvh::build(&scene.geometry);
+    let film = Film::new(33, 20);
+    let control = RenderControl::default();
+    let stats =
+        progressive::render(&Tracer::new(&scene, &bvh), &Edge, &film, &control, |_| {}).unwrap();
+    for y in 0..20 {
+        for x in 0..33 {
+            let n = film.samples(x, y);
+            if x == 16 {
+                assert_eq!(n, 16, "the edge's pixel ({x}, {y}) takes the cap");
+                let grey = film.get(x, y).x;
+                assert!(grey > 0.2 && grey < 0.8, "and is anti-aliased: {grey}");
+            } else if x.abs_diff(16) >= 2 {
+                assert_eq!(n, 1, "flat pixel ({x}, {y})");
+            }
+        }
+    }
+    // At most three columns refined: far fewer eye rays than uniform sampling's 16 per pixel.
+    assert!(
+        stats.rays.primary <= 33 * 20 + 3 * 20 * 15,
+        "{}",
+        stats.rays.primary
+    );
+}
+
+#[test]
+fn adaptive_sampling_traces_fewer_rays_for_nearly_the_uniform_error() {
+    let (width, height) = (192, 144);
+    let (reference, _, _) = render_counting(&default_scene(width, height, 64, 0.0));
+    let (one, _, _) = render_counting(&default_scene(width, height, 1, 0.0));
+    let (uniform, _, uniform_stats) = render_counting(&default_scene(width, height, 8, 0.0));
+    let (adaptive, _, adaptive_stats) = render_counting(&default_scene(width, height, 8, 0.03));
+    let rays = |s: &RenderStats| s.rays.primary;
+    let errors = [&one, &uniform, &adaptive].map(|image| display_rmse(image, &reference));
+    let [one_error, uniform_error, adaptive_error] = errors;
+    // 192×144 is 61% of the rays (the checkered floor is edges all the way to the horizon).
+    assert!(
+        rays(&adaptive_stats) * 10 < rays(&uniform_stats) * 7,
+        "adaptive {} eye rays against uniform {}",
+        rays(&adaptive_stats),
+        rays(&uniform_stats)
+    );
+    assert!(
+        adaptive_error < 1.1 * uniform_error && adaptive_error < 0.5 * one_error,
+        "RMSE: 1 spp {one_error:.4}, uniform {uniform_error:.4}, adaptive {adaptive_error:.4}"
+    );
+}
+
+#[test]
+fn adaptive_renders_are_the_same_whatever_the_thread_count() {
+    let scene = default_scene(80, 60, 8, 0.02);
+    let render_on = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| render_counting(&scene))
+    };
+    let (image, counts, _) = render_on(1);
+    for threads in [2, 5] {
+        let (other, other_counts, _) = render_on(threads);
+        assert!(other == image, "{threads} threads: other pixels");
+        assert!(other_counts == counts, "{threads} threads: other samples");
+    }
+    assert!(counts.contains(&8) && counts.contains(&1));
 }

@@ -165,6 +165,7 @@ max_depth = 7
 min_weight = 0.05
 block_size = 8
 samples = 4
+aa_threshold = 0.05
 background = [0.1, 0.2, 0.3]
 ambient = [0.3, 0.3, 0.3]
 shadows = false
@@ -275,6 +276,7 @@ fn full_feature_file_sets_every_setting() {
             min_weight: 0.05,
             block_size: 8,
             samples: 4,
+            aa_threshold: 0.05,
             background: Color::new(0.1, 0.2, 0.3),
             ambient: Color::splat(0.3),
             shadows: false,
@@ -1319,4 +1321,31 @@ fn material_medium_mistakes_are_errors_at_their_value() {
         10,
         "expected a medium: a table like { density = 0.5",
     );
+}
+
+#[test]
+fn the_anti_aliasing_threshold_is_read_checked_and_listed() {
+    let scene = parse("[render]\nsamples = 16\naa_threshold = 0.03\n").unwrap();
+    assert_eq!(
+        (scene.settings.samples, scene.settings.aa_threshold),
+        (16, 0.03)
+    );
+    assert_eq!(
+        parse("").unwrap().settings.aa_threshold,
+        0.0,
+        "uniform by default"
+    );
+    assert_error(
+        "[render]\naa_threshold = 1.5\n",
+        2,
+        16,
+        "aa_threshold must be between 0 (uniform sampling) and 1, got 1.5",
+    );
+    assert_error(
+        "[render]\naa_threshold = -0.1\n",
+        2,
+        16,
+        "aa_threshold must be",
+    );
+    assert_error("[render]\naa_treshold = 0.1\n", 2, 1, "`aa_threshold`");
 }

@@ -274,6 +274,8 @@ fn the_window_shows_the_default_scene_as_the_cpu_renders_it() {
             "view",
             "--size",
             &size.to_string(),
+            "--samples",
+            "1",
             "--window",
             "700x500",
             "--stats",
@@ -313,6 +315,8 @@ fn the_viewer_reads_a_scene_in_the_format_given_whatever_its_name() {
         dir.path(),
         &[
             path.to_str().unwrap(),
+            "--samples",
+            "1",
             "--format",
             "sdl",
             "--size",
@@ -415,6 +419,8 @@ fn the_viewer_takes_a_width_alone_and_a_min_weight_as_render_does() {
             path.to_str().unwrap(),
             "--width",
             "64",
+            "--samples",
+            "1",
             "--min-weight",
             "0.5",
             "--stats",
@@ -450,6 +456,8 @@ fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
         &[
             "--size",
             &size.to_string(),
+            "--samples",
+            "1",
             "--block-size",
             "8",
             "--stats",
@@ -500,6 +508,8 @@ fn a_resized_window_letterboxes_the_same_image() {
             &size.to_string(),
             "--window",
             "700x500",
+            "--samples",
+            "1",
             "--script",
             "wait; resize 480 640; wait",
         ],
@@ -532,6 +542,8 @@ fn a_hidpi_window_draws_in_physical_pixels() {
             &size.to_string(),
             "--window",
             "560x360",
+            "--samples",
+            "1",
             "--exit-when-done",
             "--screenshot",
             shot.to_str().unwrap(),
@@ -579,6 +591,8 @@ fn a_broken_scene_file_shows_its_error_and_keeps_the_last_good_scene() {
         dir.path(),
         &[
             good.to_str().unwrap(),
+            "--samples",
+            "1",
             "--script",
             &format!("wait; open {}; wait", broken.display()),
         ],
@@ -616,6 +630,8 @@ fn saving_the_watched_scene_file_renders_it_again() {
             path.to_str().unwrap(),
             "--stats",
             "--exit-when-done",
+            "--samples",
+            "1",
             "--script",
             "wait; wait-load 2; wait; print-camera",
             "--screenshot",
@@ -715,9 +731,10 @@ fn cpu_ticks(pid: u32) -> u64 {
 fn an_idle_viewer_uses_no_cpu() {
     let measured = Arc::new(Mutex::new(None));
     let result = measured.clone();
-    // Once refinement is done, measure the viewer's CPU time for two seconds, then close it.
+    // Once refinement is done (anti-aliasing included), measure the viewer's CPU time for two
+    // seconds, then close it.
     let on_line = move |line: &str, child: u32| {
-        if line.contains("block size 1 at") && result.lock().unwrap().is_none() {
+        if line.contains("refined at") && result.lock().unwrap().is_none() {
             let pid = viewer_pid(child).expect("the viewer's process");
             std::thread::sleep(Duration::from_millis(500));
             let before = cpu_ticks(pid);
@@ -838,6 +855,8 @@ fn a_click_on_a_pixel_shows_its_ray_tree_and_draws_it_over_the_image() {
             &size.to_string(),
             "--window",
             "1000x600",
+            "--samples",
+            "1",
             "--script",
             &format!("wait; click {x} {y}; wait; print-tree"),
         ],
@@ -913,6 +932,8 @@ fn a_debug_view_chosen_in_the_viewer_renders_as_on_the_cpu() {
         &[
             "--size",
             &size.to_string(),
+            "--samples",
+            "1",
             "--view",
             "depth",
             "--stats",
@@ -956,6 +977,8 @@ fn exposure_and_tone_curve_show_in_the_window_and_save_as_shown() {
             &size.to_string(),
             "--save",
             saved.to_str().unwrap(),
+            "--samples",
+            "1",
             "--script",
             "exposure 1.5; tonemap filmic; wait; save",
         ],
@@ -984,6 +1007,8 @@ fn a_snapshot_shows_left_of_the_divider_and_the_live_image_right_of_it() {
         &[
             "--size",
             &size.to_string(),
+            "--samples",
+            "1",
             "--script",
             "wait; snapshot; view normals; divider 0.5; wait",
         ],
@@ -1023,6 +1048,110 @@ fn a_snapshot_shows_left_of_the_divider_and_the_live_image_right_of_it() {
     assert!(mismatches(&shot, rect, size, &normals) > (size * size / 8) as usize);
 }
 
+/// The screenshot's image area sampled at the centre of each of the `size × size` image pixels,
+/// as sRGB bytes.
+fn shown_pixels(screenshot: &Path, rect: (f32, f32, f32, f32), size: u32) -> Vec<u8> {
+    let shot = image::open(screenshot).unwrap().to_rgb8();
+    let (x0, y0, w, h) = rect;
+    let at = |i: u32, j: u32| {
+        let sx = (x0 + (i as f32 + 0.5) * w / size as f32) as u32;
+        let sy = (y0 + (j as f32 + 0.5) * h / size as f32) as u32;
+        shot.get_pixel(sx, sy).0
+    };
+    (0..size)
+        .flat_map(|j| (0..size).map(move |i| (i, j)))
+        .flat_map(|(i, j)| at(i, j))
+        .collect()
+}
+
+/// The default scene rendered on the CPU at `size × size` with `samples` per pixel and
+/// `aa_threshold`, as sRGB bytes.
+fn cpu_render_sampled(size: u32, samples: u32, aa_threshold: f32) -> Vec<u8> {
+    let scene = default_scene().unwrap();
+    let (mut scene, bvh) = sized(&scene, size, scene.camera.spec);
+    (scene.settings.samples, scene.settings.aa_threshold) = (samples, aa_threshold);
+    to_srgb8(&progressive::render_image(&Tracer::new(&scene, &bvh)).0)
+}
+
+/// Root mean square difference of two sRGB images, on a 0–1 scale.
+fn rmse(a: &[u8], b: &[u8]) -> f64 {
+    let sum: f64 = a
+        .iter()
+        .zip(b)
+        .map(|(&p, &q)| ((f64::from(p) - f64::from(q)) / 255.0).powi(2))
+        .sum();
+    (sum / a.len() as f64).sqrt()
+}
+
+#[test]
+fn left_alone_the_viewer_refines_the_default_scene_close_to_a_256_spp_reference() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = 96;
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            &size.to_string(),
+            "--window",
+            "700x500",
+            "--stats",
+        ],
+    ) else {
+        return;
+    };
+    assert!(run.stderr.contains("refined at 96×96"), "{}", run.stderr);
+    let shown = shown_pixels(&shot, image_rect(&run.stdout), size);
+    let reference = cpu_render_sampled(size, 256, 0.0);
+    let one_sample = cpu_render_sampled(size, 1, 0.0);
+    let (shown_error, one_error) = (rmse(&shown, &reference), rmse(&one_sample, &reference));
+    assert!(
+        shown_error < 0.5 * one_error,
+        "RMSE against 256 spp: the viewer {shown_error:.4}, one sample {one_error:.4}"
+    );
+    // The viewer's default (16 samples at most, threshold 0.03) is the CPU's, pixel for pixel.
+    let adaptive = cpu_render_sampled(size, 16, 0.03);
+    assert_eq!(
+        mismatches(&shot, image_rect(&run.stdout), size, &adaptive),
+        0
+    );
+}
+
+#[test]
+fn with_a_threshold_of_zero_the_viewer_shows_what_render_saves() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = 64;
+    let sampling = ["--samples", "4", "--aa-threshold", "0"];
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[&["--size", "64", "--window", "600x400"][..], &sampling].concat(),
+    ) else {
+        return;
+    };
+    let saved = dir.path().join("render.png");
+    let render = Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .args(
+            [
+                &["render", "-o", saved.to_str().unwrap(), "--size", "64"][..],
+                &sampling,
+            ]
+            .concat(),
+        )
+        .output()
+        .unwrap();
+    assert!(render.status.success(), "{render:?}");
+    let rendered = image::open(&saved).unwrap().to_rgb8().into_raw();
+    assert_eq!(
+        rendered,
+        cpu_render_sampled(size, 4, 0.0),
+        "uniform sampling"
+    );
+    assert_ne!(rendered, cpu_render_sampled(size, 1, 0.0));
+    assert_eq!(
+        mismatches(&shot, image_rect(&run.stdout), size, &rendered),
+        0
+    );
+}
+
 #[test]
 fn a_stored_view_is_recalled_saved_beside_the_scene_and_a_turntable_preview_ends_on_it() {
     let dir = tempfile::tempdir().unwrap();
@@ -1034,6 +1163,8 @@ fn a_stored_view_is_recalled_saved_beside_the_scene_and_a_turntable_preview_ends
             path.to_str().unwrap(),
             "--block-size",
             "8",
+            "--samples",
+            "1",
             "--script",
             "bookmark 1; orbit 40 0; wait; print-camera; recall 1; wait; turntable 4; wait",
         ],

@@ -95,7 +95,9 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     let pixels = u64::from(width) * u64::from(height);
     memory::check(
         &format!("rendering a {width}×{height} image"),
-        Film::memory_bytes(width, height) + format.save_bytes(pixels),
+        Film::memory_bytes(width, height)
+            + progressive::memory_bytes(&scene.settings)
+            + format.save_bytes(pixels),
     )?;
 
     let build_start = Instant::now();

@@ -179,6 +179,7 @@ fn build_settings(render: RenderFile, source: Source) -> Result<RenderSettings, 
     apply(s, render.min_weight, |s, v| s.min_weight = v, source)?;
     apply(s, render.block_size, |s, v| s.block_size = v, source)?;
     apply(s, render.samples, |s, v| s.samples = v, source)?;
+    apply(s, render.aa_threshold, |s, v| s.aa_threshold = v, source)?;
     apply(s, render.background, |s, v| s.background = v.0, source)?;
     apply(s, render.ambient, |s, v| s.ambient = v.0, source)?;
     apply(s, render.shadows, |s, v| s.shadows = v, source)?;

@@ -63,6 +63,7 @@ pub struct RenderFile {
     pub min_weight: Option<Spanned<f32>>,
     pub block_size: Option<Spanned<u32>>,
     pub samples: Option<Spanned<u32>>,
+    pub aa_threshold: Option<Spanned<f32>>,
     pub background: Option<Spanned<ColorValue>>,
     pub ambient: Option<Spanned<ColorValue>>,
     pub shadows: Option<Spanned<bool>>,

@@ -1,6 +1,6 @@
 //! Measurements of the viewer itself, printed with `--stats`: frames per second while the tracer
 //! runs, the time to upload the film, and for each restart the time from the change to the first
-//! coarse image on screen and to block size 1 on screen.
+//! coarse image on screen, to block size 1 on screen and to the last pass on screen.
 
 use std::time::{Duration, Instant};
 
@@ -102,6 +102,18 @@ impl Timing {
         if self.enabled {
             eprintln!(
                 "stats: block size 1 at {}×{} {:.1} ms after the change",
+                pixels.0,
+                pixels.1,
+                ms(after)
+            );
+        }
+    }
+
+    /// The last pass of a render (anti-aliasing included) reached the screen `after` the change.
+    pub fn refined(&mut self, after: Duration, pixels: (u32, u32)) {
+        if self.enabled {
+            eprintln!(
+                "stats: refined at {}×{} {:.1} ms after the change",
                 pixels.0,
                 pixels.1,
                 ms(after)

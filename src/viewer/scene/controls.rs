@@ -10,6 +10,12 @@ use raylab::settings::{RenderSettings, SettingsOverrides};
 
 use crate::viewer::tracing::working_scene::TraceSetup;
 
+/// The viewer refines a scene that asks for one sample per pixel to a clean image: adaptive
+/// anti-aliasing up to this many samples per pixel…
+pub const VIEWER_SAMPLES: u32 = 16;
+/// …where a pixel differs from a neighbour by more than this (see `RenderSettings::aa_threshold`).
+pub const VIEWER_AA_THRESHOLD: f32 = 0.03;
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Controls {
     pub camera: CameraSpec,
@@ -33,12 +39,22 @@ impl Controls {
 
     /// The scene's controls as the viewer starts them: its camera and settings with the command
     /// line's `overrides` applied, showing `view`. The error says which override is wrong.
+    ///
+    /// Unlike `raylab render`, the viewer anti-aliases by default: when the scene asks for one
+    /// sample per pixel and the command line gives neither `--samples` nor `--aa-threshold`, it
+    /// refines up to [`VIEWER_SAMPLES`] with [`VIEWER_AA_THRESHOLD`]. A scene that asks for more
+    /// samples, or either flag, is taken as it says.
     pub fn with_overrides(
         scene: &Scene,
         overrides: &SettingsOverrides,
         view: DebugView,
     ) -> Result<Controls, String> {
         let mut controls = Controls::from_scene(scene);
+        let sampling_given = overrides.samples.is_some() || overrides.aa_threshold.is_some();
+        if !sampling_given && controls.settings.samples == 1 {
+            controls.settings.samples = VIEWER_SAMPLES;
+            controls.settings.aa_threshold = VIEWER_AA_THRESHOLD;
+        }
         overrides.apply(&mut controls.settings)?;
         controls.camera = overrides.apply_camera(controls.camera)?.spec;
         controls.view = view;
@@ -94,6 +110,7 @@ mod tests {
         let c = Controls::with_overrides(&scene, &overrides, DebugView::Normals).unwrap();
         let mut expected = scene.settings.clone();
         overrides.apply(&mut expected).unwrap();
+        (expected.samples, expected.aa_threshold) = (VIEWER_SAMPLES, VIEWER_AA_THRESHOLD);
         assert_eq!(c.settings, expected);
         assert_eq!((c.settings.width, c.settings.height), (100, 480));
         assert_eq!(c.settings.min_weight, 0.5);
@@ -143,5 +160,37 @@ mod tests {
         let mut c = controls();
         c.light_scale = f32::NAN;
         assert!(c.setup(4096).is_err());
+    }
+
+    #[test]
+    fn the_viewer_anti_aliases_unless_the_scene_or_the_command_line_chose_the_sampling() {
+        let camera = Camera::new(CameraSpec::default()).unwrap();
+        let sampling = |samples, overrides: SettingsOverrides| {
+            let settings = RenderSettings {
+                samples,
+                ..RenderSettings::default()
+            };
+            let scene = Scene::new(settings, camera);
+            let c = Controls::with_overrides(&scene, &overrides, DebugView::Shaded).unwrap();
+            (c.settings.samples, c.settings.aa_threshold)
+        };
+        let none = SettingsOverrides::default();
+        assert_eq!(sampling(1, none), (16, 0.03), "one sample: refined");
+        assert_eq!(sampling(4, none), (4, 0.0), "the scene's own anti-aliasing");
+        let one = SettingsOverrides {
+            samples: Some(1),
+            ..none
+        };
+        assert_eq!(sampling(1, one), (1, 0.0), "--samples 1: one sample");
+        let uniform = SettingsOverrides {
+            aa_threshold: Some(0.0),
+            ..none
+        };
+        assert_eq!(sampling(1, uniform), (1, 0.0), "--aa-threshold 0: uniform");
+        let capped = SettingsOverrides {
+            samples: Some(8),
+            ..none
+        };
+        assert_eq!(sampling(1, capped), (8, 0.0), "--samples alone: uniform");
     }
 }

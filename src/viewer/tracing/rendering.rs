@@ -58,8 +58,10 @@ impl Rendering {
             let s = &self.controls.settings;
             timing.block_one(after, (s.width, s.height));
         }
-        if progress.finished {
+        if progress.finished && !self.settled {
             self.settled = true;
+            let s = &self.controls.settings;
+            timing.refined(after, (s.width, s.height));
         }
     }
 }

@@ -232,6 +232,17 @@ fn tracing_section(
                     .logarithmic(true)
                     .text("samples per pixel"),
             );
+            // Adaptive anti-aliasing: 0 gives every pixel all its samples.
+            ui.add(
+                Slider::new(&mut s.aa_threshold, 0.0..=1.0)
+                    .logarithmic(true)
+                    .smallest_positive(0.001)
+                    .text("AA threshold"),
+            )
+            .on_hover_text(
+                "supersample only pixels that differ from a neighbour by more than this \
+                 (0: every pixel takes all the samples)",
+            );
             ui.horizontal_wrapped(|ui| {
                 ui.checkbox(&mut s.shadows, "shadows");
                 ui.checkbox(&mut s.reflections, "reflections");
