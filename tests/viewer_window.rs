@@ -1153,6 +1153,66 @@ fn with_a_threshold_of_zero_the_viewer_shows_what_render_saves() {
 }
 
 #[test]
+fn a_material_edited_in_the_viewer_changes_the_image_and_saves_into_the_file_with_its_comments() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("ball.toml");
+    let original = format!(
+        "# A ball for the materials test.\n{}",
+        ball_scene([0.0, 2.0, 6.0])
+    )
+    .replace(
+        "[materials.red]\ncolor = [0.8, 0.2, 0.1]\n",
+        "[materials.red]  # the ball\ncolor = [0.8, 0.2, 0.1]  # brick red\n",
+    );
+    std::fs::write(&path, &original).unwrap();
+    let before = load_scene(&path).unwrap();
+    // After the save, a few idle frames give the watcher time to report the viewer's own write
+    // (which must not reload the file) before the viewer exits.
+    let idle_frames = "; close-inspector".repeat(30);
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            path.to_str().unwrap(),
+            "--stats",
+            "--samples",
+            "1",
+            "--script",
+            &format!("wait; material red color 0.1 0.3 0.9; wait; save-scene{idle_frames}; wait"),
+        ],
+    ) else {
+        return;
+    };
+    assert!(
+        run.stdout.contains("saved the scene's materials"),
+        "{}",
+        run.stdout
+    );
+    // The file has the new colour in place of the old, and every comment.
+    let saved = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(
+        saved,
+        original.replace(
+            "color = [0.8, 0.2, 0.1]  # brick red",
+            "color = [0.1, 0.3, 0.9]  # brick red"
+        )
+    );
+    // The window shows the edited material: not the scene as it was, but the saved file.
+    let rect = image_rect(&run.stdout);
+    let old_image = cpu_render(&before, 64, before.camera.spec);
+    assert!(mismatches(&shot, rect, 64, &old_image) > 100);
+    let after = load_scene(&path).unwrap();
+    let expected = cpu_render(&after, 64, after.camera.spec);
+    assert_eq!(mismatches(&shot, rect, 64, &expected), 0);
+    // The scene was loaded once: the viewer did not reload what it wrote itself.
+    assert_eq!(
+        run.stderr.matches("stats: loaded").count(),
+        1,
+        "{}",
+        run.stderr
+    );
+}
+
+#[test]
 fn a_stored_view_is_recalled_saved_beside_the_scene_and_a_turntable_preview_ends_on_it() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("ball.toml");

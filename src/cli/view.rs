@@ -52,6 +52,10 @@ pub struct ViewArgs {
     /// print-tree (print the inspector's node headings), view NAME, exposure STOPS, tonemap
     /// CURVE (clamp, reinhard, filmic), snapshot (keep the image to compare with, as the key B),
     /// compare on|off (the split view: snapshot left, live right), divider FRACTION (0 to 1),
+    /// material NAME|#K FIELD VALUE… (e.g. `material red kd 0.2`, `material red color 1 0 0`; fields
+    /// color, ka, kd, ks, specular_color, shininess, kr, kt, ior, fresnel on|off), light N FIELD
+    /// VALUE… (N from 1; position, direction, color, intensity), save-scene (write the edited
+    /// materials and lights into the TOML scene file),
     /// bookmark N (store the camera as view N, 1 to 9, as Ctrl+N), recall N (go to view N),
     /// turntable FRAMES (preview a turntable), play-path [FRAMES] (preview the path through the
     /// views; while a preview plays, either stops it, and wait waits for it to end).

@@ -29,8 +29,8 @@ pub enum UserEvent {
         generation: u64,
         result: Result<Box<LoadedScene>, String>,
     },
-    /// The watched scene file changed on disk.
-    SceneFileChanged,
+    /// The watched scene file (or its camera file, the path given) changed on disk.
+    SceneFileChanged(std::path::PathBuf),
     /// The ray tree thread has traced what it was asked.
     RayTreeTraced,
 }
@@ -180,8 +180,10 @@ impl ApplicationHandler<UserEvent> for App {
                 self.loaded(event_loop, generation, result);
             }
             UserEvent::RayTreeTraced => {}
-            UserEvent::SceneFileChanged => {
-                if let Some(path) = self.scene.requested() {
+            UserEvent::SceneFileChanged(changed) => {
+                if let Some(path) = self.scene.requested()
+                    && !self.scene.wrote_it(&changed)
+                {
                     self.start_load(Some(path));
                 }
             }

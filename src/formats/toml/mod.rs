@@ -4,10 +4,12 @@
 //! ([`default_scene`]). `load` reads a file in four steps: the
 //! text is parsed as TOML, `retag` moves its type tags where serde wants them, serde reads the
 //! schema (`file`, with the checked numbers of `values`), and `build` turns the schema into a
-//! [`Scene`](crate::scene::Scene).
+//! [`Scene`](crate::scene::Scene). `edit` writes a viewer's edits of materials and lights back
+//! into the file ([`save_edits`]).
 
 mod build;
 mod builtin;
+mod edit;
 mod file;
 mod load;
 mod retag;
@@ -16,5 +18,6 @@ mod views;
 
 pub use build::DEFAULT_MATERIAL;
 pub use builtin::{DEFAULT_SCENE_TEXT, default_scene};
+pub use edit::{Looks, SavedEdits, edit_text, save_edits};
 pub use load::{load_camera, load_scene, parse_scene, parse_scene_with};
 pub use views::{camera_table, load_views, parse_views, views_text};

@@ -8,6 +8,8 @@ use glam::Vec3;
 use raylab::inspect::DebugView;
 use raylab::tone::ToneCurve;
 
+use crate::viewer::scene::edits::{LightEdit, MaterialEdit};
+
 #[derive(Clone, Debug, PartialEq)]
 pub enum Action {
     /// Turn around the look-at point, in degrees.
@@ -55,6 +57,12 @@ pub enum Action {
     Exposure(f32),
     /// Show the image through this tone curve.
     ToneCurve(ToneCurve),
+    /// Change a field of the material of this name.
+    EditMaterial { name: String, edit: MaterialEdit },
+    /// Change a field of light `number` (counted from 1, in the file's order).
+    EditLight { number: usize, edit: LightEdit },
+    /// Write the edited materials and lights into the TOML scene file.
+    SaveScene,
     /// Store the camera as view 1…9 (in `NAME.views.toml` beside the scene file).
     StoreView(u8),
     /// Go to view 1…9.

@@ -1,7 +1,7 @@
 //! Carrying out [`Action`]s: navigation moves the camera (through [`navigation`]), picking a
 //! surface point sets the orbit centre, picking a pixel shows its ray tree, the display's actions
-//! (exposure, tone curve, snapshot, split view) change how the image is shown, and the scene,
-//! save and print actions do what they say.
+//! (exposure, tone curve, snapshot, split view) change how the image is shown, material and light
+//! edits change the controls, and the scene, save and print actions do what they say.
 
 use std::path::PathBuf;
 
@@ -13,6 +13,7 @@ use super::pick;
 use crate::viewer::app::App;
 use crate::viewer::save;
 use crate::viewer::scene::Shown;
+use crate::viewer::scene::edits::{LightEdit, MaterialEdit};
 use crate::viewer::ui::layout::{PixelRect, window_point};
 use crate::viewer::ui::ray_tree_panel;
 
@@ -56,6 +57,16 @@ impl App {
             | Action::Divider(_)
             | Action::Exposure(_)
             | Action::ToneCurve(_)) => self.ui.panel.display.apply(display),
+            Action::EditMaterial { name, edit } => self.edit_material(&name, edit),
+            Action::EditLight { number, edit } => self.edit_light(number, edit),
+            Action::SaveScene => {
+                let message = self
+                    .scene
+                    .save_edits()
+                    .unwrap_or_else(|e| format!("cannot save the scene: {e}"));
+                println!("{message}");
+                self.ui.panel.message = Some(message);
+            }
             Action::StoreView(_)
             | Action::RecallView(_)
             | Action::Turntable(_)
@@ -65,6 +76,48 @@ impl App {
                     navigate(s, other, shown);
                 }
             }
+        }
+    }
+
+    /// Changes a field of the material called `name`, or numbered `#K` (the script's `material`
+    /// step).
+    fn edit_material(&mut self, name: &str, edit: MaterialEdit) {
+        let Some(s) = self.scene.shown_mut() else {
+            return;
+        };
+        let names = &s.scene.scene.material_names;
+        let number = || name.strip_prefix('#')?.parse::<usize>().ok();
+        let index = names.iter().position(|n| n == name).or_else(number);
+        match index.filter(|&i| i < names.len()) {
+            Some(index) => edit.apply(&mut s.controls.materials[index]),
+            None => {
+                let message = format!(
+                    "no material `{name}` in the scene (it has {})",
+                    names.join(", ")
+                );
+                eprintln!("{message}");
+                self.ui.panel.message = Some(message);
+            }
+        }
+    }
+
+    /// Changes a field of light `number`, counted from 1 (the script's `light` step).
+    fn edit_light(&mut self, number: usize, edit: LightEdit) {
+        let Some(s) = self.scene.shown_mut() else {
+            return;
+        };
+        let count = s.controls.lights.len();
+        let result = match number
+            .checked_sub(1)
+            .and_then(|i| s.controls.lights.get_mut(i))
+        {
+            Some(light) => edit.apply(light),
+            None => Err(format!("the scene has {count} lights")),
+        };
+        if let Err(e) = result {
+            let message = format!("cannot edit light {number}: {e}");
+            eprintln!("{message}");
+            self.ui.panel.message = Some(message);
         }
     }
 

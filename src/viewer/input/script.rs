@@ -17,7 +17,14 @@
 //! - `exposure STOPS`, `tonemap NAME` (`clamp`, `reinhard`, `filmic`): how the image is shown;
 //! - `snapshot`: keeps the image on screen to compare with (as the key B), and shows the split;
 //!   `compare on|off`: the split view (snapshot left, live right); `divider FRACTION`: where the
-//!   split is, from 0 (left edge) to 1 (right edge).
+//!   split is, from 0 (left edge) to 1 (right edge);
+//! - `material NAME FIELD VALUE…`: changes a field of the material called NAME (or numbered `#K`,
+//!   as in the Materials panel; 0 is the TOML reader's default material): `color R G B`,
+//!   `ka`, `kd`, `ks`, `shininess`, `kr`, `kt`, `ior` (one number each), `specular_color R G B`,
+//!   `fresnel on|off` (e.g. `material red kd 0.2`, `material red color 1 0 0`);
+//! - `light N FIELD VALUE…`: changes light N (counted from 1, in the file's order):
+//!   `position X Y Z`, `direction X Y Z`, `color R G B` (its brightest channel 1), `intensity I`;
+//! - `save-scene`: writes the edited materials and lights into the TOML scene file;
 //! - `bookmark N`: stores the camera as view N (1 to 9), as Ctrl+N; `recall N`: goes to it, as N;
 //! - `turntable FRAMES`: previews a turntable of FRAMES frames (as T, which plays 72);
 //!   `play-path [FRAMES]`: previews the path through the views (as P); while a preview plays,
@@ -31,6 +38,7 @@ use raylab::inspect::DebugView;
 use raylab::tone::{Tone, ToneCurve};
 
 use super::action::Action;
+use crate::viewer::scene::edits::{LightEdit, MaterialEdit};
 
 #[derive(Clone, Debug, PartialEq)]
 enum Step {
@@ -95,16 +103,7 @@ fn parse_step(step: &str) -> Result<Step, String> {
     let mut words = step.split_whitespace();
     let command = words.next().unwrap_or_default();
     let args: Vec<&str> = words.collect();
-    let numbers = || -> Result<Vec<f32>, String> {
-        args.iter()
-            .map(|a| {
-                a.parse::<f32>()
-                    .ok()
-                    .filter(|v| v.is_finite())
-                    .ok_or_else(|| format!("`{a}` is not a number"))
-            })
-            .collect()
-    };
+    let numbers = || numbers_of(&args);
     let count = |n: Vec<f32>, needed: usize, optional: usize| -> Result<Vec<f32>, String> {
         if n.len() < needed || n.len() > needed + optional {
             Err(format!(
@@ -245,19 +244,62 @@ fn parse_step(step: &str) -> Result<Step, String> {
                 seconds: n[3],
             })
         }
+        "material" if args.len() >= 2 => {
+            let flag = match args[2..] {
+                ["on" | "true"] => Some(true),
+                ["off" | "false"] => Some(false),
+                _ => None,
+            };
+            let values = if flag.is_some() {
+                Vec::new()
+            } else {
+                numbers_of(&args[2..])?
+            };
+            once(Action::EditMaterial {
+                name: args[0].to_string(),
+                edit: MaterialEdit::parse(args[1], &values, flag)?,
+            })
+        }
+        "material" => return Err("takes a material's name, a field and its value".into()),
+        "light" if args.len() >= 2 => {
+            let number = args[0]
+                .parse::<usize>()
+                .ok()
+                .filter(|&n| n >= 1)
+                .ok_or_else(|| format!("`{}` is not a light number (from 1)", args[0]))?;
+            once(Action::EditLight {
+                number,
+                edit: LightEdit::parse(args[1], &numbers_of(&args[2..])?)?,
+            })
+        }
+        "light" => return Err("takes a light's number, a field and its value".into()),
+        "save-scene" if args.is_empty() => once(Action::SaveScene),
         "wait" | "frame" | "reset" | "save" | "print-camera" | "close-inspector" | "print-tree"
-        | "snapshot" => {
+        | "snapshot" | "save-scene" => {
             return Err("takes no arguments".into());
         }
         _ => {
             return Err(
                 "unknown step (use wait, wait-load, orbit, pan, dolly, fly, frame, reset, \
                  save, print-camera, open, resize, pick, click, close-inspector, print-tree, \
-                 view, exposure, tonemap, snapshot, compare, divider, bookmark, recall, turntable, play-path)"
+                 view, exposure, tonemap, snapshot, compare, divider, material, light, save-scene, bookmark, recall, \
+                 turntable, play-path)"
                     .into(),
             );
         }
     })
+}
+
+/// The finite numbers `args` write; the error names the first that is not one.
+fn numbers_of(args: &[&str]) -> Result<Vec<f32>, String> {
+    args.iter()
+        .map(|a| {
+            a.parse::<f32>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| format!("`{a}` is not a number"))
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -379,6 +421,52 @@ mod tests {
             ("compare", "takes `on` or `off`"),
             ("compare yes", "takes `on` or `off`"),
             ("divider 1.5", "from 0 to 1"),
+        ] {
+            let err = Script::parse(text).unwrap_err();
+            assert!(err.contains(expected), "{text}: {err}");
+        }
+    }
+
+    #[test]
+    fn material_light_and_save_scene_steps_parse() {
+        use raylab::color::Color;
+
+        let mut script = Script::parse(
+            "material red kd 0.2; material red color 1 0 0; material glass fresnel on; \
+             light 2 intensity 3; light 1 position 0 5 -1; save-scene",
+        )
+        .unwrap();
+        let all: Vec<_> = std::iter::from_fn(|| script.next(true, 0)).collect();
+        let material = |name: &str, edit| Action::EditMaterial {
+            name: name.into(),
+            edit,
+        };
+        assert_eq!(
+            all,
+            vec![
+                material("red", MaterialEdit::Diffuse(0.2)),
+                material("red", MaterialEdit::Color(Color::new(1.0, 0.0, 0.0))),
+                material("glass", MaterialEdit::Fresnel(true)),
+                Action::EditLight {
+                    number: 2,
+                    edit: LightEdit::Intensity(3.0)
+                },
+                Action::EditLight {
+                    number: 1,
+                    edit: LightEdit::Position(Vec3::new(0.0, 5.0, -1.0))
+                },
+                Action::SaveScene,
+            ]
+        );
+        for (text, expected) in [
+            ("material red", "takes a material's name"),
+            ("material red kd", "takes one number"),
+            ("material red color 1 0", "three numbers"),
+            ("material red shine 3", "unknown material field"),
+            ("material red kd x", "`x` is not a number"),
+            ("light 0 intensity 1", "not a light number"),
+            ("light 1 brightness 1", "unknown light field"),
+            ("save-scene now", "takes no arguments"),
         ] {
             let err = Script::parse(text).unwrap_err();
             assert!(err.contains(expected), "{text}: {err}");

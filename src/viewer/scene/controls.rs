@@ -1,13 +1,16 @@
-//! What the user controls: the camera, the render settings, the lights' intensity and the debug
-//! view. The panels
+//! What the user controls: the camera, the render settings, the lights' intensity, the debug
+//! view, and the scene's materials and lights as edited. The panels
 //! and the navigation edit a [`Controls`]; whenever it differs from the one being rendered, the
 //! app restarts refinement with it.
 
 use raylab::camera::{Camera, CameraSpec};
 use raylab::inspect::DebugView;
+use raylab::light::Light;
+use raylab::material::Material;
 use raylab::scene::Scene;
 use raylab::settings::{RenderSettings, SettingsOverrides};
 
+use super::edits;
 use crate::viewer::tracing::working_scene::TraceSetup;
 
 /// The viewer refines a scene that asks for one sample per pixel to a clean image: adaptive
@@ -24,6 +27,11 @@ pub struct Controls {
     pub light_scale: f32,
     /// What the image shows: the shaded colour or a debug view.
     pub view: DebugView,
+    /// The scene's materials, index for index, as the Materials panel edits them.
+    pub materials: Vec<Material>,
+    /// The scene's lights, index for index, as the Lights panel edits them (before
+    /// `light_scale`).
+    pub lights: Vec<Light>,
 }
 
 impl Controls {
@@ -34,6 +42,8 @@ impl Controls {
             settings: scene.settings.clone(),
             light_scale: 1.0,
             view: DebugView::Shaded,
+            materials: scene.materials.clone(),
+            lights: scene.lights.clone(),
         }
     }
 
@@ -61,6 +71,18 @@ impl Controls {
         Ok(controls)
     }
 
+    /// Whether the edited materials and lights can be traced (and saved); the error says which
+    /// is wrong and how.
+    pub fn check_edits(&self) -> Result<(), String> {
+        for (index, material) in self.materials.iter().enumerate() {
+            edits::check_material(material).map_err(|e| format!("material {index}: {e}"))?;
+        }
+        for (index, light) in self.lights.iter().enumerate() {
+            edits::check_light(light).map_err(|e| format!("light {}: {e}", index + 1))?;
+        }
+        Ok(())
+    }
+
     /// What these controls change in the scene, if they are all valid; otherwise what is wrong.
     /// `max_side` is the largest texture the GPU takes.
     pub fn setup(&self, max_side: u32) -> Result<TraceSetup, String> {
@@ -77,11 +99,14 @@ impl Controls {
                 self.light_scale
             ));
         }
+        self.check_edits()?;
         Ok(TraceSetup {
             camera: Camera::new(self.camera).map_err(|e| format!("camera: {e}"))?,
             settings: self.settings.clone(),
             light_scale: self.light_scale,
             view: self.view,
+            materials: self.materials.clone(),
+            lights: self.lights.iter().map(edits::normalized).collect(),
             caustic_round: 0,
         })
     }
@@ -160,6 +185,13 @@ mod tests {
         let mut c = controls();
         c.light_scale = f32::NAN;
         assert!(c.setup(4096).is_err());
+        let mut c = controls();
+        c.materials.push(raylab::material::Material {
+            transparency: 2.0,
+            ..Default::default()
+        });
+        assert!(c.setup(4096).unwrap_err().contains("kt"));
+        assert!(c.check_edits().unwrap_err().contains("material 0"));
     }
 
     #[test]

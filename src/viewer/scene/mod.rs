@@ -1,17 +1,19 @@
 //! The scene being shown: loading scene files (or the built-in scene) in the background, watching
-//! the file for changes, the controls (camera, settings, lights, view) the user edits, and the
-//! bookmarked views (`views`). Where the scene stands is one [`SceneState`]: loading, failed or
-//! loaded.
+//! the file for changes, the controls (camera, settings, lights, view, materials) the user edits,
+//! saving the edited materials and lights back into a TOML scene file, and the bookmarked views
+//! (`views`). Where the scene stands is one [`SceneState`]: loading, failed or loaded.
 
 pub mod controls;
+pub mod edits;
 pub mod source;
 pub mod views;
 pub mod watch;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use raylab::formats::SceneFormat;
+use raylab::formats::toml::{Looks, save_edits};
 use raylab::inspect::DebugView;
 use raylab::settings::SettingsOverrides;
 use winit::event_loop::EventLoopProxy;
@@ -82,6 +84,9 @@ pub struct SceneSlot {
     loading: bool,
     /// Scene loads finished (well or not), for the script's `wait-load`.
     loads: u64,
+    /// The scene file and the text the viewer last wrote into it (Save scene), so that the
+    /// watcher's news of that write does not reload it.
+    written: Option<(PathBuf, String)>,
     /// Where the loader and the watcher send their news.
     proxy: EventLoopProxy<UserEvent>,
 }
@@ -107,6 +112,7 @@ impl SceneSlot {
             generation: 0,
             loading: false,
             loads: 0,
+            written: None,
             proxy,
         }
     }
@@ -126,14 +132,15 @@ impl SceneSlot {
             // Only files are watched (not `spd:` names).
             self.watcher = path.as_deref().filter(|p| p.is_file()).and_then(|p| {
                 let proxy = self.proxy.clone();
-                SceneWatcher::new(p, move || {
-                    let _ = proxy.send_event(UserEvent::SceneFileChanged);
+                SceneWatcher::new(p, move |changed| {
+                    let _ = proxy.send_event(UserEvent::SceneFileChanged(changed.to_path_buf()));
                 })
                 .map_err(|e| watch_error = Err(e))
                 .ok()
             });
         }
         self.requested = path.clone();
+        self.written = None;
         self.files_beside = source::scene_files_beside(path.as_deref());
         let (proxy, generation) = (self.proxy.clone(), self.generation);
         let format = self
@@ -193,6 +200,12 @@ impl SceneSlot {
                 }
                 if old.file_controls.settings != file_controls.settings {
                     controls.settings = with_overrides.settings;
+                }
+                if old.file_controls.materials != file_controls.materials {
+                    controls.materials = with_overrides.materials;
+                }
+                if old.file_controls.lights != file_controls.lights {
+                    controls.lights = with_overrides.lights;
                 }
                 controls
             }
@@ -260,6 +273,47 @@ impl SceneSlot {
         Some((info, &mut shown.controls))
     }
 
+    /// Writes the edited materials and lights into the shown scene's TOML file, atomically, and
+    /// remembers the text written (see [`SceneSlot::wrote_it`]); returns a line saying what was
+    /// saved. The error says why nothing was saved.
+    pub fn save_edits(&mut self) -> Result<String, String> {
+        let Some(shown) = self.shown_mut() else {
+            return Err("no scene is shown".into());
+        };
+        let path = match &shown.scene.path {
+            Some(path) if shown.scene.toml_file => path.clone(),
+            _ => return Err(cannot_save(&shown.scene)),
+        };
+        shown.controls.check_edits()?;
+        let names = &shown.scene.scene.material_names;
+        let saved = save_edits(
+            &path,
+            looks(names, &shown.file_controls),
+            looks(names, &shown.controls),
+        )?;
+        // The file has the edits now: a reload compares with them.
+        shown.file_controls.materials = shown.controls.materials.clone();
+        shown.file_controls.lights = shown.controls.lights.clone();
+        let mut message = format!(
+            "saved the scene's materials and lights in {}",
+            path.display()
+        );
+        for line in saved.unsaved {
+            message += &format!("\n{line}");
+        }
+        self.written = Some((path, saved.text));
+        Ok(message)
+    }
+
+    /// Whether the file at `changed` holds what Save scene last wrote into it: the watcher's news
+    /// of the viewer's own write, which needs no reload.
+    pub fn wrote_it(&self, changed: &Path) -> bool {
+        self.written.as_ref().is_some_and(|(path, text)| {
+            path.file_name() == changed.file_name()
+                && std::fs::read_to_string(changed).is_ok_and(|now| now == *text)
+        })
+    }
+
     /// A load is under way.
     pub fn loading(&self) -> bool {
         self.loading
@@ -286,5 +340,25 @@ impl SceneSlot {
             (self.overrides.width, self.overrides.height) = (Some(size.0), Some(size.1));
         }
         self.view = view;
+    }
+}
+
+/// The materials (called `names`) and lights of `controls`.
+fn looks<'a>(names: &'a [String], controls: &'a Controls) -> Looks<'a> {
+    Looks {
+        names,
+        materials: &controls.materials,
+        lights: &controls.lights,
+    }
+}
+
+/// Why the scene `loaded` cannot be saved: it is not a TOML scene file.
+pub fn cannot_save(loaded: &LoadedScene) -> String {
+    match &loaded.path {
+        None => "the built-in scene has no file to save into; open a TOML scene file".into(),
+        Some(path) => format!(
+            "only TOML scene files can be saved (with their comments kept); {} is not one",
+            path.display()
+        ),
     }
 }

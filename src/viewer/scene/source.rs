@@ -20,6 +20,8 @@ pub struct LoadedScene {
     pub bvh: Bvh,
     /// The scene file; `None` for the built-in default scene.
     pub path: Option<PathBuf>,
+    /// The scene was read from a TOML file, which "Save scene" can write edits back into.
+    pub toml_file: bool,
     /// Bounds of everything bounded (planes are not), for framing and flying speed.
     pub bounds: Aabb,
     /// Time to read the file and build the BVH.
@@ -57,10 +59,14 @@ pub fn load(path: Option<&Path>, format: Option<SceneFormat>) -> Result<LoadedSc
     };
     let bvh = Bvh::build(&scene.geometry);
     let bounds = bvh.bounds().unwrap_or(Aabb::EMPTY);
+    let toml_file = path.is_some_and(|p| {
+        p.is_file() && format.unwrap_or_else(|| SceneFormat::of(p)) == SceneFormat::Toml
+    });
     Ok(LoadedScene {
         scene,
         bvh,
         path: path.map(Path::to_path_buf),
+        toml_file,
         bounds,
         load_time: start.elapsed(),
         views,

@@ -13,9 +13,12 @@ pub struct SceneWatcher {
 }
 
 impl SceneWatcher {
-    /// Calls `changed` (on the watcher's thread) each time the file at `path`, or the camera file
-    /// beside it, is written, created, renamed or removed.
-    pub fn new(path: &Path, changed: impl Fn() + Send + 'static) -> Result<SceneWatcher, String> {
+    /// Calls `changed` with the file's path (on the watcher's thread) each time the file at
+    /// `path`, or the camera file beside it, is written, created, renamed or removed.
+    pub fn new(
+        path: &Path,
+        changed: impl Fn(&Path) + Send + 'static,
+    ) -> Result<SceneWatcher, String> {
         let file = std::path::absolute(path).map_err(|e| format!("{}: {e}", path.display()))?;
         let folder = file.parent().unwrap_or(Path::new("/")).to_path_buf();
         let names =
@@ -29,8 +32,8 @@ impl SceneWatcher {
                 );
                 let watched =
                     |p: &std::path::PathBuf| names.iter().any(|n| p.file_name() == n.as_deref());
-                if relevant && event.paths.iter().any(watched) {
-                    changed();
+                if relevant && let Some(path) = event.paths.iter().find(|p| watched(p)) {
+                    changed(path);
                 }
             })
             .map_err(|e| format!("cannot watch {}: {e}", path.display()))?;
@@ -60,7 +63,7 @@ mod tests {
         let touched = Arc::new(AtomicBool::new(false));
         let (sender, receiver) = mpsc::channel();
         let seen = touched.clone();
-        let _watcher = SceneWatcher::new(&scene, move || {
+        let _watcher = SceneWatcher::new(&scene, move |_| {
             let _ = sender.send(seen.load(SeqCst));
         })
         .unwrap();

@@ -1,5 +1,5 @@
 //! The caustic photon map the viewer traces with. The render worker makes it when the scene,
-//! its light intensity, the photon count or the specular switches change, and not when the
+//! its light intensity, its materials or lights (as edited), the photon count or the specular switches change, and not when the
 //! camera moves or the gather count changes: the map does not depend on them. While the view
 //! stays still it grows, a round at a time, each round shooting the photon count again, so the
 //! estimates gather from nearer and the caustics sharpen (progressive photon mapping). The ray
@@ -8,6 +8,8 @@
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
+use raylab::light::Light;
+use raylab::material::Material;
 use raylab::photon::{Caustics, PhotonMap};
 use raylab::whitted::Tracer;
 
@@ -18,12 +20,15 @@ use crate::viewer::scene::source::LoadedScene;
 /// times the photon count, then the viewer rests.
 pub const MAX_ROUNDS: u32 = 8;
 
-/// What a map depends on: the scene (by address), its light intensity, the photons shot per
-/// round, and whether reflected and transmitted photons are followed.
+/// What a map depends on: the scene (by address), its light intensity, its materials and lights
+/// as edited, the photons shot per round, and whether reflected and transmitted photons are
+/// followed.
 #[derive(Clone, Debug, PartialEq)]
 struct MapKey {
     scene: usize,
     light_scale: f32,
+    materials: Vec<Material>,
+    lights: Vec<Light>,
     photons: u32,
     reflections: bool,
     transmission: bool,
@@ -34,6 +39,8 @@ impl MapKey {
         MapKey {
             scene: Arc::as_ptr(loaded) as usize,
             light_scale: setup.light_scale,
+            materials: setup.materials.clone(),
+            lights: setup.lights.clone(),
             photons: setup.settings.caustic_photons,
             reflections: setup.settings.reflections,
             transmission: setup.settings.transmission,

@@ -261,6 +261,8 @@ mod tests {
                 settings,
                 light_scale: 1.0,
                 view: Default::default(),
+                materials: scene.scene.materials.clone(),
+                lights: scene.scene.lights.clone(),
                 caustic_round: 0,
             },
             film: Arc::new(Film::new(size, size)),

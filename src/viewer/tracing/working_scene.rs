@@ -1,13 +1,15 @@
 //! The scene as the controls show it: a copy of a loaded scene given the controls' camera,
-//! settings, light intensity and debug view, and the caustic photon map it is traced with. The
+//! settings, light intensity, debug view and edited materials and lights, and the caustic photon map it is traced with. The
 //! threads that trace (the render worker, the ray tree thread) each keep one, copied once per
-//! loaded scene and updated in place for each job, so that moving the camera copies no
-//! geometry.
+//! loaded scene and updated in place for each job, so that moving the camera or editing a
+//! material copies no geometry (and keeps the BVH).
 
 use std::sync::Arc;
 
 use raylab::camera::Camera;
 use raylab::inspect::DebugView;
+use raylab::light::Light;
+use raylab::material::Material;
 use raylab::photon::PhotonMap;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
@@ -24,6 +26,9 @@ pub struct TraceSetup {
     pub light_scale: f32,
     /// What the image shows.
     pub view: DebugView,
+    /// The scene's materials and lights as edited (the lights before `light_scale`).
+    pub materials: Vec<Material>,
+    pub lights: Vec<Light>,
     /// The rounds of caustic photons the map holds already, of which the render wants one more
     /// (see `caustics`): 0 for a new view, which takes the map as it is if it has any.
     pub caustic_round: u32,
@@ -58,8 +63,8 @@ impl WorkingScene {
             .get_or_insert_with(|| (loaded.clone(), loaded.scene.clone()));
         scene.camera = setup.camera;
         scene.settings = setup.settings.clone();
-        scene.lights = loaded
-            .scene
+        scene.materials.clone_from(&setup.materials);
+        scene.lights = setup
             .lights
             .iter()
             .map(|l| l.scaled(setup.light_scale))

@@ -1,11 +1,13 @@
-//! What the user sees besides the image (egui): the side panel, the status line, the ray tree
-//! panel, the overlay drawn over the image, the display's controls (exposure, tone curve,
-//! snapshot) and the split view's divider, the legend's colour bar, colour swatches, and where
+//! What the user sees besides the image (egui): the side panel (with its materials and lights
+//! panel), the status line, the ray tree panel, the overlay drawn over the image, the display's
+//! controls (exposure, tone curve, snapshot) and the split view's divider, the legend's colour
+//! bar, colour swatches, and where
 //! the image sits in the window.
 
 pub mod display;
 pub mod layout;
 pub mod legend_bar;
+pub mod materials_panel;
 pub mod overlay;
 pub mod panels;
 pub mod ray_tree_panel;

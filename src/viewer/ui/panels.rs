@@ -8,7 +8,7 @@ use raylab::inspect::{DebugView, Legend};
 use raylab::settings::{MAX_BLOCK_SIZE, MAX_CAUSTIC_GATHER, MAX_DEPTH_LIMIT, MAX_SAMPLES};
 
 use super::display::{self, DisplayControls};
-use super::legend_bar;
+use super::{legend_bar, materials_panel};
 use crate::viewer::input::action::Action;
 use crate::viewer::scene::SceneInfo;
 use crate::viewer::scene::controls::Controls;
@@ -51,6 +51,7 @@ pub fn side_panel(
                 tracing_section(ui, controls, state, legend);
                 lights_section(ui, controls, scene.scene.scene.lights.len());
                 display::section(ui, &mut state.display, &mut actions);
+                materials_panel::show(ui, controls, scene, &mut actions);
                 save_section(ui, state, &mut actions);
             });
         });
@@ -118,7 +119,8 @@ fn file_name(path: &Path) -> String {
     )
 }
 
-fn vector(ui: &mut egui::Ui, label: &str, v: &mut glam::Vec3) {
+/// A vector's three numbers, to drag or type.
+pub fn vector(ui: &mut egui::Ui, label: &str, v: &mut glam::Vec3) {
     ui.horizontal(|ui| {
         ui.label(label);
         for c in [&mut v.x, &mut v.y, &mut v.z] {
