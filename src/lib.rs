@@ -10,7 +10,8 @@
 //!
 //! - Basics: [`color`] (linear RGB and its 8-bit sRGB encoding), [`ray`], [`aabb`],
 //!   [`tone`] (exposure and tone curves), [`transform`], [`limits`], [`memory`], [`output`]
-//!   (writing files safely), [`camera`] (the one place a pixel becomes an eye ray) and
+//!   (writing files safely), [`camera`] (the one place a pixel becomes an eye ray), [`views`]
+//!   (bookmarked cameras, and the cameras of a turntable or a path through them) and
 //!   [`sampling`] (where a pixel's samples lie).
 //! - The scene: [`shapes`], [`mesh`], [`primitive`], [`material`], [`texture`] (with
 //!   [`noise`]), [`light`], [`medium`] (fog), [`settings`] and [`scene::Scene`], which
@@ -57,4 +58,5 @@ pub mod stats;
 pub mod texture;
 pub mod tone;
 pub mod transform;
+pub mod views;
 pub mod whitted;

@@ -65,6 +65,14 @@ fn the_kept_sdl_files_read_or_fail_cleanly() {
 }
 
 #[test]
+fn the_kept_views_files_read_or_fail_cleanly() {
+    replay("views", harness::views);
+    // A good one reads, writes back the same, and its path and turntable have cameras.
+    let good = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/regressions/views/seed_two_views");
+    assert_eq!(harness::views(&std::fs::read(good).unwrap()), Ok(()));
+}
+
+#[test]
 fn the_shipped_scenes_read_and_render_with_the_fuzz_targets_files() {
     read_all("assets/scenes", ".toml", harness::toml_scene);
 }

@@ -1433,3 +1433,42 @@ fn a_material_edited_in_the_viewer_changes_the_image_and_saves_into_the_file_wit
         run.stderr
     );
 }
+
+#[test]
+fn a_stored_view_is_recalled_saved_beside_the_scene_and_a_turntable_preview_ends_on_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("ball.toml");
+    std::fs::write(&path, ball_scene([0.0, 2.0, 6.0])).unwrap();
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            path.to_str().unwrap(),
+            "--size",
+            "64",
+            "--block-size",
+            "8",
+            "--samples",
+            "1",
+            "--script",
+            "bookmark 1; orbit 40 0; wait; print-camera; recall 1; wait; turntable 4; wait",
+        ],
+    ) else {
+        return;
+    };
+    let scene = load_scene(&path).unwrap();
+    let moved = printed_camera(&run.stdout);
+    assert!(
+        (moved.eye - scene.camera.spec.eye).length() > 1.0,
+        "the orbit moved the camera"
+    );
+    assert!(run.stdout.contains("view 1 stored in"), "{}", run.stdout);
+    // Back on the first view: the window shows it as the CPU renders it.
+    let expected = cpu_render(&scene, 64, scene.camera.spec);
+    let rect = image_rect(&run.stdout);
+    assert_eq!(mismatches(&shot, rect, 64, &expected), 0);
+    // The view went into ball.views.toml beside the scene, as the camera it was.
+    let text = std::fs::read_to_string(dir.path().join("ball.views.toml")).unwrap();
+    let views =
+        raylab::formats::toml::parse_views(&text, Path::new("v"), CameraSpec::default()).unwrap();
+    assert_eq!(views.get(1), Some(scene.camera.spec));
+}

@@ -8,13 +8,15 @@
 use std::path::Path;
 
 use raylab::bvh::Bvh;
+use raylab::camera::CameraSpec;
 use raylab::formats::nff::{NffDocument, NffLighting, parse_nff_document};
 use raylab::formats::sdl::parse_sdl;
-use raylab::formats::toml::parse_scene_with;
+use raylab::formats::toml::{parse_scene_with, parse_views, views_text};
 use raylab::formats::{SceneError, SceneFiles, ascii_text, utf8_text};
 use raylab::inspect::trace_ray_tree;
 use raylab::progressive::render_image;
 use raylab::scene::Scene;
+use raylab::views::{path, turntable};
 use raylab::whitted::Tracer;
 
 const TETRA_OBJ: &[u8] = include_bytes!("../../assets/models/tetra.obj");
@@ -100,6 +102,26 @@ pub fn sdl(data: &[u8]) -> Result<(), String> {
     )
     .map_err(|e| e.to_string())?;
     render_tiny(scene);
+    Ok(())
+}
+
+/// Reads `data` as a views file (`NAME.views.toml`), checks that the views written back read
+/// back the same, and builds the cameras of a short path through them and of a turntable
+/// around the first.
+pub fn views(data: &[u8]) -> Result<(), String> {
+    let origin = Path::new("fuzz.views.toml");
+    let text = utf8_text(data, origin).map_err(|e| e.to_string())?;
+    let base = CameraSpec::default();
+    let views = parse_views(text, origin, base).map_err(|e| e.to_string())?;
+    let written = views_text(&views);
+    let reread = parse_views(&written, origin, base)
+        .unwrap_or_else(|e| panic!("the views raylab wrote do not read back: {e}\n{written}"));
+    assert_eq!(reread, views, "{written}");
+    let cameras = views.cameras();
+    if let Some(first) = cameras.first() {
+        assert_eq!(turntable(first, 5)?.len(), 5);
+    }
+    assert_eq!(path(&cameras, 7)?.len(), 7);
     Ok(())
 }
 

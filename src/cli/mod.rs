@@ -8,6 +8,7 @@ mod generate;
 mod inspect;
 mod overrides;
 mod render;
+mod sequence;
 mod view;
 
 use std::io::{self, BufWriter, StdoutLock, Write};

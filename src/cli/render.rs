@@ -1,7 +1,8 @@
-//! `raylab render`: a scene to an image file, with a progress bar and a one-line summary.
+//! `raylab render`: a scene to an image file, or to a numbered sequence of them (a turntable or a
+//! camera path, see `sequence`), with one progress bar and a one-line summary.
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use clap::Args;
@@ -20,6 +21,7 @@ use raylab::tone::{Tone, ToneCurve};
 use raylab::whitted::{RAY_BUDGET, Tracer};
 
 use super::overrides::OverrideArgs;
+use super::sequence::{SequenceArgs, frame_paths};
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
@@ -61,10 +63,14 @@ pub struct RenderArgs {
     /// filmic (an ACES-like curve); .exr and .hdr keep the linear values.
     #[arg(long, value_name = "CURVE", default_value_t = ToneCurve::Clamp)]
     tonemap: ToneCurve,
+    /// An image sequence instead of one image.
+    #[command(flatten)]
+    sequence: SequenceArgs,
 }
 
 pub fn run(args: RenderArgs) -> Result<(), String> {
-    // Before any long work: the scene, the BVH, the render.
+    // Before any long work: the scene, the cameras and file names of the frames, the BVH, the
+    // render.
     let format = check_image_path(&args.output).map_err(|e| e.to_string())?;
     let tone = Tone::new(args.exposure, args.tonemap).map_err(|e| format!("--exposure: {e}"))?;
     if tone != Tone::default() && matches!(format, OutputFormat::Exr | OutputFormat::Hdr) {
@@ -77,6 +83,13 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     let overrides = SettingsOverrides::from(args.overrides);
     overrides.apply(&mut scene.settings)?;
     scene.camera = overrides.apply_camera(scene.camera.spec)?;
+    let (cameras, outputs) = match args.sequence.cameras(scene.camera.spec)? {
+        Some(cameras) => {
+            let outputs = frame_paths(&args.output, cameras.len())?;
+            (cameras, outputs)
+        }
+        None => (vec![scene.camera], vec![args.output.clone()]),
+    };
     let pool = super::thread_pool(args.threads)?;
     let (width, height) = (scene.settings.width, scene.settings.height);
     let pixels = u64::from(width) * u64::from(height);
@@ -91,37 +104,49 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     let bvh = Bvh::build(&scene.geometry);
     let build_time = build_start.elapsed();
 
-    let settings = &scene.settings;
-    let film = Film::new(width, height);
-    let control = RenderControl::default();
     let tracer = Tracer::new(&scene, &bvh);
     let caustics_start = Instant::now();
     let caustics = pool.install(|| scene_caustics(&tracer))?;
     let caustics_time = caustics_start.elapsed();
-    let tracer = tracer.with_caustics(caustics.as_ref());
-    let legend = args.view.legend(&tracer);
-    let legend_path = args.output.with_extension("legend.png");
+    let legend = args.view.legend(&tracer.with_caustics(caustics.as_ref()));
+    let legend_path = outputs[0].with_extension("legend.png");
     if legend.is_some() {
         check_image_path(&legend_path).map_err(|e| e.to_string())?;
     }
-    let total = u64::from(width) * u64::from(height) * u64::from(settings.samples);
-    let bar = progress_bar(total);
-    let stats = std::thread::scope(|s| {
-        let render = s.spawn(|| {
-            pool.install(|| progressive::render(&tracer, &args.view, &film, &control, |_| {}))
+    let per_frame = pixels * u64::from(scene.settings.samples);
+    let bar = progress_bar(per_frame * cameras.len() as u64);
+    let mut stats = RenderStats::default();
+    let mut written = Vec::new();
+    for (k, (camera, output)) in cameras.iter().zip(&outputs).enumerate() {
+        scene.camera = *camera;
+        let tracer = Tracer::new(&scene, &bvh).with_caustics(caustics.as_ref());
+        let done = per_frame * k as u64;
+        let frame = render_frame(&tracer, &args.view, &pool, |traced| {
+            bar.set_position(done + traced)
+        })
+        .and_then(|(film, frame_stats)| {
+            save_toned_image(output, width, height, &film.pixels(), tone)
+                .map_err(|e| e.to_string())?;
+            written.push(output);
+            Ok(frame_stats)
         });
-        while !render.is_finished() {
-            bar.set_position(control.pixels_traced());
-            std::thread::sleep(Duration::from_millis(50));
+        match frame {
+            Ok(frame_stats) => {
+                stats.rays += frame_stats.rays;
+                stats.time += frame_stats.time;
+            }
+            Err(e) => {
+                // No partial sequence: the frames written so far go too.
+                bar.finish_and_clear();
+                for path in written {
+                    let _ = std::fs::remove_file(path);
+                }
+                return Err(e);
+            }
         }
-        render.join()
-    })
-    .map_err(|_| "the renderer crashed".to_string())?
-    .map_err(|_| "the render was cancelled".to_string())?;
+    }
     bar.finish_and_clear();
 
-    save_toned_image(&args.output, width, height, &film.pixels(), tone)
-        .map_err(|e| e.to_string())?;
     if let Some(legend) = &legend {
         let (bar_width, bar_height) = LEGEND_SIZE;
         let bar_image = legend.bar_image(bar_width, bar_height);
@@ -137,10 +162,13 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     }
     // Printed once every file is written: a closed standard output ends the program.
     super::print_out(|out| {
+        if cameras.len() > 1 {
+            write!(out, "{} frames of ", cameras.len())?;
+        }
         writeln!(
             out,
             "{}",
-            summary(settings, &stats, build_time, &args.output)
+            summary(&scene.settings, &stats, build_time, &args.output)
         )?;
         if let Some(map) = &caustics {
             writeln!(
@@ -156,6 +184,30 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         }
         Ok(())
     })
+}
+
+/// Renders one image with `tracer`, telling `progress` the pixels traced so far now and then.
+fn render_frame(
+    tracer: &Tracer,
+    view: &DebugView,
+    pool: &rayon::ThreadPool,
+    progress: impl Fn(u64),
+) -> Result<(Film, RenderStats), String> {
+    let settings = &tracer.scene.settings;
+    let film = Film::new(settings.width, settings.height);
+    let control = RenderControl::default();
+    let stats = std::thread::scope(|s| {
+        let render =
+            s.spawn(|| pool.install(|| progressive::render(tracer, view, &film, &control, |_| {})));
+        while !render.is_finished() {
+            progress(control.pixels_traced());
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        render.join()
+    })
+    .map_err(|_| "the renderer crashed".to_string())?
+    .map_err(|_| "the render was cancelled".to_string())?;
+    Ok((film, stats))
 }
 
 /// Size of the colour bar image written beside a debug view's image.
@@ -176,7 +228,7 @@ fn summary(
     settings: &RenderSettings,
     stats: &RenderStats,
     build_time: Duration,
-    output: &std::path::Path,
+    output: &Path,
 ) -> String {
     let r = &stats.rays;
     format!(

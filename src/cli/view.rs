@@ -56,7 +56,10 @@ pub struct ViewArgs {
     /// color, ka, kd, ks, specular_color, shininess, kr, kt, ior, fresnel on|off), light N FIELD
     /// VALUE… (N from 1; position, direction, color, intensity), save-scene (write the edited
     /// materials and lights into the TOML scene file), skip (block size 1 at once), pause, resume,
-    /// sleep SECONDS, print-status.
+    /// sleep SECONDS, print-status, bookmark N (store the camera as view N, 1 to 9, as Ctrl+N),
+    /// recall N (go to view N), turntable FRAMES (preview a turntable), play-path [FRAMES]
+    /// (preview the path through the views; while a preview plays, either stops it, and wait
+    /// waits for it to end).
     #[arg(long, value_name = "STEPS", value_parser = Script::parse)]
     script: Option<Script>,
     /// Most frames per second while refining.

@@ -119,6 +119,12 @@ pub fn camera_path(file: &Path) -> PathBuf {
     file.with_extension("camera.toml")
 }
 
+/// Where the views of the scene file `file` go (the viewer's bookmarked cameras): beside it,
+/// `NAME.views.toml` (`room.views.toml` for `room.toml`, `room.nff` or `room.dat`).
+pub fn views_path(file: &Path) -> PathBuf {
+    file.with_extension("views.toml")
+}
+
 /// The scene with the default framing camera ([`camera::frame`]): a three-quarter view of its
 /// finite objects at its image's aspect. The reader of a format without a camera ends with it:
 /// `load_sdl(path).map(with_framing_camera)`.

@@ -19,6 +19,6 @@ pub use error::SceneError;
 pub(crate) use error::Source;
 pub use files::{SceneFiles, ascii_text, utf8_text};
 pub use load_any::{
-    SceneFormat, camera_file_beside, camera_path, load_any, load_any_as, load_any_with,
+    SceneFormat, camera_file_beside, camera_path, load_any, load_any_as, load_any_with, views_path,
     with_framing_camera,
 };

@@ -8,21 +8,14 @@ use raylab::camera::CameraSpec;
 use raylab::film::Film;
 use raylab::formats::camera_path;
 use raylab::formats::image::save_toned_image;
+use raylab::formats::toml::camera_table;
 use raylab::output::write_atomically;
 use raylab::tone::Tone;
 
 /// The camera as a scene file's `[camera]` table. Numbers are written in full (Rust's shortest
 /// round-tripping form), so reading the snippet back gives exactly this camera.
 pub fn camera_snippet(spec: &CameraSpec) -> String {
-    let v = |v: glam::Vec3| format!("[{:?}, {:?}, {:?}]", v.x, v.y, v.z);
-    format!(
-        "[camera]\neye = {}\nlook_at = {}\nup = {}\nview_angle = {:?}\nnear = {:?}\n",
-        v(spec.eye),
-        v(spec.look_at),
-        v(spec.up),
-        spec.view_angle,
-        spec.near
-    )
+    camera_table("camera", spec)
 }
 
 /// Saves the film at `path` (its extension picks the format; PNG and PPM through `tone`, as the

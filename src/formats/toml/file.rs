@@ -44,6 +44,15 @@ pub struct CameraSnippetFile {
     pub camera: Spanned<CameraFile>,
 }
 
+/// A `NAME.views.toml` file beside a scene (what the viewer saves): `[view.N]` camera tables,
+/// by number (checked when the views are built).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ViewsFile {
+    #[serde(default)]
+    pub view: BTreeMap<Spanned<String>, Spanned<CameraFile>>,
+}
+
 /// `[render]`: the fields of [`crate::settings::RenderSettings`], each optional.
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]

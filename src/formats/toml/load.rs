@@ -50,7 +50,7 @@ pub fn parse_scene(text: &str, origin: &Path, base_dir: &Path) -> Result<Scene, 
 const PARSE_BYTES_PER_BYTE: u64 = 48;
 
 /// Parses the TOML of `source`, if there is memory for it.
-fn parse_toml<'a>(source: Source<'a>) -> Result<Spanned<DeTable<'a>>, SceneError> {
+pub(super) fn parse_toml<'a>(source: Source<'a>) -> Result<Spanned<DeTable<'a>>, SceneError> {
     let size = source.text.len() as u64;
     memory::check(
         &format!("reading this {} file", Bytes(size)),

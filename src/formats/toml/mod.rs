@@ -1,5 +1,6 @@
 //! raylab's own scene files, in TOML ([`load_scene`], [`parse_scene`]), the camera files saved
-//! beside them ([`load_camera`]), and the built-in default scene written in one
+//! beside them ([`load_camera`]), the views files saved beside them ([`load_views`],
+//! [`views_text`]), and the built-in default scene written in one
 //! ([`default_scene`]). `load` reads a file in four steps: the
 //! text is parsed as TOML, `retag` moves its type tags where serde wants them, serde reads the
 //! schema (`file`, with the checked numbers of `values`), and `build` turns the schema into a
@@ -13,8 +14,10 @@ mod file;
 mod load;
 mod retag;
 mod values;
+mod views;
 
 pub use build::DEFAULT_MATERIAL;
 pub use builtin::{DEFAULT_SCENE_TEXT, default_scene};
 pub use edit::{Looks, SavedEdits, edit_text, save_edits};
 pub use load::{load_camera, load_scene, parse_scene, parse_scene_with};
+pub use views::{camera_table, load_views, parse_views, views_text};

@@ -64,9 +64,13 @@ impl App {
         for action in actions {
             self.apply(action, shown);
         }
+        self.step_preview();
         self.sync_tracing(now);
-        // The script sees what this frame's input started (a click's ray tree, say).
-        if let Some(action) = self.input.next_step(self.idle(), self.scene.loads()) {
+        // The script sees what this frame's input started (a click's ray tree, say). Its steps
+        // start once the first scene has loaded (or failed to): before, there is no camera.
+        if self.scene.loads() > 0
+            && let Some(action) = self.input.next_step(self.idle(), self.scene.loads())
+        {
             self.apply(action, shown);
             self.sync_tracing(now);
         }
@@ -76,7 +80,8 @@ impl App {
         let animating = self.tracing.refining()
             || self.scene.loading()
             || mouse_and_keys::flying(&ctx)
-            || self.input.busy();
+            || self.input.busy()
+            || self.previewing();
         let egui_delay = output
             .viewport_output
             .get(&egui::ViewportId::ROOT)
@@ -134,11 +139,11 @@ impl App {
 
     /// Refinement of the current scene and controls is over and on screen, no scene is loading,
     /// the picked pixel's tree is traced, no scripted click is playing, and the window has the
-    /// size it was last given.
+    /// size it was last given, and no preview of the views plays.
     fn idle(&self) -> bool {
         let resizing = self.gpu.as_ref().is_some_and(|g| g.resizing());
         let settled = self.tracing.settled_on(self.scene.shown());
         let picking = self.tracing.picked.busy() || self.input.clicking();
-        !self.scene.loading() && !resizing && settled && !picking
+        !self.scene.loading() && !resizing && settled && !picking && !self.previewing()
     }
 }

@@ -73,4 +73,13 @@ pub enum Action {
     EditLight { number: usize, edit: LightEdit },
     /// Write the edited materials and lights into the TOML scene file.
     SaveScene,
+    /// Store the camera as view 1…9 (in `NAME.views.toml` beside the scene file).
+    StoreView(u8),
+    /// Go to view 1…9.
+    RecallView(u8),
+    /// Preview a turntable of this many frames, or stop the preview playing.
+    Turntable(u32),
+    /// Preview the path through the views in this many frames (`None`: 30 between two views),
+    /// or stop the preview playing.
+    PlayPath(Option<u32>),
 }

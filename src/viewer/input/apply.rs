@@ -80,6 +80,10 @@ impl App {
                 println!("{message}");
                 self.ui.panel.message = Some(message);
             }
+            Action::StoreView(_)
+            | Action::RecallView(_)
+            | Action::Turntable(_)
+            | Action::PlayPath(_) => self.views(action),
             other => {
                 if let Some(s) = self.scene.shown_mut() {
                     navigate(s, other, shown);
@@ -210,6 +214,52 @@ impl App {
             None => "no image to keep yet",
         };
         self.ui.panel.message = Some(message.into());
+    }
+}
+
+impl App {
+    /// Stores, recalls or previews the views (see [`crate::viewer::scene::views`]), saying what
+    /// was done in the status message.
+    fn views(&mut self, action: Action) {
+        let Some(s) = self.scene.shown_mut() else {
+            return;
+        };
+        let camera = s.controls.camera;
+        let done = match action {
+            Action::StoreView(n) => s.views.store(n, camera).inspect(|m| println!("{m}")),
+            Action::RecallView(n) => match s.views.views.get(n) {
+                Some(view) => {
+                    s.controls.camera = view;
+                    Ok(format!("view {n}"))
+                }
+                None => Err(format!("no view {n} yet: Ctrl+{n} stores one")),
+            },
+            Action::Turntable(frames) => s.views.toggle_turntable(camera, frames),
+            Action::PlayPath(frames) => s.views.toggle_path(frames),
+            _ => return,
+        };
+        self.ui.panel.message = Some(done.unwrap_or_else(|e| e));
+    }
+
+    /// A preview of the views is playing.
+    pub fn previewing(&self) -> bool {
+        self.scene.shown().is_some_and(|s| s.views.previewing())
+    }
+
+    /// Moves the camera to the preview's next frame once the frame before is on screen.
+    pub fn step_preview(&mut self) {
+        let Some(s) = self.scene.shown() else { return };
+        let shown_before = self
+            .tracing
+            .rendering
+            .as_ref()
+            .is_some_and(|r| r.renders(s) && (r.first_image_shown || r.settled));
+        let Some(s) = self.scene.shown_mut() else {
+            return;
+        };
+        if shown_before && let Some(camera) = s.views.next_frame() {
+            s.controls.camera = camera;
+        }
     }
 }
 

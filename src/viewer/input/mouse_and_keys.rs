@@ -3,13 +3,15 @@
 //! double-click sets the orbit centre; Ctrl+S saves and C prints the camera. A click that is not
 //! a drag (or the key I) picks the pixel under the cursor (its ray tree is shown), Esc closes the
 //! tree. B keeps a snapshot to compare with, V turns the split view on and off. Enter skips the
-//! coarse passes (block size 1 at once), Space pauses and resumes refinement. Turns one frame's
-//! egui input into [`Action`]s.
+//! coarse passes (block size 1 at once), Space pauses and resumes refinement.
+//! Ctrl+1…9 stores the camera as a view, 1…9 recalls it; T previews a turntable and P the path
+//! through the views (again: stop). Turns one frame's egui input into [`Action`]s.
 
 use egui::{Key, Modifiers, MouseWheelUnit, PointerButton};
 use glam::Vec3;
 
 use super::action::Action;
+use crate::viewer::scene::views::TURNTABLE_FRAMES;
 use crate::viewer::ui::layout::{PixelRect, image_pixel, image_point};
 
 /// Degrees of orbit per point of drag.
@@ -25,6 +27,19 @@ const FLY_KEYS: [(Key, Vec3); 6] = [
     (Key::D, Vec3::X),
     (Key::E, Vec3::Y),
     (Key::Q, Vec3::NEG_Y),
+];
+
+/// The keys of views 1 to 9.
+const VIEW_KEYS: [Key; 9] = [
+    Key::Num1,
+    Key::Num2,
+    Key::Num3,
+    Key::Num4,
+    Key::Num5,
+    Key::Num6,
+    Key::Num7,
+    Key::Num8,
+    Key::Num9,
 ];
 
 /// Where the image is and how big, for turning cursor positions into image points.
@@ -160,6 +175,20 @@ fn key_actions(ctx: &egui::Context, seconds: f32) -> Vec<Action> {
         }
         if i.consume_key(Modifiers::NONE, Key::V) {
             actions.push(Action::ToggleCompare);
+        }
+        for (number, key) in (1..).zip(VIEW_KEYS) {
+            if i.consume_key(Modifiers::COMMAND, key) {
+                actions.push(Action::StoreView(number));
+            }
+            if i.consume_key(Modifiers::NONE, key) {
+                actions.push(Action::RecallView(number));
+            }
+        }
+        if i.consume_key(Modifiers::NONE, Key::T) {
+            actions.push(Action::Turntable(TURNTABLE_FRAMES));
+        }
+        if i.consume_key(Modifiers::NONE, Key::P) {
+            actions.push(Action::PlayPath(None));
         }
         actions
     })
@@ -352,5 +381,30 @@ mod tests {
             key(Key::V, true, Modifiers::NONE),
         ]);
         assert_eq!(actions, vec![Action::ToggleCompare]);
+    }
+
+    #[test]
+    fn ctrl_digits_store_views_digits_recall_them_and_t_and_p_preview() {
+        let mut h = Harness::new();
+        let actions = h.frame(vec![
+            Event::ModifiersChanged(Modifiers::COMMAND),
+            key(Key::Num3, true, Modifiers::COMMAND),
+        ]);
+        assert_eq!(actions, vec![Action::StoreView(3)]);
+        let actions = h.frame(vec![
+            Event::ModifiersChanged(Modifiers::NONE),
+            key(Key::Num3, false, Modifiers::COMMAND),
+            key(Key::Num9, true, Modifiers::NONE),
+            key(Key::T, true, Modifiers::NONE),
+            key(Key::P, true, Modifiers::NONE),
+        ]);
+        assert_eq!(
+            actions,
+            vec![
+                Action::RecallView(9),
+                Action::Turntable(TURNTABLE_FRAMES),
+                Action::PlayPath(None)
+            ]
+        );
     }
 }

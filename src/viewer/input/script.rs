@@ -1,6 +1,6 @@
 //! Scripted input, for tests and demonstrations: `--script "wait; orbit 30 10 5; wait"` drives
 //! the viewer through the same [`Action`]s as the mouse and keys. Steps, separated by `;` or new
-//! lines:
+//! lines, starting once the first scene has loaded:
 //!
 //! - `wait`: until refinement has reached its last pass and the image is on screen;
 //! - `wait-load N`: until N scene loads (or failed loads) have finished since the start, the
@@ -29,7 +29,11 @@
 //!   `fresnel on|off` (e.g. `material red kd 0.2`, `material red color 1 0 0`);
 //! - `light N FIELD VALUE…`: changes light N (counted from 1, in the file's order):
 //!   `position X Y Z`, `direction X Y Z`, `color R G B` (its brightest channel 1), `intensity I`;
-//! - `save-scene`: writes the edited materials and lights into the TOML scene file.
+//! - `save-scene`: writes the edited materials and lights into the TOML scene file;
+//! - `bookmark N`: stores the camera as view N (1 to 9), as Ctrl+N; `recall N`: goes to it, as N;
+//! - `turntable FRAMES`: previews a turntable of FRAMES frames (as T, which plays 72);
+//!   `play-path [FRAMES]`: previews the path through the views (as P); while a preview plays,
+//!   either stops it, and `wait` waits for it to end.
 
 use std::collections::VecDeque;
 use std::path::PathBuf;
@@ -245,6 +249,26 @@ fn parse_step(step: &str) -> Result<Step, String> {
                 until: None,
             }
         }
+        "bookmark" | "recall" => {
+            let n = count(numbers()?, 1, 0)?[0];
+            if !((1.0..=9.0).contains(&n) && n.fract() == 0.0) {
+                return Err(format!("views are numbered 1 to 9, got {n}"));
+            }
+            once(match command {
+                "bookmark" => Action::StoreView(n as u8),
+                _ => Action::RecallView(n as u8),
+            })
+        }
+        "turntable" => {
+            let n = count(numbers()?, 1, 0)?;
+            once(Action::Turntable(frames(&n, 0)?))
+        }
+        "play-path" => {
+            let n = count(numbers()?, 0, 1)?;
+            once(Action::PlayPath(
+                n.first().map(|_| frames(&n, 0)).transpose()?,
+            ))
+        }
         "fly" => {
             let n = count(numbers()?, 4, 0)?;
             once(Action::Fly {
@@ -291,7 +315,7 @@ fn parse_step(step: &str) -> Result<Step, String> {
                 "unknown step (use wait, wait-load, orbit, pan, dolly, fly, frame, reset, \
                  save, print-camera, open, resize, pick, click, close-inspector, print-tree, \
                  view, exposure, tonemap, snapshot, compare, divider, material, light, save-scene, \
-                 skip, pause, resume, sleep, print-status)"
+                 skip, pause, resume, sleep, print-status, bookmark, recall, turntable, play-path)"
                     .into(),
             );
         }
@@ -499,6 +523,34 @@ mod tests {
             ("light 0 intensity 1", "not a light number"),
             ("light 1 brightness 1", "unknown light field"),
             ("save-scene now", "takes no arguments"),
+        ] {
+            let err = Script::parse(text).unwrap_err();
+            assert!(err.contains(expected), "{text}: {err}");
+        }
+    }
+
+    #[test]
+    fn view_steps_parse() {
+        let mut script =
+            Script::parse("bookmark 1; recall 9; turntable 8; play-path; play-path 5").unwrap();
+        let all: Vec<_> = std::iter::from_fn(|| script.next(true, 0)).collect();
+        assert_eq!(
+            all,
+            vec![
+                Action::StoreView(1),
+                Action::RecallView(9),
+                Action::Turntable(8),
+                Action::PlayPath(None),
+                Action::PlayPath(Some(5)),
+            ]
+        );
+        for (text, expected) in [
+            ("bookmark 0", "views are numbered 1 to 9, got 0"),
+            ("recall 10", "views are numbered 1 to 9, got 10"),
+            ("recall", "takes 1 number"),
+            ("turntable 0", "frames must be a whole number from 1"),
+            ("turntable", "takes 1 number"),
+            ("play-path 1 2", "takes 0 numbers (and 1 optional)"),
         ] {
             let err = Script::parse(text).unwrap_err();
             assert!(err.contains(expected), "{text}: {err}");

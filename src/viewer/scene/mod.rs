@@ -1,11 +1,12 @@
 //! The scene being shown: loading scene files (or the built-in scene) in the background, watching
 //! the file for changes, the controls (camera, settings, lights, view, materials) the user edits,
-//! and saving the edited materials and lights back into a TOML scene file. Where the scene stands
-//! is one [`SceneState`]: loading, failed or loaded.
+//! saving the edited materials and lights back into a TOML scene file, and the bookmarked views
+//! (`views`). Where the scene stands is one [`SceneState`]: loading, failed or loaded.
 
 pub mod controls;
 pub mod edits;
 pub mod source;
+pub mod views;
 pub mod watch;
 
 use std::path::{Path, PathBuf};
@@ -19,6 +20,7 @@ use winit::event_loop::EventLoopProxy;
 
 use self::controls::Controls;
 use self::source::LoadedScene;
+use self::views::SceneViews;
 use self::watch::SceneWatcher;
 use crate::viewer::app::UserEvent;
 
@@ -30,6 +32,8 @@ pub struct Shown {
     /// The controls as the scene file gives them (no overrides), to tell which a reloaded file
     /// changed.
     pub file_controls: Controls,
+    /// The bookmarked views and their preview.
+    pub views: SceneViews,
 }
 
 /// Where the scene stands.
@@ -53,6 +57,8 @@ pub struct SceneInfo<'a> {
     pub load_error: Option<&'a str>,
     /// The scene files beside the one asked for.
     pub files_beside: &'a [PathBuf],
+    /// The bookmarked views.
+    pub views: &'a SceneViews,
 }
 
 /// The scene, the loads that bring it and the file watched for changes.
@@ -205,11 +211,13 @@ impl SceneSlot {
             }
             _ => with_overrides,
         };
+        let views = SceneViews::new(loaded.views.clone(), loaded.path.as_deref());
         let scene: Arc<LoadedScene> = Arc::from(loaded);
         self.state = SceneState::Loaded(Shown {
             scene: scene.clone(),
             controls,
             file_controls,
+            views,
         });
         Ok(scene)
     }
@@ -260,6 +268,7 @@ impl SceneSlot {
             scene: &shown.scene,
             load_error,
             files_beside: &self.files_beside,
+            views: &shown.views,
         };
         Some((info, &mut shown.controls))
     }

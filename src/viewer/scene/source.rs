@@ -8,9 +8,11 @@ use std::time::{Duration, Instant};
 use raylab::aabb::Aabb;
 use raylab::bvh::Bvh;
 use raylab::formats::nff::NffLighting;
+use raylab::formats::toml::load_views;
 use raylab::formats::toml::{default_scene, load_scene};
-use raylab::formats::{SceneFormat, load_any_as};
+use raylab::formats::{SceneFormat, load_any_as, views_path};
 use raylab::scene::Scene;
+use raylab::views::Views;
 
 /// A scene ready to trace, with where it came from.
 pub struct LoadedScene {
@@ -24,6 +26,8 @@ pub struct LoadedScene {
     pub bounds: Aabb,
     /// Time to read the file and build the BVH.
     pub load_time: Duration,
+    /// The views of the `NAME.views.toml` beside the file, as read.
+    pub views: Views,
 }
 
 impl LoadedScene {
@@ -37,8 +41,8 @@ impl LoadedScene {
 }
 
 /// Reads the scene at `path` (a TOML, NFF or SDL file, or an `spd:NAME[:SIZE]` name; the default
-/// scene for `None`) in `format`, or the one its name says, and builds its BVH. The error is the
-/// loader's message (`file:line:column: message`).
+/// scene for `None`) in `format`, or the one its name says, with the views file beside it, and
+/// builds its BVH. The error is the loader's message (`file:line:column: message`).
 pub fn load(path: Option<&Path>, format: Option<SceneFormat>) -> Result<LoadedScene, String> {
     let start = Instant::now();
     let scene = match path {
@@ -49,6 +53,10 @@ pub fn load(path: Option<&Path>, format: Option<SceneFormat>) -> Result<LoadedSc
         None => default_scene(),
     }
     .map_err(|e| e.to_string())?;
+    let views = match path.map(views_path).filter(|file| file.is_file()) {
+        Some(file) => load_views(&file, scene.camera.spec).map_err(|e| e.to_string())?,
+        None => Views::default(),
+    };
     let bvh = Bvh::build(&scene.geometry);
     let bounds = bvh.bounds().unwrap_or(Aabb::EMPTY);
     let toml_file = path.is_some_and(|p| {
@@ -61,6 +69,7 @@ pub fn load(path: Option<&Path>, format: Option<SceneFormat>) -> Result<LoadedSc
         toml_file,
         bounds,
         load_time: start.elapsed(),
+        views,
     })
 }
 

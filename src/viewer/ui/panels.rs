@@ -13,6 +13,7 @@ use super::{legend_bar, materials_panel};
 use crate::viewer::input::action::Action;
 use crate::viewer::scene::SceneInfo;
 use crate::viewer::scene::controls::Controls;
+use crate::viewer::scene::views::{SceneViews, TURNTABLE_FRAMES};
 
 /// What the side panel keeps besides the scene and the controls.
 pub struct PanelState {
@@ -47,6 +48,7 @@ pub fn side_panel(
             egui::ScrollArea::vertical().show(ui, |ui| {
                 scene_section(ui, scene, state, &mut actions);
                 camera_section(ui, controls, &mut actions);
+                views_section(ui, scene.views, &mut actions);
                 tracing_section(ui, controls, state, legend);
                 lights_section(ui, controls, scene.scene.scene.lights.len());
                 display::section(ui, &mut state.display, &mut actions);
@@ -341,5 +343,41 @@ fn save_section(ui: &mut egui::Ui, state: &mut PanelState, actions: &mut Vec<Act
             if let Some(m) = &state.message {
                 ui.label(m);
             }
+        });
+}
+
+/// The views: which are stored, and the buttons that start and stop the previews.
+fn views_section(ui: &mut egui::Ui, views: &SceneViews, actions: &mut Vec<Action>) {
+    egui::CollapsingHeader::new("Views")
+        .default_open(true)
+        .show(ui, |ui| {
+            let stored: Vec<String> = views.views.iter().map(|(n, _)| n.to_string()).collect();
+            ui.label(if stored.is_empty() {
+                "none stored".to_string()
+            } else {
+                format!("stored: {}", stored.join(" "))
+            });
+            ui.horizontal(|ui| {
+                let (turntable, path) = if views.previewing() {
+                    ("Stop (T)", "Stop (P)")
+                } else {
+                    ("Turntable (T)", "Path (P)")
+                };
+                if ui
+                    .button(turntable)
+                    .on_hover_text("preview the eye orbiting the look-at point")
+                    .clicked()
+                {
+                    actions.push(Action::Turntable(TURNTABLE_FRAMES));
+                }
+                if ui
+                    .button(path)
+                    .on_hover_text("preview the path through the views, in order")
+                    .clicked()
+                {
+                    actions.push(Action::PlayPath(None));
+                }
+            });
+            ui.label(egui::RichText::new("Ctrl+1…9: store the camera · 1…9: go to it").small());
         });
 }
