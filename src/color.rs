@@ -40,48 +40,9 @@ pub fn to_srgb8(pixels: &[Color]) -> Vec<u8> {
         .collect()
 }
 
-/// Where [`srgb8`] steps up: entry `k` is the least linear value whose byte is `k + 1`, so a
-/// value's byte is the number of entries at or below it. The viewer's shader encodes with this
-/// table, exactly as [`srgb8`] does, without its own `pow`.
-pub fn srgb8_steps() -> [f32; 255] {
-    std::array::from_fn(|k| {
-        let byte = k as u8 + 1;
-        // Bit patterns of non-negative floats are ordered like the floats, and srgb8 rises.
-        let (mut lo, mut hi) = (0u32, 1f32.to_bits());
-        while lo < hi {
-            let mid = lo + (hi - lo) / 2;
-            if srgb8(f32::from_bits(mid)) >= byte {
-                hi = mid;
-            } else {
-                lo = mid + 1;
-            }
-        }
-        f32::from_bits(lo)
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn counting_the_steps_below_a_value_gives_its_byte() {
-        let steps = srgb8_steps();
-        let by_steps = |v: f32| steps.iter().filter(|&&s| s <= v).count() as u8;
-        let mut v = 1e-7f32;
-        while v < 1.5 {
-            assert_eq!(by_steps(v), srgb8(v), "{v}");
-            v *= 1.0007;
-        }
-        for (k, &step) in steps.iter().enumerate() {
-            let below = f32::from_bits(step.to_bits() - 1);
-            assert_eq!(srgb8(step), k as u8 + 1);
-            assert_eq!(srgb8(below), k as u8, "the step is the least such value");
-        }
-        for v in [-1.0, 0.0, f32::INFINITY, 1.0] {
-            assert_eq!(by_steps(v), srgb8(v), "{v}");
-        }
-    }
 
     #[test]
     fn srgb_round_trip() {

@@ -1,9 +1,8 @@
 //! Tone mapping: how the linear colours of the film become the 8-bit sRGB of the screen and of
 //! PNG and PPM files. An exposure in stops scales the linear values (each stop doubles them), a
 //! [`ToneCurve`] brings them into [0, 1], and the one sRGB encoder ([`srgb8`]) makes bytes. The
-//! default (exposure 0, [`ToneCurve::Clamp`]) is the plain encoding, bit for bit. The viewer's
-//! quad shader (`shaders/quad.wgsl`) does the same sums on the GPU, with the same curves, so what
-//! the viewer saves is what it shows.
+//! default (exposure 0, [`ToneCurve::Clamp`]) is the plain encoding, bit for bit. The viewer
+//! uploads its image through the same [`Tone`], so what it saves is what it shows.
 
 use std::fmt;
 use std::str::FromStr;
@@ -35,15 +34,6 @@ impl ToneCurve {
             ToneCurve::Clamp => "clamp",
             ToneCurve::Reinhard => "reinhard",
             ToneCurve::Filmic => "filmic",
-        }
-    }
-
-    /// The curve's number in the viewer's shader (`display.curve` in `shaders/quad.wgsl`).
-    pub fn shader_index(self) -> u32 {
-        match self {
-            ToneCurve::Clamp => 0,
-            ToneCurve::Reinhard => 1,
-            ToneCurve::Filmic => 2,
         }
     }
 

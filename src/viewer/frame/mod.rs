@@ -101,7 +101,7 @@ impl App {
             return false;
         };
         let screenshot = self.input.screenshot().filter(|_| frame.finishing);
-        gfx.set_display(self.ui.panel.display.uniforms());
+        gfx.set_display(self.ui.panel.display.shown());
         let painted = gfx.paint(
             &self.ui.egui,
             frame.output,

@@ -157,13 +157,7 @@ impl Graphics {
         } else {
             0.0
         };
-        quad.set_display(
-            &self.gpu.queue,
-            Display {
-                divider,
-                ..self.display
-            },
-        );
+        quad.set_divider(&self.gpu.queue, divider);
         let content = FrameContent {
             primitives: &primitives,
             pixels_per_point,
@@ -212,7 +206,7 @@ impl Graphics {
             self.uploader.invalidate();
         }
         let start = Instant::now();
-        if let Some((texels, rows)) = self.uploader.changed_pixels(&r.film) {
+        if let Some((texels, rows)) = self.uploader.changed_pixels(&r.film, self.display.tone) {
             write_rows(&self.gpu.queue, texture, texels, &rows);
             timing.upload(start.elapsed());
             Some(progress)

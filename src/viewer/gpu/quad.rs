@@ -1,23 +1,21 @@
-//! The GPU quad: a texture of the image's size holding the film's linear colours (floats), and
-//! maybe a snapshot of it, drawn on two triangles by `shaders/quad.wgsl` into the letterboxed
-//! image rectangle, set as the render pass's viewport. The shader shows each screen pixel's
-//! nearest texel (so coarse passes show as fat pixels) through the exposure and tone curve of
-//! the [`Display`] uniforms, and the snapshot left of the divider when comparing.
+//! The GPU quad: a texture of the image's size holding the bytes the display shows (the upload
+//! has applied exposure, tone curve and sRGB, [`super::upload`]), and maybe a snapshot of it,
+//! drawn on two triangles by `shaders/quad.wgsl` into the image rectangle, set as the render
+//! pass's viewport. The shader shows each screen pixel's nearest texel (so coarse passes show as
+//! fat pixels), and the snapshot left of the divider when comparing.
 
-use raylab::color::srgb8_steps;
 use raylab::tone::Tone;
 
 use crate::viewer::ui::layout::PixelRect;
 
-/// The texture format of the image and the snapshot: the film's linear floats as they are.
-pub const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// The texture format of the image and the snapshot: sRGB bytes, passed to the (non-sRGB) target
+/// unchanged.
+pub const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
-/// Bytes of the uniforms before the sRGB steps: scale, curve, divider and one unused.
-const DISPLAY_HEADER_BYTES: usize = 16;
-/// The sRGB steps take 64 vectors of four (the last slot unused).
-const DISPLAY_BYTES: usize = DISPLAY_HEADER_BYTES + 64 * 16;
+/// Bytes of the shader's uniforms: the divider and three unused.
+const DISPLAY_BYTES: usize = 16;
 
-/// How the quad shows the image: `Display` in `shaders/quad.wgsl`.
+/// How the image is shown: the tone its texels are made with, and the split view.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Display {
     pub tone: Tone,
@@ -41,8 +39,8 @@ pub struct QuadRenderer {
 }
 
 impl QuadRenderer {
-    /// A renderer drawing into targets of `format` (which should not be sRGB: the shader
-    /// encodes sRGB itself).
+    /// A renderer drawing into targets of `format` (which should not be sRGB: the texels are
+    /// sRGB already).
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
@@ -111,32 +109,21 @@ impl QuadRenderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let steps: Vec<u8> = srgb8_steps()
-            .into_iter()
-            .chain([f32::INFINITY])
-            .flat_map(f32::to_ne_bytes)
-            .collect();
-        queue.write_buffer(&display, DISPLAY_HEADER_BYTES as u64, &steps);
         let quad = QuadRenderer {
             pipeline,
             layout,
             display,
             image: None,
         };
-        quad.set_display(queue, Display::default());
+        quad.set_divider(queue, 0.0);
         quad
     }
 
-    /// Shows the image through `display` from the next frame on.
-    pub fn set_display(&self, queue: &wgpu::Queue, display: Display) {
-        let header: Vec<u8> = [
-            display.tone.scale().to_ne_bytes(),
-            display.tone.curve.shader_index().to_ne_bytes(),
-            display.divider.to_ne_bytes(),
-            [0; 4],
-        ]
-        .concat();
-        queue.write_buffer(&self.display, 0, &header);
+    /// Shows the snapshot left of image x `divider` (0 left, 1 right; 0: none of it) from the
+    /// next frame on.
+    pub fn set_divider(&self, queue: &wgpu::Queue, divider: f32) {
+        let uniforms: Vec<u8> = [divider.to_ne_bytes(), [0; 4], [0; 4], [0; 4]].concat();
+        queue.write_buffer(&self.display, 0, &uniforms);
     }
 
     /// The image texture, made `width × height` (a new, black one without a snapshot when the
@@ -266,12 +253,11 @@ fn image_texture(device: &wgpu::Device, label: &str, width: u32, height: u32) ->
 #[cfg(test)]
 mod tests {
     use raylab::color::{Color, srgb_to_linear};
-    use raylab::tone::ToneCurve;
 
     use super::*;
     use crate::viewer::gpu::device::Gpu;
     use crate::viewer::gpu::screenshot::{offscreen_target, read_texture};
-    use crate::viewer::gpu::upload::{TEXEL_BYTES, texel, write_rows};
+    use crate::viewer::gpu::upload::{SrgbEncoder, TEXEL_BYTES, write_rows};
     use crate::viewer::ui::layout::letterbox;
 
     const CLEAR: [u8; 4] = [0, 0, 255, 255];
@@ -286,9 +272,10 @@ mod tests {
     /// Uploads `pixels` as the quad's `width`-wide image.
     fn upload(gpu: &Gpu, quad: &mut QuadRenderer, width: u32, pixels: &[Color]) {
         let height = pixels.len() as u32 / width;
+        let encoder = SrgbEncoder::new();
         let mut bytes = vec![0; pixels.len() * TEXEL_BYTES];
         for (c, out) in pixels.iter().zip(bytes.chunks_exact_mut(TEXEL_BYTES)) {
-            texel(*c, out);
+            encoder.texel(*c, Tone::default(), out);
         }
         let (texture, _) = quad.image_texture(&gpu.device, width, height);
         write_rows(
@@ -408,49 +395,13 @@ mod tests {
     }
 
     #[test]
-    fn the_shader_shows_the_librarys_tone_mapping() {
-        let (gpu, mut quad) = quad();
-        // Linear values from 0 to about 60, one per pixel, in a 64-wide image.
-        let values: Vec<f32> = (0..64 * 64).map(|i| 1e-4 * 1.003f32.powi(i)).collect();
-        let pixels: Vec<Color> = values
-            .iter()
-            .map(|&v| Color::new(v, v * 0.37, v * 2.9))
-            .collect();
-        upload(&gpu, &mut quad, 64, &pixels);
-        for curve in ToneCurve::ALL {
-            for exposure in [0.0, 1.0, -2.5] {
-                let tone = Tone::new(exposure, curve).unwrap();
-                quad.set_display(&gpu.queue, Display { tone, divider: 0.0 });
-                let (shown, _) = draw(&gpu, &quad, (64, 64));
-                let mut off = 0;
-                for (c, got) in pixels.iter().zip(shown.chunks_exact(4)) {
-                    let expected = tone.map(*c);
-                    for ch in 0..3 {
-                        let d = got[ch].abs_diff(expected[ch]);
-                        assert!(d <= 1, "{tone:?} at {c}: {got:?} vs {expected:?}");
-                        off += usize::from(d > 0);
-                    }
-                }
-                // Clamp needs only the exact multiply: the same bytes.
-                if curve == ToneCurve::Clamp {
-                    assert_eq!(off, 0, "{tone:?}");
-                }
-            }
-        }
-    }
-
-    #[test]
     fn the_snapshot_shows_left_of_the_divider() {
         let (gpu, mut quad) = quad();
         assert_eq!(quad.take_snapshot(&gpu.device, &gpu.queue), None);
         upload(&gpu, &mut quad, 8, &[Color::ONE; 32]);
         assert_eq!(quad.take_snapshot(&gpu.device, &gpu.queue), Some((8, 4)));
         upload(&gpu, &mut quad, 8, &[Color::new(0.0, 1.0, 0.0); 32]);
-        let display = Display {
-            tone: Tone::default(),
-            divider: 0.25,
-        };
-        quad.set_display(&gpu.queue, display);
+        quad.set_divider(&gpu.queue, 0.25);
         let (shown, _) = draw(&gpu, &quad, (8, 4));
         for (i, got) in shown.chunks_exact(4).enumerate() {
             let expected = if i % 8 < 2 {

@@ -1,44 +1,104 @@
 //! Texture upload: copies the film into the GPU texture, at most once per frame and only when the
 //! film's [`version`](raylab::film::Film::version) says its pixels changed, and then only the
 //! rows the film says changed ([`Film::take_changed_rows`]), one write per run of rows (the
-//! whole image for a new film or texture). The texture holds the film's linear floats unchanged ([`texel`]); the quad's
-//! shader applies exposure, tone curve and sRGB encoding.
+//! whole image for a new film, a new texture or a new [`Tone`]). Each pixel goes up as the bytes
+//! the display shows: its linear colour through the exposure and tone curve, then sRGB through a
+//! table indexed by the float's top bits, which gives exactly the library's
+//! [`Tone::map`] without a `powf` per channel. Doing this here, on the rows that changed, rather
+//! than in the quad's shader for every screen pixel of every frame keeps the frame rate of a
+//! software GPU (lavapipe) where it was, and what is saved is what is shown by construction.
 
 use std::ops::Range;
 use std::sync::Arc;
 
-use raylab::color::Color;
+use raylab::color::{Color, srgb8 as srgb_byte};
 use raylab::film::Film;
+use raylab::tone::Tone;
 
-/// Bytes of one texel of [`IMAGE_FORMAT`](super::quad::IMAGE_FORMAT): four floats.
-pub const TEXEL_BYTES: usize = 16;
+/// Bytes of one texel of [`IMAGE_FORMAT`](super::quad::IMAGE_FORMAT): red, green, blue, alpha.
+pub const TEXEL_BYTES: usize = 4;
 
-/// One film pixel as its texel of [`IMAGE_FORMAT`](super::quad::IMAGE_FORMAT): the linear colour and an opaque alpha.
-pub fn texel(c: Color, out: &mut [u8]) {
-    for (bytes, v) in out.chunks_exact_mut(4).zip([c.x, c.y, c.z, 1.0]) {
-        bytes.copy_from_slice(&v.to_ne_bytes());
+/// Bucket of a linear value in [0, 1): its bit pattern without the lowest bits. Each bucket is
+/// 1/128 of an octave wide, narrower than the gap between two byte thresholds, so it holds at
+/// most one of them.
+const BUCKET_SHIFT: u32 = 16;
+
+/// Linear → sRGB byte by table: for each bucket of values, the byte of its lowest value and the
+/// value (if any) from which the byte is one more.
+pub struct SrgbEncoder {
+    buckets: Vec<(u8, f32)>,
+}
+
+impl SrgbEncoder {
+    pub fn new() -> SrgbEncoder {
+        let buckets = (0..1f32.to_bits() >> BUCKET_SHIFT)
+            .map(|k| {
+                let (lo, hi) = (k << BUCKET_SHIFT, ((k + 1) << BUCKET_SHIFT) - 1);
+                let base = srgb_byte(f32::from_bits(lo));
+                if srgb_byte(f32::from_bits(hi)) == base {
+                    return (base, f32::INFINITY);
+                }
+                // Bit patterns of non-negative floats are ordered like the floats.
+                let (mut lo, mut hi) = (lo, hi);
+                while lo < hi {
+                    let mid = lo + (hi - lo) / 2;
+                    if srgb_byte(f32::from_bits(mid)) > base {
+                        hi = mid;
+                    } else {
+                        lo = mid + 1;
+                    }
+                }
+                (base, f32::from_bits(lo))
+            })
+            .collect();
+        SrgbEncoder { buckets }
+    }
+
+    pub fn encode(&self, v: f32) -> u8 {
+        if v.is_nan() || v <= 0.0 {
+            // Zero, negative or NaN, as the library clamps them.
+            return 0;
+        }
+        if v >= 1.0 {
+            return 255;
+        }
+        let (base, step) = self.buckets[(v.to_bits() >> BUCKET_SHIFT) as usize];
+        base + u8::from(v >= step)
+    }
+
+    /// One film pixel as its texel: the bytes `tone` makes of its colour, opaque.
+    pub fn texel(&self, c: Color, tone: Tone, out: &mut [u8]) {
+        let scale = tone.scale();
+        for (byte, v) in out.iter_mut().zip(c.to_array()) {
+            *byte = self.encode(tone.curve.apply(v * scale));
+        }
+        out[3] = 255;
     }
 }
 
 /// Keeps the texture in step with a film.
 pub struct Uploader {
-    /// The film last uploaded and its version then.
-    uploaded: Option<(Arc<Film>, u64)>,
+    encoder: SrgbEncoder,
+    /// The film last uploaded, its version then and the tone its bytes were made with.
+    uploaded: Option<(Arc<Film>, u64, Tone)>,
     bytes: Vec<u8>,
 }
 
 impl Uploader {
     pub fn new() -> Uploader {
         Uploader {
+            encoder: SrgbEncoder::new(),
             uploaded: None,
             bytes: Vec::new(),
         }
     }
 
-    /// Whether `film` has pixels the texture does not show yet.
-    pub fn is_stale(&self, film: &Arc<Film>) -> bool {
+    /// Whether the texture does not show `film` through `tone` yet.
+    pub fn is_stale(&self, film: &Arc<Film>, tone: Tone) -> bool {
         match &self.uploaded {
-            Some((last, version)) => !Arc::ptr_eq(last, film) || *version != film.version(),
+            Some((last, version, made_with)) => {
+                !Arc::ptr_eq(last, film) || *version != film.version() || *made_with != tone
+            }
             None => true,
         }
     }
@@ -48,12 +108,16 @@ impl Uploader {
         self.uploaded = None;
     }
 
-    /// The film as texels of [`IMAGE_FORMAT`](super::quad::IMAGE_FORMAT), row 0 at the top,
-    /// with the runs of rows that changed since the last call (all of them for a film not
-    /// uploaded before), if any did; the caller writes those rows to the texture
-    /// ([`write_rows`]).
-    pub fn changed_pixels(&mut self, film: &Arc<Film>) -> Option<(&[u8], Vec<Range<u32>>)> {
-        if !self.is_stale(film) {
+    /// The film through `tone` as texels of [`IMAGE_FORMAT`](super::quad::IMAGE_FORMAT), row 0
+    /// at the top, with the runs of rows that changed since the last call (all of them for a
+    /// film not uploaded before, or a new tone), if any did; the caller writes those rows to the
+    /// texture ([`write_rows`]).
+    pub fn changed_pixels(
+        &mut self,
+        film: &Arc<Film>,
+        tone: Tone,
+    ) -> Option<(&[u8], Vec<Range<u32>>)> {
+        if !self.is_stale(film, tone) {
             return None;
         }
         // Read the version and take the rows first: pixels written later may be included, never
@@ -62,7 +126,7 @@ impl Uploader {
         let changed = film.take_changed_rows();
         let (w, h) = (film.width() as usize, film.height());
         let rows = match &self.uploaded {
-            Some((last, _)) if Arc::ptr_eq(last, film) => changed,
+            Some((last, _, made_with)) if Arc::ptr_eq(last, film) && *made_with == tone => changed,
             _ => std::iter::once(0..h).collect(),
         };
         self.bytes.resize(w * h as usize * TEXEL_BYTES, 0);
@@ -70,10 +134,10 @@ impl Uploader {
         for y in rows.iter().flat_map(|run| run.clone()) {
             let row = &mut self.bytes[y as usize * row_bytes..(y as usize + 1) * row_bytes];
             for (x, out) in row.chunks_exact_mut(TEXEL_BYTES).enumerate() {
-                texel(film.get(x as u32, y), out);
+                self.encoder.texel(film.get(x as u32, y), tone, out);
             }
         }
-        self.uploaded = Some((film.clone(), version));
+        self.uploaded = Some((film.clone(), version, tone));
         Some((&self.bytes, rows))
     }
 }
@@ -116,53 +180,100 @@ pub fn write_rows(
 
 #[cfg(test)]
 mod tests {
+    use raylab::tone::ToneCurve;
+
     use super::*;
 
     #[test]
-    fn pixels_are_given_once_per_change() {
+    fn the_table_encodes_exactly_like_the_library() {
+        let encoder = SrgbEncoder::new();
+        let mut v = 1e-7f32;
+        while v < 1.5 {
+            assert_eq!(encoder.encode(v), srgb_byte(v), "{v}");
+            v *= 1.0007;
+        }
+        for &(base, step) in &encoder.buckets {
+            if step.is_finite() {
+                let below = f32::from_bits(step.to_bits() - 1);
+                assert_eq!(encoder.encode(step), srgb_byte(step));
+                assert_eq!(encoder.encode(step), base + 1, "one step per bucket");
+                assert_eq!(encoder.encode(below), srgb_byte(below));
+            }
+        }
+        let steps = encoder.buckets.iter().filter(|b| b.1.is_finite()).count();
+        assert_eq!(steps, 255, "every byte boundary is in the table once");
+        for v in [-1.0, 0.0, f32::NAN, f32::INFINITY, 1.0] {
+            assert_eq!(encoder.encode(v), srgb_byte(v), "{v}");
+        }
+    }
+
+    #[test]
+    fn texels_are_the_librarys_tone_mapping() {
+        let encoder = SrgbEncoder::new();
+        let mut out = [0; TEXEL_BYTES];
+        for curve in ToneCurve::ALL {
+            for exposure in [-2.0, 0.0, 0.5, 1.0, 3.0] {
+                let tone = Tone::new(exposure, curve).unwrap();
+                let mut v = 1e-5f32;
+                while v < 64.0 {
+                    let c = Color::new(v, v * 0.5, v * 3.0);
+                    encoder.texel(c, tone, &mut out);
+                    let [r, g, b] = tone.map(c);
+                    assert_eq!(out, [r, g, b, 255], "{tone:?} at {c}");
+                    v *= 1.01;
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn pixels_are_given_once_per_change_and_again_through_a_new_tone() {
         let film = Arc::new(Film::new(2, 1));
-        film.set(1, 0, Color::ONE);
+        film.set(1, 0, Color::splat(0.5));
         film.touch();
         let mut uploader = Uploader::new();
-        let mut expected = [0; 2 * TEXEL_BYTES];
-        texel(Color::ZERO, &mut expected[..TEXEL_BYTES]);
-        texel(Color::ONE, &mut expected[TEXEL_BYTES..]);
+        let plain = Tone::default();
+        let once = std::iter::once(0..1).collect::<Vec<_>>();
         assert_eq!(
-            uploader.changed_pixels(&film),
-            Some((&expected[..], std::iter::once(0..1).collect()))
+            uploader.changed_pixels(&film, plain),
+            Some((&[0, 0, 0, 255, 188, 188, 188, 255][..], once.clone()))
         );
-        let floats: Vec<f32> = expected
-            .chunks_exact(4)
-            .map(|b| f32::from_ne_bytes([b[0], b[1], b[2], b[3]]))
-            .collect();
-        assert_eq!(floats, [0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0]);
-        assert_eq!(uploader.changed_pixels(&film), None);
+        assert_eq!(uploader.changed_pixels(&film, plain), None);
+        // One stop brighter: the same rows again, brighter, though the film did not change.
+        let brighter = Tone::new(1.0, ToneCurve::Clamp).unwrap();
+        assert!(uploader.is_stale(&film, brighter));
+        assert_eq!(
+            uploader.changed_pixels(&film, brighter),
+            Some((&[0, 0, 0, 255, 255, 255, 255, 255][..], once))
+        );
         film.touch();
-        assert!(uploader.changed_pixels(&film).is_some());
+        assert!(uploader.changed_pixels(&film, brighter).is_some());
         let other = Arc::new(Film::new(2, 1));
-        assert!(uploader.is_stale(&other));
+        assert!(uploader.is_stale(&other, brighter));
         uploader.invalidate();
-        assert!(uploader.is_stale(&film));
+        assert!(uploader.is_stale(&film, brighter));
     }
 
     #[test]
     fn only_the_changed_rows_are_converted_and_given() {
         let film = Arc::new(Film::new(1, 4));
         let mut uploader = Uploader::new();
+        let tone = Tone::default();
         film.touch_rows(1..2);
         // A film not uploaded before goes up whole.
-        let (_, rows) = uploader.changed_pixels(&film).unwrap();
+        let (_, rows) = uploader.changed_pixels(&film, tone).unwrap();
         assert_eq!(rows, std::iter::once(0..4).collect::<Vec<_>>());
         // Row 3 is written but not marked: it is not converted.
         film.set(0, 2, Color::ONE);
         film.set(0, 3, Color::ONE);
         film.touch_rows(2..3);
-        let (bytes, rows) = uploader.changed_pixels(&film).unwrap();
+        let (bytes, rows) = uploader.changed_pixels(&film, tone).unwrap();
         assert_eq!(rows, std::iter::once(2..3).collect::<Vec<_>>());
-        let (mut one, mut zero) = ([0; TEXEL_BYTES], [0; TEXEL_BYTES]);
-        texel(Color::ONE, &mut one);
-        texel(Color::ZERO, &mut zero);
-        assert_eq!(bytes[2 * TEXEL_BYTES..3 * TEXEL_BYTES], one);
-        assert_eq!(bytes[3 * TEXEL_BYTES..], zero, "row 3 is as first uploaded");
+        assert_eq!(bytes[2 * TEXEL_BYTES..3 * TEXEL_BYTES], [255; 4]);
+        assert_eq!(
+            bytes[3 * TEXEL_BYTES..],
+            [0, 0, 0, 255],
+            "row 3 is as first uploaded"
+        );
     }
 }

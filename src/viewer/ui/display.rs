@@ -36,8 +36,8 @@ impl Default for DisplayControls {
 }
 
 impl DisplayControls {
-    /// The quad's uniforms: the tone, and the divider while comparing.
-    pub fn uniforms(&self) -> Display {
+    /// How the image is shown: the tone, and the divider while comparing.
+    pub fn shown(&self) -> Display {
         Display {
             tone: self.tone,
             divider: if self.splits() { self.divider } else { 0.0 },
@@ -161,24 +161,21 @@ mod tests {
         let mut d = DisplayControls::default();
         d.apply(Action::Divider(0.3));
         d.apply(Action::Compare(true));
-        assert_eq!(d.uniforms().divider, 0.0, "no snapshot yet");
+        assert_eq!(d.shown().divider, 0.0, "no snapshot yet");
         d.snapshot = Some((4, 3));
-        assert_eq!(d.uniforms().divider, 0.3);
+        assert_eq!(d.shown().divider, 0.3);
         d.apply(Action::ToggleCompare);
-        assert_eq!(d.uniforms().divider, 0.0);
+        assert_eq!(d.shown().divider, 0.0);
         d.apply(Action::Divider(7.0));
         assert_eq!(d.divider, 1.0);
     }
 
     #[test]
-    fn exposure_and_curve_go_to_the_shader() {
+    fn exposure_and_curve_go_to_the_display() {
         let mut d = DisplayControls::default();
         d.apply(Action::Exposure(2.0));
         d.apply(Action::ToneCurve(ToneCurve::Reinhard));
-        assert_eq!(
-            d.uniforms().tone,
-            Tone::new(2.0, ToneCurve::Reinhard).unwrap()
-        );
+        assert_eq!(d.shown().tone, Tone::new(2.0, ToneCurve::Reinhard).unwrap());
     }
 
     #[test]
