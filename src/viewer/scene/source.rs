@@ -87,8 +87,10 @@ pub fn spawn_load(
     }
 }
 
-/// The scene files (`*.toml`, `*.nff` and SDL's `*.dat` and `*.sdl`, sorted by name) in the folder of `path`; for the
-/// built-in scene (`None`), those in `assets/scenes` under the current folder, if there is one.
+/// The scene files (`*.toml`, `*.nff` and SDL's `*.dat` and `*.sdl`, sorted by name, leaving out
+/// the cameras and views saved beside scenes, `NAME.camera.toml` and `NAME.views.toml`) in the
+/// folder of `path`; for the built-in scene (`None`), those in `assets/scenes` under the current
+/// folder, if there is one.
 pub fn scene_files_beside(path: Option<&Path>) -> Vec<PathBuf> {
     let folder = match path {
         Some(p) => p.parent().map(Path::to_path_buf).unwrap_or_default(),
@@ -111,7 +113,11 @@ pub fn scene_files_beside(path: Option<&Path>) -> Vec<PathBuf> {
                 .map(str::to_ascii_lowercase);
             p.is_file() && matches!(ext.as_deref(), Some("toml" | "nff" | "dat" | "sdl"))
         })
-        .filter(|p| p.file_name().is_some_and(|n| n != "Cargo.toml"))
+        .filter(|p| {
+            p.file_name().and_then(|n| n.to_str()).is_some_and(|n| {
+                n != "Cargo.toml" && !n.ends_with(".camera.toml") && !n.ends_with(".views.toml")
+            })
+        })
         .collect();
     files.sort();
     files
@@ -153,6 +159,8 @@ mod tests {
             "Cargo.toml",
             "c.NFF",
             "d.dat",
+            "a.camera.toml",
+            "d.views.toml",
         ] {
             std::fs::write(dir.path().join(name), "").unwrap();
         }

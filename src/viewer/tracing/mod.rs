@@ -149,8 +149,12 @@ impl Tracing {
     }
 
     /// Starts rendering `shown` as `setup` says, on the film of the render before when it has
-    /// the same size.
-    fn submit(&mut self, shown: &Shown, setup: TraceSetup, changed_at: Instant) {
+    /// the same size. With caustics, anti-aliasing waits for their last round: each round paints
+    /// every pixel again at block size 1, which would throw the extra samples away.
+    fn submit(&mut self, shown: &Shown, mut setup: TraceSetup, changed_at: Instant) {
+        if setup.settings.caustic_photons > 0 && setup.caustic_round + 1 < MAX_ROUNDS {
+            setup.settings.samples = 1;
+        }
         let (caustic_round, start_block) = (setup.caustic_round, setup.settings.block_size);
         let (width, height) = (setup.settings.width, setup.settings.height);
         let film = match &self.rendering {
