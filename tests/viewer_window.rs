@@ -240,28 +240,43 @@ fn cpu_render(scene: &Scene, size: u32, camera: CameraSpec) -> Vec<u8> {
     cpu_render_view(scene, size, camera, DebugView::Shaded)
 }
 
-/// Compares the screenshot's image area, sampled at the centre of each image pixel, with the
-/// CPU's image; returns the number of pixels that differ by more than 2 levels.
-fn mismatches(screenshot: &Path, rect: (f32, f32, f32, f32), size: u32, expected: &[u8]) -> usize {
+/// The screenshot's image area at `rect` sampled at the centre of each of the `width × height`
+/// image pixels, as sRGB bytes.
+fn shown_pixels(
+    screenshot: &Path,
+    rect: (f32, f32, f32, f32),
+    (width, height): (u32, u32),
+) -> Vec<u8> {
     let shot = image::open(screenshot).unwrap().to_rgb8();
     let (x0, y0, w, h) = rect;
     assert!(
-        w >= size as f32 && h >= size as f32,
+        w >= width as f32 && h >= height as f32,
         "the image is shown at least 1:1"
     );
-    let mut bad = 0;
-    for j in 0..size {
-        for i in 0..size {
-            let sx = (x0 + (i as f32 + 0.5) * w / size as f32) as u32;
-            let sy = (y0 + (j as f32 + 0.5) * h / size as f32) as u32;
-            let got = shot.get_pixel(sx, sy).0;
-            let k = ((j * size + i) * 3) as usize;
-            if (0..3).any(|c| got[c].abs_diff(expected[k + c]) > 2) {
-                bad += 1;
-            }
-        }
-    }
-    bad
+    let at = |i: u32, j: u32| {
+        let sx = (x0 + (i as f32 + 0.5) * w / width as f32) as u32;
+        let sy = (y0 + (j as f32 + 0.5) * h / height as f32) as u32;
+        shot.get_pixel(sx, sy).0
+    };
+    (0..height)
+        .flat_map(|j| (0..width).map(move |i| (i, j)))
+        .flat_map(|(i, j)| at(i, j))
+        .collect()
+}
+
+/// How many pixels of two sRGB images differ by more than 2 levels in a channel.
+fn differing(got: &[u8], expected: &[u8]) -> usize {
+    assert_eq!(got.len(), expected.len(), "images of the same size");
+    got.chunks_exact(3)
+        .zip(expected.chunks_exact(3))
+        .filter(|(g, e)| (0..3).any(|c| g[c].abs_diff(e[c]) > 2))
+        .count()
+}
+
+/// Compares the screenshot's image area, sampled at the centre of each image pixel, with the
+/// CPU's `size × size` image; returns the number of pixels that differ by more than 2 levels.
+fn mismatches(screenshot: &Path, rect: (f32, f32, f32, f32), size: u32, expected: &[u8]) -> usize {
+    differing(&shown_pixels(screenshot, rect, (size, size)), expected)
 }
 
 #[test]
@@ -1052,22 +1067,6 @@ fn a_snapshot_shows_left_of_the_divider_and_the_live_image_right_of_it() {
     assert!(mismatches(&shot, rect, size, &normals) > (size * size / 8) as usize);
 }
 
-/// The screenshot's image area sampled at the centre of each of the `size × size` image pixels,
-/// as sRGB bytes.
-fn shown_pixels(screenshot: &Path, rect: (f32, f32, f32, f32), size: u32) -> Vec<u8> {
-    let shot = image::open(screenshot).unwrap().to_rgb8();
-    let (x0, y0, w, h) = rect;
-    let at = |i: u32, j: u32| {
-        let sx = (x0 + (i as f32 + 0.5) * w / size as f32) as u32;
-        let sy = (y0 + (j as f32 + 0.5) * h / size as f32) as u32;
-        shot.get_pixel(sx, sy).0
-    };
-    (0..size)
-        .flat_map(|j| (0..size).map(move |i| (i, j)))
-        .flat_map(|(i, j)| at(i, j))
-        .collect()
-}
-
 /// The default scene rendered on the CPU at `size × size` with `samples` per pixel and
 /// `aa_threshold`, as sRGB bytes.
 fn cpu_render_sampled(size: u32, samples: u32, aa_threshold: f32) -> Vec<u8> {
@@ -1104,7 +1103,7 @@ fn left_alone_the_viewer_refines_the_default_scene_close_to_a_256_spp_reference(
         return;
     };
     assert!(run.stderr.contains("refined at 96×96"), "{}", run.stderr);
-    let shown = shown_pixels(&shot, image_rect(&run.stdout), size);
+    let shown = shown_pixels(&shot, image_rect(&run.stdout), (size, size));
     let reference = cpu_render_sampled(size, 256, 0.0);
     let one_sample = cpu_render_sampled(size, 1, 0.0);
     let (shown_error, one_error) = (rmse(&shown, &reference), rmse(&one_sample, &reference));
@@ -1169,24 +1168,10 @@ fn cpu_render_sized(width: u32, height: u32) -> Vec<u8> {
 /// The pixels of the image shown 1:1 at `rect` in the screenshot that differ (by more than 2
 /// levels) from `expected`, an image of the rectangle's size.
 fn mismatches_one_to_one(screenshot: &Path, rect: (f32, f32, f32, f32), expected: &[u8]) -> usize {
-    let shot = image::open(screenshot).unwrap().to_rgb8();
-    let (x0, y0, w, h) = (rect.0 as u32, rect.1 as u32, rect.2 as u32, rect.3 as u32);
-    assert_eq!(
-        expected.len(),
-        (w * h * 3) as usize,
-        "an image of the rectangle's size"
-    );
-    let mut bad = 0;
-    for j in 0..h {
-        for i in 0..w {
-            let got = shot.get_pixel(x0 + i, y0 + j).0;
-            let k = ((j * w + i) * 3) as usize;
-            if (0..3).any(|c| got[c].abs_diff(expected[k + c]) > 2) {
-                bad += 1;
-            }
-        }
-    }
-    bad
+    differing(
+        &shown_pixels(screenshot, rect, (rect.2 as u32, rect.3 as u32)),
+        expected,
+    )
 }
 
 /// Where the fitted image sits in a window `window_width` wide: it must fill the view area (from
