@@ -148,6 +148,8 @@ pub struct Progress {
     pub passes: u32,
     /// Block size of the running pass (1 for sample and anti-aliasing passes).
     pub block_size: u32,
+    /// Samples per pixel the running pass brings its pixels to (1 for block passes).
+    pub samples: u32,
     /// Rows of blocks done in the running pass, and how many it has.
     pub rows_done: u32,
     pub rows: u32,
@@ -164,6 +166,7 @@ pub struct RenderControl {
     pass: AtomicU32,
     passes: AtomicU32,
     block_size: AtomicU32,
+    samples: AtomicU32,
     rows_done: AtomicU32,
     rows: AtomicU32,
     finished: AtomicBool,
@@ -212,6 +215,7 @@ impl RenderControl {
             pass: self.pass.load(Ordering::Relaxed),
             passes: self.passes.load(Ordering::Relaxed),
             block_size: self.block_size.load(Ordering::Relaxed),
+            samples: self.samples.load(Ordering::Relaxed),
             rows_done: self.rows_done.load(Ordering::Relaxed),
             rows: self.rows.load(Ordering::Relaxed),
             finished: self.finished.load(Ordering::Relaxed),
@@ -347,6 +351,12 @@ fn run_pass(
     }
     let rows = height.div_ceil(step);
     control.block_size.store(step, Ordering::Relaxed);
+    let samples = match pass {
+        Pass::Block(_) => 1,
+        Pass::Sample(k) => k + 1,
+        Pass::Refine(n) => n,
+    };
+    control.samples.store(samples, Ordering::Relaxed);
     control.rows.store(rows, Ordering::Relaxed);
     control.rows_done.store(0, Ordering::Relaxed);
     let rays_before = control.rays.get();

@@ -422,3 +422,24 @@ fn adaptive_renders_are_the_same_whatever_the_thread_count() {
     }
     assert!(counts.contains(&8) && counts.contains(&1));
 }
+
+#[test]
+fn the_progress_says_how_many_samples_each_pass_brings_pixels_to() {
+    let mut seen = Vec::new();
+    for aa_threshold in [0.0, 0.03] {
+        let scene = default_scene(24, 16, 4, aa_threshold);
+        let bvh = Bvh::build(&scene.geometry);
+        let film = Film::new(24, 16);
+        let control = RenderControl::default();
+        let mut samples = Vec::new();
+        progressive::render(&Tracer::new(&scene, &bvh), &Shaded, &film, &control, |_| {
+            samples.push(control.progress().samples)
+        })
+        .unwrap();
+        seen.push(samples);
+    }
+    // Block passes 16 → 1 take one sample; then uniform sampling adds samples 2, 3 and 4, while
+    // the adaptive rounds bring pixels to 2 and then 4 samples.
+    assert_eq!(seen[0], [1, 1, 1, 1, 1, 2, 3, 4]);
+    assert_eq!(seen[1], [1, 1, 1, 1, 1, 2, 4]);
+}

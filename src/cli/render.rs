@@ -132,6 +132,8 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         });
         match frame {
             Ok(frame_stats) => {
+                // Adaptive anti-aliasing traces fewer samples than the bar counts on.
+                bar.set_position(done + per_frame);
                 stats.rays += frame_stats.rays;
                 stats.time += frame_stats.time;
             }

@@ -38,11 +38,15 @@ pub fn status_line(s: &RenderStatus) -> String {
         } else {
             100.0 * p.rows_done as f32 / p.rows as f32
         };
+        let pass = if p.samples > 1 {
+            format!("anti-aliasing to {} samples", p.samples)
+        } else {
+            format!("block {}", p.block_size)
+        };
         format!(
-            "pass {}/{} · block {} · {percent:.0}%",
+            "pass {}/{} · {pass} · {percent:.0}%",
             p.pass + 1,
-            p.passes.max(1),
-            p.block_size
+            p.passes.max(1)
         )
     };
     let start = match (s.start_block, s.auto_block) {
@@ -94,6 +98,7 @@ mod tests {
                 rows_done: 16,
                 rows: 64,
                 finished: false,
+                samples: 1,
             },
             pass_times: vec![Duration::from_micros(1_250), Duration::from_micros(12_340)],
             rays: RayCounts {
@@ -168,6 +173,27 @@ mod tests {
             "{line}"
         );
         assert!(!line.contains("paused"), "{line}");
+    }
+
+    #[test]
+    fn an_anti_aliasing_round_says_how_many_samples_it_brings_pixels_to() {
+        let s = RenderStatus {
+            progress: Progress {
+                pass: 6,
+                passes: 8,
+                block_size: 1,
+                samples: 8,
+                rows_done: 3,
+                rows: 4,
+                ..Progress::default()
+            },
+            ..RenderStatus::default()
+        };
+        let line = status_line(&s);
+        assert!(
+            line.starts_with("pass 7/8 · anti-aliasing to 8 samples · 75%"),
+            "{line}"
+        );
     }
 
     #[test]
