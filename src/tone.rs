@@ -115,7 +115,8 @@ impl Tone {
 
     /// A linear colour as the display's sRGB bytes (red, green, blue).
     pub fn map(self, c: Color) -> [u8; 3] {
-        c.to_array().map(|v| self.srgb8(v))
+        let scale = self.scale();
+        c.to_array().map(|v| srgb8(self.curve.apply(v * scale)))
     }
 
     /// The sRGB bytes of linear colours, three per colour.

@@ -253,6 +253,7 @@ fn image_texture(device: &wgpu::Device, label: &str, width: u32, height: u32) ->
 #[cfg(test)]
 mod tests {
     use raylab::color::{Color, srgb_to_linear};
+    use raylab::tone::ToneCurve;
 
     use super::*;
     use crate::viewer::gpu::device::Gpu;
@@ -275,7 +276,7 @@ mod tests {
         let encoder = SrgbEncoder::new();
         let mut bytes = vec![0; pixels.len() * TEXEL_BYTES];
         for (c, out) in pixels.iter().zip(bytes.chunks_exact_mut(TEXEL_BYTES)) {
-            encoder.texel(*c, Tone::default(), out);
+            encoder.texel(*c, 1.0, ToneCurve::Clamp, out);
         }
         let (texture, _) = quad.image_texture(&gpu.device, width, height);
         write_rows(

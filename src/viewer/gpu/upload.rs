@@ -13,7 +13,7 @@ use std::sync::Arc;
 
 use raylab::color::{Color, srgb8 as srgb_byte};
 use raylab::film::Film;
-use raylab::tone::Tone;
+use raylab::tone::{Tone, ToneCurve};
 
 /// Bytes of one texel of [`IMAGE_FORMAT`](super::quad::IMAGE_FORMAT): red, green, blue, alpha.
 pub const TEXEL_BYTES: usize = 4;
@@ -66,11 +66,11 @@ impl SrgbEncoder {
         base + u8::from(v >= step)
     }
 
-    /// One film pixel as its texel: the bytes `tone` makes of its colour, opaque.
-    pub fn texel(&self, c: Color, tone: Tone, out: &mut [u8]) {
-        let scale = tone.scale();
+    /// One film pixel as its texel: the bytes a [`Tone`] of `scale` ([`Tone::scale`]) and
+    /// `curve` makes of its colour, opaque.
+    pub fn texel(&self, c: Color, scale: f32, curve: ToneCurve, out: &mut [u8]) {
         for (byte, v) in out.iter_mut().zip(c.to_array()) {
-            *byte = self.encode(tone.curve.apply(v * scale));
+            *byte = self.encode(curve.apply(v * scale));
         }
         out[3] = 255;
     }
@@ -131,10 +131,12 @@ impl Uploader {
         };
         self.bytes.resize(w * h as usize * TEXEL_BYTES, 0);
         let row_bytes = w * TEXEL_BYTES;
+        let scale = tone.scale();
         for y in rows.iter().flat_map(|run| run.clone()) {
             let row = &mut self.bytes[y as usize * row_bytes..(y as usize + 1) * row_bytes];
             for (x, out) in row.chunks_exact_mut(TEXEL_BYTES).enumerate() {
-                self.encoder.texel(film.get(x as u32, y), tone, out);
+                self.encoder
+                    .texel(film.get(x as u32, y), scale, tone.curve, out);
             }
         }
         self.uploaded = Some((film.clone(), version, tone));
@@ -180,8 +182,6 @@ pub fn write_rows(
 
 #[cfg(test)]
 mod tests {
-    use raylab::tone::ToneCurve;
-
     use super::*;
 
     #[test]
@@ -217,7 +217,7 @@ mod tests {
                 let mut v = 1e-5f32;
                 while v < 64.0 {
                     let c = Color::new(v, v * 0.5, v * 3.0);
-                    encoder.texel(c, tone, &mut out);
+                    encoder.texel(c, tone.scale(), tone.curve, &mut out);
                     let [r, g, b] = tone.map(c);
                     assert_eq!(out, [r, g, b, 255], "{tone:?} at {c}");
                     v *= 1.01;
