@@ -148,17 +148,13 @@ impl Bvh {
             .into_par_iter()
             .filter(|&id| bounds(id).is_none())
             .collect();
-        let nodes = if prims.is_empty() {
+        let binary = if prims.is_empty() {
             Vec::new()
         } else {
             let extent = Extent::of(&prims);
-            super::widen::widen(&subtree(&mut prims, 0, extent, 0))
+            subtree(&mut prims, 0, extent, 0)
         };
-        Bvh {
-            nodes,
-            prims: prims.iter().map(|p| p.id).collect(),
-            unbounded,
-        }
+        Bvh::from_binary(&binary, prims.iter().map(|p| p.id).collect(), unbounded)
     }
 }
 
@@ -176,7 +172,7 @@ fn leaf(extent: &Extent, first: usize, count: usize) -> Node {
 fn subtree(prims: &mut [BuildPrim], first: usize, extent: Extent, depth: usize) -> Vec<Node> {
     // A binary tree over n primitives has at most 2n − 1 nodes. Reserving them all only takes
     // address space: the memory behind it is used as nodes are written, so the array never
-    // moves while it grows. The binary tree only lives until it is widened, so the unused
+    // moves while it grows. The binary tree only lives until it is collapsed, so the unused
     // reserve is never trimmed.
     let mut nodes = Vec::with_capacity(2 * prims.len() - 1);
     nodes.push(leaf(&extent, first, prims.len()));
