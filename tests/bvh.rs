@@ -180,11 +180,8 @@ fn tree_is_shallow_and_covers_every_primitive_once() {
     let g = random_scene(5, 2000, 8000, 1);
     let bvh = Bvh::build(&g);
     assert_eq!(bvh.unbounded.len(), 1, "the plane stays out of the tree");
-    let mut seen: Vec<PrimId> = bvh.prims.clone();
-    seen.sort();
-    seen.dedup();
-    assert_eq!(seen.len(), g.prim_ids().count() - 1);
     assert!(bvh.depth() < 40, "depth {}", bvh.depth());
+    let mut seen: Vec<PrimId> = Vec::new();
     // Each leaf's box holds its primitives' boxes; each interior child's box holds its
     // children's.
     let inside =
@@ -196,9 +193,14 @@ fn tree_is_shallow_and_covers_every_primitive_once() {
             };
             let outer = node.child_bounds(k);
             if child.is_leaf() {
-                for &id in &bvh.prims[child.prims()] {
+                let prims = bvh.leaf_prims(child);
+                assert!(!prims.is_empty());
+                let kinds: BTreeSet<bool> = prims.iter().map(|id| id.kind().is_ok()).collect();
+                assert_eq!(kinds.len(), 1, "a leaf holds one kind of primitive");
+                for &id in &prims {
                     assert!(inside(g.bounds(id).unwrap(), outer));
                 }
+                seen.extend(prims);
             } else {
                 let inner = &bvh.nodes[child.first as usize];
                 for j in (0..raylab::bvh::WIDTH).filter(|&j| inner.child(j).is_some()) {
@@ -207,6 +209,15 @@ fn tree_is_shallow_and_covers_every_primitive_once() {
             }
         }
     }
+    let leaves = seen.len();
+    seen.sort();
+    seen.dedup();
+    assert_eq!(seen.len(), leaves, "no primitive is in two leaves");
+    assert_eq!(
+        seen.len(),
+        g.prim_ids().count() - 1,
+        "every bounded primitive is"
+    );
 }
 
 #[test]
@@ -248,7 +259,14 @@ fn the_tree_does_not_depend_on_the_thread_count() {
     let one = build_on(1);
     let four = build_on(4);
     assert_eq!(one.nodes, four.nodes);
-    assert_eq!(one.prims, four.prims);
+    assert_eq!(one.objects, four.objects);
+    let packs = |bvh: &Bvh| -> Vec<_> {
+        bvh.packs
+            .iter()
+            .map(|pack| (pack.tags, pack.p.map(|v| v.map(|a| a.map(f32::to_bits)))))
+            .collect()
+    };
+    assert_eq!(packs(&one), packs(&four));
 }
 
 #[test]

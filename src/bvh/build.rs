@@ -154,7 +154,8 @@ impl Bvh {
             let extent = Extent::of(&prims);
             subtree(&mut prims, 0, extent, 0)
         };
-        Bvh::from_binary(&binary, prims.iter().map(|p| p.id).collect(), unbounded)
+        let ids: Vec<PrimId> = prims.iter().map(|p| p.id).collect();
+        Bvh::from_binary(geometry, &binary, &ids, unbounded)
     }
 }
 

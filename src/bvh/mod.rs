@@ -17,7 +17,8 @@ mod wide;
 pub use simd::Simd;
 
 use crate::aabb::Aabb;
-use crate::primitive::PrimId;
+use crate::primitive::{Geometry, PrimId};
+use crate::shapes::TrianglePack;
 
 /// Children per node of the finished tree: one per lane of the box test.
 pub const WIDTH: usize = simd::LANES;
@@ -51,10 +52,11 @@ impl Node {
 pub struct WideNode {
     pub min: [[f32; WIDTH]; 3],
     pub max: [[f32; WIDTH]; 3],
-    /// An interior child's node index, or the first of a leaf's primitives in [`Bvh::prims`].
+    /// An interior child's node index, or the first of a leaf's packs in [`Bvh::packs`] or
+    /// objects in [`Bvh::objects`].
     pub first: [u32; WIDTH],
-    /// A leaf's number of primitives, [`WideNode::INTERIOR`] for an interior child, 0 for an
-    /// unused slot.
+    /// A leaf's number of packs plus [`Child::TRIANGLES`], or of objects;
+    /// [`WideNode::INTERIOR`] for an interior child, 0 for an unused slot.
     pub count: [u32; WIDTH],
 }
 
@@ -77,14 +79,34 @@ impl WideNode {
     }
 }
 
-/// Where a child of a [`WideNode`] is: a node, or a leaf's primitives.
+/// Where a child of a [`WideNode`] is: a node, or a leaf's triangles or objects.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Child {
     pub first: u32,
     pub count: u32,
 }
 
+/// What a leaf holds: triangles in packs, or objects. A leaf never holds both kinds.
+#[derive(Clone, Copy, Debug)]
+pub enum Leaf<'a> {
+    Triangles(&'a [TrianglePack]),
+    Objects(&'a [PrimId]),
+}
+
+impl Leaf<'_> {
+    /// Primitives in the leaf, for counting tests: four lanes to a pack.
+    pub fn len(&self) -> usize {
+        match self {
+            Leaf::Triangles(packs) => packs.len() * crate::shapes::PACK_SIZE,
+            Leaf::Objects(objects) => objects.len(),
+        }
+    }
+}
+
 impl Child {
+    /// The bit of `count` that marks a leaf of triangles.
+    const TRIANGLES: u32 = 1 << 30;
+
     /// The interior node `index`.
     const fn node(index: u32) -> Child {
         Child {
@@ -93,13 +115,32 @@ impl Child {
         }
     }
 
+    /// A leaf of the `count` packs from `first` in [`Bvh::packs`].
+    fn triangles(first: u32, count: u32) -> Child {
+        Child {
+            first,
+            count: count | Child::TRIANGLES,
+        }
+    }
+
+    /// A leaf of the `count` objects from `first` in [`Bvh::objects`].
+    fn objects(first: u32, count: u32) -> Child {
+        Child { first, count }
+    }
+
     pub fn is_leaf(&self) -> bool {
         self.count != WideNode::INTERIOR
     }
 
-    /// A leaf's primitives, as a range of [`Bvh::prims`].
-    pub fn prims(&self) -> std::ops::Range<usize> {
-        self.first as usize..self.first as usize + self.count as usize
+    /// A leaf's primitives (it must be a leaf).
+    #[inline(always)]
+    fn leaf<'a>(&self, bvh: &'a Bvh) -> Leaf<'a> {
+        let first = self.first as usize;
+        if self.count & Child::TRIANGLES != 0 {
+            Leaf::Triangles(&bvh.packs[first..][..(self.count & !Child::TRIANGLES) as usize])
+        } else {
+            Leaf::Objects(&bvh.objects[first..][..self.count as usize])
+        }
     }
 }
 
@@ -109,8 +150,11 @@ pub struct Bvh {
     pub nodes: Vec<WideNode>,
     /// The box around all bounded primitives (the root's); `None` when there are none.
     root_bounds: Option<Aabb>,
-    /// Bounded primitives in leaf order.
-    pub prims: Vec<PrimId>,
+    /// The triangles of the leaves, in leaf order, four to a pack; each lane's tag is its
+    /// [`PrimId`].
+    pub packs: Vec<TrianglePack>,
+    /// The bounded objects, in leaf order.
+    pub objects: Vec<PrimId>,
     /// Primitives without bounds, tested against every ray.
     pub unbounded: Vec<PrimId>,
     /// The instruction set the traversal uses.
@@ -118,23 +162,50 @@ pub struct Bvh {
 }
 
 impl Bvh {
-    /// The tree over the builder's binary tree `binary` (root first) and primitive list.
-    fn from_binary(binary: &[Node], prims: Vec<PrimId>, unbounded: Vec<PrimId>) -> Bvh {
+    /// The tree over the builder's binary tree `binary` (root first) and primitives in leaf
+    /// order.
+    fn from_binary(
+        geometry: &Geometry,
+        binary: &[Node],
+        prims: &[PrimId],
+        unbounded: Vec<PrimId>,
+    ) -> Bvh {
+        let wide::Collapsed {
+            nodes,
+            packs,
+            objects,
+        } = wide::collapse(binary, prims, geometry);
         Bvh {
-            nodes: wide::collapse(binary),
+            nodes,
             root_bounds: binary
                 .first()
                 .map(|root| Aabb::new(root.min.into(), root.max.into())),
-            prims,
+            packs,
+            objects,
             unbounded,
             simd: Simd::best(),
         }
     }
 
-    /// Bytes held by the tree and its primitive list.
+    /// Bytes held by the tree and its leaves.
     pub fn memory_bytes(&self) -> usize {
-        self.nodes.capacity() * std::mem::size_of::<WideNode>()
-            + (self.prims.capacity() + self.unbounded.capacity()) * std::mem::size_of::<PrimId>()
+        use std::mem::size_of;
+        self.nodes.capacity() * size_of::<WideNode>()
+            + self.packs.capacity() * size_of::<TrianglePack>()
+            + (self.objects.capacity() + self.unbounded.capacity()) * size_of::<PrimId>()
+    }
+
+    /// The primitives in the leaf `child`, for statistics and tests.
+    pub fn leaf_prims(&self, child: Child) -> Vec<PrimId> {
+        match child.leaf(self) {
+            Leaf::Triangles(packs) => packs
+                .iter()
+                .flat_map(|pack| pack.tags)
+                .filter(|&tag| tag != u32::MAX)
+                .map(PrimId)
+                .collect(),
+            Leaf::Objects(objects) => objects.to_vec(),
+        }
     }
 
     /// The box around all bounded primitives (the root's), `None` when there are none.

@@ -13,8 +13,8 @@ use glam::Vec4;
 
 use super::ray_box::RayBoxTest;
 use super::simd::{Kernel, Lanes, dispatch};
-use super::traverse::{STACK_SIZE, closest_among};
-use super::{Bvh, Child, WIDTH};
+use super::traverse::{STACK_SIZE, closest_in_leaf};
+use super::{Bvh, Child, Leaf, WIDTH};
 use crate::primitive::{Geometry, Hit};
 use crate::ray::Ray;
 use crate::shapes::ShearedRay;
@@ -96,15 +96,8 @@ impl Kernel for Packet<'_> {
         let mut t_limit = [t_max.min(f32::MAX); PACKET_SIZE];
         for r in 0..n {
             let (limit, best) = (&mut t_limit[r], &mut hits[r]);
-            closest_among(
-                geometry,
-                &bvh.unbounded,
-                ray(r),
-                &sheared[r],
-                t_min,
-                limit,
-                best,
-            );
+            let unbounded = Leaf::Objects(&bvh.unbounded);
+            closest_in_leaf(geometry, unbounded, ray(r), &sheared[r], t_min, limit, best);
         }
         let Some(bounds) = &bvh.root_bounds else {
             return;
@@ -132,11 +125,10 @@ impl Kernel for Packet<'_> {
                 continue;
             }
             if child.is_leaf() {
-                let prims = &bvh.prims[child.prims()];
+                let leaf = child.leaf(bvh);
                 for r in ones(active) {
-                    let best = &mut hits[r];
-                    let limit = &mut t_limit[r];
-                    closest_among(geometry, prims, &rays[r], &sheared[r], t_min, limit, best);
+                    let (limit, best) = (&mut t_limit[r], &mut hits[r]);
+                    closest_in_leaf(geometry, leaf, &rays[r], &sheared[r], t_min, limit, best);
                 }
                 continue;
             }

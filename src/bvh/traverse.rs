@@ -11,10 +11,10 @@ use super::build::MAX_DEPTH;
 use super::cost::TraversalCost;
 use super::ray_box::RayBoxTest;
 use super::simd::{Kernel, Lanes, dispatch};
-use super::{Bvh, Child, WIDTH};
+use super::{Bvh, Child, Leaf, WIDTH};
 use crate::primitive::{Geometry, Hit, PrimId};
 use crate::ray::Ray;
-use crate::shapes::ShearedRay;
+use crate::shapes::{PackHits, ShearedRay, TriangleHit, TrianglePack};
 
 /// Most entries the traversal stack can need: each level of the tree leaves at most
 /// `WIDTH − 1` siblings waiting.
@@ -119,13 +119,13 @@ impl<C: TraversalCost> Kernel for ClosestHit<'_, C> {
         } = self.0;
         let sheared = ShearedRay::new(ray);
         let mut best: Option<Hit> = None;
-        let mut test = |prims: &[PrimId], t_limit: &mut f32, cost: &mut C| {
-            cost.prims_tested(prims.len());
-            closest_among(geometry, prims, ray, &sheared, t_min, t_limit, &mut best);
+        let mut test = |leaf: Leaf, t_limit: &mut f32, cost: &mut C| {
+            cost.prims_tested(leaf.len());
+            closest_in_leaf(geometry, leaf, ray, &sheared, t_min, t_limit, &mut best);
             ControlFlow::Continue(())
         };
         let mut t_limit = t_max;
-        let _ = test(&bvh.unbounded, &mut t_limit, cost);
+        let _ = test(Leaf::Objects(&bvh.unbounded), &mut t_limit, cost);
         bvh.walk::<L, C>(ray, t_min, t_limit, cost, test);
         best
     }
@@ -151,19 +151,32 @@ impl<C: TraversalCost, F: FnMut(&Hit) -> ControlFlow<()>> Kernel for AnyHit<'_, 
             mut on_hit,
         ) = self;
         let sheared = ShearedRay::new(ray);
-        let mut visit = |prims: &[PrimId], cost: &mut C| {
-            cost.prims_tested(prims.len());
-            for &id in prims {
-                if let Some(hit) = geometry.intersect_prepared(id, ray, &sheared, t_min, t_max) {
-                    on_hit(&hit)?;
+        let mut visit = |leaf: Leaf, cost: &mut C| {
+            cost.prims_tested(leaf.len());
+            match leaf {
+                Leaf::Triangles(packs) => {
+                    for pack in packs {
+                        let hits = pack.intersect(&sheared, t_min, t_max);
+                        for k in ones(hits.mask) {
+                            on_hit(&triangle_hit(pack, &hits, k))?;
+                        }
+                    }
+                }
+                Leaf::Objects(objects) => {
+                    for &id in objects {
+                        let hit = geometry.intersect_prepared(id, ray, &sheared, t_min, t_max);
+                        if let Some(hit) = hit {
+                            on_hit(&hit)?;
+                        }
+                    }
                 }
             }
             ControlFlow::Continue(())
         };
-        if visit(&bvh.unbounded, cost).is_break() {
+        if visit(Leaf::Objects(&bvh.unbounded), cost).is_break() {
             return;
         }
-        bvh.walk::<L, C>(ray, t_min, t_max, cost, |prims, _, cost| visit(prims, cost));
+        bvh.walk::<L, C>(ray, t_min, t_max, cost, |leaf, _, cost| visit(leaf, cost));
     }
 }
 
@@ -177,7 +190,7 @@ impl Bvh {
         t_min: f32,
         t_max: f32,
         cost: &mut C,
-        mut leaf: impl FnMut(&[PrimId], &mut f32, &mut C) -> ControlFlow<()>,
+        mut leaf: impl FnMut(Leaf, &mut f32, &mut C) -> ControlFlow<()>,
     ) {
         let Some(bounds) = &self.root_bounds else {
             return;
@@ -193,7 +206,7 @@ impl Bvh {
         let mut next = Child::node(0);
         loop {
             if next.is_leaf() {
-                if leaf(&self.prims[next.prims()], &mut t_max, cost).is_break() {
+                if leaf(next.leaf(self), &mut t_max, cost).is_break() {
                     return;
                 }
             } else {
@@ -243,25 +256,69 @@ impl Bvh {
     }
 }
 
-/// Tests `prims` against `ray` for its closest hit in `(t_min, t_limit)`: a nearer hit (or one
-/// at the same `t` from a primitive earlier in the scene) replaces `best`, and `t_limit` shrinks
-/// to just past it, so that the search still finds its ties.
+/// Tests the primitives of `leaf` against `ray` for its closest hit in `(t_min, t_limit)`: a
+/// nearer hit (or one at the same `t` from a primitive earlier in the scene) replaces `best`,
+/// and `t_limit` shrinks to just past it, so that the search still finds its ties. The answer
+/// does not depend on the order of the tests.
 #[inline(always)]
-pub(super) fn closest_among(
+pub(super) fn closest_in_leaf(
     geometry: &Geometry,
-    prims: &[PrimId],
+    leaf: Leaf,
     ray: &Ray,
     sheared: &ShearedRay,
     t_min: f32,
     t_limit: &mut f32,
     best: &mut Option<Hit>,
 ) {
-    for &id in prims {
-        if let Some(hit) = geometry.intersect_prepared(id, ray, sheared, t_min, *t_limit)
-            && best.is_none_or(|b| hit.t < b.t || id.scene_order() < b.prim.scene_order())
-        {
-            *t_limit = hit.t.next_up();
-            *best = Some(hit);
+    // `t < t_limit` again: an earlier lane of the same pack may have lowered the limit.
+    let beats = |t: f32, id: PrimId, t_limit: f32, best: &Option<Hit>| {
+        t < t_limit && best.is_none_or(|b| t < b.t || id.scene_order() < b.prim.scene_order())
+    };
+    match leaf {
+        Leaf::Triangles(packs) => {
+            for pack in packs {
+                let hits = pack.intersect(sheared, t_min, *t_limit);
+                for k in ones(hits.mask) {
+                    if beats(hits.t[k], PrimId(pack.tags[k]), *t_limit, best) {
+                        *t_limit = hits.t[k].next_up();
+                        *best = Some(triangle_hit(pack, &hits, k));
+                    }
+                }
+            }
+        }
+        Leaf::Objects(objects) => {
+            for &id in objects {
+                if let Some(hit) = geometry.intersect_prepared(id, ray, sheared, t_min, *t_limit)
+                    && beats(hit.t, id, *t_limit, best)
+                {
+                    *t_limit = hit.t.next_up();
+                    *best = Some(hit);
+                }
+            }
         }
     }
+}
+
+/// The hit in lane `k` of `pack`.
+#[inline(always)]
+fn triangle_hit(pack: &TrianglePack, hits: &PackHits, k: usize) -> Hit {
+    let TriangleHit { t, bary } = hits.hit(k);
+    Hit {
+        t,
+        prim: PrimId(pack.tags[k]),
+        part: 0,
+        bary,
+    }
+}
+
+/// The positions of the set bits of `mask`, lowest first.
+#[inline(always)]
+pub(super) fn ones(mut mask: u32) -> impl Iterator<Item = usize> {
+    std::iter::from_fn(move || {
+        (mask != 0).then(|| {
+            let k = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            k
+        })
+    })
 }
