@@ -1431,7 +1431,15 @@ fn render_writes_the_image_a_pass_by_pass_render_ends_with() {
             "--aa-threshold",
             &threshold.to_string(),
         ];
-        let mut args = vec!["render", "-o", "sweep.exr", "--size", "40x30", "--threads", "2"];
+        let mut args = vec![
+            "render",
+            "-o",
+            "sweep.exr",
+            "--size",
+            "40x30",
+            "--threads",
+            "2",
+        ];
         args.extend(flags);
         let out = raylab(&args, dir.path());
         assert!(out.status.success(), "{}", stderr(&out));

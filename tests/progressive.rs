@@ -466,7 +466,12 @@ fn an_unwatched_render_sweeps_the_pixels_once_then_runs_the_adaptive_rounds() {
     assert_eq!(unwatched_passes(1, true), [Pass::Sweep(1)]);
     assert_eq!(
         unwatched_passes(6, true),
-        [Pass::Sweep(1), Pass::Refine(2), Pass::Refine(4), Pass::Refine(6)]
+        [
+            Pass::Sweep(1),
+            Pass::Refine(2),
+            Pass::Refine(4),
+            Pass::Refine(6)
+        ]
     );
 }
 
@@ -482,8 +487,7 @@ fn an_unwatched_render_ends_with_the_watched_renders_film_on_any_thread_count() 
                 .num_threads(threads)
                 .build()
                 .unwrap();
-            let (image, counts, stats) =
-                pool.install(|| render_counting_as(&scene, Watched::No));
+            let (image, counts, stats) = pool.install(|| render_counting_as(&scene, Watched::No));
             let case = format!("{samples} samples, threshold {aa_threshold}, {threads} threads");
             assert!(image == watched, "{case}: other pixels");
             assert!(counts == watched_counts, "{case}: other samples");

@@ -200,8 +200,9 @@ fn render_frame(
     let control = RenderControl::default();
     let stats = std::thread::scope(|s| {
         // Nobody sees the coarse passes: the film is traced in one sweep.
-        let render =
-            s.spawn(|| pool.install(|| progressive::render_unwatched(tracer, view, &film, &control)));
+        let render = s.spawn(|| {
+            pool.install(|| progressive::render_unwatched(tracer, view, &film, &control))
+        });
         while !render.is_finished() {
             progress(control.pixels_traced());
             std::thread::sleep(Duration::from_millis(50));
