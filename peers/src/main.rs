@@ -1,9 +1,11 @@
-//! `raylab-peers DUMP_DIR [--meshes a,b] [--reps N] [--embree FILE]`: builds raylab's BVH, the
+//! `raylab-peers DUMP_DIR [--meshes a,b] [--reps N] [--embree FILE] [--peers bvh,obvhs]`: builds
+//! raylab's BVH, the
 //! `bvh` crate's and `obvhs`'s over the meshes that `embree_anchor.py --dump DUMP_DIR` wrote,
 //! traces the same rays with each on 1 and 2 threads, checks every answer against Embree's and
 //! prints markdown tables: build times, Mrays/s, ratios to raylab, mismatches, and the interior
 //! nodes visited and triangles tested per ray.
-//! With `--embree FILE` (from `embree_anchor.py --json FILE`) Embree's own figures join them.
+//! With `--embree FILE` (from `embree_anchor.py --json FILE`) Embree's own figures join them;
+//! `--peers` names the crates to compare (none: `--peers ''`, raylab alone, e.g. for profiling).
 
 mod anchor;
 mod bvh_crate_tracer;
@@ -22,13 +24,15 @@ use measure::{THREADS, TracerReport, measure};
 use obvhs_tracer::ObvhsTracer;
 use raylab_tracer::RaylabTracer;
 
-const USAGE: &str = "usage: raylab-peers DUMP_DIR [--meshes a,b] [--reps N] [--embree FILE]";
+const USAGE: &str =
+    "usage: raylab-peers DUMP_DIR [--meshes a,b] [--reps N] [--embree FILE] [--peers bvh,obvhs]";
 
 struct Options {
     dump: PathBuf,
     meshes: Vec<String>,
     reps: usize,
     embree: Option<PathBuf>,
+    peers: Vec<String>,
 }
 
 fn parse_options() -> Result<Options, String> {
@@ -38,6 +42,7 @@ fn parse_options() -> Result<Options, String> {
         meshes: Vec::new(),
         reps: 3,
         embree: None,
+        peers: vec!["bvh".into(), "obvhs".into()],
     };
     let mut dump = None;
     while let Some(arg) = args.next() {
@@ -52,6 +57,16 @@ fn parse_options() -> Result<Options, String> {
                     .ok_or(format!("--reps needs a positive whole number\n{USAGE}"))?;
             }
             "--embree" => options.embree = Some(PathBuf::from(value()?)),
+            "--peers" => {
+                options.peers = value()?
+                    .split(',')
+                    .filter(|name| !name.is_empty())
+                    .map(String::from)
+                    .collect();
+                if let Some(other) = options.peers.iter().find(|p| *p != "bvh" && *p != "obvhs") {
+                    return Err(format!("no peer `{other}` (bvh, obvhs)\n{USAGE}"));
+                }
+            }
             _ if arg.starts_with('-') => return Err(format!("unknown option {arg}\n{USAGE}")),
             _ if dump.is_none() => dump = Some(PathBuf::from(arg)),
             _ => return Err(format!("one dump folder only\n{USAGE}")),
@@ -88,11 +103,13 @@ fn run() -> Result<(), String> {
     let mut reports = Vec::new();
     for mesh in &meshes {
         eprintln!("{}: {} triangles", mesh.name, mesh.faces.len());
-        let tracers = vec![
-            measure::<RaylabTracer>(mesh, &pools, options.reps)?,
-            measure::<BvhCrateTracer>(mesh, &pools, options.reps)?,
-            measure::<ObvhsTracer>(mesh, &pools, options.reps)?,
-        ];
+        let mut tracers = vec![measure::<RaylabTracer>(mesh, &pools, options.reps)?];
+        for peer in &options.peers {
+            tracers.push(match peer.as_str() {
+                "bvh" => measure::<BvhCrateTracer>(mesh, &pools, options.reps)?,
+                _ => measure::<ObvhsTracer>(mesh, &pools, options.reps)?,
+            });
+        }
         reports.push((mesh, tracers));
     }
     print_builds(&reports, embree.as_ref());
@@ -102,8 +119,11 @@ fn run() -> Result<(), String> {
 
 fn print_builds(reports: &[(&AnchorMesh, Vec<TracerReport>)], embree: Option<&EmbreeFigures>) {
     println!("\n### BVH build, median ms (1 thread / 2 threads)\n");
-    println!("| mesh | triangles | raylab | bvh | obvhs | Embree (2 CPUs) |");
-    println!("|---|---|---|---|---|---|");
+    let names: Vec<&str> = reports
+        .first()
+        .map_or(Vec::new(), |(_, tracers)| tracers.iter().map(|t| t.name).collect());
+    println!("| mesh | triangles | {} | Embree (2 CPUs) |", names.join(" | "));
+    println!("|---|---|{}---|", "---|".repeat(names.len()));
     for (mesh, tracers) in reports {
         let cells: Vec<String> = tracers
             .iter()

@@ -45,18 +45,35 @@ impl RayBoxTest {
         t_min: f32,
         t_max: f32,
     ) -> ([f32; LANES], u32) {
-        let slab = |axis: usize| {
+        // SAFETY: `L` is the lane type of the kernel this runs in, which `simd::dispatch` runs
+        // only on a processor with its instructions.
+        unsafe {
+            let (near_x, far_x) = self.slab::<L>(node, 0);
+            let (near_y, far_y) = self.slab::<L>(node, 1);
+            let (near_z, far_z) = self.slab::<L>(node, 2);
+            let near = near_x.max(near_y).max(near_z).max(L::splat(t_min));
+            let far = far_x.min(far_y).min(far_z).min(L::splat(t_max));
+            (near.to_array(), near.le_mask(far))
+        }
+    }
+
+    /// Where the ray enters and leaves the slabs of the children's boxes along `axis`. A
+    /// function rather than a closure, so that it is always inlined: a closure would be
+    /// compiled apart, without its kernel's instruction set.
+    ///
+    /// # Safety
+    /// As for [`Lanes`]: only inside a kernel of `L`'s path.
+    #[inline(always)]
+    unsafe fn slab<L: Lanes>(&self, node: &WideNode, axis: usize) -> (L, L) {
+        unsafe {
             let (lo, hi) = (L::load(&node.min[axis]), L::load(&node.max[axis]));
             // The ray's component copied into all lanes.
-            let (origin, inv_dir) = (L::splat(self.origin[axis]), L::splat(self.inv_dir[axis]));
+            let origin = L::splat(self.origin[axis]);
+            let inv_dir = L::splat(self.inv_dir[axis]);
             let t0 = lo.sub(origin).mul(inv_dir);
             let t1 = hi.sub(origin).mul(inv_dir);
             (t0.min(t1), t0.max(t1))
-        };
-        let ((near_x, far_x), (near_y, far_y), (near_z, far_z)) = (slab(0), slab(1), slab(2));
-        let near = near_x.max(near_y).max(near_z).max(L::splat(t_min));
-        let far = far_x.min(far_y).min(far_z).min(L::splat(t_max));
-        (near.to_array(), near.le_mask(far))
+        }
     }
 }
 

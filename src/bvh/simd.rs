@@ -134,16 +134,22 @@ pub(super) fn dispatch<K: Kernel>(simd: Simd, kernel: K) -> K::Output {
 
 /// Eight `f32` lanes and the few operations the box test needs. `min` and `max` follow the
 /// x86 rule (`a < b ? a : b`, so a NaN in either gives `b`), which every implementation keeps.
+///
+/// # Safety
+/// The methods are `unsafe` because those of the AVX lane types are compiled for AVX2 or
+/// AVX-512 (`#[target_feature]`, so that they are inlined into their path's kernel as single
+/// instructions): call them only inside a kernel run by [`dispatch`], which runs each lane type
+/// only on a processor that has its instructions.
 pub(super) trait Lanes: Copy {
-    fn load(values: &[f32; LANES]) -> Self;
-    fn splat(value: f32) -> Self;
-    fn sub(self, other: Self) -> Self;
-    fn mul(self, other: Self) -> Self;
-    fn min(self, other: Self) -> Self;
-    fn max(self, other: Self) -> Self;
+    unsafe fn load(values: &[f32; LANES]) -> Self;
+    unsafe fn splat(value: f32) -> Self;
+    unsafe fn sub(self, other: Self) -> Self;
+    unsafe fn mul(self, other: Self) -> Self;
+    unsafe fn min(self, other: Self) -> Self;
+    unsafe fn max(self, other: Self) -> Self;
     /// Bit k set where lane k of `self` ≤ lane k of `other`.
-    fn le_mask(self, other: Self) -> u32;
-    fn to_array(self) -> [f32; LANES];
+    unsafe fn le_mask(self, other: Self) -> u32;
+    unsafe fn to_array(self) -> [f32; LANES];
 }
 
 /// The scalar reference.
@@ -152,23 +158,23 @@ pub(super) struct Portable([f32; LANES]);
 
 impl Lanes for Portable {
     #[inline(always)]
-    fn load(values: &[f32; LANES]) -> Self {
+    unsafe fn load(values: &[f32; LANES]) -> Self {
         Portable(*values)
     }
     #[inline(always)]
-    fn splat(value: f32) -> Self {
+    unsafe fn splat(value: f32) -> Self {
         Portable([value; LANES])
     }
     #[inline(always)]
-    fn sub(self, other: Self) -> Self {
+    unsafe fn sub(self, other: Self) -> Self {
         Portable(std::array::from_fn(|k| self.0[k] - other.0[k]))
     }
     #[inline(always)]
-    fn mul(self, other: Self) -> Self {
+    unsafe fn mul(self, other: Self) -> Self {
         Portable(std::array::from_fn(|k| self.0[k] * other.0[k]))
     }
     #[inline(always)]
-    fn min(self, other: Self) -> Self {
+    unsafe fn min(self, other: Self) -> Self {
         Portable(std::array::from_fn(|k| {
             if self.0[k] < other.0[k] {
                 self.0[k]
@@ -178,7 +184,7 @@ impl Lanes for Portable {
         }))
     }
     #[inline(always)]
-    fn max(self, other: Self) -> Self {
+    unsafe fn max(self, other: Self) -> Self {
         Portable(std::array::from_fn(|k| {
             if self.0[k] > other.0[k] {
                 self.0[k]
@@ -188,11 +194,11 @@ impl Lanes for Portable {
         }))
     }
     #[inline(always)]
-    fn le_mask(self, other: Self) -> u32 {
+    unsafe fn le_mask(self, other: Self) -> u32 {
         (0..LANES).fold(0, |mask, k| mask | u32::from(self.0[k] <= other.0[k]) << k)
     }
     #[inline(always)]
-    fn to_array(self) -> [f32; LANES] {
+    unsafe fn to_array(self) -> [f32; LANES] {
         self.0
     }
 }
@@ -227,32 +233,32 @@ mod x86 {
     // SAFETY (all `unsafe` blocks of `Sse`): SSE is part of every x86-64 processor.
     impl Lanes for Sse {
         #[inline(always)]
-        fn load(values: &[f32; LANES]) -> Self {
+        unsafe fn load(values: &[f32; LANES]) -> Self {
             let p = values.as_ptr();
             unsafe { Sse(_mm_loadu_ps(p), _mm_loadu_ps(p.add(4))) }
         }
         #[inline(always)]
-        fn splat(value: f32) -> Self {
+        unsafe fn splat(value: f32) -> Self {
             unsafe { Sse(_mm_set1_ps(value), _mm_set1_ps(value)) }
         }
         #[inline(always)]
-        fn sub(self, o: Self) -> Self {
+        unsafe fn sub(self, o: Self) -> Self {
             unsafe { Sse(_mm_sub_ps(self.0, o.0), _mm_sub_ps(self.1, o.1)) }
         }
         #[inline(always)]
-        fn mul(self, o: Self) -> Self {
+        unsafe fn mul(self, o: Self) -> Self {
             unsafe { Sse(_mm_mul_ps(self.0, o.0), _mm_mul_ps(self.1, o.1)) }
         }
         #[inline(always)]
-        fn min(self, o: Self) -> Self {
+        unsafe fn min(self, o: Self) -> Self {
             unsafe { Sse(_mm_min_ps(self.0, o.0), _mm_min_ps(self.1, o.1)) }
         }
         #[inline(always)]
-        fn max(self, o: Self) -> Self {
+        unsafe fn max(self, o: Self) -> Self {
             unsafe { Sse(_mm_max_ps(self.0, o.0), _mm_max_ps(self.1, o.1)) }
         }
         #[inline(always)]
-        fn le_mask(self, o: Self) -> u32 {
+        unsafe fn le_mask(self, o: Self) -> u32 {
             unsafe {
                 let low = _mm_movemask_ps(_mm_cmple_ps(self.0, o.0)) as u32;
                 let high = _mm_movemask_ps(_mm_cmple_ps(self.1, o.1)) as u32;
@@ -260,7 +266,7 @@ mod x86 {
             }
         }
         #[inline(always)]
-        fn to_array(self) -> [f32; LANES] {
+        unsafe fn to_array(self) -> [f32; LANES] {
             let mut out = [0.0; LANES];
             unsafe {
                 _mm_storeu_ps(out.as_mut_ptr(), self.0);
@@ -278,36 +284,44 @@ mod x86 {
     // with `target_feature(enable = "avx2")` (and "avx512f,avx512vl" for `Avx512`), which the
     // dispatch calls only after CPU detection found the features.
     impl Lanes for Avx2 {
-        #[inline(always)]
-        fn load(values: &[f32; LANES]) -> Self {
+        #[inline]
+        #[target_feature(enable = "avx2")]
+        unsafe fn load(values: &[f32; LANES]) -> Self {
             unsafe { Avx2(_mm256_loadu_ps(values.as_ptr())) }
         }
-        #[inline(always)]
-        fn splat(value: f32) -> Self {
-            unsafe { Avx2(_mm256_set1_ps(value)) }
+        #[inline]
+        #[target_feature(enable = "avx2")]
+        unsafe fn splat(value: f32) -> Self {
+            Avx2(_mm256_set1_ps(value))
         }
-        #[inline(always)]
-        fn sub(self, o: Self) -> Self {
-            unsafe { Avx2(_mm256_sub_ps(self.0, o.0)) }
+        #[inline]
+        #[target_feature(enable = "avx2")]
+        unsafe fn sub(self, o: Self) -> Self {
+            Avx2(_mm256_sub_ps(self.0, o.0))
         }
-        #[inline(always)]
-        fn mul(self, o: Self) -> Self {
-            unsafe { Avx2(_mm256_mul_ps(self.0, o.0)) }
+        #[inline]
+        #[target_feature(enable = "avx2")]
+        unsafe fn mul(self, o: Self) -> Self {
+            Avx2(_mm256_mul_ps(self.0, o.0))
         }
-        #[inline(always)]
-        fn min(self, o: Self) -> Self {
-            unsafe { Avx2(_mm256_min_ps(self.0, o.0)) }
+        #[inline]
+        #[target_feature(enable = "avx2")]
+        unsafe fn min(self, o: Self) -> Self {
+            Avx2(_mm256_min_ps(self.0, o.0))
         }
-        #[inline(always)]
-        fn max(self, o: Self) -> Self {
-            unsafe { Avx2(_mm256_max_ps(self.0, o.0)) }
+        #[inline]
+        #[target_feature(enable = "avx2")]
+        unsafe fn max(self, o: Self) -> Self {
+            Avx2(_mm256_max_ps(self.0, o.0))
         }
-        #[inline(always)]
-        fn le_mask(self, o: Self) -> u32 {
-            unsafe { _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(self.0, o.0)) as u32 }
+        #[inline]
+        #[target_feature(enable = "avx2")]
+        unsafe fn le_mask(self, o: Self) -> u32 {
+            _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(self.0, o.0)) as u32
         }
-        #[inline(always)]
-        fn to_array(self) -> [f32; LANES] {
+        #[inline]
+        #[target_feature(enable = "avx2")]
+        unsafe fn to_array(self) -> [f32; LANES] {
             let mut out = [0.0; LANES];
             unsafe { _mm256_storeu_ps(out.as_mut_ptr(), self.0) };
             out
@@ -319,37 +333,45 @@ mod x86 {
     pub(in crate::bvh) struct Avx512(Avx2);
 
     impl Lanes for Avx512 {
-        #[inline(always)]
-        fn load(values: &[f32; LANES]) -> Self {
-            Avx512(Avx2::load(values))
+        #[inline]
+        #[target_feature(enable = "avx2,avx512f,avx512vl")]
+        unsafe fn load(values: &[f32; LANES]) -> Self {
+            Avx512(unsafe { Avx2::load(values) })
         }
-        #[inline(always)]
-        fn splat(value: f32) -> Self {
-            Avx512(Avx2::splat(value))
+        #[inline]
+        #[target_feature(enable = "avx2,avx512f,avx512vl")]
+        unsafe fn splat(value: f32) -> Self {
+            Avx512(unsafe { Avx2::splat(value) })
         }
-        #[inline(always)]
-        fn sub(self, o: Self) -> Self {
-            Avx512(self.0.sub(o.0))
+        #[inline]
+        #[target_feature(enable = "avx2,avx512f,avx512vl")]
+        unsafe fn sub(self, o: Self) -> Self {
+            Avx512(unsafe { self.0.sub(o.0) })
         }
-        #[inline(always)]
-        fn mul(self, o: Self) -> Self {
-            Avx512(self.0.mul(o.0))
+        #[inline]
+        #[target_feature(enable = "avx2,avx512f,avx512vl")]
+        unsafe fn mul(self, o: Self) -> Self {
+            Avx512(unsafe { self.0.mul(o.0) })
         }
-        #[inline(always)]
-        fn min(self, o: Self) -> Self {
-            Avx512(self.0.min(o.0))
+        #[inline]
+        #[target_feature(enable = "avx2,avx512f,avx512vl")]
+        unsafe fn min(self, o: Self) -> Self {
+            Avx512(unsafe { self.0.min(o.0) })
         }
-        #[inline(always)]
-        fn max(self, o: Self) -> Self {
-            Avx512(self.0.max(o.0))
+        #[inline]
+        #[target_feature(enable = "avx2,avx512f,avx512vl")]
+        unsafe fn max(self, o: Self) -> Self {
+            Avx512(unsafe { self.0.max(o.0) })
         }
-        #[inline(always)]
-        fn le_mask(self, o: Self) -> u32 {
-            unsafe { u32::from(_mm256_cmp_ps_mask::<_CMP_LE_OQ>(self.0.0, o.0.0)) }
+        #[inline]
+        #[target_feature(enable = "avx2,avx512f,avx512vl")]
+        unsafe fn le_mask(self, o: Self) -> u32 {
+            u32::from(_mm256_cmp_ps_mask::<_CMP_LE_OQ>(self.0.0, o.0.0))
         }
-        #[inline(always)]
-        fn to_array(self) -> [f32; LANES] {
-            self.0.to_array()
+        #[inline]
+        #[target_feature(enable = "avx2,avx512f,avx512vl")]
+        unsafe fn to_array(self) -> [f32; LANES] {
+            unsafe { self.0.to_array() }
         }
     }
 }
