@@ -17,7 +17,7 @@ use crate::primitive::{Geometry, PrimId};
 /// Bins per axis when searching for a split.
 const BINS: usize = 16;
 /// Relative cost of visiting a node against testing one primitive.
-const TRAVERSAL_COST: f32 = 1.0;
+pub(super) const TRAVERSAL_COST: f32 = 1.0;
 /// A leaf never holds more than this unless its primitives cannot be told apart.
 const MAX_LEAF_SIZE: usize = 8;
 /// Deepest tree the traversal stack allows; subtrees deeper than this become leaves.
@@ -128,26 +128,7 @@ struct Split {
 
 impl Bvh {
     pub fn build(geometry: &Geometry) -> Bvh {
-        use rayon::prelude::*;
-        let ids: Vec<PrimId> = geometry.prim_ids().collect();
-        let bounds = |id: PrimId| geometry.bounds(id).filter(Aabb::is_finite);
-        let mut prims: Vec<BuildPrim> = ids
-            .par_iter()
-            .filter_map(|&id| {
-                let b = bounds(id)?;
-                Some(BuildPrim {
-                    bounds: Bounds {
-                        min: b.min.into(),
-                        max: b.max.into(),
-                    },
-                    id,
-                })
-            })
-            .collect();
-        let unbounded = ids
-            .into_par_iter()
-            .filter(|&id| bounds(id).is_none())
-            .collect();
+        let (mut prims, unbounded) = build_prims(geometry);
         let nodes = if prims.is_empty() {
             Vec::new()
         } else {
@@ -160,6 +141,43 @@ impl Bvh {
             unbounded,
         }
     }
+
+    /// The binary tree that [`Bvh::build`] widens: root first, the children of an interior
+    /// node at `first` and `first + 1`, a leaf's primitives counted from `first` in leaf order.
+    /// For measuring the builder ([`super::cost::sah_cost`]); empty when nothing is bounded.
+    pub fn binary_tree(geometry: &Geometry) -> Vec<Node> {
+        let (mut prims, _) = build_prims(geometry);
+        if prims.is_empty() {
+            return Vec::new();
+        }
+        let extent = Extent::of(&prims);
+        subtree(&mut prims, 0, extent, 0)
+    }
+}
+
+/// The bounded primitives as the builder sees them, and the ids of the unbounded ones.
+fn build_prims(geometry: &Geometry) -> (Vec<BuildPrim>, Vec<PrimId>) {
+    use rayon::prelude::*;
+    let ids: Vec<PrimId> = geometry.prim_ids().collect();
+    let bounds = |id: PrimId| geometry.bounds(id).filter(Aabb::is_finite);
+    let prims: Vec<BuildPrim> = ids
+        .par_iter()
+        .filter_map(|&id| {
+            let b = bounds(id)?;
+            Some(BuildPrim {
+                bounds: Bounds {
+                    min: b.min.into(),
+                    max: b.max.into(),
+                },
+                id,
+            })
+        })
+        .collect();
+    let unbounded = ids
+        .into_par_iter()
+        .filter(|&id| bounds(id).is_none())
+        .collect();
+    (prims, unbounded)
 }
 
 fn leaf(extent: &Extent, first: usize, count: usize) -> Node {

@@ -1,6 +1,11 @@
 //! The cost of a walk through the BVH: how many nodes it visited and how many primitives it
 //! tested. The traversal takes a [`TraversalCost`]; the renderer passes `()`, whose methods do
 //! nothing and vanish when compiled, and the BVH cost view passes a [`BvhCost`] that counts.
+//! [`sah_cost`] estimates a whole tree's cost for a ray, as the builder does for one split.
+
+use super::Node;
+use super::build::TRAVERSAL_COST;
+use crate::aabb::Aabb;
 
 /// Told of every node visited and every primitive tested during a traversal.
 pub trait TraversalCost {
@@ -40,4 +45,32 @@ impl TraversalCost for BvhCost {
     fn prims_tested(&mut self, count: usize) {
         self.prims += count as u64;
     }
+}
+
+/// The surface area heuristic's estimate of a tree's cost: the expected number of node visits
+/// (each costing [`TRAVERSAL_COST`]) and primitive tests of a ray that passes through the
+/// root's box, with the chance of entering a node taken as its surface area over the root's.
+/// `nodes` is a tree in [`Node`] form, root first (the binary tree of [`Bvh::binary_tree`] or
+/// a wider one): the lower, the fewer boxes and primitives a ray is expected to test. 0 for an
+/// empty tree.
+///
+/// [`Bvh::binary_tree`]: super::Bvh::binary_tree
+pub fn sah_cost(nodes: &[Node]) -> f64 {
+    let Some(root) = nodes.first() else {
+        return 0.0;
+    };
+    let area = |node: &Node| Aabb::new(node.min.into(), node.max.into()).surface_area() as f64;
+    let root_area = area(root).max(f64::MIN_POSITIVE);
+    let mut cost = 0.0;
+    let mut stack = vec![0];
+    while let Some(i) = stack.pop() {
+        let node = &nodes[i];
+        if node.is_leaf() {
+            cost += area(node) * node.count as f64;
+        } else {
+            cost += area(node) * TRAVERSAL_COST as f64;
+            stack.extend(node.children());
+        }
+    }
+    cost / root_area
 }

@@ -1,0 +1,122 @@
+//! Times the BVH build and prints the built tree's SAH cost, without criterion:
+//!
+//! ```sh
+//! cargo run --release --example bvh_build -- [MESH] [--threads N] [--reps N]
+//! ```
+//!
+//! MESH is `bumpy:N` (the generated bumpy sphere of `raylab bench`, N triangles; the default is
+//! `bumpy:1000000`) or the `NAME_vertices.f32` file of a mesh dumped by `embree_anchor.py --dump`
+//! (its `NAME_indices.u32` beside it), e.g. the 1M-triangle soup that BENCHMARKS.md compares
+//! with Embree. Each repetition builds the whole [`Bvh`] on a pool of N threads (default 2);
+//! the median is printed with the SAH cost of the binary tree the builder made
+//! ([`raylab::bvh::cost::sah_cost`]).
+
+use std::path::Path;
+use std::time::Instant;
+
+use glam::Vec3;
+use raylab::bvh::Bvh;
+use raylab::bvh::cost::sah_cost;
+use raylab::large_mesh::bumpy_sphere;
+use raylab::mesh::Mesh;
+use raylab::primitive::Geometry;
+
+const USAGE: &str = "usage: bvh_build [bumpy:N | NAME_vertices.f32] [--threads N] [--reps N]";
+
+fn main() {
+    if let Err(e) = run() {
+        eprintln!("bvh_build: {e}");
+        std::process::exit(1);
+    }
+}
+
+fn run() -> Result<(), String> {
+    let (mut mesh_name, mut threads, mut reps) = ("bumpy:1000000".to_string(), 2, 5);
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        let mut number = |name: &str| -> Result<usize, String> {
+            args.next()
+                .and_then(|v| v.parse().ok())
+                .filter(|&n| n > 0)
+                .ok_or(format!("{name} needs a positive whole number\n{USAGE}"))
+        };
+        match arg.as_str() {
+            "--threads" => threads = number("--threads")?,
+            "--reps" => reps = number("--reps")?,
+            _ if arg.starts_with("--") => return Err(format!("unknown option {arg}\n{USAGE}")),
+            _ => mesh_name = arg,
+        }
+    }
+    let mesh = load_mesh(&mesh_name)?;
+    mesh.validate().map_err(|e| e.to_string())?;
+    let mut geometry = Geometry::default();
+    geometry.add_mesh(mesh);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| e.to_string())?;
+    let mut ms: Vec<f64> = (0..reps)
+        .map(|_| {
+            let start = Instant::now();
+            let bvh = pool.install(|| Bvh::build(&geometry));
+            let elapsed = start.elapsed().as_secs_f64() * 1e3;
+            drop(bvh);
+            elapsed
+        })
+        .collect();
+    let times: Vec<String> = ms.iter().map(|t| format!("{t:.1}")).collect();
+    ms.sort_by(f64::total_cmp);
+    let tree = pool.install(|| Bvh::binary_tree(&geometry));
+    println!(
+        "{mesh_name}: {} triangles, {threads} threads, build ms {} (median {:.1}), \
+         binary nodes {}, SAH cost {:.3}",
+        geometry.triangles.len(),
+        times.join(" "),
+        ms[ms.len() / 2],
+        tree.len(),
+        sah_cost(&tree),
+    );
+    Ok(())
+}
+
+/// The generated bumpy sphere, or a mesh dumped by `embree_anchor.py --dump`.
+fn load_mesh(name: &str) -> Result<Mesh, String> {
+    if let Some(n) = name.strip_prefix("bumpy:") {
+        let n = n
+            .parse()
+            .map_err(|_| format!("`{name}`: expected bumpy:N"))?;
+        return Ok(bumpy_sphere(n));
+    }
+    let indices = name
+        .strip_suffix("_vertices.f32")
+        .map(|stem| format!("{stem}_indices.u32"))
+        .ok_or(format!(
+            "`{name}`: expected bumpy:N or NAME_vertices.f32\n{USAGE}"
+        ))?;
+    let words = |path: &str| -> Result<Vec<u32>, String> {
+        let bytes = std::fs::read(Path::new(path)).map_err(|e| format!("{path}: {e}"))?;
+        Ok(bytes
+            .chunks_exact(4)
+            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+            .collect())
+    };
+    let positions = words(name)?
+        .chunks_exact(3)
+        .map(|p| {
+            Vec3::new(
+                f32::from_bits(p[0]),
+                f32::from_bits(p[1]),
+                f32::from_bits(p[2]),
+            )
+        })
+        .collect();
+    let faces = words(&indices)?
+        .chunks_exact(3)
+        .map(|f| [f[0], f[1], f[2]])
+        .collect();
+    Ok(Mesh {
+        positions,
+        faces,
+        ..Mesh::default()
+    })
+}
