@@ -271,6 +271,18 @@ impl Bins {
             *self = *merged;
         }
     }
+
+    /// The plane after bin `bin` of axis `axis` as the bins see it: how many primitives go
+    /// left, and the boxes around both sides.
+    fn sides(&self, axis: usize, bin: usize, count: usize) -> (usize, Bounds, Bounds) {
+        let side = |bins: std::ops::Range<usize>| {
+            self.bounds[axis][bins]
+                .iter()
+                .fold(Bounds::EMPTY, |a, &b| a.union(b))
+        };
+        let mid = self.counts[axis][..=bin].iter().sum::<u32>();
+        (mid as usize, side(0..bin + 1), side(bin + 1..count))
+    }
 }
 
 /// How a node's primitives were split: the first `mid` go left.
@@ -452,12 +464,24 @@ fn split(prims: &mut [BuildPrim], extent: &Extent, bins: &mut Bins) -> Option<Sp
     let split = best_bin_plane(bins, extent, map.count)
         .filter(|&(cost, _, _)| pays(cost))
         .map(|(_, axis, bin)| {
+            // The bins know the sides' sizes and boxes; the partition finds their centroids'.
+            let (mid, left, right) = bins.sides(axis, bin, map.count);
             let goes_left = |p: &BuildPrim| map.bins(p)[axis] <= bin;
-            if parallel {
-                let mid: u32 = bins.counts[axis][..=bin].iter().sum();
-                partition_in_parallel(prims, mid as usize, goes_left)
+            let centroids = if parallel {
+                partition_in_parallel(prims, mid, goes_left)
             } else {
-                partition(prims, goes_left)
+                partition(prims, goes_left).1
+            };
+            Split {
+                mid,
+                left: Extent {
+                    bounds: left,
+                    centroids: centroids[1],
+                },
+                right: Extent {
+                    bounds: right,
+                    centroids: centroids[0],
+                },
             }
         });
     // All centroids coincide: no plane separates them. Halve large sets anyway.
@@ -468,7 +492,10 @@ fn split(prims: &mut [BuildPrim], extent: &Extent, bins: &mut Bins) -> Option<Sp
 /// right. `None` when they are all of one kind.
 fn split_by_kind(prims: &mut [BuildPrim]) -> Option<Split> {
     let objects = prims.iter().filter(|p| p.is_object()).count();
-    (objects != 0 && objects != prims.len()).then(|| partition(prims, BuildPrim::is_object))
+    (objects != 0 && objects != prims.len()).then(|| {
+        let (mid, _) = partition(prims, BuildPrim::is_object);
+        split_at(prims, mid)
+    })
 }
 
 /// The cheapest plane between bins by the SAH, on an axis along which the centroids spread:
@@ -535,74 +562,71 @@ fn split_at(prims: &[BuildPrim], mid: usize) -> Split {
     }
 }
 
-/// Moves the primitives that go left to the front, keeping count of both sides' extents.
+/// Moves the primitives that go left to the front: says how many they are, and the boxes
+/// around the centroids of those that go right and of those that go left.
 ///
 /// Whether a primitive goes left is as good as random to the processor, so the loop does not
 /// branch on it: each primitive trades places with the first one that goes right (or with
-/// itself), and the count of those that go left moves on by one or by none.
-fn partition(prims: &mut [BuildPrim], goes_left: impl Fn(&BuildPrim) -> bool) -> Split {
-    // Right side first, then left: `sides[goes_left as usize]`.
-    let mut sides = [Extent::EMPTY; 2];
+/// itself), the count of those that go left moves on by one or by none, and the centroid grows
+/// the box of its side, picked by index.
+fn partition(
+    prims: &mut [BuildPrim],
+    goes_left: impl Fn(&BuildPrim) -> bool,
+) -> (usize, [Bounds; 2]) {
+    let mut centroids = [Bounds::EMPTY; 2];
     let mut mid = 0;
     for j in 0..prims.len() {
         let p = prims[j];
-        let left = goes_left(&p);
-        sides[left as usize] = sides[left as usize].add(&p);
         prims[j] = prims[mid];
         prims[mid] = p;
-        mid += left as usize;
+        let left = goes_left(&p) as usize;
+        centroids[left] = centroids[left].grow(p.centroid());
+        mid += left;
     }
-    Split {
-        mid,
-        left: sides[1],
-        right: sides[0],
-    }
+    (mid, centroids)
 }
 
 /// [`partition`] on all threads, with the same result whatever their number, when `mid` of
-/// the primitives go left. Pieces of the primitives are looked at in parallel: each lists those
-/// on the wrong side of `mid` and adds up both sides' extents. Then the k-th primitive that
-/// must move right trades places with the k-th that must move left.
+/// the primitives go left: the boxes around the centroids of those that go right and left.
+/// Pieces of the primitives are looked at in parallel, each listing those on the wrong side of
+/// `mid` and growing the centroid boxes; then the k-th primitive that must move right trades
+/// places with the k-th that must move left.
 fn partition_in_parallel(
     prims: &mut [BuildPrim],
     mid: usize,
     goes_left: impl Fn(&BuildPrim) -> bool + Sync,
-) -> Split {
+) -> [Bounds; 2] {
     let (front, back) = prims.split_at_mut(mid);
-    let look = |chunk_start: usize, chunk: &[BuildPrim], misplaced_if: bool| {
-        let (mut left, mut right) = (Extent::EMPTY, Extent::EMPTY);
+    let look = |start: usize, chunk: &[BuildPrim], left_is_misplaced: bool| {
+        let mut centroids = [Bounds::EMPTY; 2];
         let mut misplaced = Vec::new();
         for (k, p) in chunk.iter().enumerate() {
-            let l = goes_left(p);
-            if l {
-                left = left.add(p);
-            } else {
-                right = right.add(p);
-            }
-            if l == misplaced_if {
-                misplaced.push((chunk_start + k) as u32);
+            let left = goes_left(p);
+            centroids[left as usize] = centroids[left as usize].grow(p.centroid());
+            if left == left_is_misplaced {
+                misplaced.push((start + k) as u32);
             }
         }
-        (misplaced, left, right)
+        (misplaced, centroids)
     };
-    let pieces = |part: &[BuildPrim], misplaced_if: bool| -> Vec<(Vec<u32>, Extent, Extent)> {
+    let pieces = |part: &[BuildPrim], left_is_misplaced: bool| -> Vec<(Vec<u32>, [Bounds; 2])> {
         part.par_chunks(CHUNK)
             .enumerate()
-            .map(|(c, chunk)| look(c * CHUNK, chunk, misplaced_if))
+            .map(|(c, chunk)| look(c * CHUNK, chunk, left_is_misplaced))
             .collect()
     };
     let (front_pieces, back_pieces) = rayon::join(|| pieces(front, false), || pieces(back, true));
-    let (mut left, mut right) = (Extent::EMPTY, Extent::EMPTY);
-    for (_, l, r) in front_pieces.iter().chain(&back_pieces) {
-        left = left.union(*l);
-        right = right.union(*r);
-    }
-    let to_right = front_pieces.iter().flat_map(|(m, _, _)| m);
-    let to_left = back_pieces.iter().flat_map(|(m, _, _)| m);
+    let to_right = front_pieces.iter().flat_map(|(m, _)| m);
+    let to_left = back_pieces.iter().flat_map(|(m, _)| m);
     for (&a, &b) in to_right.zip(to_left) {
         std::mem::swap(&mut front[a as usize], &mut back[b as usize]);
     }
-    Split { mid, left, right }
+    front_pieces
+        .iter()
+        .chain(&back_pieces)
+        .fold([Bounds::EMPTY; 2], |[r, l], (_, [pr, pl])| {
+            [r.union(*pr), l.union(*pl)]
+        })
 }
 
 #[cfg(test)]
