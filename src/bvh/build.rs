@@ -454,6 +454,11 @@ fn split(prims: &mut [BuildPrim], extent: &Extent, bins: &mut Bins) -> Option<Sp
     let n = prims.len();
     let area = extent.bounds.surface_area().max(f32::MIN_POSITIVE);
     let pays = |cost: f32| TRAVERSAL_COST + cost / area < n as f32 || n > MAX_LEAF_SIZE;
+    if let [a, b] = prims {
+        return split_pair(a, b)
+            .filter(|&cost| pays(cost))
+            .map(|_| split_at(prims, 1));
+    }
     let map = BinMap::new(&extent.centroids, bin_count(n));
     let parallel = n >= DATA_PARALLEL_MIN_PRIMS;
     if parallel {
@@ -486,6 +491,18 @@ fn split(prims: &mut [BuildPrim], extent: &Extent, bins: &mut Bins) -> Option<Sp
         });
     // All centroids coincide: no plane separates them. Halve large sets anyway.
     split.or_else(|| (n > MAX_LEAF_SIZE).then(|| split_at(prims, n / 2)))
+}
+
+/// Two primitives can only be split one way: one on each side. The SAH cost of that (without
+/// the node's own area), with the two put in the order the bins would (by centroid, along the
+/// first axis on which the centroids differ); `None` when the centroids are the same.
+fn split_pair(a: &mut BuildPrim, b: &mut BuildPrim) -> Option<f32> {
+    let (ca, cb) = (a.centroid(), b.centroid());
+    let axis = (0..3).find(|&axis| ca[axis] != cb[axis])?;
+    if cb[axis] < ca[axis] {
+        std::mem::swap(a, b);
+    }
+    Some(a.bounds().surface_area() + b.bounds().surface_area())
 }
 
 /// A leaf's primitives, when they are of both kinds, split by kind: objects left, triangles
