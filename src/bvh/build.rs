@@ -26,7 +26,8 @@ const MIN_BINS: usize = 8;
 pub(super) const TRAVERSAL_COST: f32 = 1.0;
 /// A leaf never holds more than this unless its primitives cannot be told apart.
 const MAX_LEAF_SIZE: usize = 8;
-/// Deepest tree the traversal stack allows; subtrees deeper than this become leaves.
+/// Deepest tree the traversal stack allows: a node one level above it is a leaf, or, when it
+/// holds both kinds of primitive, split by kind into two leaves.
 pub(super) const MAX_DEPTH: usize = 60;
 /// Nodes with at least this many primitives build their two halves in parallel; below it,
 /// handing work to another thread costs more than it saves.
@@ -633,11 +634,28 @@ fn partition_in_parallel(
             .collect()
     };
     let (front_pieces, back_pieces) = rayon::join(|| pieces(front, false), || pieces(back, true));
-    let to_right = front_pieces.iter().flat_map(|(m, _)| m);
-    let to_left = back_pieces.iter().flat_map(|(m, _)| m);
-    for (&a, &b) in to_right.zip(to_left) {
-        std::mem::swap(&mut front[a as usize], &mut back[b as usize]);
+    // The trades, in parallel, piece by piece of the front: the partners of a piece's
+    // misplaced primitives lie in one stretch of the back, after those of the piece before.
+    let to_left: Vec<u32> = back_pieces.iter().flat_map(|(m, _)| m).copied().collect();
+    let mut trades = Vec::with_capacity(front_pieces.len());
+    let (mut rest, mut rest_start, mut partners) = (back, 0, &to_left[..]);
+    for (piece, (to_right, _)) in front.chunks_mut(CHUNK).zip(&front_pieces) {
+        let (mine, others) = partners.split_at(to_right.len());
+        let end = mine.last().map_or(rest_start, |&b| b as usize + 1);
+        let (stretch, tail) = std::mem::take(&mut rest).split_at_mut(end - rest_start);
+        trades.push((piece, to_right, mine, stretch, rest_start));
+        (rest, rest_start, partners) = (tail, end, others);
     }
+    trades.into_par_iter().enumerate().for_each(
+        |(c, (piece, to_right, partners, stretch, stretch_start))| {
+            for (&a, &b) in to_right.iter().zip(partners) {
+                std::mem::swap(
+                    &mut piece[a as usize - c * CHUNK],
+                    &mut stretch[b as usize - stretch_start],
+                );
+            }
+        },
+    );
     front_pieces
         .iter()
         .chain(&back_pieces)
