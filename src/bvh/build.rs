@@ -594,10 +594,9 @@ fn partition(
     let mut centroids = [Bounds::EMPTY; 2];
     let mut mid = 0;
     for j in 0..prims.len() {
-        let p = prims[j];
-        prims[j] = prims[mid];
-        prims[mid] = p;
-        let left = goes_left(&p) as usize;
+        prims.swap(mid, j);
+        let p = &prims[mid];
+        let left = goes_left(p) as usize;
         centroids[left] = centroids[left].grow(p.centroid());
         mid += left;
     }
