@@ -581,26 +581,34 @@ fn split_at(prims: &[BuildPrim], mid: usize) -> Split {
 }
 
 /// Moves the primitives that go left to the front: says how many they are, and the boxes
-/// around the centroids of those that go right and of those that go left.
-///
-/// Whether a primitive goes left is as good as random to the processor, so the loop does not
-/// branch on it: each primitive trades places with the first one that goes right (or with
-/// itself), the count of those that go left moves on by one or by none, and the centroid grows
-/// the box of its side, picked by index.
+/// around the centroids of those that go right and of those that go left. From both ends
+/// towards the middle, swapping the pairs that are on the wrong side.
 fn partition(
     prims: &mut [BuildPrim],
     goes_left: impl Fn(&BuildPrim) -> bool,
 ) -> (usize, [Bounds; 2]) {
-    let mut centroids = [Bounds::EMPTY; 2];
-    let mut mid = 0;
-    for j in 0..prims.len() {
-        prims.swap(mid, j);
-        let p = &prims[mid];
-        let left = goes_left(p) as usize;
-        centroids[left] = centroids[left].grow(p.centroid());
-        mid += left;
+    let (mut left, mut right) = (Bounds::EMPTY, Bounds::EMPTY);
+    let (mut i, mut j) = (0, prims.len());
+    loop {
+        while i < j && goes_left(&prims[i]) {
+            left = left.grow(prims[i].centroid());
+            i += 1;
+        }
+        while i < j && !goes_left(&prims[j - 1]) {
+            j -= 1;
+            right = right.grow(prims[j].centroid());
+        }
+        if i == j {
+            break;
+        }
+        // prims[i] goes right and prims[j − 1] goes left.
+        j -= 1;
+        prims.swap(i, j);
+        left = left.grow(prims[i].centroid());
+        right = right.grow(prims[j].centroid());
+        i += 1;
     }
-    (mid, centroids)
+    (i, [right, left])
 }
 
 /// [`partition`] on all threads, with the same result whatever their number, when `mid` of
