@@ -5,9 +5,9 @@
 //! ```
 //!
 //! MESH is `bumpy:N` (the generated bumpy sphere of `raylab bench`, N triangles; the default is
-//! `bumpy:1000000`) or the `NAME_vertices.f32` file of a mesh dumped by `embree_anchor.py --dump`
+//! `bumpy:1000000`), the `NAME_vertices.f32` file of a mesh dumped by `embree_anchor.py --dump`
 //! (its `NAME_indices.u32` beside it), e.g. the 1M-triangle soup that BENCHMARKS.md compares
-//! with Embree. Each repetition builds the whole [`Bvh`] on a pool of N threads (default 2);
+//! with Embree, or any scene `raylab render` reads (a file, `spd:NAME:SIZE`). Each repetition builds the whole [`Bvh`] on a pool of N threads (default 2);
 //! the median is printed with the SAH cost of the binary tree the builder made
 //! ([`raylab::bvh::cost::sah_cost`]).
 
@@ -17,11 +17,13 @@ use std::time::Instant;
 use glam::Vec3;
 use raylab::bvh::Bvh;
 use raylab::bvh::cost::sah_cost;
+use raylab::formats::load_any;
 use raylab::large_mesh::bumpy_sphere;
 use raylab::mesh::Mesh;
 use raylab::primitive::Geometry;
 
-const USAGE: &str = "usage: bvh_build [bumpy:N | NAME_vertices.f32] [--threads N] [--reps N]";
+const USAGE: &str =
+    "usage: bvh_build [bumpy:N | NAME_vertices.f32 | SCENE] [--threads N] [--reps N]";
 
 fn main() {
     if let Err(e) = run() {
@@ -47,10 +49,7 @@ fn run() -> Result<(), String> {
             _ => mesh_name = arg,
         }
     }
-    let mesh = load_mesh(&mesh_name)?;
-    mesh.validate().map_err(|e| e.to_string())?;
-    let mut geometry = Geometry::default();
-    geometry.add_mesh(mesh);
+    let geometry = load(&mesh_name)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
@@ -68,9 +67,9 @@ fn run() -> Result<(), String> {
     ms.sort_by(f64::total_cmp);
     let tree = pool.install(|| Bvh::binary_tree(&geometry));
     println!(
-        "{mesh_name}: {} triangles, {threads} threads, build ms {} (median {:.1}), \
+        "{mesh_name}: {} primitives, {threads} threads, build ms {} (median {:.1}), \
          binary nodes {}, SAH cost {:.3}",
-        geometry.triangles.len(),
+        geometry.len(),
         times.join(" "),
         ms[ms.len() / 2],
         tree.len(),
@@ -79,20 +78,27 @@ fn run() -> Result<(), String> {
     Ok(())
 }
 
-/// The generated bumpy sphere, or a mesh dumped by `embree_anchor.py --dump`.
-fn load_mesh(name: &str) -> Result<Mesh, String> {
-    if let Some(n) = name.strip_prefix("bumpy:") {
+/// The generated bumpy sphere, a mesh dumped by `embree_anchor.py --dump`, or a scene's
+/// primitives.
+fn load(name: &str) -> Result<Geometry, String> {
+    let mesh = if let Some(n) = name.strip_prefix("bumpy:") {
         let n = n
             .parse()
             .map_err(|_| format!("`{name}`: expected bumpy:N"))?;
-        return Ok(bumpy_sphere(n));
-    }
-    let indices = name
-        .strip_suffix("_vertices.f32")
-        .map(|stem| format!("{stem}_indices.u32"))
-        .ok_or(format!(
-            "`{name}`: expected bumpy:N or NAME_vertices.f32\n{USAGE}"
-        ))?;
+        bumpy_sphere(n)
+    } else if let Some(stem) = name.strip_suffix("_vertices.f32") {
+        dumped_mesh(name, &format!("{stem}_indices.u32"))?
+    } else {
+        return Ok(load_any(name).map_err(|e| e.to_string())?.geometry);
+    };
+    mesh.validate().map_err(|e| e.to_string())?;
+    let mut geometry = Geometry::default();
+    geometry.add_mesh(mesh);
+    Ok(geometry)
+}
+
+/// A mesh as `embree_anchor.py --dump` writes it: vertices and triangles' indices.
+fn dumped_mesh(vertices: &str, indices: &str) -> Result<Mesh, String> {
     let words = |path: &str| -> Result<Vec<u32>, String> {
         let bytes = std::fs::read(Path::new(path)).map_err(|e| format!("{path}: {e}"))?;
         Ok(bytes
@@ -100,7 +106,7 @@ fn load_mesh(name: &str) -> Result<Mesh, String> {
             .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
             .collect())
     };
-    let positions = words(name)?
+    let positions = words(vertices)?
         .chunks_exact(3)
         .map(|p| {
             Vec3::new(
@@ -110,7 +116,7 @@ fn load_mesh(name: &str) -> Result<Mesh, String> {
             )
         })
         .collect();
-    let faces = words(&indices)?
+    let faces = words(indices)?
         .chunks_exact(3)
         .map(|f| [f[0], f[1], f[2]])
         .collect();
