@@ -196,11 +196,11 @@ impl BinMap {
     /// call this, so they put each primitive on the same side.
     #[inline(always)]
     fn bins(&self, p: &BuildPrim) -> [usize; 3] {
-        // Half a bin less, then rounded to the nearest whole number: cut down (but for exact
-        // halves, which go to the even neighbour). Rounding in SIMD, all three at once: 2²³
-        // added to a number from 0 to 2²² leaves its rounded value in the float's low bits, and
-        // `MAX_BINS` is a power of two
-        // (a flat axis has scale ∞ and gives NaN, which `max` makes 0; it is never split).
+        // Rounding in SIMD, all three axes at once: 2²³ added to a number from 0 to 2²² leaves
+        // it rounded to the nearest whole number in the float's low bits, which the mask keeps
+        // (`MAX_BINS` is a power of two). Half a bin less first makes that rounding down (but
+        // for exact halves, which go to the even neighbour). A flat axis has scale ∞ and gives
+        // NaN, which `max` makes 0; it is never split.
         let slot = ((p.centroid() - self.lo) * self.scale - Vec3A::splat(0.5))
             .max(Vec3A::ZERO)
             .min(Vec3A::splat((self.count - 1) as f32))
