@@ -9,14 +9,13 @@
 //! (its `NAME_indices.u32` beside it), e.g. the 1M-triangle soup that BENCHMARKS.md compares
 //! with Embree, or any scene `raylab render` reads (a file, `spd:NAME:SIZE`). Each repetition builds the whole [`Bvh`] on a pool of N threads (default 2);
 //! the median is printed with the SAH cost of the binary tree the builder made
-//! ([`raylab::bvh::cost::sah_cost`]).
+//! (`Bvh::binary_tree_cost`).
 
 use std::path::Path;
 use std::time::Instant;
 
 use glam::Vec3;
 use raylab::bvh::Bvh;
-use raylab::bvh::cost::sah_cost;
 use raylab::formats::load_any;
 use raylab::large_mesh::bumpy_sphere;
 use raylab::mesh::Mesh;
@@ -65,15 +64,15 @@ fn run() -> Result<(), String> {
         .collect();
     let times: Vec<String> = ms.iter().map(|t| format!("{t:.1}")).collect();
     ms.sort_by(f64::total_cmp);
-    let tree = pool.install(|| Bvh::binary_tree(&geometry));
+    let (cost, nodes) = pool.install(|| Bvh::binary_tree_cost(&geometry));
     println!(
         "{mesh_name}: {} primitives, {threads} threads, build ms {} (median {:.1}), \
          binary nodes {}, SAH cost {:.3}",
         geometry.len(),
         times.join(" "),
         ms[ms.len() / 2],
-        tree.len(),
-        sah_cost(&tree),
+        nodes,
+        cost,
     );
     Ok(())
 }

@@ -92,8 +92,9 @@ pub struct SurfacePoint {
 pub struct Geometry {
     pub objects: Vec<Object>,
     pub meshes: Vec<Mesh>,
-    /// The triangles of all meshes, mesh after mesh.
-    pub triangles: Vec<Triangle>,
+    /// The triangles of all meshes, mesh after mesh, as the face of their mesh each one is
+    /// (degenerate faces have no triangle). The vertices stay in the mesh: [`Self::triangle`].
+    pub triangle_faces: Vec<u32>,
     /// Where each mesh's triangles start in `triangles`.
     pub mesh_starts: Vec<u32>,
 }
@@ -101,17 +102,31 @@ pub struct Geometry {
 impl Geometry {
     /// Adds a mesh (already in world space) and its triangles.
     pub fn add_mesh(&mut self, mesh: Mesh) {
-        self.mesh_starts.push(self.triangles.len() as u32);
+        self.mesh_starts.push(self.triangle_faces.len() as u32);
         // Reserve first: the iterator skips degenerate faces, so it cannot tell `extend` its
         // length, and growing by doubling would leave up to half the array unused.
-        self.triangles.reserve_exact(mesh.faces.len());
-        self.triangles.extend(mesh.triangles());
+        self.triangle_faces.reserve_exact(mesh.faces.len());
+        self.triangle_faces
+            .extend(mesh.triangles().map(|triangle| triangle.face));
         self.meshes.push(mesh);
     }
 
     /// Number of primitives (objects and triangles).
     pub fn len(&self) -> usize {
-        self.objects.len() + self.triangles.len()
+        self.objects.len() + self.triangle_faces.len()
+    }
+
+    /// Number of triangles, all meshes together.
+    pub fn triangle_count(&self) -> usize {
+        self.triangle_faces.len()
+    }
+
+    /// Triangle `t` in world space, read from its mesh.
+    pub fn triangle(&self, t: usize) -> Triangle {
+        let mesh = self.mesh_of(t);
+        let face = self.triangle_faces[t];
+        let corners = mesh.faces[face as usize].map(|v| mesh.positions[v as usize]);
+        Triangle::new(corners, face)
     }
 
     pub fn is_empty(&self) -> bool {
@@ -132,7 +147,7 @@ impl Geometry {
             })
             .sum();
         self.objects.capacity() * size_of::<Object>()
-            + self.triangles.capacity() * size_of::<Triangle>()
+            + self.triangle_faces.capacity() * size_of::<u32>()
             + self.mesh_starts.capacity() * size_of::<u32>()
             + meshes
     }
@@ -141,7 +156,7 @@ impl Geometry {
     pub fn contains(&self, id: PrimId) -> bool {
         match id.kind() {
             Ok(o) => o < self.objects.len(),
-            Err(t) => t < self.triangles.len(),
+            Err(t) => t < self.triangle_faces.len(),
         }
     }
 
@@ -149,7 +164,7 @@ impl Geometry {
     pub fn prim_ids(&self) -> impl Iterator<Item = PrimId> + '_ {
         (0..self.objects.len())
             .map(PrimId::object)
-            .chain((0..self.triangles.len()).map(PrimId::triangle))
+            .chain((0..self.triangle_faces.len()).map(PrimId::triangle))
     }
 
     /// World-space bounds, `None` for unbounded primitives.
@@ -163,7 +178,7 @@ impl Geometry {
                     None => b,
                 })
             }
-            Err(t) => Some(self.triangles[t].bounds()),
+            Err(t) => Some(self.triangle(t).bounds()),
         }
     }
 
@@ -192,7 +207,8 @@ impl Geometry {
         t_max: f32,
     ) -> Option<Hit> {
         match id.kind() {
-            Err(t) => self.triangles[t]
+            Err(t) => self
+                .triangle(t)
                 .intersect_sheared(sheared, t_min, t_max)
                 .map(|h| Hit {
                     t: h.t,
@@ -244,7 +260,7 @@ impl Geometry {
         let object = self.object_label(self.object_id(prim));
         match prim.kind() {
             Ok(_) => object,
-            Err(t) => format!("{object}, triangle {}", self.triangles[t].face),
+            Err(t) => format!("{object}, triangle {}", self.triangle_faces[t]),
         }
     }
 
@@ -320,7 +336,7 @@ impl Geometry {
                 }
             }
             Err(t) => {
-                let tri = &self.triangles[t];
+                let tri = self.triangle(t);
                 let mesh = self.mesh_of(t);
                 let geometric = tri.normal();
                 let (normal, uv) = mesh.shading(tri.face, hit.bary, geometric);

@@ -19,6 +19,10 @@
 //! the threads' order does not matter. A pixel given all `samples` samples by the adaptive rounds
 //! is exactly the uniform render's pixel.
 //!
+//! A render nobody watches before it ends (to a file) needs none of the coarse passes: it traces
+//! every pixel, with all its samples under uniform sampling, in one sweep ([`unwatched_passes`],
+//! [`render_unwatched`]), and ends with the same film.
+//!
 //! Each pixel sample is what the caller's [`Shader`] makes of its eye ray: the Whitted colour
 //! ([`Shaded`]), or another view of the scene (the inspector's debug views implement
 //! [`Shader`] too), refined by the same passes.
@@ -78,6 +82,9 @@ pub enum Pass {
     /// A round of adaptive anti-aliasing: bring every pixel whose colour differs from a
     /// neighbour's by more than the threshold up to `n` samples.
     Refine(u32),
+    /// Trace samples 0 to `n - 1` of every pixel in one sweep: what the block passes and the
+    /// sample passes up to `Sample(n - 1)` leave in the film, when nobody watches them.
+    Sweep(u32),
 }
 
 /// The passes of a render starting at `block_size` (a power of two) with `samples` per pixel:
@@ -96,6 +103,19 @@ pub fn passes(block_size: u32, samples: u32, adaptive: bool) -> Vec<Pass> {
         (1..samples).map(Pass::Sample).collect()
     };
     blocks.map(Pass::Block).chain(sampling).collect()
+}
+
+/// The passes of a render whose coarse passes nobody watches (a render to a file): every pixel
+/// and, with uniform sampling, all its samples in one [`Pass::Sweep`], without the block passes'
+/// painting and the waits between passes; then the adaptive rounds of [`passes`], which decide
+/// from the whole film. The film ends as after [`passes`], whatever the starting block size.
+pub fn unwatched_passes(samples: u32, adaptive: bool) -> Vec<Pass> {
+    if !adaptive {
+        return vec![Pass::Sweep(samples.max(1))];
+    }
+    // The rounds after block pass 1.
+    let rounds = passes(1, samples, adaptive).into_iter().skip(1);
+    std::iter::once(Pass::Sweep(1)).chain(rounds).collect()
 }
 
 /// What one pass of progressive rendering did.
@@ -268,7 +288,7 @@ pub fn render(
     shader: &dyn Shader,
     film: &Film,
     control: &RenderControl,
-    mut on_pass: impl FnMut(&PassStats),
+    on_pass: impl FnMut(&PassStats),
 ) -> Result<RenderStats, Cancelled> {
     let settings = &tracer.scene.settings;
     let plan = passes(
@@ -276,6 +296,32 @@ pub fn render(
         settings.samples,
         settings.aa_threshold > 0.0,
     );
+    render_plan(tracer, shader, film, control, &plan, on_pass)
+}
+
+/// [`render`] for a film nobody looks at before it is finished (a render to a file): the
+/// [`unwatched_passes`], the same film in the end.
+pub fn render_unwatched(
+    tracer: &Tracer,
+    shader: &dyn Shader,
+    film: &Film,
+    control: &RenderControl,
+) -> Result<RenderStats, Cancelled> {
+    let settings = &tracer.scene.settings;
+    let plan = unwatched_passes(settings.samples, settings.aa_threshold > 0.0);
+    render_plan(tracer, shader, film, control, &plan, |_| {})
+}
+
+/// Runs the passes of `plan` one after another, calling `on_pass` after each.
+fn render_plan(
+    tracer: &Tracer,
+    shader: &dyn Shader,
+    film: &Film,
+    control: &RenderControl,
+    plan: &[Pass],
+    mut on_pass: impl FnMut(&PassStats),
+) -> Result<RenderStats, Cancelled> {
+    let settings = &tracer.scene.settings;
     control.passes.store(plan.len() as u32, Ordering::Relaxed);
     let start = Instant::now();
     let mut stats = RenderStats::default();
@@ -344,7 +390,7 @@ fn run_pass(
     let (width, height) = (film.width(), film.height());
     let step = match pass {
         Pass::Block(b) => b,
-        Pass::Sample(_) | Pass::Refine(_) => 1,
+        Pass::Sample(_) | Pass::Refine(_) | Pass::Sweep(_) => 1,
     };
     if let Pass::Refine(_) = pass {
         take_snapshot(film, shown);
@@ -354,7 +400,7 @@ fn run_pass(
     let samples = match pass {
         Pass::Block(_) => 1,
         Pass::Sample(k) => k + 1,
-        Pass::Refine(n) => n,
+        Pass::Refine(n) | Pass::Sweep(n) => n,
     };
     control.samples.store(samples, Ordering::Relaxed);
     control.rows.store(rows, Ordering::Relaxed);
@@ -370,9 +416,13 @@ fn run_pass(
         threshold: tracer.scene.settings.aa_threshold,
     };
     let columns = width.div_ceil(step);
-    // Bands of TILE rows of the grid go to the threads; each band is traced tile by tile.
+    // Bands of TILE rows of the grid go to the threads; each band is traced tile by tile. Each
+    // band is a job of its own that an idle thread can take: left to itself, rayon would hand a
+    // thread runs of up to a quarter of the bands, and the other would wait at the end of the
+    // pass for the rest of the run it cannot take.
     (0..rows.div_ceil(TILE))
         .into_par_iter()
+        .with_max_len(1)
         .try_for_each(|band| {
             control.wait_while_paused();
             if control.is_cancelled() {
@@ -438,6 +488,7 @@ impl PassGrid<'_> {
             Pass::Block(b) if traces_pixel(b, self.start_block, x, y) => 0..1,
             Pass::Block(_) => 0..0,
             Pass::Sample(k) => k..k + 1,
+            Pass::Sweep(n) => 0..n,
             Pass::Refine(n) => {
                 let taken = self.film.samples(x, y);
                 if taken < n && self.differs_from_a_neighbour(x, y) {

@@ -8,8 +8,9 @@ use std::ops::ControlFlow;
 use common::random::{Rng, in_cube, in_range};
 use glam::Vec3;
 use proptest::prelude::*;
-use raylab::bvh::Bvh;
+use raylab::aabb::Aabb;
 use raylab::bvh::packet::PACKET_SIZE;
+use raylab::bvh::{Bvh, Simd};
 use raylab::camera::{Camera, CameraSpec, PIXEL_CENTRE};
 use raylab::mesh::Mesh;
 use raylab::primitive::{Geometry, Hit, Object, PrimId};
@@ -179,29 +180,44 @@ fn tree_is_shallow_and_covers_every_primitive_once() {
     let g = random_scene(5, 2000, 8000, 1);
     let bvh = Bvh::build(&g);
     assert_eq!(bvh.unbounded.len(), 1, "the plane stays out of the tree");
-    let mut seen: Vec<PrimId> = bvh.prims.clone();
-    seen.sort();
-    seen.dedup();
-    assert_eq!(seen.len(), g.prim_ids().count() - 1);
     assert!(bvh.depth() < 40, "depth {}", bvh.depth());
-    // Each leaf's box holds its primitives' boxes; each interior box holds its children's.
+    let mut seen: Vec<PrimId> = Vec::new();
+    // Each leaf's box holds its primitives' boxes; each interior child's box holds its
+    // children's.
+    let inside =
+        |b: Aabb, outer: Aabb| b.min.cmpge(outer.min).all() && b.max.cmple(outer.max).all();
     for node in &bvh.nodes {
-        let (min, max) = (Vec3::from(node.min), Vec3::from(node.max));
-        let inside = |b: raylab::aabb::Aabb| b.min.cmpge(min).all() && b.max.cmple(max).all();
-        if node.is_leaf() {
-            let first = node.first as usize;
-            for &id in &bvh.prims[first..first + node.count as usize] {
-                assert!(inside(g.bounds(id).unwrap()));
-            }
-        } else {
-            for child in &bvh.nodes[node.children()] {
-                assert!(inside(raylab::aabb::Aabb::new(
-                    child.min.into(),
-                    child.max.into()
-                )));
+        for k in 0..raylab::bvh::WIDTH {
+            let Some(child) = node.child(k) else {
+                continue;
+            };
+            let outer = node.child_bounds(k);
+            if child.is_leaf() {
+                let prims = bvh.leaf_prims(child);
+                assert!(!prims.is_empty());
+                let kinds: BTreeSet<bool> = prims.iter().map(|id| id.kind().is_ok()).collect();
+                assert_eq!(kinds.len(), 1, "a leaf holds one kind of primitive");
+                for &id in &prims {
+                    assert!(inside(g.bounds(id).unwrap(), outer));
+                }
+                seen.extend(prims);
+            } else {
+                let inner = &bvh.nodes[child.first as usize];
+                for j in (0..raylab::bvh::WIDTH).filter(|&j| inner.child(j).is_some()) {
+                    assert!(inside(inner.child_bounds(j), outer));
+                }
             }
         }
     }
+    let leaves = seen.len();
+    seen.sort();
+    seen.dedup();
+    assert_eq!(seen.len(), leaves, "no primitive is in two leaves");
+    assert_eq!(
+        seen.len(),
+        g.prim_ids().count() - 1,
+        "every bounded primitive is"
+    );
 }
 
 #[test]
@@ -243,7 +259,14 @@ fn the_tree_does_not_depend_on_the_thread_count() {
     let one = build_on(1);
     let four = build_on(4);
     assert_eq!(one.nodes, four.nodes);
-    assert_eq!(one.prims, four.prims);
+    assert_eq!(one.objects, four.objects);
+    let packs = |bvh: &Bvh| -> Vec<_> {
+        bvh.packs
+            .iter()
+            .map(|pack| (pack.tags, pack.p.map(|v| v.map(|a| a.map(f32::to_bits)))))
+            .collect()
+    };
+    assert_eq!(packs(&one), packs(&four));
 }
 
 #[test]
@@ -397,4 +420,70 @@ fn each_triangle_has_its_own_mesh_material() {
     };
     assert_eq!(material_seen_from(-5.0, Vec3::Z), (3, 3));
     assert_eq!(material_seen_from(5.0, -Vec3::Z), (5, 5));
+}
+
+#[test]
+fn every_instruction_set_gives_the_same_hits() {
+    let g = random_scene(21, 500, 4000, 1);
+    let mut bvh = Bvh::build(&g);
+    let mut rng = Rng::with_seed(21);
+    let mut rays: Vec<Ray> = (0..2000).map(|_| random_ray(&mut rng)).collect();
+    rays.extend(eye_rays_in_tiles(
+        &camera_at(Vec3::new(0.0, 3.0, 40.0)),
+        32,
+        32,
+    ));
+    // Along the axes, where the inverse direction has infinities.
+    rays.extend([Vec3::X, -Vec3::Y, Vec3::Z].map(|d| Ray::new(-20.0 * d, d)));
+    let answers = |bvh: &Bvh| {
+        let closest: Vec<Option<Hit>> = rays
+            .iter()
+            .map(|ray| bvh.closest_hit(&g, ray, 0.0, f32::INFINITY))
+            .collect();
+        let blockers: Vec<Vec<PrimId>> = rays
+            .iter()
+            .map(|ray| {
+                let mut on_segment = Vec::new();
+                bvh.any_hit(&g, ray, 0.0, 30.0, |hit| {
+                    on_segment.push(hit.prim);
+                    ControlFlow::Continue(())
+                });
+                on_segment.sort();
+                on_segment
+            })
+            .collect();
+        let mut packets = vec![None; rays.len()];
+        for (rays, hits) in rays
+            .chunks(PACKET_SIZE)
+            .zip(packets.chunks_mut(PACKET_SIZE))
+        {
+            bvh.closest_hits(&g, rays, 0.0, f32::INFINITY, hits);
+        }
+        (closest, blockers, packets)
+    };
+    bvh.set_simd(Simd::Portable).unwrap();
+    let reference = answers(&bvh);
+    assert!(reference.0.iter().filter(|h| h.is_some()).count() > 500);
+    let mut paths = 0;
+    for simd in Simd::supported() {
+        bvh.set_simd(simd).unwrap();
+        let (closest, blockers, packets) = answers(&bvh);
+        assert!(closest == reference.0, "{simd}: closest hits differ");
+        assert!(blockers == reference.1, "{simd}: any hits differ");
+        assert!(packets == reference.2, "{simd}: packet hits differ");
+        paths += 1;
+    }
+    assert!(paths >= 1);
+    #[cfg(target_arch = "x86_64")]
+    assert!(paths >= 2, "x86-64 always has SSE: {paths} paths");
+}
+
+#[test]
+fn a_path_the_processor_lacks_is_refused() {
+    let mut bvh = Bvh::build(&random_scene(1, 10, 10, 0));
+    for simd in Simd::ALL {
+        assert_eq!(bvh.set_simd(simd).is_ok(), simd.is_supported(), "{simd}");
+    }
+    assert_eq!("avx2".parse::<Simd>(), Ok(Simd::Avx2));
+    assert!("avx3".parse::<Simd>().is_err());
 }

@@ -1414,3 +1414,49 @@ fn render_help_names_the_sequence_flags() {
         assert!(help.contains(flag), "{flag}: {help}");
     }
 }
+
+#[test]
+fn render_writes_the_image_a_pass_by_pass_render_ends_with() {
+    // `raylab render` traces every pixel in one sweep, not block size by block size as the
+    // viewer does: the same pixels to the bit, with uniform or adaptive anti-aliasing.
+    use raylab::bvh::Bvh;
+    use raylab::formats::toml::default_scene;
+    use raylab::progressive::render_image;
+    use raylab::whitted::Tracer;
+    let dir = tempfile::tempdir().unwrap();
+    for (samples, threshold) in [(4, 0.0), (8, 0.02)] {
+        let flags = [
+            "--samples",
+            &samples.to_string(),
+            "--aa-threshold",
+            &threshold.to_string(),
+        ];
+        let mut args = vec![
+            "render",
+            "-o",
+            "sweep.exr",
+            "--size",
+            "40x30",
+            "--threads",
+            "2",
+        ];
+        args.extend(flags);
+        let out = raylab(&args, dir.path());
+        assert!(out.status.success(), "{}", stderr(&out));
+        let written = image::open(dir.path().join("sweep.exr"))
+            .unwrap()
+            .to_rgb32f();
+
+        let mut scene = default_scene().unwrap();
+        let s = &mut scene.settings;
+        (s.width, s.height, s.samples, s.aa_threshold) = (40, 30, samples, threshold);
+        let bvh = Bvh::build(&scene.geometry);
+        let (pixels, stats) = render_image(&Tracer::new(&scene, &bvh));
+        assert!(stats.passes.len() > 5, "block passes and more samples");
+        let expected: Vec<f32> = pixels.iter().flat_map(|c| c.to_array()).collect();
+        assert!(
+            written.as_raw() == &expected,
+            "{samples} samples, threshold {threshold}"
+        );
+    }
+}

@@ -218,7 +218,7 @@ fn patches_become_smooth_triangles() {
     let mesh = &scene.geometry.meshes[0];
     assert_eq!(mesh.faces, [[0, 1, 2]]);
     assert_eq!(mesh.normals, [Vec3::Z; 3]);
-    assert_eq!(scene.geometry.triangles.len(), 1);
+    assert_eq!(scene.geometry.triangle_count(), 1);
 }
 
 #[test]

@@ -10,6 +10,7 @@ use raylab::color::{Color, to_srgb8};
 use raylab::film::Film;
 use raylab::progressive::{
     self, Cancelled, Pass, RenderControl, RenderStats, Shaded, Shader, passes, traces_pixel,
+    unwatched_passes,
 };
 use raylab::ray::Ray;
 use raylab::sampling::jitter;
@@ -228,16 +229,30 @@ fn default_scene(width: u32, height: u32, samples: u32, aa_threshold: f32) -> ra
 
 /// Renders `scene`, returning its pixels, how many samples each took and the render's stats.
 fn render_counting(scene: &raylab::scene::Scene) -> (Vec<Color>, Vec<u32>, RenderStats) {
+    render_counting_as(scene, Watched::Yes)
+}
+
+/// Whether a test renders as the viewer does, pass by pass ([`progressive::render`]), or as
+/// `raylab render` does ([`progressive::render_unwatched`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Watched {
+    Yes,
+    No,
+}
+
+/// [`render_counting`], watched or not.
+fn render_counting_as(
+    scene: &raylab::scene::Scene,
+    watched: Watched,
+) -> (Vec<Color>, Vec<u32>, RenderStats) {
     let bvh = Bvh::build(&scene.geometry);
     let (width, height) = (scene.settings.width, scene.settings.height);
     let film = Film::new(width, height);
-    let stats = progressive::render(
-        &Tracer::new(scene, &bvh),
-        &Shaded,
-        &film,
-        &RenderControl::default(),
-        |_| {},
-    )
+    let (tracer, control) = (Tracer::new(scene, &bvh), RenderControl::default());
+    let stats = match watched {
+        Watched::Yes => progressive::render(&tracer, &Shaded, &film, &control, |_| {}),
+        Watched::No => progressive::render_unwatched(&tracer, &Shaded, &film, &control),
+    }
     .unwrap();
     let counts = (0..height)
         .flat_map(|y| (0..width).map(move |x| (x, y)))
@@ -442,4 +457,41 @@ fn the_progress_says_how_many_samples_each_pass_brings_pixels_to() {
     // the adaptive rounds bring pixels to 2 and then 4 samples.
     assert_eq!(seen[0], [1, 1, 1, 1, 1, 2, 3, 4]);
     assert_eq!(seen[1], [1, 1, 1, 1, 1, 2, 4]);
+}
+
+#[test]
+fn an_unwatched_render_sweeps_the_pixels_once_then_runs_the_adaptive_rounds() {
+    assert_eq!(unwatched_passes(1, false), [Pass::Sweep(1)]);
+    assert_eq!(unwatched_passes(4, false), [Pass::Sweep(4)]);
+    assert_eq!(unwatched_passes(1, true), [Pass::Sweep(1)]);
+    assert_eq!(
+        unwatched_passes(6, true),
+        [
+            Pass::Sweep(1),
+            Pass::Refine(2),
+            Pass::Refine(4),
+            Pass::Refine(6)
+        ]
+    );
+}
+
+#[test]
+fn an_unwatched_render_ends_with_the_watched_renders_film_on_any_thread_count() {
+    // One sample, uniform samples, adaptive rounds; blocks clipped at the edges of 37 × 23.
+    for (samples, aa_threshold, block_size) in [(1, 0.0, 16), (4, 0.0, 8), (8, 0.02, 4)] {
+        let mut scene = default_scene(37, 23, samples, aa_threshold);
+        scene.settings.block_size = block_size;
+        let (watched, watched_counts, watched_stats) = render_counting(&scene);
+        for threads in [1, 2, 5] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let (image, counts, stats) = pool.install(|| render_counting_as(&scene, Watched::No));
+            let case = format!("{samples} samples, threshold {aa_threshold}, {threads} threads");
+            assert!(image == watched, "{case}: other pixels");
+            assert!(counts == watched_counts, "{case}: other samples");
+            assert_eq!(stats.rays, watched_stats.rays, "{case}");
+        }
+    }
 }

@@ -142,7 +142,7 @@ fn meshes_scene_reads_the_obj_file_and_its_materials() {
         .map(|m| m.faces.len())
         .collect();
     assert_eq!(triangles, [1, 4, 3, 1]);
-    assert_eq!(scene.geometry.triangles.len(), 9);
+    assert_eq!(scene.geometry.triangle_count(), 9);
     let copper = &scene.materials[scene.geometry.meshes[2].material as usize];
     assert_eq!(copper.color, Color::new(0.72, 0.45, 0.2));
     assert_eq!(copper.shininess, 64.0);
@@ -412,7 +412,7 @@ fn full_feature_file_turns_triangles_meshes_and_obj_files_into_meshes() {
     let scene = parse(FULL).unwrap_or_else(|e| panic!("{e}"));
     let meshes = &scene.geometry.meshes;
     assert_eq!(meshes.len(), 4, "triangle, quad and the OBJ's two groups");
-    assert_eq!(scene.geometry.triangles.len(), 1 + 2 + 4);
+    assert_eq!(scene.geometry.triangle_count(), 1 + 2 + 4);
     assert_eq!(meshes[0].normals, [Vec3::Z; 3]);
     assert_eq!(meshes[0].material, 1);
     // The quad was scaled by 2 into the world and took the default material.
@@ -448,7 +448,7 @@ fn objects_may_be_written_as_inline_tables() {
 fn obj_files_keep_their_normals_and_texture_coordinates() {
     let text = "[[objects]]\ntype = \"obj\"\nfile = \"../models/tetra.obj\"\n";
     let scene = parse(text).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(scene.geometry.triangles.len(), 4);
+    assert_eq!(scene.geometry.triangle_count(), 4);
     for mesh in &scene.geometry.meshes {
         assert_eq!(mesh.normals.len(), mesh.positions.len());
         assert_eq!(mesh.uvs.len(), mesh.positions.len());
@@ -471,7 +471,7 @@ fn obj_files_without_normals_or_materials_load_flat_with_the_default_material() 
     let text = "[[objects]]\ntype = \"obj\"\nfile = \"quad.obj\"\n";
     let scene = parse_scene(text, Path::new("test.toml"), dir.path()).unwrap();
     assert_eq!(
-        scene.geometry.triangles.len(),
+        scene.geometry.triangle_count(),
         2,
         "the quad is triangulated"
     );
@@ -526,7 +526,7 @@ fn obj_and_mtl_files_with_latin1_comments_a_byte_order_mark_or_a_dos_end_of_file
     for (what, obj) in cases {
         let scene = with_files(&quad_scene(None), &[("quad.obj", &obj)])
             .unwrap_or_else(|e| panic!("{what}: {e}"));
-        assert_eq!(scene.geometry.triangles.len(), 2, "{what}");
+        assert_eq!(scene.geometry.triangle_count(), 2, "{what}");
         assert!(scene.warnings.is_empty(), "{what}: {:?}", scene.warnings);
     }
     // An MTL file with a Latin-1 comment gives its materials.
@@ -587,7 +587,11 @@ fn obj_faces_of_one_or_two_vertices_are_warnings_at_their_line() {
     let warning = warning(&scene, "quad.obj:6: ");
     assert!(warning.contains("a face of 2 vertices"), "{warning}");
     assert!(warning.contains("2 more such faces"), "{warning}");
-    assert_eq!(scene.geometry.triangles.len(), 2, "the quad is still there");
+    assert_eq!(
+        scene.geometry.triangle_count(),
+        2,
+        "the quad is still there"
+    );
 }
 
 #[test]

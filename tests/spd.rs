@@ -290,7 +290,7 @@ fn every_database_loads_by_name() {
         let scene = load_any(&name).unwrap_or_else(|e| panic!("{e}"));
         let document = database.generate(2).unwrap();
         let counts = document.primitive_counts();
-        let triangles = scene.geometry.triangles.len();
+        let triangles = scene.geometry.triangle_count();
         assert_eq!(
             scene.geometry.objects.len() + triangles,
             counts.spheres + counts.cones + counts.polygons + counts.patches,

@@ -100,7 +100,7 @@ impl RaylabTracer {
     fn triangle_index(&self, hit: Option<Hit>) -> i32 {
         match hit.map(|h| h.prim.kind()) {
             // Degenerate faces make no triangle: the triangle knows its face.
-            Some(Err(t)) => self.geometry.triangles[t].face as i32,
+            Some(Err(t)) => self.geometry.triangle_faces[t] as i32,
             _ => -1,
         }
     }

@@ -296,27 +296,25 @@ struct Split {
 impl Bvh {
     pub fn build(geometry: &Geometry) -> Bvh {
         let (mut prims, extent, unbounded) = build_prims(geometry);
-        let nodes = if prims.is_empty() {
+        let binary = if prims.is_empty() {
             Vec::new()
         } else {
-            super::widen::widen(&subtree(&mut prims, 0, extent, 0))
+            subtree(&mut prims, 0, extent, 0)
         };
-        Bvh {
-            nodes,
-            prims: prims.par_iter().map(BuildPrim::id).collect(),
-            unbounded,
-        }
+        let ids: Vec<PrimId> = prims.par_iter().map(BuildPrim::id).collect();
+        Bvh::from_binary(geometry, &binary, &ids, unbounded)
     }
 
-    /// The binary tree that [`Bvh::build`] widens: root first, the children of an interior
-    /// node at `first` and `first + 1`, a leaf's primitives counted from `first` in leaf order.
-    /// For measuring the builder ([`super::cost::sah_cost`]); empty when nothing is bounded.
-    pub fn binary_tree(geometry: &Geometry) -> Vec<Node> {
+    /// The SAH cost ([`super::cost::sah_cost`]) of the binary tree that [`Bvh::build`]
+    /// collapses, and its number of nodes: for measuring the builder. `(0, 0)` when nothing
+    /// is bounded.
+    pub fn binary_tree_cost(geometry: &Geometry) -> (f64, usize) {
         let (mut prims, extent, _) = build_prims(geometry);
         if prims.is_empty() {
-            return Vec::new();
+            return (0.0, 0);
         }
-        subtree(&mut prims, 0, extent, 0)
+        let tree = subtree(&mut prims, 0, extent, 0);
+        (super::cost::sah_cost(&tree), tree.len())
     }
 }
 
@@ -365,7 +363,7 @@ fn leaf(extent: &Extent, first: usize, count: usize) -> Node {
 fn subtree(prims: &mut [BuildPrim], first: usize, extent: Extent, depth: usize) -> Vec<Node> {
     // A binary tree over n primitives has at most 2n − 1 nodes. Reserving them all only takes
     // address space: the memory behind it is used as nodes are written, so the array never
-    // moves while it grows. The binary tree only lives until it is widened, so the unused
+    // moves while it grows. The binary tree only lives until it is collapsed, so the unused
     // reserve is never trimmed.
     let mut nodes = Vec::with_capacity(2 * prims.len() - 1);
     nodes.push(leaf(&extent, first, prims.len()));
@@ -719,7 +717,7 @@ mod tests {
                 let first = node.first as usize;
                 leaves.push(prims[first..first + node.count as usize].to_vec());
             } else {
-                stack.extend(node.children());
+                stack.extend([node.first as usize, node.first as usize + 1]);
             }
         }
         leaves
@@ -789,7 +787,7 @@ mod tests {
                     assert!(inside(geometry.bounds(id).unwrap(), aabb(node)));
                 }
             } else {
-                for child in &nodes[node.children()] {
+                for child in &nodes[node.first as usize..][..2] {
                     assert!(inside(aabb(child), aabb(node)));
                 }
             }

@@ -50,12 +50,10 @@ impl TraversalCost for BvhCost {
 /// The surface area heuristic's estimate of a tree's cost: the expected number of node visits
 /// (each costing [`TRAVERSAL_COST`]) and primitive tests of a ray that passes through the
 /// root's box, with the chance of entering a node taken as its surface area over the root's.
-/// `nodes` is a tree in [`Node`] form, root first (the binary tree of [`Bvh::binary_tree`] or
-/// a wider one): the lower, the fewer boxes and primitives a ray is expected to test. 0 for an
-/// empty tree.
-///
-/// [`Bvh::binary_tree`]: super::Bvh::binary_tree
-pub fn sah_cost(nodes: &[Node]) -> f64 {
+/// `nodes` is the builder's binary tree (root first, an interior node's children at `first`
+/// and `first + 1`; [`super::Bvh::binary_tree_cost`] measures the builder's): the lower, the
+/// fewer boxes and primitives a ray is expected to test. 0 for an empty tree.
+pub(super) fn sah_cost(nodes: &[Node]) -> f64 {
     let Some(root) = nodes.first() else {
         return 0.0;
     };
@@ -69,8 +67,40 @@ pub fn sah_cost(nodes: &[Node]) -> f64 {
             cost += area(node) * node.count as f64;
         } else {
             cost += area(node) * TRAVERSAL_COST as f64;
-            stack.extend(node.children());
+            stack.extend([node.first as usize, node.first as usize + 1]);
         }
     }
     cost / root_area
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn node(min: [f32; 3], max: [f32; 3], first: u32, count: u32) -> Node {
+        Node {
+            min,
+            first,
+            max,
+            count,
+        }
+    }
+
+    #[test]
+    fn sah_cost_weighs_each_node_by_its_area() {
+        // A unit cube (area 6) split into two halves (area 4 each), one and three primitives.
+        let tree = [
+            node([0.0; 3], [1.0; 3], 1, Node::INTERIOR | 2),
+            node([0.0; 3], [0.5, 1.0, 1.0], 0, 1),
+            node([0.5, 0.0, 0.0], [1.0; 3], 1, 3),
+        ];
+        let expected = TRAVERSAL_COST as f64 + (4.0 * 1.0 + 4.0 * 3.0) / 6.0;
+        assert!(
+            (sah_cost(&tree) - expected).abs() < 1e-9,
+            "{}",
+            sah_cost(&tree)
+        );
+        assert_eq!(sah_cost(&tree[1..2]), 1.0);
+        assert_eq!(sah_cost(&[]), 0.0);
+    }
 }

@@ -1,90 +1,242 @@
 //! The bounding volume hierarchy: a tree of boxes over all bounded primitives, built with the
-//! surface area heuristic as a binary tree (`build`), widened to four children per node
-//! (`widen`) and flattened into an array of 32-byte nodes. Traversal (`traverse`) tests a
-//! node's four children against a ray at once (`ray_box`); a tile of coherent eye rays walks
-//! the tree once, together ([`packet`]). Unbounded primitives (planes) are kept in a list
-//! beside the tree and tested against every ray.
+//! surface area heuristic as a binary tree (`build`), collapsed to eight children per node
+//! (`wide`) and stored as an array of [`WideNode`]s, each holding its children's boxes axis by
+//! axis. Traversal (`traverse`) tests a node's eight child boxes against a ray at once
+//! (`ray_box`), with the widest instruction set the processor has (`simd`); a tile of coherent
+//! eye rays walks the tree once, together ([`packet`]). Unbounded primitives (planes) are kept
+//! in a list beside the tree and tested against every ray.
 
 mod build;
 pub mod cost;
 pub mod packet;
 mod ray_box;
+mod simd;
 mod traverse;
-mod widen;
+mod wide;
+
+pub use simd::Simd;
 
 use crate::aabb::Aabb;
-use crate::primitive::PrimId;
+use crate::primitive::{Geometry, PrimId};
+use crate::shapes::TrianglePack;
 
-/// Children per interior node of the finished tree.
-pub const WIDTH: usize = 4;
+/// Children per node of the finished tree: one per lane of the box test.
+pub const WIDTH: usize = simd::LANES;
 
-/// A node of the flattened tree. An interior node's children are the two to [`WIDTH`] nodes
-/// from `first`; a leaf holds primitives `first .. first + count` of [`Bvh::prims`]. 32 bytes,
-/// aligned to 32 so that no node straddles two 64-byte cache lines.
+/// A node of the binary tree the builder makes: an interior node's children are nodes `first`
+/// and `first + 1`; a leaf holds primitives `first .. first + count` of [`Bvh::prims`].
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[repr(C, align(32))]
-pub struct Node {
-    pub min: [f32; 3],
-    pub first: u32,
-    pub max: [f32; 3],
+struct Node {
+    min: [f32; 3],
+    first: u32,
+    max: [f32; 3],
     /// A leaf's number of primitives; an interior node's number of children plus
     /// [`Node::INTERIOR`].
-    pub count: u32,
+    count: u32,
 }
 
 impl Node {
     /// The bit of `count` that marks an interior node.
-    pub const INTERIOR: u32 = 1 << 31;
+    const INTERIOR: u32 = 1 << 31;
 
-    pub fn is_leaf(&self) -> bool {
+    fn is_leaf(&self) -> bool {
         self.count & Node::INTERIOR == 0
     }
+}
 
-    /// The indices of an interior node's children.
-    pub fn children(&self) -> std::ops::Range<usize> {
-        let count = (self.count & !Node::INTERIOR) as usize;
-        self.first as usize..self.first as usize + count
+/// A node of the finished tree: the boxes of up to [`WIDTH`] children, stored axis by axis
+/// (`min[axis][child]`) so that one SIMD load fetches one coordinate of every child, and where
+/// each child is. 256 bytes, four cache lines, aligned to them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(64))]
+pub struct WideNode {
+    pub min: [[f32; WIDTH]; 3],
+    pub max: [[f32; WIDTH]; 3],
+    /// An interior child's node index, or the first of a leaf's packs in [`Bvh::packs`] or
+    /// objects in [`Bvh::objects`].
+    pub first: [u32; WIDTH],
+    /// A leaf's number of packs plus [`Child::TRIANGLES`], or of objects;
+    /// [`WideNode::INTERIOR`] for an interior child, 0 for an unused slot.
+    pub count: [u32; WIDTH],
+}
+
+impl WideNode {
+    /// The `count` of an interior child.
+    pub const INTERIOR: u32 = u32::MAX;
+
+    /// Child `k`, if the slot is used.
+    pub fn child(&self, k: usize) -> Option<Child> {
+        (self.count[k] != 0).then_some(Child {
+            first: self.first[k],
+            count: self.count[k],
+        })
+    }
+
+    /// The box of child `k`.
+    pub fn child_bounds(&self, k: usize) -> Aabb {
+        let corner = |c: &[[f32; WIDTH]; 3]| glam::Vec3::new(c[0][k], c[1][k], c[2][k]);
+        Aabb::new(corner(&self.min), corner(&self.max))
+    }
+}
+
+/// Where a child of a [`WideNode`] is: a node, or a leaf's triangles or objects.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Child {
+    pub first: u32,
+    pub count: u32,
+}
+
+/// What a leaf holds: triangles in packs, or objects. A leaf never holds both kinds.
+#[derive(Clone, Copy, Debug)]
+pub enum Leaf<'a> {
+    Triangles(&'a [TrianglePack]),
+    Objects(&'a [PrimId]),
+}
+
+impl Leaf<'_> {
+    /// Primitives in the leaf, for counting tests: four lanes to a pack.
+    pub fn len(&self) -> usize {
+        match self {
+            Leaf::Triangles(packs) => packs.len() * crate::shapes::PACK_SIZE,
+            Leaf::Objects(objects) => objects.len(),
+        }
+    }
+}
+
+impl Child {
+    /// The bit of `count` that marks a leaf of triangles.
+    const TRIANGLES: u32 = 1 << 30;
+
+    /// The interior node `index`.
+    const fn node(index: u32) -> Child {
+        Child {
+            first: index,
+            count: WideNode::INTERIOR,
+        }
+    }
+
+    /// A leaf of the `count` packs from `first` in [`Bvh::packs`].
+    fn triangles(first: u32, count: u32) -> Child {
+        Child {
+            first,
+            count: count | Child::TRIANGLES,
+        }
+    }
+
+    /// A leaf of the `count` objects from `first` in [`Bvh::objects`].
+    fn objects(first: u32, count: u32) -> Child {
+        Child { first, count }
+    }
+
+    pub fn is_leaf(&self) -> bool {
+        self.count != WideNode::INTERIOR
+    }
+
+    /// A leaf's primitives (it must be a leaf).
+    #[inline(always)]
+    fn leaf<'a>(&self, bvh: &'a Bvh) -> Leaf<'a> {
+        let first = self.first as usize;
+        if self.count & Child::TRIANGLES != 0 {
+            Leaf::Triangles(&bvh.packs[first..][..(self.count & !Child::TRIANGLES) as usize])
+        } else {
+            Leaf::Objects(&bvh.objects[first..][..self.count as usize])
+        }
     }
 }
 
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
-    /// The tree, root first, then [`WIDTH`] − 1 empty nodes, so that the traversal can load
-    /// [`WIDTH`] nodes from any node's first child on; empty when the scene has no bounded
-    /// primitive.
-    pub nodes: Vec<Node>,
-    /// Bounded primitives in leaf order.
-    pub prims: Vec<PrimId>,
+    /// The tree, root first; empty when the scene has no bounded primitive.
+    pub nodes: Vec<WideNode>,
+    /// The box around all bounded primitives (the root's); `None` when there are none.
+    root_bounds: Option<Aabb>,
+    /// The triangles of the leaves, in leaf order, four to a pack; each lane's tag is its
+    /// [`PrimId`].
+    pub packs: Vec<TrianglePack>,
+    /// The bounded objects, in leaf order.
+    pub objects: Vec<PrimId>,
     /// Primitives without bounds, tested against every ray.
     pub unbounded: Vec<PrimId>,
+    /// The instruction set the traversal uses.
+    simd: Simd,
 }
 
 impl Bvh {
-    /// Bytes held by the tree and its primitive list.
+    /// The tree over the builder's binary tree `binary` (root first) and primitives in leaf
+    /// order.
+    fn from_binary(
+        geometry: &Geometry,
+        binary: &[Node],
+        prims: &[PrimId],
+        unbounded: Vec<PrimId>,
+    ) -> Bvh {
+        let wide::Collapsed {
+            nodes,
+            packs,
+            objects,
+        } = wide::collapse(binary, prims, geometry);
+        Bvh {
+            nodes,
+            root_bounds: binary
+                .first()
+                .map(|root| Aabb::new(root.min.into(), root.max.into())),
+            packs,
+            objects,
+            unbounded,
+            simd: Simd::best(),
+        }
+    }
+
+    /// Bytes held by the tree and its leaves.
     pub fn memory_bytes(&self) -> usize {
-        self.nodes.capacity() * std::mem::size_of::<Node>()
-            + (self.prims.capacity() + self.unbounded.capacity()) * std::mem::size_of::<PrimId>()
+        use std::mem::size_of;
+        self.nodes.capacity() * size_of::<WideNode>()
+            + self.packs.capacity() * size_of::<TrianglePack>()
+            + (self.objects.capacity() + self.unbounded.capacity()) * size_of::<PrimId>()
+    }
+
+    /// The primitives in the leaf `child`, for statistics and tests.
+    pub fn leaf_prims(&self, child: Child) -> Vec<PrimId> {
+        match child.leaf(self) {
+            Leaf::Triangles(packs) => packs
+                .iter()
+                .flat_map(|pack| pack.tags)
+                .filter(|&tag| tag != u32::MAX)
+                .map(PrimId)
+                .collect(),
+            Leaf::Objects(objects) => objects.to_vec(),
+        }
     }
 
     /// The box around all bounded primitives (the root's), `None` when there are none.
     pub fn bounds(&self) -> Option<Aabb> {
-        let root = self.nodes.first()?;
-        Some(Aabb::new(root.min.into(), root.max.into()))
+        self.root_bounds
+    }
+
+    /// The instruction set the traversal uses: [`Simd::best`] unless changed.
+    pub fn simd(&self) -> Simd {
+        self.simd
+    }
+
+    /// Makes the traversal use `simd`, if this processor runs it; otherwise says why not.
+    pub fn set_simd(&mut self, simd: Simd) -> Result<(), String> {
+        if !simd.is_supported() {
+            return Err(format!("this processor cannot run the {simd} path"));
+        }
+        self.simd = simd;
+        Ok(())
     }
 
     /// Depth of the tree (0 when empty), for statistics and tests.
     pub fn depth(&self) -> usize {
-        fn depth_of(nodes: &[Node], i: usize) -> usize {
+        fn depth_of(nodes: &[WideNode], i: usize) -> usize {
             let node = &nodes[i];
-            if node.is_leaf() {
-                1
-            } else {
-                1 + node
-                    .children()
-                    .map(|c| depth_of(nodes, c))
-                    .max()
-                    .unwrap_or(0)
-            }
+            1 + (0..WIDTH)
+                .filter_map(|k| node.child(k))
+                .filter(|c| !c.is_leaf())
+                .map(|c| depth_of(nodes, c.first as usize))
+                .max()
+                .unwrap_or(0)
         }
         if self.nodes.is_empty() {
             0

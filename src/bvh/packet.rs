@@ -12,8 +12,9 @@ use arrayvec::ArrayVec;
 use glam::Vec4;
 
 use super::ray_box::RayBoxTest;
-use super::traverse::{STACK_SIZE, closest_among};
-use super::{Bvh, WIDTH};
+use super::simd::{Kernel, Lanes, dispatch};
+use super::traverse::{STACK_SIZE, closest_in_leaf};
+use super::{Bvh, Child, Leaf, WIDTH};
 use crate::primitive::{Geometry, Hit};
 use crate::ray::Ray;
 use crate::shapes::ShearedRay;
@@ -21,11 +22,11 @@ use crate::shapes::ShearedRay;
 /// Most rays in one packet: an 8 × 8 tile.
 pub const PACKET_SIZE: usize = 64;
 
-/// A node still to visit, with the rays that entered its box (bit r for ray r) and the
+/// A child still to visit, with the rays that entered its box (bit r for ray r) and the
 /// nearest distance at which one of them did.
 #[derive(Clone, Copy)]
 struct Entry {
-    node: u32,
+    child: Child,
     rays: u64,
     lower: f32,
 }
@@ -50,41 +51,69 @@ impl Bvh {
         );
         assert_eq!(rays.len(), hits.len(), "one hit per ray");
         hits.fill(None);
-        let n = rays.len();
-        if n == 0 {
-            return;
+        if !rays.is_empty() {
+            let packet = Packet {
+                bvh: self,
+                geometry,
+                rays,
+                t_min,
+                t_max,
+                hits,
+            };
+            dispatch(self.simd, packet);
         }
+    }
+}
+
+/// The packet query as a [`Kernel`].
+struct Packet<'a> {
+    bvh: &'a Bvh,
+    geometry: &'a Geometry,
+    rays: &'a [Ray],
+    t_min: f32,
+    t_max: f32,
+    hits: &'a mut [Option<Hit>],
+}
+
+impl Kernel for Packet<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<L: Lanes>(self) {
+        let Packet {
+            bvh,
+            geometry,
+            rays,
+            t_min,
+            t_max,
+            hits,
+        } = self;
+        let n = rays.len();
         // Per-ray state lives in fixed arrays; the slots past the last ray copy it, unused.
         let ray = |r: usize| &rays[r.min(n - 1)];
         let sheared: [ShearedRay; PACKET_SIZE] = array::from_fn(|r| ShearedRay::new(ray(r)));
-        let mut t_limit = [t_max; PACKET_SIZE];
+        // A finite far limit keeps the unused slots of a node, whose boxes lie at +∞, shut.
+        let mut t_limit = [t_max.min(f32::MAX); PACKET_SIZE];
         for r in 0..n {
             let (limit, best) = (&mut t_limit[r], &mut hits[r]);
-            closest_among(
-                geometry,
-                &self.unbounded,
-                ray(r),
-                &sheared[r],
-                t_min,
-                limit,
-                best,
-            );
+            let unbounded = Leaf::Objects(&bvh.unbounded);
+            closest_in_leaf(geometry, unbounded, ray(r), &sheared[r], t_min, limit, best);
         }
-        let Some(root) = self.nodes.first() else {
+        let Some(bounds) = &bvh.root_bounds else {
             return;
         };
         let tests: [RayBoxTest; PACKET_SIZE] = array::from_fn(|r| RayBoxTest::new(ray(r)));
         let all = u64::MAX >> (PACKET_SIZE - n);
         let entered_root =
-            ones(all).filter(|&r| tests[r].enter(root, t_min, t_limit[r]) != f32::INFINITY);
+            ones(all).filter(|&r| tests[r].enter(bounds, t_min, t_limit[r]) != f32::INFINITY);
         let mut stack: ArrayVec<Entry, STACK_SIZE> = ArrayVec::new();
         stack.push(Entry {
-            node: 0,
+            child: Child::node(0),
             rays: entered_root.fold(0, |m, r| m | 1 << r),
             lower: t_min,
         });
         while let Some(Entry {
-            node,
+            child,
             rays: entered,
             lower,
         }) = stack.pop()
@@ -95,38 +124,36 @@ impl Bvh {
             if active == 0 {
                 continue;
             }
-            let node = &self.nodes[node as usize];
-            if node.is_leaf() {
-                let prims = &self.prims[node.first as usize..][..node.count as usize];
+            if child.is_leaf() {
+                let leaf = child.leaf(bvh);
                 for r in ones(active) {
-                    let best = &mut hits[r];
-                    let limit = &mut t_limit[r];
-                    closest_among(geometry, prims, &rays[r], &sheared[r], t_min, limit, best);
+                    let (limit, best) = (&mut t_limit[r], &mut hits[r]);
+                    closest_in_leaf(geometry, leaf, &rays[r], &sheared[r], t_min, limit, best);
                 }
                 continue;
             }
-            let group = &self.nodes[node.first as usize..][..WIDTH];
-            let children = (1u32 << node.children().len()) - 1;
+            let node = &bvh.nodes[child.first as usize];
             let mut child_rays = [0u64; WIDTH];
-            let mut nearest = Vec4::INFINITY;
+            let mut nearest = [f32::INFINITY; WIDTH];
             for r in ones(active) {
-                let (t, entered) = tests[r].enter4(group, t_min, t_limit[r]);
-                let entered = entered & children;
-                for (k, rays) in child_rays.iter_mut().enumerate() {
-                    *rays |= u64::from(entered >> k & 1) << r;
+                let (t, entered) = tests[r].enter8::<L>(node, t_min, t_limit[r]);
+                for k in ones(u64::from(entered)) {
+                    child_rays[k] |= 1 << r;
+                    nearest[k] = nearest[k].min(t[k]);
                 }
-                nearest = nearest.min(Vec4::select(lanes(entered), t, Vec4::INFINITY));
             }
             // The children entered go on the stack farthest first, so the nearest comes off
             // next.
-            let nearest = nearest.to_array();
             let base = stack.len();
             for (k, &rays) in child_rays.iter().enumerate() {
                 if rays == 0 {
                     continue;
                 }
                 stack.push(Entry {
-                    node: node.first + k as u32,
+                    child: Child {
+                        first: node.first[k],
+                        count: node.count[k],
+                    },
                     rays,
                     lower: nearest[k],
                 });
@@ -149,11 +176,6 @@ fn ones(mut mask: u64) -> impl Iterator<Item = usize> {
             r
         })
     })
-}
-
-/// A lane mask with lane k set where bit k of `bits` is.
-fn lanes(bits: u32) -> glam::BVec4A {
-    glam::BVec4A::new(bits & 1 != 0, bits & 2 != 0, bits & 4 != 0, bits & 8 != 0)
 }
 
 /// The rays whose limit `t_limit` lies beyond `t` (bit r for ray r), four at a time.

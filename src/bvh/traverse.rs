@@ -1,6 +1,7 @@
 //! Walking the BVH: the closest hit along a ray (front-to-back, nearest child first, pruning
 //! by the best `t` so far) and every hit on a segment with early exit (shadow rays). At each
-//! interior node the ray is tested against all its (up to four) children's boxes at once.
+//! node the ray is tested against all its (up to eight) children's boxes at once. Each walk is
+//! a [`Kernel`], compiled for every instruction set and run on the BVH's ([`super::simd`]).
 
 use std::ops::ControlFlow;
 
@@ -9,10 +10,11 @@ use arrayvec::ArrayVec;
 use super::build::MAX_DEPTH;
 use super::cost::TraversalCost;
 use super::ray_box::RayBoxTest;
-use super::{Bvh, WIDTH};
+use super::simd::{Kernel, Lanes, dispatch};
+use super::{Bvh, Child, Leaf, WIDTH};
 use crate::primitive::{Geometry, Hit, PrimId};
 use crate::ray::Ray;
-use crate::shapes::ShearedRay;
+use crate::shapes::{PackHits, ShearedRay, TriangleHit, TrianglePack};
 
 /// Most entries the traversal stack can need: each level of the tree leaves at most
 /// `WIDTH − 1` siblings waiting.
@@ -42,17 +44,15 @@ impl Bvh {
         t_max: f32,
         cost: &mut C,
     ) -> Option<Hit> {
-        let sheared = ShearedRay::new(ray);
-        let mut best: Option<Hit> = None;
-        let mut test = |prims: &[PrimId], t_limit: &mut f32, cost: &mut C| {
-            cost.prims_tested(prims.len());
-            closest_among(geometry, prims, ray, &sheared, t_min, t_limit, &mut best);
-            ControlFlow::Continue(())
+        let walk = Walk {
+            bvh: self,
+            geometry,
+            ray,
+            t_min,
+            t_max,
+            cost,
         };
-        let mut t_limit = t_max;
-        let _ = test(&self.unbounded, &mut t_limit, cost);
-        self.walk(ray, t_min, t_limit, cost, test);
-        best
+        dispatch(self.simd, ClosestHit(walk))
     }
 
     /// Calls `on_hit` for every primitive that `ray` hits in `(t_min, t_max)` (its nearest hit
@@ -77,73 +77,159 @@ impl Bvh {
         t_min: f32,
         t_max: f32,
         cost: &mut C,
-        mut on_hit: impl FnMut(&Hit) -> ControlFlow<()>,
+        on_hit: impl FnMut(&Hit) -> ControlFlow<()>,
     ) {
+        let walk = Walk {
+            bvh: self,
+            geometry,
+            ray,
+            t_min,
+            t_max,
+            cost,
+        };
+        dispatch(self.simd, AnyHit(walk, on_hit));
+    }
+}
+
+/// One ray's walk through the tree: what both queries share.
+struct Walk<'a, C> {
+    bvh: &'a Bvh,
+    geometry: &'a Geometry,
+    ray: &'a Ray,
+    t_min: f32,
+    t_max: f32,
+    cost: &'a mut C,
+}
+
+/// The closest-hit query as a [`Kernel`].
+struct ClosestHit<'a, C>(Walk<'a, C>);
+
+impl<C: TraversalCost> Kernel for ClosestHit<'_, C> {
+    type Output = Option<Hit>;
+
+    #[inline(always)]
+    fn run<L: Lanes>(self) -> Option<Hit> {
+        let Walk {
+            bvh,
+            geometry,
+            ray,
+            t_min,
+            t_max,
+            cost,
+        } = self.0;
         let sheared = ShearedRay::new(ray);
-        let mut visit = |prims: &[PrimId], cost: &mut C| {
-            cost.prims_tested(prims.len());
-            for &id in prims {
-                if let Some(hit) = geometry.intersect_prepared(id, ray, &sheared, t_min, t_max) {
-                    on_hit(&hit)?;
+        let mut best: Option<Hit> = None;
+        let mut test = |leaf: Leaf, t_limit: &mut f32, cost: &mut C| {
+            cost.prims_tested(leaf.len());
+            closest_in_leaf(geometry, leaf, ray, &sheared, t_min, t_limit, &mut best);
+            ControlFlow::Continue(())
+        };
+        let mut t_limit = t_max;
+        let _ = test(Leaf::Objects(&bvh.unbounded), &mut t_limit, cost);
+        bvh.walk::<L, C>(ray, t_min, t_limit, cost, test);
+        best
+    }
+}
+
+/// The any-hit query as a [`Kernel`].
+struct AnyHit<'a, C, F>(Walk<'a, C>, F);
+
+impl<C: TraversalCost, F: FnMut(&Hit) -> ControlFlow<()>> Kernel for AnyHit<'_, C, F> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<L: Lanes>(self) {
+        let AnyHit(
+            Walk {
+                bvh,
+                geometry,
+                ray,
+                t_min,
+                t_max,
+                cost,
+            },
+            mut on_hit,
+        ) = self;
+        let sheared = ShearedRay::new(ray);
+        let mut visit = |leaf: Leaf, cost: &mut C| {
+            cost.prims_tested(leaf.len());
+            match leaf {
+                Leaf::Triangles(packs) => {
+                    for pack in packs {
+                        let hits = pack.intersect(&sheared, t_min, t_max);
+                        for k in ones(hits.mask) {
+                            on_hit(&triangle_hit(pack, &hits, k))?;
+                        }
+                    }
+                }
+                Leaf::Objects(objects) => {
+                    for &id in objects {
+                        let hit = geometry.intersect_prepared(id, ray, &sheared, t_min, t_max);
+                        if let Some(hit) = hit {
+                            on_hit(&hit)?;
+                        }
+                    }
                 }
             }
             ControlFlow::Continue(())
         };
-        if visit(&self.unbounded, cost).is_break() {
+        if visit(Leaf::Objects(&bvh.unbounded), cost).is_break() {
             return;
         }
-        self.walk(ray, t_min, t_max, cost, |prims, _, cost| visit(prims, cost));
+        bvh.walk::<L, C>(ray, t_min, t_max, cost, |leaf, _, cost| visit(leaf, cost));
     }
+}
 
+impl Bvh {
     /// Visits the leaves whose boxes `ray` enters, nearest child first. `leaf` may shrink
     /// `t_max` (closest hit) or break (any hit). `cost` hears of each interior node visited.
     #[inline(always)]
-    fn walk<C: TraversalCost>(
+    fn walk<L: Lanes, C: TraversalCost>(
         &self,
         ray: &Ray,
         t_min: f32,
-        mut t_max: f32,
+        t_max: f32,
         cost: &mut C,
-        mut leaf: impl FnMut(&[PrimId], &mut f32, &mut C) -> ControlFlow<()>,
+        mut leaf: impl FnMut(Leaf, &mut f32, &mut C) -> ControlFlow<()>,
     ) {
-        let Some(root) = self.nodes.first() else {
+        let Some(bounds) = &self.root_bounds else {
             return;
         };
         let test = RayBoxTest::new(ray);
-        if test.enter(root, t_min, t_max) == f32::INFINITY {
+        if test.enter(bounds, t_min, t_max) == f32::INFINITY {
             return;
         }
-        // Nodes still to visit, with the distance at which the ray enters them.
-        let mut stack: ArrayVec<(u32, f32), STACK_SIZE> = ArrayVec::new();
-        let mut node = root;
+        // A finite far limit keeps the unused slots of a node, whose boxes lie at +∞, shut.
+        let mut t_max = t_max.min(f32::MAX);
+        // Children still to visit, with the distance at which the ray enters them.
+        let mut stack: ArrayVec<(Child, f32), STACK_SIZE> = ArrayVec::new();
+        let mut next = Child::node(0);
         loop {
-            if node.is_leaf() {
-                let first = node.first as usize;
-                let prims = &self.prims[first..first + node.count as usize];
-                if leaf(prims, &mut t_max, cost).is_break() {
+            if next.is_leaf() {
+                if leaf(next.leaf(self), &mut t_max, cost).is_break() {
                     return;
                 }
             } else {
                 cost.node_visited();
-                // Four nodes from the first child on, some perhaps not children: masked out.
-                let group = node.first as usize..node.first as usize + WIDTH;
-                let (t, entered) = test.enter4(&self.nodes[group], t_min, t_max);
-                let entered = entered & ((1 << node.children().len()) - 1);
-                let t = t.to_array();
-                let first = node.first;
+                let node = &self.nodes[next.first as usize];
+                let (t, entered) = test.enter8::<L>(node, t_min, t_max);
+                let child = |k: u32| Child {
+                    first: node.first[k as usize],
+                    count: node.count[k as usize],
+                };
                 if entered.count_ones() == 1 {
-                    node = &self.nodes[(first + entered.trailing_zeros()) as usize];
+                    next = child(entered.trailing_zeros());
                     continue;
                 }
                 if entered != 0 {
                     // The children the ray enters, farthest first (insertion sort of at most
-                    // four), go on the stack; the nearest comes off again at once.
+                    // eight), go on the stack; the nearest comes off again at once.
                     let base = stack.len();
                     let mut left = entered;
                     while left != 0 {
                         let k = left.trailing_zeros();
                         left &= left - 1;
-                        stack.push((first + k, t[k as usize]));
+                        stack.push((child(k), t[k as usize]));
                         let mut i = stack.len() - 1;
                         while i > base && stack[i - 1].1 < stack[i].1 {
                             stack.swap(i - 1, i);
@@ -151,18 +237,18 @@ impl Bvh {
                         }
                     }
                     if let Some((nearest, _)) = stack.pop() {
-                        node = &self.nodes[nearest as usize];
+                        next = nearest;
                     }
                     continue;
                 }
             }
-            // Pop the next node still nearer than the best hit so far.
+            // Pop the next child still nearer than the best hit so far.
             loop {
-                let Some((index, t_enter)) = stack.pop() else {
+                let Some((child, t_enter)) = stack.pop() else {
                     return;
                 };
                 if t_enter < t_max {
-                    node = &self.nodes[index as usize];
+                    next = child;
                     break;
                 }
             }
@@ -170,25 +256,69 @@ impl Bvh {
     }
 }
 
-/// Tests `prims` against `ray` for its closest hit in `(t_min, t_limit)`: a nearer hit (or one
-/// at the same `t` from a primitive earlier in the scene) replaces `best`, and `t_limit` shrinks
-/// to just past it, so that the search still finds its ties.
+/// Tests the primitives of `leaf` against `ray` for its closest hit in `(t_min, t_limit)`: a
+/// nearer hit (or one at the same `t` from a primitive earlier in the scene) replaces `best`,
+/// and `t_limit` shrinks to just past it, so that the search still finds its ties. The answer
+/// does not depend on the order of the tests.
 #[inline(always)]
-pub(super) fn closest_among(
+pub(super) fn closest_in_leaf(
     geometry: &Geometry,
-    prims: &[PrimId],
+    leaf: Leaf,
     ray: &Ray,
     sheared: &ShearedRay,
     t_min: f32,
     t_limit: &mut f32,
     best: &mut Option<Hit>,
 ) {
-    for &id in prims {
-        if let Some(hit) = geometry.intersect_prepared(id, ray, sheared, t_min, *t_limit)
-            && best.is_none_or(|b| hit.t < b.t || id.scene_order() < b.prim.scene_order())
-        {
-            *t_limit = hit.t.next_up();
-            *best = Some(hit);
+    // `t < t_limit` again: an earlier lane of the same pack may have lowered the limit.
+    let beats = |t: f32, id: PrimId, t_limit: f32, best: &Option<Hit>| {
+        t < t_limit && best.is_none_or(|b| t < b.t || id.scene_order() < b.prim.scene_order())
+    };
+    match leaf {
+        Leaf::Triangles(packs) => {
+            for pack in packs {
+                let hits = pack.intersect(sheared, t_min, *t_limit);
+                for k in ones(hits.mask) {
+                    if beats(hits.t[k], PrimId(pack.tags[k]), *t_limit, best) {
+                        *t_limit = hits.t[k].next_up();
+                        *best = Some(triangle_hit(pack, &hits, k));
+                    }
+                }
+            }
+        }
+        Leaf::Objects(objects) => {
+            for &id in objects {
+                if let Some(hit) = geometry.intersect_prepared(id, ray, sheared, t_min, *t_limit)
+                    && beats(hit.t, id, *t_limit, best)
+                {
+                    *t_limit = hit.t.next_up();
+                    *best = Some(hit);
+                }
+            }
         }
     }
+}
+
+/// The hit in lane `k` of `pack`.
+#[inline(always)]
+fn triangle_hit(pack: &TrianglePack, hits: &PackHits, k: usize) -> Hit {
+    let TriangleHit { t, bary } = hits.hit(k);
+    Hit {
+        t,
+        prim: PrimId(pack.tags[k]),
+        part: 0,
+        bary,
+    }
+}
+
+/// The positions of the set bits of `mask`, lowest first.
+#[inline(always)]
+pub(super) fn ones(mut mask: u32) -> impl Iterator<Item = usize> {
+    std::iter::from_fn(move || {
+        (mask != 0).then(|| {
+            let k = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            k
+        })
+    })
 }

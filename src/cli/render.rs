@@ -199,8 +199,10 @@ fn render_frame(
     let film = Film::new(settings.width, settings.height);
     let control = RenderControl::default();
     let stats = std::thread::scope(|s| {
-        let render =
-            s.spawn(|| pool.install(|| progressive::render(tracer, view, &film, &control, |_| {})));
+        // Nobody sees the coarse passes: the film is traced in one sweep.
+        let render = s.spawn(|| {
+            pool.install(|| progressive::render_unwatched(tracer, view, &film, &control))
+        });
         while !render.is_finished() {
             progress(control.pixels_traced());
             std::thread::sleep(Duration::from_millis(50));

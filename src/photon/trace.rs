@@ -194,7 +194,7 @@ fn specular_spheres(scene: &Scene) -> Vec<Option<Sphere>> {
             let end = geometry
                 .mesh_starts
                 .get(m + 1)
-                .map_or(geometry.triangles.len(), |&e| e as usize);
+                .map_or(geometry.triangle_count(), |&e| e as usize);
             let around = (start..end)
                 .filter_map(|t| geometry.bounds(PrimId::triangle(t)))
                 .fold(Aabb::EMPTY, Aabb::union);

@@ -15,6 +15,7 @@ mod tapered_cylinder;
 mod test_support;
 mod torus;
 mod triangle;
+mod triangle_pack;
 
 pub use csg::{
     Csg, CsgOperation, Leaf, MAX_DEPTH as MAX_CSG_DEPTH, MAX_OPERANDS as MAX_CSG_OPERANDS, Operand,
@@ -29,6 +30,7 @@ pub use sphere::Sphere;
 pub use tapered_cylinder::TaperedCylinder;
 pub use torus::Torus;
 pub use triangle::{ShearedRay, Triangle, TriangleHit};
+pub use triangle_pack::{PACK_SIZE, PackHits, TrianglePack};
 
 use arrayvec::ArrayVec;
 use glam::{Vec2, Vec3};

@@ -29,12 +29,12 @@ pub struct TriangleHit {
 /// test is 2D and every edge function is computed the same way for both triangles sharing it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ShearedRay {
-    origin: Vec3,
+    pub(super) origin: Vec3,
     /// The permuted axes (x, y, z).
-    axes: [usize; 3],
+    pub(super) axes: [usize; 3],
     /// `(dx/dz, dy/dz, 1/dz)` in permuted axes: a point's sheared (x, y) is
     /// `(x − shear.x·z, y − shear.y·z)`, which puts the ray on the z axis.
-    shear: Vec3,
+    pub(super) shear: Vec3,
 }
 
 impl ShearedRay {

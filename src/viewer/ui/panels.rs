@@ -90,7 +90,12 @@ pub fn status_bar(
                 actions.push(Action::TogglePause);
             }
         });
-        ui.label(egui::RichText::new(line).monospace());
+        // Cut at the window's edge rather than wrapped (hovering shows it whole): the bar's
+        // height must not depend on its text, or in fit mode a longer line would shrink the
+        // image, which restarts the render, which changes the line.
+        for row in line.lines() {
+            ui.add(egui::Label::new(egui::RichText::new(row).monospace()).truncate());
+        }
     });
     actions
 }
