@@ -1,6 +1,11 @@
 //! The cost of a walk through the BVH: how many nodes it visited and how many primitives it
 //! tested. The traversal takes a [`TraversalCost`]; the renderer passes `()`, whose methods do
 //! nothing and vanish when compiled, and the BVH cost view passes a [`BvhCost`] that counts.
+//! [`sah_cost`] estimates a whole tree's cost for a ray, as the builder does for one split.
+
+use super::Node;
+use super::build::TRAVERSAL_COST;
+use crate::aabb::Aabb;
 
 /// Told of every node visited and every primitive tested during a traversal.
 pub trait TraversalCost {
@@ -39,5 +44,63 @@ impl TraversalCost for BvhCost {
     #[inline(always)]
     fn prims_tested(&mut self, count: usize) {
         self.prims += count as u64;
+    }
+}
+
+/// The surface area heuristic's estimate of a tree's cost: the expected number of node visits
+/// (each costing [`TRAVERSAL_COST`]) and primitive tests of a ray that passes through the
+/// root's box, with the chance of entering a node taken as its surface area over the root's.
+/// `nodes` is the builder's binary tree (root first, an interior node's children at `first`
+/// and `first + 1`; [`super::Bvh::binary_tree_cost`] measures the builder's): the lower, the
+/// fewer boxes and primitives a ray is expected to test. 0 for an empty tree.
+pub(super) fn sah_cost(nodes: &[Node]) -> f64 {
+    let Some(root) = nodes.first() else {
+        return 0.0;
+    };
+    let area = |node: &Node| Aabb::new(node.min.into(), node.max.into()).surface_area() as f64;
+    let root_area = area(root).max(f64::MIN_POSITIVE);
+    let mut cost = 0.0;
+    let mut stack = vec![0];
+    while let Some(i) = stack.pop() {
+        let node = &nodes[i];
+        if node.is_leaf() {
+            cost += area(node) * node.count as f64;
+        } else {
+            cost += area(node) * TRAVERSAL_COST as f64;
+            stack.extend([node.first as usize, node.first as usize + 1]);
+        }
+    }
+    cost / root_area
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn node(min: [f32; 3], max: [f32; 3], first: u32, count: u32) -> Node {
+        Node {
+            min,
+            first,
+            max,
+            count,
+        }
+    }
+
+    #[test]
+    fn sah_cost_weighs_each_node_by_its_area() {
+        // A unit cube (area 6) split into two halves (area 4 each), one and three primitives.
+        let tree = [
+            node([0.0; 3], [1.0; 3], 1, Node::INTERIOR | 2),
+            node([0.0; 3], [0.5, 1.0, 1.0], 0, 1),
+            node([0.5, 0.0, 0.0], [1.0; 3], 1, 3),
+        ];
+        let expected = TRAVERSAL_COST as f64 + (4.0 * 1.0 + 4.0 * 3.0) / 6.0;
+        assert!(
+            (sah_cost(&tree) - expected).abs() < 1e-9,
+            "{}",
+            sah_cost(&tree)
+        );
+        assert_eq!(sah_cost(&tree[1..2]), 1.0);
+        assert_eq!(sah_cost(&[]), 0.0);
     }
 }
