@@ -94,8 +94,8 @@ pub enum Leaf<'a> {
 }
 
 impl Leaf<'_> {
-    /// Primitives in the leaf, for counting tests: four lanes to a pack.
-    pub fn len(&self) -> usize {
+    /// Primitive tests the leaf takes, for counting: four lanes to a pack.
+    pub fn tests(&self) -> usize {
         match self {
             Leaf::Triangles(packs) => packs.len() * crate::shapes::PACK_SIZE,
             Leaf::Objects(objects) => objects.len(),

@@ -143,7 +143,7 @@ mod tests {
                 let test = RayBoxTest::new(ray);
                 for t_max in [100.0, f32::MAX] {
                     let (t, mask) = dispatch(simd, Enter8(&test, &node, t_max));
-                    for k in 0..LANES {
+                    for (k, t_k) in t.into_iter().enumerate() {
                         let one = match boxes.get(k) {
                             Some(&(min, max)) => {
                                 test.enter(&Aabb::new(min.into(), max.into()), 0.0, t_max)
@@ -153,7 +153,7 @@ mod tests {
                         let hit = one != f32::INFINITY;
                         assert_eq!(mask >> k & 1 == 1, hit, "{simd}: box {k}, {ray:?}");
                         if hit {
-                            assert_eq!(t[k].to_bits(), one.to_bits(), "{simd}: box {k}");
+                            assert_eq!(t_k.to_bits(), one.to_bits(), "{simd}: box {k}");
                             entered += 1;
                         }
                     }

@@ -120,7 +120,7 @@ impl<C: TraversalCost> Kernel for ClosestHit<'_, C> {
         let sheared = ShearedRay::new(ray);
         let mut best: Option<Hit> = None;
         let mut test = |leaf: Leaf, t_limit: &mut f32, cost: &mut C| {
-            cost.prims_tested(leaf.len());
+            cost.prims_tested(leaf.tests());
             closest_in_leaf(geometry, leaf, ray, &sheared, t_min, t_limit, &mut best);
             ControlFlow::Continue(())
         };
@@ -152,7 +152,7 @@ impl<C: TraversalCost, F: FnMut(&Hit) -> ControlFlow<()>> Kernel for AnyHit<'_, 
         ) = self;
         let sheared = ShearedRay::new(ray);
         let mut visit = |leaf: Leaf, cost: &mut C| {
-            cost.prims_tested(leaf.len());
+            cost.prims_tested(leaf.tests());
             match leaf {
                 Leaf::Triangles(packs) => {
                     for pack in packs {

@@ -6,8 +6,8 @@
 //! children of its own, until it has eight: the grandchildren that a ray is most likely to
 //! visit move up.
 //!
-//! A binary leaf becomes one wide child per kind of primitive in it: its triangles, copied
-//! into [`TrianglePack`]s of four in leaf order, and its objects, listed in leaf order.
+//! A binary leaf holds one kind of primitive (the builder makes sure of it): triangles, copied
+//! into [`TrianglePack`]s of four in leaf order, or objects, listed in leaf order.
 
 use arrayvec::ArrayVec;
 
@@ -39,9 +39,15 @@ pub(super) struct Collapsed {
 /// follow one another, and each child's subtree comes before the next child's children (depth
 /// first), as do the leaves' packs and objects.
 pub(super) fn collapse(binary: &[Node], prims: &[PrimId], geometry: &Geometry) -> Collapsed {
+    // Exactly the packs needed, so that the largest array never moves.
+    let packs = binary
+        .iter()
+        .filter(|node| node.is_leaf() && is_triangle(prims[node.first as usize]))
+        .map(|leaf| (leaf.count as usize).div_ceil(PACK_SIZE))
+        .sum();
     let mut out = Collapsed {
         nodes: Vec::new(),
-        packs: Vec::with_capacity(prims.len().div_ceil(PACK_SIZE)),
+        packs: Vec::with_capacity(packs),
         objects: Vec::new(),
     };
     if !binary.is_empty() {
@@ -70,63 +76,56 @@ struct Collapse<'a> {
 impl Collapse<'_> {
     /// Writes into wide node `at` the children of binary node `node`, and their subtrees after.
     fn fill(&mut self, node: usize, at: usize) {
-        let mut slots: ArrayVec<(Aabb, Child), WIDTH> = ArrayVec::new();
         let mut interior: ArrayVec<(usize, usize), WIDTH> = ArrayVec::new();
-        for c in self.wide_children(node) {
+        for (k, c) in self.wide_children(node).into_iter().enumerate() {
             let child = &self.binary[c];
-            let bounds = Aabb::new(child.min.into(), child.max.into());
-            if child.is_leaf() {
-                for leaf in self.leaf(child) {
-                    slots.push((bounds, leaf));
-                }
+            let slot = if child.is_leaf() {
+                self.leaf(child)
             } else {
                 self.out.nodes.push(EMPTY);
                 let index = self.out.nodes.len() - 1;
                 interior.push((c, index));
-                slots.push((bounds, Child::node(index as u32)));
-            }
-        }
-        let wide = &mut self.out.nodes[at];
-        for (k, (bounds, child)) in slots.into_iter().enumerate() {
+                Child::node(index as u32)
+            };
+            let wide = &mut self.out.nodes[at];
             for axis in 0..3 {
-                wide.min[axis][k] = bounds.min[axis];
-                wide.max[axis][k] = bounds.max[axis];
+                wide.min[axis][k] = child.min[axis];
+                wide.max[axis][k] = child.max[axis];
             }
-            wide.first[k] = child.first;
-            wide.count[k] = child.count;
+            wide.first[k] = slot.first;
+            wide.count[k] = slot.count;
         }
         for (c, index) in interior {
             self.fill(c, index);
         }
     }
 
-    /// The one or two wide children of a binary leaf: its triangles in packs, its objects.
-    fn leaf(&mut self, leaf: &Node) -> ArrayVec<Child, 2> {
+    /// The wide child of a binary leaf: its triangles in packs, or its objects.
+    fn leaf(&mut self, leaf: &Node) -> Child {
         let prims = &self.prims[leaf.first as usize..][..leaf.count as usize];
-        let mut children = ArrayVec::new();
-        let triangles: Vec<_> = prims
-            .iter()
-            .filter_map(|&id| id.kind().err().map(|t| (self.geometry.triangle(t), id.0)))
-            .collect();
-        if !triangles.is_empty() {
+        if is_triangle(prims[0]) {
             let first = self.out.packs.len() as u32;
-            let packs = triangles.chunks(PACK_SIZE).map(TrianglePack::new);
-            self.out.packs.extend(packs);
-            children.push(Child::triangles(first, self.out.packs.len() as u32 - first));
+            for four in prims.chunks(PACK_SIZE) {
+                let mut lanes: ArrayVec<_, PACK_SIZE> = ArrayVec::new();
+                for &id in four {
+                    let t = id
+                        .kind()
+                        .expect_err("a leaf of triangles holds only triangles");
+                    lanes.push((self.geometry.triangle(t), id.0));
+                }
+                self.out.packs.push(TrianglePack::new(&lanes));
+            }
+            Child::triangles(first, self.out.packs.len() as u32 - first)
+        } else {
+            let first = self.out.objects.len() as u32;
+            self.out.objects.extend_from_slice(prims);
+            Child::objects(first, prims.len() as u32)
         }
-        let objects = prims.iter().filter(|id| id.kind().is_ok());
-        let first = self.out.objects.len() as u32;
-        self.out.objects.extend(objects);
-        if self.out.objects.len() as u32 > first {
-            children.push(Child::objects(first, self.out.objects.len() as u32 - first));
-        }
-        children
     }
 
     /// The binary nodes that become the wide children of binary node `node`: its children,
-    /// with the largest interior one replaced by its own two children while the slots they
-    /// take (a leaf with triangles and objects takes two) fit in [`WIDTH`]. A leaf `node` is
-    /// its own only child.
+    /// with the largest interior one replaced by its own two children until there are
+    /// [`WIDTH`] or only leaves. A leaf `node` is its own only child.
     fn wide_children(&self, node: usize) -> ArrayVec<usize, WIDTH> {
         let binary = self.binary;
         let mut children = ArrayVec::new();
@@ -136,42 +135,24 @@ impl Collapse<'_> {
         }
         let first = binary[node].first as usize;
         children.extend([first, first + 1]);
-        let mut used: usize = children.iter().map(|&c| self.slots(c)).sum();
-        loop {
-            let opens = |&k: &usize| {
-                let c = &binary[children[k]];
-                !c.is_leaf() && used - 1 + self.slots_of_children(c) <= WIDTH
-            };
+        while children.len() < WIDTH {
             let Some(largest) = (0..children.len())
-                .filter(opens)
+                .filter(|&k| !binary[children[k]].is_leaf())
                 .max_by(|&a, &b| area(&binary[children[a]]).total_cmp(&area(&binary[children[b]])))
             else {
                 break;
             };
             // Replace the child by its own two children, in place.
-            let opened = &binary[children[largest]];
-            used = used - 1 + self.slots_of_children(opened);
-            children[largest] = opened.first as usize;
-            children.insert(largest + 1, opened.first as usize + 1);
+            let opened = binary[children[largest]].first as usize;
+            children[largest] = opened;
+            children.insert(largest + 1, opened + 1);
         }
         children
     }
+}
 
-    /// Wide slots binary node `c` takes: two for a leaf of triangles and objects, else one.
-    fn slots(&self, c: usize) -> usize {
-        let node = &self.binary[c];
-        if !node.is_leaf() {
-            return 1;
-        }
-        let prims = &self.prims[node.first as usize..][..node.count as usize];
-        let objects = prims.iter().filter(|id| id.kind().is_ok()).count();
-        1 + usize::from(objects > 0 && objects < prims.len())
-    }
-
-    fn slots_of_children(&self, interior: &Node) -> usize {
-        let first = interior.first as usize;
-        self.slots(first) + self.slots(first + 1)
-    }
+fn is_triangle(id: PrimId) -> bool {
+    id.kind().is_err()
 }
 
 fn area(node: &Node) -> f32 {
