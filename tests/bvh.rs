@@ -487,3 +487,18 @@ fn a_path_the_processor_lacks_is_refused() {
     assert_eq!("avx2".parse::<Simd>(), Ok(Simd::Avx2));
     assert!("avx3".parse::<Simd>().is_err());
 }
+
+#[test]
+fn the_builder_fills_the_triangle_packs() {
+    // A leaf of up to four triangles costs one test of a pack, so the builder makes leaves of
+    // about four rather than one or two: fewer nodes, and packs mostly full.
+    let mut g = Geometry::default();
+    g.add_mesh(raylab::large_mesh::bumpy_sphere(20_000));
+    let bvh = Bvh::build(&g);
+    let filled = g.triangle_count() as f64 / (bvh.packs.len() * raylab::shapes::PACK_SIZE) as f64;
+    assert!(
+        filled > 0.6,
+        "{:.0} % of the lanes hold a triangle",
+        filled * 100.0
+    );
+}

@@ -17,6 +17,7 @@ use rayon::prelude::*;
 use super::{Bvh, Node};
 use crate::aabb::Aabb;
 use crate::primitive::{Geometry, PrimId};
+use crate::shapes::PACK_SIZE;
 
 /// Most bins per axis, for the largest nodes (a power of two, see [`BinMap::bins`]).
 const MAX_BINS: usize = 32;
@@ -452,7 +453,14 @@ fn append_subtree(nodes: &mut Vec<Node>, at: usize, mut subtree: Vec<Node>) {
 fn split(prims: &mut [BuildPrim], extent: &Extent, bins: &mut Bins) -> Option<Split> {
     let n = prims.len();
     let area = extent.bounds.surface_area().max(f32::MIN_POSITIVE);
-    let pays = |cost: f32| TRAVERSAL_COST + cost / area < n as f32 || n > MAX_LEAF_SIZE;
+    // Triangles are tested four at a time: a leaf of up to four costs one test.
+    let block = if prims.iter().any(BuildPrim::is_object) {
+        1
+    } else {
+        PACK_SIZE as u32
+    };
+    let pays =
+        |cost: f32| TRAVERSAL_COST + cost / area < tests(n as u32, block) || n > MAX_LEAF_SIZE;
     if let [a, b] = prims {
         return split_pair(a, b)
             .filter(|&cost| pays(cost))
@@ -465,7 +473,7 @@ fn split(prims: &mut [BuildPrim], extent: &Extent, bins: &mut Bins) -> Option<Sp
     } else {
         bins.fill(prims, &map);
     }
-    let split = best_bin_plane(bins, extent, map.count)
+    let split = best_bin_plane(bins, extent, map.count, block)
         .filter(|&(cost, _, _)| pays(cost))
         .map(|(_, axis, bin)| {
             // The bins know the sides' sizes and boxes; the partition finds their centroids'.
@@ -517,16 +525,23 @@ fn split_by_kind(prims: &mut [BuildPrim]) -> Option<Split> {
 /// The cheapest plane between bins by the SAH, on an axis along which the centroids spread:
 /// its cost (without the node's own area, the same for every plane), axis and the bin on its
 /// left.
-fn best_bin_plane(bins: &Bins, extent: &Extent, count: usize) -> Option<(f32, usize, usize)> {
+fn best_bin_plane(
+    bins: &Bins,
+    extent: &Extent,
+    count: usize,
+    block: u32,
+) -> Option<(f32, usize, usize)> {
     let size = extent.centroids.max - extent.centroids.min;
     let mut best: Option<(f32, usize, usize)> = None;
     for axis in 0..3 {
         if size[axis] <= 0.0 {
             continue;
         }
-        if let Some((cost, bin)) =
-            best_plane(&bins.bounds[axis][..count], &bins.counts[axis][..count])
-            && best.is_none_or(|(c, _, _)| cost < c)
+        if let Some((cost, bin)) = best_plane(
+            &bins.bounds[axis][..count],
+            &bins.counts[axis][..count],
+            block,
+        ) && best.is_none_or(|(c, _, _)| cost < c)
         {
             best = Some((cost, axis, bin));
         }
@@ -542,7 +557,7 @@ fn best_bin_plane(bins: &Bins, extent: &Extent, count: usize) -> Option<(f32, us
 /// the plane after the last non-empty bin before it, at the same cost, and the first plane
 /// wins a tie. The loops run over every bin, empty or not, and choose without branching, so
 /// that the processor need not guess how many bins are filled or which plane wins.
-fn best_plane(bounds: &[Bounds], counts: &[u32]) -> Option<(f32, usize)> {
+fn best_plane(bounds: &[Bounds], counts: &[u32], block: u32) -> Option<(f32, usize)> {
     let bins = bounds.len();
     // Sweep from the right: `right[i]` is the area and count of bins `i..`.
     let mut right = [(0.0, 0); MAX_BINS];
@@ -561,13 +576,18 @@ fn best_plane(bounds: &[Bounds], counts: &[u32]) -> Option<(f32, usize)> {
         let cost = if left_count == 0 || right_count == 0 {
             f32::INFINITY
         } else {
-            left_count as f32 * acc.surface_area() + right_count as f32 * right_area
+            tests(left_count, block) * acc.surface_area() + tests(right_count, block) * right_area
         };
         if cost < best_cost {
             (best_cost, best_bin) = (cost, i);
         }
     }
     (best_cost < f32::INFINITY).then_some((best_cost, best_bin))
+}
+
+/// Tests a leaf of `count` primitives takes when they are tested `block` at a time.
+fn tests(count: u32, block: u32) -> f32 {
+    count.div_ceil(block) as f32
 }
 
 fn split_at(prims: &[BuildPrim], mid: usize) -> Split {
