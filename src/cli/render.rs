@@ -101,7 +101,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     )?;
 
     let build_start = Instant::now();
-    let bvh = Bvh::build(&scene.geometry);
+    let bvh = pool.install(|| Bvh::build(&scene.geometry));
     let build_time = build_start.elapsed();
 
     let tracer = Tracer::new(&scene, &bvh);
