@@ -306,7 +306,7 @@ impl Bvh {
         Bvh::from_binary(geometry, &binary, &ids, unbounded)
     }
 
-    /// The SAH cost ([`super::cost::sah_cost`]) of the binary tree that [`Bvh::build`]
+    /// The SAH cost (`cost::sah_cost`) of the binary tree that [`Bvh::build`]
     /// collapses, and its number of nodes: for measuring the builder. `(0, 0)` when nothing
     /// is bounded.
     pub fn binary_tree_cost(geometry: &Geometry) -> (f64, usize) {

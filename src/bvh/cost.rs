@@ -1,7 +1,7 @@
 //! The cost of a walk through the BVH: how many nodes it visited and how many primitives it
 //! tested. The traversal takes a [`TraversalCost`]; the renderer passes `()`, whose methods do
 //! nothing and vanish when compiled, and the BVH cost view passes a [`BvhCost`] that counts.
-//! [`sah_cost`] estimates a whole tree's cost for a ray, as the builder does for one split.
+//! `sah_cost` estimates a whole tree's cost for a ray, as the builder does for one split.
 
 use super::Node;
 use super::build::TRAVERSAL_COST;

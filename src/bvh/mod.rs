@@ -55,7 +55,7 @@ pub struct WideNode {
     /// An interior child's node index, or the first of a leaf's packs in [`Bvh::packs`] or
     /// objects in [`Bvh::objects`].
     pub first: [u32; WIDTH],
-    /// A leaf's number of packs plus [`Child::TRIANGLES`], or of objects;
+    /// A leaf's number of packs plus `Child::TRIANGLES`, or of objects;
     /// [`WideNode::INTERIOR`] for an interior child, 0 for an unused slot.
     pub count: [u32; WIDTH],
 }

@@ -44,14 +44,7 @@ impl Bvh {
         t_max: f32,
         cost: &mut C,
     ) -> Option<Hit> {
-        let walk = Walk {
-            bvh: self,
-            geometry,
-            ray,
-            t_min,
-            t_max,
-            cost,
-        };
+        let walk = Walk::new(self, geometry, ray, t_min, t_max, cost);
         dispatch(self.simd, ClosestHit(walk))
     }
 
@@ -79,14 +72,7 @@ impl Bvh {
         cost: &mut C,
         on_hit: impl FnMut(&Hit) -> ControlFlow<()>,
     ) {
-        let walk = Walk {
-            bvh: self,
-            geometry,
-            ray,
-            t_min,
-            t_max,
-            cost,
-        };
+        let walk = Walk::new(self, geometry, ray, t_min, t_max, cost);
         dispatch(self.simd, AnyHit(walk, on_hit));
     }
 }
@@ -99,6 +85,26 @@ struct Walk<'a, C> {
     t_min: f32,
     t_max: f32,
     cost: &'a mut C,
+}
+
+impl<'a, C> Walk<'a, C> {
+    fn new(
+        bvh: &'a Bvh,
+        geometry: &'a Geometry,
+        ray: &'a Ray,
+        t_min: f32,
+        t_max: f32,
+        cost: &'a mut C,
+    ) -> Self {
+        Walk {
+            bvh,
+            geometry,
+            ray,
+            t_min,
+            t_max,
+            cost,
+        }
+    }
 }
 
 /// The closest-hit query as a [`Kernel`].
