@@ -115,24 +115,19 @@ impl<C: TraversalCost> Kernel for ClosestHit<'_, C> {
 
     #[inline(always)]
     fn run<L: Lanes>(self) -> Option<Hit> {
-        let Walk {
-            bvh,
-            geometry,
-            ray,
-            t_min,
-            t_max,
-            cost,
-        } = self.0;
-        let sheared = ShearedRay::new(ray);
+        let w = self.0;
+        let sheared = ShearedRay::new(w.ray);
         let mut best: Option<Hit> = None;
         let mut test = |leaf: Leaf, t_limit: &mut f32, cost: &mut C| {
             cost.prims_tested(leaf.tests());
-            closest_in_leaf(geometry, leaf, ray, &sheared, t_min, t_limit, &mut best);
+            closest_in_leaf(
+                w.geometry, leaf, w.ray, &sheared, w.t_min, t_limit, &mut best,
+            );
             ControlFlow::Continue(())
         };
-        let mut t_limit = t_max;
-        let _ = test(Leaf::Objects(&bvh.unbounded), &mut t_limit, cost);
-        bvh.walk::<L, C>(ray, t_min, t_limit, cost, test);
+        let mut t_limit = w.t_max;
+        let _ = test(Leaf::Objects(&w.bvh.unbounded), &mut t_limit, w.cost);
+        w.bvh.walk::<L, C>(w.ray, w.t_min, t_limit, w.cost, test);
         best
     }
 }
@@ -145,17 +140,8 @@ impl<C: TraversalCost, F: FnMut(&Hit) -> ControlFlow<()>> Kernel for AnyHit<'_, 
 
     #[inline(always)]
     fn run<L: Lanes>(self) {
-        let AnyHit(
-            Walk {
-                bvh,
-                geometry,
-                ray,
-                t_min,
-                t_max,
-                cost,
-            },
-            mut on_hit,
-        ) = self;
+        let AnyHit(w, mut on_hit) = self;
+        let (ray, t_min, t_max) = (w.ray, w.t_min, w.t_max);
         let sheared = ShearedRay::new(ray);
         let mut visit = |leaf: Leaf, cost: &mut C| {
             cost.prims_tested(leaf.tests());
@@ -170,7 +156,9 @@ impl<C: TraversalCost, F: FnMut(&Hit) -> ControlFlow<()>> Kernel for AnyHit<'_, 
                 }
                 Leaf::Objects(objects) => {
                     for &id in objects {
-                        let hit = geometry.intersect_prepared(id, ray, &sheared, t_min, t_max);
+                        let hit = w
+                            .geometry
+                            .intersect_prepared(id, ray, &sheared, t_min, t_max);
                         if let Some(hit) = hit {
                             on_hit(&hit)?;
                         }
@@ -179,10 +167,11 @@ impl<C: TraversalCost, F: FnMut(&Hit) -> ControlFlow<()>> Kernel for AnyHit<'_, 
             }
             ControlFlow::Continue(())
         };
-        if visit(Leaf::Objects(&bvh.unbounded), cost).is_break() {
+        if visit(Leaf::Objects(&w.bvh.unbounded), w.cost).is_break() {
             return;
         }
-        bvh.walk::<L, C>(ray, t_min, t_max, cost, |leaf, _, cost| visit(leaf, cost));
+        w.bvh
+            .walk::<L, C>(ray, t_min, t_max, w.cost, |leaf, _, cost| visit(leaf, cost));
     }
 }
 
