@@ -487,3 +487,61 @@ fn bad_jobs_are_clear_errors() {
         "nothing written"
     );
 }
+
+#[test]
+fn frames_of_a_camera_path_are_picked_with_its_length() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(
+        d.join("room.views.toml"),
+        "[view.1]\neye = [-3.0, 2.0, 5.0]\nlook_at = [0.0, 0.0, 0.0]\n\n\
+         [view.2]\neye = [4.0, 1.0, 6.0]\nlook_at = [0.0, 0.5, 0.0]\n",
+    )
+    .unwrap();
+    let path = ["--size", "24x16", "--path", "room.views.toml"];
+    raylab(
+        &[
+            &["render"],
+            &path[..],
+            &["--frames", "4", "-o", "all%d.png"],
+        ]
+        .concat(),
+        d,
+    );
+    raylab(
+        &[
+            &["render"],
+            &path[..],
+            &["--path-length", "4", "--frames", "1..3", "-o", "some%d.png"],
+        ]
+        .concat(),
+        d,
+    );
+    raylab(
+        &[
+            &["render"],
+            &path[..],
+            &["--frames", "4", "--frame", "3", "-o", "last.png"],
+        ]
+        .concat(),
+        d,
+    );
+    for (whole, picked) in [
+        ("all1.png", "some1.png"),
+        ("all2.png", "some2.png"),
+        ("all3.png", "last.png"),
+    ] {
+        assert!(read(d, whole) == read(d, picked), "{picked}");
+    }
+    assert!(!d.join("some0.png").exists() && !d.join("some3.png").exists());
+    let err = raylab_fails(
+        &[
+            &["render"],
+            &path[..],
+            &["--frames", "1..3", "-o", "%d.png"],
+        ]
+        .concat(),
+        d,
+    );
+    assert!(err.contains("--path-length N"), "{err}");
+}
