@@ -143,6 +143,23 @@ fn crops_merge_like_tiles() {
         d,
     );
     assert!(read(d, "whole.png") == read(d, "merged.png"));
+    // The tone of 8-bit output is chosen at the merge, as at a render.
+    let tone = ["--exposure", "1.5", "--tonemap", "filmic"];
+    raylab(
+        &[&["render", &glass, "-o", "toned.png"], &AA[..], &tone[..]].concat(),
+        d,
+    );
+    let parts = [
+        "merge",
+        "left.exr",
+        "top.exr",
+        "rest.exr",
+        "-o",
+        "merged-toned.png",
+    ];
+    raylab(&[&parts[..], &tone[..]].concat(), d);
+    assert!(read(d, "toned.png") == read(d, "merged-toned.png"));
+    assert!(read(d, "toned.png") != read(d, "whole.png"));
     // Any EXR reader opens a part: the whole image, the part at its place.
     let part = image::open(d.join("top.exr")).unwrap();
     assert_eq!((part.width(), part.height()), (37, 23));
