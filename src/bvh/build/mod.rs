@@ -10,19 +10,24 @@
 //! maxima, which come out the same whatever order the threads add them in; primitives are put
 //! in an order fixed by where they were; and the parallel halves are stitched together in the
 //! order one thread would have written them.
+//!
+//! Its parts: the primitives as the builder holds them (`prims`), binning them and finding the
+//! cheapest plane (`bins`), and moving them to their side of it (`partition`).
+mod bins;
+mod partition;
+mod prims;
 
-use glam::{Vec3, Vec3A, Vec4, Vec4Swizzles};
 use rayon::prelude::*;
 
+pub(super) use self::bins::tests;
+use self::bins::{BinMap, Bins, best_bin_plane, bin_count};
+use self::partition::{partition, partition_in_parallel};
+use self::prims::{BuildPrim, Extent};
 use super::{Bvh, Node};
 use crate::aabb::Aabb;
 use crate::primitive::{Geometry, PrimId};
 use crate::shapes::PACK_SIZE;
 
-/// Most bins per axis, for the largest nodes (a power of two, see [`BinMap::bins`]).
-const MAX_BINS: usize = 32;
-/// Fewest bins per axis, for the smallest nodes.
-const MIN_BINS: usize = 8;
 /// Relative cost of visiting a node against testing one primitive.
 pub(super) const TRAVERSAL_COST: f32 = 1.0;
 /// A leaf never holds more than this unless its primitives cannot be told apart.
@@ -36,257 +41,6 @@ const PARALLEL_MIN_PRIMS: usize = 1 << 14;
 /// Nodes with at least this many primitives bin and partition them on all threads, in pieces
 /// of [`CHUNK`]: the top of the tree, where there are fewer nodes than threads.
 const DATA_PARALLEL_MIN_PRIMS: usize = 1 << 16;
-/// Primitives per piece of a node binned or partitioned on all threads.
-const CHUNK: usize = 1 << 13;
-
-/// Bins per axis for a node of `n` primitives: more for large nodes, where a better plane
-/// pays for itself many times over, fewer for small ones, where setting up and sweeping the
-/// bins would cost more than binning their few primitives.
-fn bin_count(n: usize) -> usize {
-    (n / 4).clamp(MIN_BINS, MAX_BINS)
-}
-
-/// An axis-aligned box held in SIMD registers, for the builder's inner loops.
-#[derive(Clone, Copy)]
-struct Bounds {
-    min: Vec3A,
-    max: Vec3A,
-}
-
-impl Bounds {
-    const EMPTY: Bounds = Bounds {
-        min: Vec3A::INFINITY,
-        max: Vec3A::NEG_INFINITY,
-    };
-
-    #[inline(always)]
-    fn union(self, other: Bounds) -> Bounds {
-        Bounds {
-            min: self.min.min(other.min),
-            max: self.max.max(other.max),
-        }
-    }
-
-    #[inline(always)]
-    fn grow(self, p: Vec3A) -> Bounds {
-        Bounds {
-            min: self.min.min(p),
-            max: self.max.max(p),
-        }
-    }
-
-    /// [`Aabb::surface_area`] of a non-empty box, with the same arithmetic, in SIMD.
-    #[inline(always)]
-    fn surface_area(&self) -> f32 {
-        let e = (self.max - self.min).max(Vec3A::ZERO);
-        let products = e * Vec3A::new(e.y, e.z, e.x);
-        2.0 * (products.x + products.y + products.z)
-    }
-}
-
-impl From<Bounds> for Aabb {
-    fn from(b: Bounds) -> Aabb {
-        Aabb::new(Vec3::from(b.min), Vec3::from(b.max))
-    }
-}
-
-/// A primitive as the builder sees it, in 32 bytes: its box, with its id kept in the fourth
-/// lane of the box's min corner (where a [`Vec3A`] has an unused lane anyway).
-#[derive(Clone, Copy)]
-struct BuildPrim {
-    min: Vec4,
-    max: Vec4,
-}
-
-impl BuildPrim {
-    fn new(bounds: Aabb, id: PrimId) -> BuildPrim {
-        BuildPrim {
-            min: bounds.min.extend(f32::from_bits(id.0)),
-            max: bounds.max.extend(0.0),
-        }
-    }
-
-    fn id(&self) -> PrimId {
-        PrimId(self.min.w.to_bits())
-    }
-
-    /// The box. Its min corner's fourth lane, the id, is a tiny (denormal) number as a float,
-    /// and arithmetic on such numbers is very slow: it is replaced by the third lane.
-    #[inline(always)]
-    fn bounds(&self) -> Bounds {
-        Bounds {
-            min: Vec3A::from_vec4(self.min.xyzz()),
-            max: Vec3A::from_vec4(self.max),
-        }
-    }
-
-    /// Twice the centroid (the builder only compares centroids, so it skips the halving).
-    #[inline(always)]
-    fn centroid(&self) -> Vec3A {
-        let b = self.bounds();
-        b.min + b.max
-    }
-
-    fn is_object(&self) -> bool {
-        self.id().kind().is_ok()
-    }
-}
-
-/// The primitives of a node, with what splitting them needs: their bounds and the bounds of
-/// their (doubled) centroids.
-#[derive(Clone, Copy)]
-struct Extent {
-    bounds: Bounds,
-    centroids: Bounds,
-}
-
-impl Extent {
-    const EMPTY: Extent = Extent {
-        bounds: Bounds::EMPTY,
-        centroids: Bounds::EMPTY,
-    };
-
-    fn of(prims: &[BuildPrim]) -> Extent {
-        prims.iter().fold(Extent::EMPTY, |e, p| e.add(p))
-    }
-
-    /// [`Extent::of`] on all threads: minima and maxima come out the same in any order.
-    fn of_in_parallel(prims: &[BuildPrim]) -> Extent {
-        prims
-            .par_chunks(CHUNK)
-            .map(Extent::of)
-            .reduce(|| Extent::EMPTY, Extent::union)
-    }
-
-    #[inline(always)]
-    fn add(self, p: &BuildPrim) -> Extent {
-        Extent {
-            bounds: self.bounds.union(p.bounds()),
-            centroids: self.centroids.grow(p.centroid()),
-        }
-    }
-
-    fn union(self, other: Extent) -> Extent {
-        Extent {
-            bounds: self.bounds.union(other.bounds),
-            centroids: self.centroids.union(other.centroids),
-        }
-    }
-}
-
-/// Which bin a centroid falls in on each axis: `count` equal slices of a node's centroid box.
-#[derive(Clone, Copy)]
-struct BinMap {
-    lo: Vec3A,
-    scale: Vec3A,
-    count: usize,
-}
-
-impl BinMap {
-    fn new(centroids: &Bounds, count: usize) -> BinMap {
-        let size = centroids.max - centroids.min;
-        BinMap {
-            lo: centroids.min,
-            scale: Vec3A::splat(count as f32) / size,
-            count,
-        }
-    }
-
-    /// The centroid's bin on each axis: its place in the centroid box, 0 to `count`, cut down
-    /// to a whole number, the far side going into the last bin. Binning and partitioning both
-    /// call this, so they put each primitive on the same side.
-    #[inline(always)]
-    fn bins(&self, p: &BuildPrim) -> [usize; 3] {
-        // Rounding in SIMD, all three axes at once: 2²³ added to a number from 0 to 2²² leaves
-        // it rounded to the nearest whole number in the float's low bits, which the mask keeps
-        // (`MAX_BINS` is a power of two). Half a bin less first makes that rounding down (but
-        // for exact halves, which go to the even neighbour). A flat axis has scale ∞ and gives
-        // NaN, which `max` makes 0; it is never split.
-        let slot = ((p.centroid() - self.lo) * self.scale - Vec3A::splat(0.5))
-            .max(Vec3A::ZERO)
-            .min(Vec3A::splat((self.count - 1) as f32))
-            + Vec3A::splat(8_388_608.0);
-        slot.to_array()
-            .map(|x| (x.to_bits() as usize) & (MAX_BINS - 1))
-    }
-}
-
-/// A node's primitives sorted by centroid into bins along each axis: for each axis and bin, the
-/// box around its primitives and their number. One set of bins serves a whole subtree, node
-/// after node.
-#[derive(Clone)]
-struct Bins {
-    bounds: [[Bounds; MAX_BINS]; 3],
-    counts: [[u32; MAX_BINS]; 3],
-}
-
-impl Bins {
-    fn new() -> Box<Bins> {
-        Box::new(Bins {
-            bounds: [[Bounds::EMPTY; MAX_BINS]; 3],
-            counts: [[0; MAX_BINS]; 3],
-        })
-    }
-
-    /// Empties the first `count` bins of each axis and bins the primitives, on all three axes
-    /// in one pass.
-    fn fill(&mut self, prims: &[BuildPrim], map: &BinMap) {
-        for axis in 0..3 {
-            self.bounds[axis][..map.count].fill(Bounds::EMPTY);
-            self.counts[axis][..map.count].fill(0);
-        }
-        for p in prims {
-            let [x, y, z] = map.bins(p);
-            let bounds = p.bounds();
-            self.add(0, x, bounds);
-            self.add(1, y, bounds);
-            self.add(2, z, bounds);
-        }
-    }
-
-    #[inline(always)]
-    fn add(&mut self, axis: usize, bin: usize, bounds: Bounds) {
-        self.counts[axis][bin] += 1;
-        self.bounds[axis][bin] = self.bounds[axis][bin].union(bounds);
-    }
-
-    /// [`Bins::fill`] on all threads, each binning pieces of the primitives into bins of its own,
-    /// added together at the end (sums, minima and maxima: the same in any order).
-    fn fill_in_parallel(&mut self, prims: &[BuildPrim], map: &BinMap) {
-        let merged = prims
-            .par_chunks(CHUNK)
-            .map(|chunk| {
-                let mut bins = Bins::new();
-                bins.fill(chunk, map);
-                bins
-            })
-            .reduce_with(|mut a, b| {
-                for axis in 0..3 {
-                    for bin in 0..map.count {
-                        a.counts[axis][bin] += b.counts[axis][bin];
-                        a.bounds[axis][bin] = a.bounds[axis][bin].union(b.bounds[axis][bin]);
-                    }
-                }
-                a
-            });
-        if let Some(merged) = merged {
-            *self = *merged;
-        }
-    }
-
-    /// The plane after bin `bin` of axis `axis` as the bins see it: how many primitives go
-    /// left, and the boxes around both sides.
-    fn sides(&self, axis: usize, bin: usize, count: usize) -> (usize, Bounds, Bounds) {
-        let side = |bins: std::ops::Range<usize>| {
-            self.bounds[axis][bins]
-                .iter()
-                .fold(Bounds::EMPTY, |a, &b| a.union(b))
-        };
-        let mid = self.counts[axis][..=bin].iter().sum::<u32>();
-        (mid as usize, side(0..bin + 1), side(bin + 1..count))
-    }
-}
-
 /// How a node's primitives were split: the first `mid` go left.
 struct Split {
     mid: usize,
@@ -338,7 +92,7 @@ fn build_prims(geometry: &Geometry) -> (Vec<BuildPrim>, Extent, Vec<PrimId>) {
             BuildPrim::new(bounds.unwrap_or(Aabb::EMPTY), id)
         })
         .collect();
-    let is_bounded = |p: &BuildPrim| p.min.x.is_finite();
+    let is_bounded = |p: &BuildPrim| p.bounds().min.x.is_finite();
     let unbounded: Vec<PrimId> = prims
         .par_iter()
         .filter(|p| !is_bounded(p))
@@ -523,74 +277,6 @@ fn split_by_kind(prims: &mut [BuildPrim]) -> Option<Split> {
     })
 }
 
-/// The cheapest plane between bins by the SAH, on an axis along which the centroids spread:
-/// its cost (without the node's own area, the same for every plane), axis and the bin on its
-/// left.
-fn best_bin_plane(
-    bins: &Bins,
-    extent: &Extent,
-    count: usize,
-    block: u32,
-) -> Option<(f32, usize, usize)> {
-    let size = extent.centroids.max - extent.centroids.min;
-    let mut best: Option<(f32, usize, usize)> = None;
-    for axis in 0..3 {
-        if size[axis] <= 0.0 {
-            continue;
-        }
-        if let Some((cost, bin)) = best_plane(
-            &bins.bounds[axis][..count],
-            &bins.counts[axis][..count],
-            block,
-        ) && best.is_none_or(|(c, _, _)| cost < c)
-        {
-            best = Some((cost, axis, bin));
-        }
-    }
-    best
-}
-
-/// The cheapest plane between bins on one axis by the SAH: its cost (without the node's own
-/// area, the same for every plane) and the bin on its left; `None` when all primitives are in
-/// one bin.
-///
-/// Planes with nothing on one side are left out. A plane between two empty bins splits like
-/// the plane after the last non-empty bin before it, at the same cost, and the first plane
-/// wins a tie. The loops run over every bin, empty or not, and choose without branching, so
-/// that the processor need not guess how many bins are filled or which plane wins.
-fn best_plane(bounds: &[Bounds], counts: &[u32], block: u32) -> Option<(f32, usize)> {
-    let bins = bounds.len();
-    // Sweep from the right: `right[i]` is the area and count of bins `i..`.
-    let mut right = [(0.0, 0); MAX_BINS];
-    let (mut acc, mut count) = (Bounds::EMPTY, 0);
-    for i in (1..bins).rev() {
-        acc = acc.union(bounds[i]);
-        count += counts[i];
-        right[i] = (acc.surface_area(), count);
-    }
-    let (mut best_cost, mut best_bin) = (f32::INFINITY, 0);
-    let (mut acc, mut left_count) = (Bounds::EMPTY, 0);
-    for i in 0..bins - 1 {
-        acc = acc.union(bounds[i]);
-        left_count += counts[i];
-        let (right_area, right_count) = right[i + 1];
-        let cost = if left_count == 0 || right_count == 0 {
-            f32::INFINITY
-        } else {
-            tests(left_count, block) * acc.surface_area() + tests(right_count, block) * right_area
-        };
-        if cost < best_cost {
-            (best_cost, best_bin) = (cost, i);
-        }
-    }
-    (best_cost < f32::INFINITY).then_some((best_cost, best_bin))
-}
-
-/// Tests a leaf of `count` primitives takes when they are tested `block` at a time.
-pub(super) fn tests(count: u32, block: u32) -> f32 {
-    count.div_ceil(block) as f32
-}
-
 fn split_at(prims: &[BuildPrim], mid: usize) -> Split {
     Split {
         mid,
@@ -599,99 +285,10 @@ fn split_at(prims: &[BuildPrim], mid: usize) -> Split {
     }
 }
 
-/// Moves the primitives that go left to the front: says how many they are, and the boxes
-/// around the centroids of those that go right and of those that go left. From both ends
-/// towards the middle, swapping the pairs that are on the wrong side.
-fn partition(
-    prims: &mut [BuildPrim],
-    goes_left: impl Fn(&BuildPrim) -> bool,
-) -> (usize, [Bounds; 2]) {
-    let (mut left, mut right) = (Bounds::EMPTY, Bounds::EMPTY);
-    let (mut i, mut j) = (0, prims.len());
-    loop {
-        while i < j && goes_left(&prims[i]) {
-            left = left.grow(prims[i].centroid());
-            i += 1;
-        }
-        while i < j && !goes_left(&prims[j - 1]) {
-            j -= 1;
-            right = right.grow(prims[j].centroid());
-        }
-        if i == j {
-            break;
-        }
-        // prims[i] goes right and prims[j − 1] goes left.
-        j -= 1;
-        prims.swap(i, j);
-        left = left.grow(prims[i].centroid());
-        right = right.grow(prims[j].centroid());
-        i += 1;
-    }
-    (i, [right, left])
-}
-
-/// [`partition`] on all threads, with the same result whatever their number, when `mid` of
-/// the primitives go left: the boxes around the centroids of those that go right and left.
-/// Pieces of the primitives are looked at in parallel, each listing those on the wrong side of
-/// `mid` and growing the centroid boxes; then the k-th primitive that must move right trades
-/// places with the k-th that must move left.
-fn partition_in_parallel(
-    prims: &mut [BuildPrim],
-    mid: usize,
-    goes_left: impl Fn(&BuildPrim) -> bool + Sync,
-) -> [Bounds; 2] {
-    let (front, back) = prims.split_at_mut(mid);
-    let look = |start: usize, chunk: &[BuildPrim], left_is_misplaced: bool| {
-        let mut centroids = [Bounds::EMPTY; 2];
-        let mut misplaced = Vec::new();
-        for (k, p) in chunk.iter().enumerate() {
-            let left = goes_left(p);
-            centroids[left as usize] = centroids[left as usize].grow(p.centroid());
-            if left == left_is_misplaced {
-                misplaced.push((start + k) as u32);
-            }
-        }
-        (misplaced, centroids)
-    };
-    let pieces = |part: &[BuildPrim], left_is_misplaced: bool| -> Vec<(Vec<u32>, [Bounds; 2])> {
-        part.par_chunks(CHUNK)
-            .enumerate()
-            .map(|(c, chunk)| look(c * CHUNK, chunk, left_is_misplaced))
-            .collect()
-    };
-    let (front_pieces, back_pieces) = rayon::join(|| pieces(front, false), || pieces(back, true));
-    // The trades, in parallel, piece by piece of the front: the partners of a piece's
-    // misplaced primitives lie in one stretch of the back, after those of the piece before.
-    let to_left: Vec<u32> = back_pieces.iter().flat_map(|(m, _)| m).copied().collect();
-    let mut trades = Vec::with_capacity(front_pieces.len());
-    let (mut rest, mut rest_start, mut partners) = (back, 0, &to_left[..]);
-    for (piece, (to_right, _)) in front.chunks_mut(CHUNK).zip(&front_pieces) {
-        let (mine, others) = partners.split_at(to_right.len());
-        let end = mine.last().map_or(rest_start, |&b| b as usize + 1);
-        let (stretch, tail) = std::mem::take(&mut rest).split_at_mut(end - rest_start);
-        trades.push((piece, to_right, mine, stretch, rest_start));
-        (rest, rest_start, partners) = (tail, end, others);
-    }
-    trades.into_par_iter().enumerate().for_each(
-        |(c, (piece, to_right, partners, stretch, stretch_start))| {
-            for (&a, &b) in to_right.iter().zip(partners) {
-                std::mem::swap(
-                    &mut piece[a as usize - c * CHUNK],
-                    &mut stretch[b as usize - stretch_start],
-                );
-            }
-        },
-    );
-    front_pieces
-        .iter()
-        .chain(&back_pieces)
-        .fold([Bounds::EMPTY; 2], |[r, l], (_, [pr, pl])| {
-            [r.union(*pr), l.union(*pl)]
-        })
-}
-
 #[cfg(test)]
 mod tests {
+    use glam::Vec3;
+
     use super::*;
     use crate::mesh::Mesh;
     use crate::primitive::Object;
