@@ -1,12 +1,14 @@
 //! The film: the image being rendered, in linear RGB floats, with the number of samples averaged
 //! into each pixel, written by the tracer's threads and readable by anyone (the viewer, a
 //! progress display) while a pass is running. It also keeps which rows changed since a reader
-//! last asked (one bit a row), so that a viewer copies only those.
+//! last asked (one bit a row), so that a viewer copies only those. A film can also hold a window
+//! of a larger image ([`Film::window`]), for rendering a tile of it.
 
 use std::ops::Range;
 use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
 
 use crate::color::Color;
+use crate::tiles::Rect;
 
 /// A `width × height` image, row 0 at the top. Each channel is an `f32` stored in an atomic, so
 /// threads can write pixels while others read without locks; a reader may see a pixel from
@@ -15,6 +17,10 @@ use crate::color::Color;
 pub struct Film {
     width: u32,
     height: u32,
+    /// Where the film's pixel (0, 0) lies in the image it is a window of, and that image's size
+    /// (the film's own size, at (0, 0), for a whole image).
+    origin: (u32, u32),
+    image_size: (u32, u32),
     channels: Vec<AtomicU32>,
     /// Samples averaged into each pixel (0 where a coarse block was only painted over it).
     samples: Vec<AtomicU32>,
@@ -31,10 +37,19 @@ impl Film {
     }
 
     pub fn new(width: u32, height: u32) -> Film {
+        Film::window(width, height, Rect::image(width, height))
+    }
+
+    /// A film for the pixels `rect` of an `image_width × image_height` image: its pixel (x, y)
+    /// is the image's (rect.x0 + x, rect.y0 + y).
+    pub fn window(image_width: u32, image_height: u32, rect: Rect) -> Film {
+        let (width, height) = (rect.width(), rect.height());
         let n = width as usize * height as usize;
         Film {
             width,
             height,
+            origin: (rect.x0, rect.y0),
+            image_size: (image_width, image_height),
             channels: (0..n * 3).map(|_| AtomicU32::new(0)).collect(),
             samples: (0..n).map(|_| AtomicU32::new(0)).collect(),
             version: AtomicU64::new(0),
@@ -50,6 +65,16 @@ impl Film {
 
     pub fn height(&self) -> u32 {
         self.height
+    }
+
+    /// Where the film's pixel (0, 0) lies in its image.
+    pub fn origin(&self) -> (u32, u32) {
+        self.origin
+    }
+
+    /// The size of the image the film is a window of.
+    pub fn image_size(&self) -> (u32, u32) {
+        self.image_size
     }
 
     fn pixel(&self, x: u32, y: u32) -> usize {
@@ -150,6 +175,16 @@ impl Film {
     pub fn pixels(&self) -> Vec<Color> {
         (0..self.height)
             .flat_map(|y| (0..self.width).map(move |x| (x, y)))
+            .map(|(x, y)| self.get(x, y))
+            .collect()
+    }
+
+    /// A copy of the pixels `rect` of the image, row by row: a rectangle inside the film's
+    /// window, in the image's coordinates.
+    pub fn pixels_in(&self, rect: Rect) -> Vec<Color> {
+        let (left, top) = self.origin;
+        (rect.y0 - top..rect.y1 - top)
+            .flat_map(|y| (rect.x0 - left..rect.x1 - left).map(move |x| (x, y)))
             .map(|(x, y)| self.get(x, y))
             .collect()
     }

@@ -12,7 +12,8 @@
 //!   [`tone`] (exposure and tone curves), [`transform`], [`limits`], [`memory`], [`output`]
 //!   (writing files safely), [`camera`] (the one place a pixel becomes an eye ray), [`views`]
 //!   (bookmarked cameras, and the cameras of a turntable or a path through them) and
-//!   [`sampling`] (where a pixel's samples lie).
+//!   [`sampling`] (where a pixel's samples lie), [`tiles`] (an image cut into rectangles rendered
+//!   apart, and checking that parts cover it once).
 //! - The scene: [`shapes`], [`mesh`], [`primitive`], [`material`], [`texture`] (with
 //!   [`noise`]), [`light`], [`medium`] (fog), [`settings`] and [`scene::Scene`], which
 //!   [`formats`] reads from TOML, OBJ, NFF, SPD and SDL files (or [`large_mesh`] generates, for
@@ -56,6 +57,7 @@ pub mod settings;
 pub mod shapes;
 pub mod stats;
 pub mod texture;
+pub mod tiles;
 pub mod tone;
 pub mod transform;
 pub mod views;

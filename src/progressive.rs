@@ -19,6 +19,13 @@
 //! the threads' order does not matter. A pixel given all `samples` samples by the adaptive rounds
 //! is exactly the uniform render's pixel.
 //!
+//! A film can be a window of the image ([`Film::window`]): its pixels are traced as the image's
+//! pixels at their place. A tile of an image renders the same as in the whole image if its film
+//! reaches [`decision_reach`] pixels further on every side (where the image has them): each
+//! adaptive round decides from the four neighbours as they were after the round before, so
+//! after `r` rounds a pixel depends on the first sweep's colours up to `r` pixels away, and a
+//! window's edge, which has no neighbours beyond it, disturbs only the pixels within `r` of it.
+//!
 //! A render nobody watches before it ends (to a file) needs none of the coarse passes: it traces
 //! every pixel, with all its samples under uniform sampling, in one sweep ([`unwatched_passes`],
 //! [`render_unwatched`]), and ends with the same film.
@@ -116,6 +123,14 @@ pub fn unwatched_passes(samples: u32, adaptive: bool) -> Vec<Pass> {
     // The rounds after block pass 1.
     let rounds = passes(1, samples, adaptive).into_iter().skip(1);
     std::iter::once(Pass::Sweep(1)).chain(rounds).collect()
+}
+
+/// How many pixels away the adaptive rounds of a render with `settings` look, all rounds
+/// together: one per round (0 with uniform sampling). A window grown by this much on every side
+/// renders its inner pixels exactly as the whole image does.
+pub fn decision_reach(settings: &RenderSettings) -> u32 {
+    let plan = unwatched_passes(settings.samples, settings.aa_threshold > 0.0);
+    plan.iter().filter(|p| matches!(p, Pass::Refine(_))).count() as u32
 }
 
 /// What one pass of progressive rendering did.
@@ -571,7 +586,9 @@ fn trace_tile(
     counts: &mut RayCounts,
 ) -> Traced {
     let camera = &tracer.scene.camera;
-    let size = (grid.film.width(), grid.film.height());
+    // The film may be a window of the image: rays and jitter go by the pixel's place in it.
+    let size = grid.film.image_size();
+    let (left, top) = grid.film.origin();
     let mut packet = Packet::default();
     let mut traced = Traced::default();
     for row in rows.clone() {
@@ -584,12 +601,13 @@ fn trace_tile(
                 if packet.rays.is_full() {
                     packet.trace(tracer, shader, grid, counts);
                 }
+                let pixel = (left + x, top + y);
                 let offset = if k == 0 {
                     PIXEL_CENTRE
                 } else {
-                    jitter(x, y, k)
+                    jitter(pixel.0, pixel.1, k)
                 };
-                packet.rays.push(camera.eye_ray((x, y), offset, size));
+                packet.rays.push(camera.eye_ray(pixel, offset, size));
                 packet.samples.push((x, y, k));
             }
         }

@@ -6,6 +6,8 @@ mod bench;
 mod bench_report;
 mod generate;
 mod inspect;
+mod jobs;
+mod merge;
 mod overrides;
 mod render;
 mod sequence;
@@ -42,6 +44,9 @@ enum Command {
     View(view::ViewArgs),
     /// Render a scene file (or the built-in default scene) to an image.
     Render(render::RenderArgs),
+    /// Merge the parts of an image rendered apart (`render --tile` or `--crop`) into the image
+    /// one render would have written, after checking they fit; or list them (--status).
+    Merge(merge::MergeArgs),
     /// Write one of the Standard Procedural Databases as an NFF file.
     Gen(generate::GenArgs),
     /// Render a fixed set of scenes and report speed and memory.
@@ -56,6 +61,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
     remove_unfinished_files_on_signals()?;
     match cli.command {
         Some(Command::Render(args)) => render::run(args),
+        Some(Command::Merge(args)) => merge::run(args),
         Some(Command::Gen(args)) => generate::run(args),
         Some(Command::Bench(args)) => bench::run(args),
         Some(Command::Inspect(args)) => inspect::run(args),

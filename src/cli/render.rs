@@ -1,5 +1,6 @@
 //! `raylab render`: a scene to an image file, or to a numbered sequence of them (a turntable or a
-//! camera path, see `sequence`), with one progress bar and a one-line summary.
+//! camera path, see `sequence`), with one progress bar and a one-line summary; or a part of it
+//! (a tile or crop of some frames, see `jobs`) for `raylab merge`.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -12,14 +13,17 @@ use raylab::film::Film;
 use raylab::formats::SceneFormat;
 use raylab::formats::image::{OutputFormat, check_image_path, save_image, save_toned_image};
 use raylab::formats::nff::NffLighting;
+use raylab::formats::part::{PartInfo, scene_hash, write_part};
 use raylab::inspect::DebugView;
 use raylab::memory;
 use raylab::photon::scene_caustics;
 use raylab::progressive::{self, RenderControl, RenderStats};
 use raylab::settings::{RenderSettings, SettingsOverrides};
+use raylab::tiles::Rect;
 use raylab::tone::{Tone, ToneCurve};
 use raylab::whitted::{RAY_BUDGET, Tracer};
 
+use super::jobs::{self, TileArgs};
 use super::overrides::OverrideArgs;
 use super::sequence::{SequenceArgs, frame_paths};
 
@@ -50,6 +54,19 @@ pub struct RenderArgs {
     /// ambient light, as SPD's POV-Ray exporter writes them).
     #[arg(long, default_value_t = NffLighting::default())]
     nff_lights: NffLighting,
+    #[command(flatten)]
+    tone: ToneArgs,
+    /// An image sequence instead of one image.
+    #[command(flatten)]
+    sequence: SequenceArgs,
+    /// A part of the image, for `raylab merge`.
+    #[command(flatten)]
+    tiles: TileArgs,
+}
+
+/// How 8-bit images show the linear values (`render` and `merge`).
+#[derive(Args, Debug)]
+pub struct ToneArgs {
     /// Exposure in stops for .png and .ppm output: each stop doubles the linear values before
     /// the tone curve (.exr and .hdr keep the linear values).
     #[arg(
@@ -63,39 +80,67 @@ pub struct RenderArgs {
     /// filmic (an ACES-like curve); .exr and .hdr keep the linear values.
     #[arg(long, value_name = "CURVE", default_value_t = ToneCurve::Clamp)]
     tonemap: ToneCurve,
-    /// An image sequence instead of one image.
-    #[command(flatten)]
-    sequence: SequenceArgs,
+}
+
+impl ToneArgs {
+    /// The tone for an image of `format` written to `output`, warning when it has no effect.
+    pub fn tone(&self, format: OutputFormat, output: &Path) -> Result<Tone, String> {
+        let tone =
+            Tone::new(self.exposure, self.tonemap).map_err(|e| format!("--exposure: {e}"))?;
+        if tone != Tone::default() && matches!(format, OutputFormat::Exr | OutputFormat::Hdr) {
+            eprintln!(
+                "warning: --exposure and --tonemap shape 8-bit images only; {} keeps the linear values",
+                output.display()
+            );
+        }
+        Ok(tone)
+    }
 }
 
 pub fn run(args: RenderArgs) -> Result<(), String> {
     // Before any long work: the scene, the cameras and file names of the frames, the BVH, the
     // render.
     let format = check_image_path(&args.output).map_err(|e| e.to_string())?;
-    let tone = Tone::new(args.exposure, args.tonemap).map_err(|e| format!("--exposure: {e}"))?;
-    if tone != Tone::default() && matches!(format, OutputFormat::Exr | OutputFormat::Hdr) {
-        eprintln!(
-            "warning: --exposure and --tonemap shape 8-bit images only; {} keeps the linear values",
-            args.output.display()
-        );
-    }
+    let tone = args.tone.tone(format, &args.output)?;
     let mut scene = super::load_scene(args.scene.as_deref(), args.nff_lights, args.format)?;
     let overrides = SettingsOverrides::from(args.overrides);
     overrides.apply(&mut scene.settings)?;
     scene.camera = overrides.apply_camera(scene.camera.spec)?;
-    let (cameras, outputs) = match args.sequence.cameras(scene.camera.spec)? {
+    let sequence = args.sequence.cameras(scene.camera.spec)?;
+    let total = sequence.as_ref().map_or(1, |cameras| cameras.len() as u32);
+    let (width, height) = (scene.settings.width, scene.settings.height);
+    let job = jobs::pick(
+        &args.tiles,
+        args.sequence.frame(),
+        args.sequence.range(total)?,
+        (width, height),
+        |name| std::env::var(name).ok(),
+    )?;
+    let (cameras, outputs) = match sequence {
         Some(cameras) => {
-            let outputs = frame_paths(&args.output, cameras.len())?;
-            (cameras, outputs)
+            let outputs = frame_paths(&args.output, job.frames.clone())?;
+            let range = job.frames.start as usize..job.frames.end as usize;
+            (cameras[range].to_vec(), outputs)
         }
         None => (vec![scene.camera], vec![args.output.clone()]),
     };
+    if job.window.is_some() && format != OutputFormat::Exr {
+        return Err(format!(
+            "-o {}: a part (--tile, --crop) is written as .exr, with the linear values and what              `raylab merge` needs to know; merge writes the image in any format",
+            args.output.display()
+        ));
+    }
+    // A part's film reaches as far around it as the adaptive rounds look (`progressive`), so
+    // that its pixels come out as in the whole image.
+    let image = Rect::image(width, height);
+    let traced = job.window.map_or(image, |(rect, _)| {
+        rect.grown(progressive::decision_reach(&scene.settings), &image)
+    });
     let pool = super::thread_pool(args.threads)?;
-    let (width, height) = (scene.settings.width, scene.settings.height);
-    let pixels = u64::from(width) * u64::from(height);
+    let pixels = traced.pixels();
     memory::check(
-        &format!("rendering a {width}×{height} image"),
-        Film::memory_bytes(width, height)
+        &format!("rendering {}×{} pixels", traced.width(), traced.height()),
+        Film::memory_bytes(traced.width(), traced.height())
             + progressive::memory_bytes(&scene.settings)
             + format.save_bytes(pixels),
     )?;
@@ -121,12 +166,26 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         scene.camera = *camera;
         let tracer = Tracer::new(&scene, &bvh).with_caustics(caustics.as_ref());
         let done = per_frame * k as u64;
-        let frame = render_frame(&tracer, &args.view, &pool, |traced| {
+        let frame = render_frame(&tracer, &args.view, traced, &pool, |traced| {
             bar.set_position(done + traced)
         })
         .and_then(|(film, frame_stats)| {
-            save_toned_image(output, width, height, &film.pixels(), tone)
-                .map_err(|e| e.to_string())?;
+            match job.window {
+                Some((rect, tile)) => {
+                    let info = PartInfo {
+                        width,
+                        height,
+                        rect,
+                        scene: scene_hash(&scene),
+                        settings: format!("{:#?}\nview = {}", scene.settings, args.view),
+                        tile,
+                        frame: (total > 1).then_some(job.frames.start + k as u32),
+                    };
+                    write_part(output, &info, &film.pixels_in(rect)).map_err(|e| e.to_string())
+                }
+                None => save_toned_image(output, width, height, &film.pixels(), tone)
+                    .map_err(|e| e.to_string()),
+            }?;
             written.push(output);
             Ok(frame_stats)
         });
@@ -188,15 +247,17 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     })
 }
 
-/// Renders one image with `tracer`, telling `progress` the pixels traced so far now and then.
+/// Renders the pixels `window` of an image with `tracer`, telling `progress` the pixels traced
+/// so far now and then.
 fn render_frame(
     tracer: &Tracer,
     view: &DebugView,
+    window: Rect,
     pool: &rayon::ThreadPool,
     progress: impl Fn(u64),
 ) -> Result<(Film, RenderStats), String> {
     let settings = &tracer.scene.settings;
-    let film = Film::new(settings.width, settings.height);
+    let film = Film::window(settings.width, settings.height, window);
     let control = RenderControl::default();
     let stats = std::thread::scope(|s| {
         // Nobody sees the coarse passes: the film is traced in one sweep.

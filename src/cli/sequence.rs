@@ -1,14 +1,20 @@
 //! `raylab render`'s image sequences: `--turntable FRAMES` and `--path FILE --frames N`, the
 //! cameras of their frames (the library's [`raylab::views`]) and the numbered file names that
 //! `-o frames/%04d.png` gives them. Frames are numbered from 0; frame 0 is the scene's camera
-//! (the turntable) or the first view (the path).
+//! (the turntable) or the first view (the path). A run can render some of the frames, as a job
+//! of a scheduler: `--frames A..B` (frames A to B−1) or `--frame K` (see `jobs`); a path's
+//! length is then `--path-length N`.
 
+use std::ops::Range;
 use std::path::{Path, PathBuf};
+use std::str::FromStr;
 
 use clap::Args;
 use raylab::camera::{Camera, CameraSpec};
 use raylab::formats::toml::load_views;
 use raylab::views::{path, turntable};
+
+use super::jobs::FrameArg;
 
 /// The flags of an image sequence.
 #[derive(Args, Debug)]
@@ -21,38 +27,117 @@ pub struct SequenceArgs {
     /// Render a camera path through the views of a views file (NAME.views.toml, as the viewer
     /// saves them with Ctrl+1…9) in the order of their numbers, in --frames images: the first
     /// is the first view, the last the last view. -o as with --turntable.
-    #[arg(long, value_name = "FILE", requires = "frames")]
+    #[arg(long, value_name = "FILE")]
     path: Option<PathBuf>,
-    /// How many images the --path sequence has (at least 2).
+    /// How many images the --path sequence has (at least 2); or A..B: render only frames A to
+    /// B−1 of the --turntable or --path sequence (half-open, as Rust's ranges), each written
+    /// under its own number; a path's length then comes from --path-length.
+    #[arg(long, value_name = "N|A..B")]
+    frames: Option<FramesArg>,
+    /// The number of images of the --path sequence, when --frames gives a range or --frame
+    /// picks one.
     #[arg(long, value_name = "N", requires = "path")]
-    frames: Option<u32>,
+    path_length: Option<u32>,
+    /// Render only frame K of the --turntable or --path sequence (numbered from 0), or `auto`:
+    /// the scheduler's task index, as --tile auto reads it (with --tile auto too, task i is
+    /// tile i mod N of frame i div N).
+    #[arg(long, value_name = "K|auto")]
+    frame: Option<FrameArg>,
+}
+
+/// `--frames`' value: a number of frames, or a range of them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FramesArg {
+    Count(u32),
+    Range(u32, u32),
+}
+
+impl FromStr for FramesArg {
+    type Err = String;
+    fn from_str(s: &str) -> Result<FramesArg, String> {
+        let bad = || format!("{s:?} is not a number of frames N or a range A..B");
+        let Some((a, b)) = s.split_once("..") else {
+            return s.parse().map(FramesArg::Count).map_err(|_| bad());
+        };
+        let (a, b): (u32, u32) = (a.parse().map_err(|_| bad())?, b.parse().map_err(|_| bad())?);
+        if a >= b {
+            return Err(format!(
+                "{s:?} has no frames: A..B renders frames A to B−1, so A < B is needed"
+            ));
+        }
+        Ok(FramesArg::Range(a, b))
+    }
 }
 
 impl SequenceArgs {
-    /// The cameras of the sequence's frames, `camera` being the scene's; `None` for a single
+    /// The cameras of all the sequence's frames, `camera` being the scene's; `None` for a single
     /// image.
     pub fn cameras(&self, camera: CameraSpec) -> Result<Option<Vec<Camera>>, String> {
+        let range = matches!(self.frames, Some(FramesArg::Range(..)));
+        let picks = range || self.frame.is_some();
         if let Some(frames) = self.turntable {
+            if let Some(FramesArg::Count(_)) = self.frames {
+                return Err("--frames with --turntable takes a range A..B of its frames".into());
+            }
             return turntable(&camera, frames)
                 .map(Some)
                 .map_err(|e| format!("--turntable: {e}"));
         }
-        match (&self.path, self.frames) {
-            (Some(file), Some(frames)) => {
-                let views = load_views(file, camera).map_err(|e| e.to_string())?;
-                path(&views.cameras(), frames)
-                    .map(Some)
-                    .map_err(|e| format!("--path {}: {e}", file.display()))
+        let Some(file) = &self.path else {
+            if picks {
+                return Err("--frames A..B and --frame pick frames of a --turntable or                             --path sequence, and there is none"
+                    .into());
             }
-            _ => Ok(None),
+            if self.frames.is_some() {
+                return Err("--frames N needs --path FILE".into());
+            }
+            return Ok(None);
+        };
+        let length = match (self.frames, self.path_length) {
+            (Some(FramesArg::Count(n)), None) => n,
+            (Some(FramesArg::Count(_)), Some(_)) => {
+                return Err("give the --path's length once: --frames N or --path-length N".into());
+            }
+            (_, Some(n)) => n,
+            (_, None) if picks => {
+                return Err("picking frames of a --path needs its length: --path-length N".into());
+            }
+            (_, None) => return Err("--path FILE needs its number of frames: --frames N".into()),
+        };
+        let views = load_views(file, camera).map_err(|e| e.to_string())?;
+        path(&views.cameras(), length)
+            .map(Some)
+            .map_err(|e| format!("--path {}: {e}", file.display()))
+    }
+
+    /// The frames to render of a sequence of `total` (before `--frame`, which `jobs` applies).
+    pub fn range(&self, total: u32) -> Result<Range<u32>, String> {
+        match self.frames {
+            Some(FramesArg::Range(a, b)) if b > total => Err(format!(
+                "--frames {a}..{b}: the sequence has frames 0 to {}",
+                total.saturating_sub(1)
+            )),
+            Some(FramesArg::Range(a, b)) => {
+                if self.frame.is_some() {
+                    return Err("give --frames A..B or --frame K, not both".into());
+                }
+                Ok(a..b)
+            }
+            _ => Ok(0..total),
         }
+    }
+
+    /// `--frame`, if given.
+    pub fn frame(&self) -> Option<FrameArg> {
+        self.frame
     }
 }
 
 /// The file names of a sequence of `frames` images: `output` with its frame number pattern
 /// (`%d`, or `%0Nd` for N digits with leading zeros, as in printf; `%%` is a `%`) replaced by
-/// each frame's number from 0. A single frame may go to a name without a pattern.
-pub fn frame_paths(output: &Path, frames: usize) -> Result<Vec<PathBuf>, String> {
+/// each frame's number in `numbers`. A single frame may go to a name without a pattern.
+pub fn frame_paths(output: &Path, numbers: Range<u32>) -> Result<Vec<PathBuf>, String> {
+    let frames = numbers.len();
     let text = output.to_str().ok_or_else(|| {
         format!(
             "-o {}: the name of a sequence's frames must be UTF-8",
@@ -70,7 +155,7 @@ pub fn frame_paths(output: &Path, frames: usize) -> Result<Vec<PathBuf>, String>
              number in the name, such as -o frames/%04d.png"
         ));
     };
-    Ok((0..frames)
+    Ok(numbers
         .map(|k| PathBuf::from(format!("{before}{k:0width$}{after}")))
         .collect())
 }
@@ -121,8 +206,8 @@ fn split_pattern(text: &str) -> Result<Option<(String, usize, String)>, String> 
 mod tests {
     use super::*;
 
-    fn paths(output: &str, frames: usize) -> Result<Vec<String>, String> {
-        let paths = frame_paths(Path::new(output), frames)?;
+    fn paths(output: &str, frames: u32) -> Result<Vec<String>, String> {
+        let paths = frame_paths(Path::new(output), 0..frames)?;
         Ok(paths.iter().map(|p| p.display().to_string()).collect())
     }
 
@@ -135,6 +220,23 @@ mod tests {
         assert_eq!(paths("f%d.png", 11).unwrap()[10], "f10.png");
         assert_eq!(paths("%02d%%.png", 101).unwrap()[100], "100%.png");
         assert_eq!(paths("one.png", 1).unwrap(), ["one.png"]);
+        let some = frame_paths(Path::new("f%03d.png"), 7..9).unwrap();
+        assert_eq!(some, [Path::new("f007.png"), Path::new("f008.png")]);
+    }
+
+    #[test]
+    fn frame_ranges_are_checked() {
+        assert_eq!("3..5".parse(), Ok(FramesArg::Range(3, 5)));
+        assert_eq!("12".parse(), Ok(FramesArg::Count(12)));
+        for (value, expected) in [
+            ("5..5", "A < B is needed"),
+            ("6..2", "A < B is needed"),
+            ("1..", "is not a number of frames N or a range A..B"),
+            ("x", "is not a number of frames N or a range A..B"),
+        ] {
+            let err = value.parse::<FramesArg>().unwrap_err();
+            assert!(err.contains(expected), "{value}: {err}");
+        }
     }
 
     #[test]

@@ -11,6 +11,7 @@ pub mod image;
 mod load_any;
 pub mod nff;
 mod obj;
+pub mod part;
 pub mod sdl;
 pub mod spd;
 pub mod toml;

@@ -1,0 +1,333 @@
+//! Parts of an image rendered apart (tiles, crops): OpenEXR files that hold the linear film
+//! values of a rectangle of the image, so that merging them gives exactly what one render of
+//! the whole image writes, in any output format.
+//!
+//! A part is an ordinary OpenEXR image whose data window is its rectangle and whose display
+//! window is the whole image (as renderers write crops; any EXR viewer shows it in place), with
+//! raylab's own header attributes: the scene's content hash ([`scene_hash`]), the settings that
+//! shape the pixels as text, and the tile (`K/N`) and frame it is, when it is one. The metadata
+//! lives inside the file rather than in a sidecar: a part cannot lose it or be paired with
+//! another part's, and it is written atomically with the pixels.
+
+use std::collections::HashMap;
+use std::fmt::{self, Write as _};
+use std::hash::Hasher;
+use std::path::{Path, PathBuf};
+
+use exr::meta::attribute::{AttributeValue, IntegerBounds, Text};
+use exr::prelude::{
+    Encoding, Image, ImageAttributes, Layer, LayerAttributes, ReadChannels, ReadLayers,
+    ReadSpecificChannel, SpecificChannels, Vec2, WritableImage, read,
+};
+
+use crate::color::Color;
+use crate::output::write_atomically;
+use crate::scene::Scene;
+use crate::tiles::Rect;
+
+/// What a part says about itself.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PartInfo {
+    /// The whole image's size.
+    pub width: u32,
+    pub height: u32,
+    /// The pixels the part holds.
+    pub rect: Rect,
+    /// The scene's content hash ([`scene_hash`]).
+    pub scene: String,
+    /// The settings that shape the pixels, as text, one `name = value` a line.
+    pub settings: String,
+    /// Tile `K` of `N`, when the part is one.
+    pub tile: Option<(u32, u32)>,
+    /// The frame of a sequence it belongs to, when it does.
+    pub frame: Option<u32>,
+}
+
+/// A part read back: what it says and its pixels (linear RGB, row by row over its rectangle).
+#[derive(Clone, Debug)]
+pub struct Part {
+    pub info: PartInfo,
+    pub pixels: Vec<Color>,
+}
+
+/// Why a part could not be written or read.
+#[derive(Debug)]
+pub struct PartError {
+    pub path: PathBuf,
+    pub message: String,
+}
+
+impl fmt::Display for PartError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.path.display(), self.message)
+    }
+}
+
+impl std::error::Error for PartError {}
+
+const SCENE: &str = "raylabScene";
+const SETTINGS: &str = "raylabSettings";
+const TILE: &str = "raylabTile";
+const FRAME: &str = "raylabFrame";
+
+/// A hash of everything in `scene` that shapes its pixels (its settings, camera, lights, fog,
+/// materials, textures, background and geometry; not the names or warnings, which may hold
+/// the path the file was read from), as 16 hex digits. The same on every machine for the same
+/// scene file read by the same raylab: FNV-1a over the values as `{:?}` prints them (floats
+/// exactly, in their shortest round-tripping form).
+pub fn scene_hash(scene: &Scene) -> String {
+    /// Feeds formatted text into a hasher without keeping it.
+    struct HashWriter(fnv::FnvHasher);
+    impl fmt::Write for HashWriter {
+        fn write_str(&mut self, s: &str) -> fmt::Result {
+            self.0.write(s.as_bytes());
+            Ok(())
+        }
+    }
+    let mut h = HashWriter(fnv::FnvHasher::default());
+    let _ = write!(
+        h,
+        "{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
+        scene.settings,
+        scene.camera,
+        scene.lights,
+        scene.atmosphere,
+        scene.materials,
+        scene.textures,
+        scene.background_image,
+        scene.geometry
+    );
+    format!("{:016x}", h.0.finish())
+}
+
+/// Writes the part `info` describes, with its `pixels` (row by row over `info.rect`),
+/// atomically: a task run again replaces its part whole.
+pub fn write_part(path: &Path, info: &PartInfo, pixels: &[Color]) -> Result<(), PartError> {
+    let error = |message: String| PartError {
+        path: path.into(),
+        message,
+    };
+    let rect = info.rect;
+    if pixels.len() as u64 != rect.pixels() {
+        return Err(error(format!(
+            "the part needs {} pixels, got {}",
+            rect.pixels(),
+            pixels.len()
+        )));
+    }
+    let text = |value: &str| {
+        Text::new_or_none(value)
+            .map(AttributeValue::Text)
+            .ok_or_else(|| error(format!("cannot store {value:?} in an OpenEXR header")))
+    };
+    let mut other = HashMap::new();
+    other.insert(Text::from(SCENE), text(&info.scene)?);
+    other.insert(Text::from(SETTINGS), text(&info.settings)?);
+    if let Some((k, n)) = info.tile {
+        other.insert(Text::from(TILE), text(&format!("{k}/{n}"))?);
+    }
+    if let Some(frame) = info.frame {
+        other.insert(Text::from(FRAME), text(&frame.to_string())?);
+    }
+    let width = rect.width() as usize;
+    let channels = SpecificChannels::rgb(|at: Vec2<usize>| {
+        let c = pixels[at.y() * width + at.x()];
+        (c.x, c.y, c.z)
+    });
+    // In the layer's attributes, where the reader puts attributes it does not know.
+    let attributes = LayerAttributes {
+        layer_position: Vec2(rect.x0 as i32, rect.y0 as i32),
+        other,
+        ..LayerAttributes::default()
+    };
+    let layer = Layer::new(
+        (width, rect.height() as usize),
+        attributes,
+        Encoding::FAST_LOSSLESS,
+        channels,
+    );
+    let mut image = Image::from_layer(layer);
+    image.attributes.display_window =
+        IntegerBounds::new((0, 0), (info.width as usize, info.height as usize));
+    write_atomically(
+        path,
+        |e| error(e.to_string()),
+        |out| {
+            image
+                .write()
+                .to_buffered(out)
+                .map_err(|e| error(e.to_string()))
+        },
+    )
+}
+
+/// What the part at `path` says about itself, reading only its header.
+pub fn read_part_info(path: &Path) -> Result<PartInfo, PartError> {
+    let error = |message: String| PartError {
+        path: path.into(),
+        message,
+    };
+    let meta = exr::meta::MetaData::read_from_file(path, false)
+        .map_err(|e| error(format!("not a readable OpenEXR file: {e}")))?;
+    let [header] = meta.headers.as_slice() else {
+        return Err(error("a raylab part has one layer".into()));
+    };
+    let position = header.own_attributes.layer_position;
+    let size = header.layer_size;
+    part_info(
+        &header.shared_attributes,
+        &header.own_attributes,
+        (position.x(), position.y()),
+        (size.x(), size.y()),
+    )
+    .map_err(error)
+}
+
+/// Reads the part at `path`: what it says and its pixels.
+pub fn read_part(path: &Path) -> Result<Part, PartError> {
+    let error = |message: String| PartError {
+        path: path.into(),
+        message,
+    };
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .specific_channels()
+        .required("R")
+        .required("G")
+        .required("B")
+        .collect_pixels(
+            |size: Vec2<usize>, _| (size.x(), vec![Color::ZERO; size.area()]),
+            |(width, pixels): &mut (usize, Vec<Color>),
+             at: Vec2<usize>,
+             (r, g, b): (f32, f32, f32)| {
+                pixels[at.y() * *width + at.x()] = Color::new(r, g, b);
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(path)
+        .map_err(|e| error(format!("not a readable OpenEXR file with R, G and B: {e}")))?;
+    let layer = &image.layer_data;
+    let position = layer.attributes.layer_position;
+    let info = part_info(
+        &image.attributes,
+        &layer.attributes,
+        (position.x(), position.y()),
+        (layer.size.x(), layer.size.y()),
+    )
+    .map_err(error)?;
+    let (_, pixels) = image.layer_data.channel_data.pixels;
+    Ok(Part { info, pixels })
+}
+
+/// The part's description from its header: the image's and the layer's attributes, and where
+/// its pixels lie.
+fn part_info(
+    attributes: &ImageAttributes,
+    layer: &LayerAttributes,
+    position: (i32, i32),
+    size: (usize, usize),
+) -> Result<PartInfo, String> {
+    let text = |name: &str| match layer.other.get(&Text::from(name)) {
+        Some(AttributeValue::Text(t)) => Some(t.to_string()),
+        _ => None,
+    };
+    let not_a_part = || "not a raylab part (no raylabScene in its header)".to_string();
+    let scene = text(SCENE).ok_or_else(not_a_part)?;
+    let settings = text(SETTINGS).ok_or_else(not_a_part)?;
+    let display = attributes.display_window;
+    let to_u32 = |v: i64| u32::try_from(v).ok();
+    let bounds = (|| {
+        if display.position != Vec2(0, 0) {
+            return None;
+        }
+        let width = to_u32(display.size.x() as i64)?;
+        let height = to_u32(display.size.y() as i64)?;
+        let x0 = to_u32(position.0.into())?;
+        let y0 = to_u32(position.1.into())?;
+        let rect = Rect {
+            x0,
+            y0,
+            x1: x0.checked_add(to_u32(size.0 as i64)?)?,
+            y1: y0.checked_add(to_u32(size.1 as i64)?)?,
+        };
+        rect.is_inside(&Rect::image(width, height))
+            .then_some((width, height, rect))
+    })();
+    let (width, height, rect) =
+        bounds.ok_or("its data window does not lie inside a display window at (0, 0)")?;
+    let tile = match text(TILE) {
+        None => None,
+        Some(t) => Some(
+            t.split_once('/')
+                .and_then(|(k, n)| Some((k.parse().ok()?, n.parse().ok()?)))
+                .ok_or_else(|| format!("raylabTile {t:?} is not K/N"))?,
+        ),
+    };
+    let frame = match text(FRAME) {
+        None => None,
+        Some(f) => Some(
+            f.parse()
+                .map_err(|_| format!("raylabFrame {f:?} is not a number"))?,
+        ),
+    };
+    Ok(PartInfo {
+        width,
+        height,
+        rect,
+        scene,
+        settings,
+        tile,
+        frame,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_part_reads_back_bit_for_bit() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("part.exr");
+        let info = PartInfo {
+            width: 9,
+            height: 7,
+            rect: Rect {
+                x0: 2,
+                y0: 3,
+                x1: 6,
+                y1: 5,
+            },
+            scene: "0123456789abcdef".into(),
+            settings: "samples = 4\nview = shaded".into(),
+            tile: Some((1, 3)),
+            frame: Some(12),
+        };
+        // Values no 16-bit float or 8-bit encoding keeps.
+        let pixels: Vec<Color> = (0..8)
+            .map(|i| Color::new(0.1 + i as f32 * 1e-7, 1234.567, -0.0))
+            .collect();
+        write_part(&path, &info, &pixels).unwrap();
+        assert_eq!(read_part_info(&path).unwrap(), info);
+        let part = read_part(&path).unwrap();
+        assert_eq!(part.info, info);
+        let bits = |p: &[Color]| -> Vec<[u32; 3]> {
+            p.iter().map(|c| c.to_array().map(f32::to_bits)).collect()
+        };
+        assert_eq!(bits(&part.pixels), bits(&pixels));
+    }
+
+    #[test]
+    fn an_image_that_is_not_a_part_is_an_error() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("plain.exr");
+        crate::formats::image::save_image(&path, 2, 2, &[Color::ONE; 4]).unwrap();
+        let err = read_part(&path).unwrap_err().to_string();
+        assert!(err.contains("not a raylab part"), "{err}");
+        std::fs::write(&path, b"garbage").unwrap();
+        let err = read_part_info(&path).unwrap_err().to_string();
+        assert!(err.contains("not a readable OpenEXR file"), "{err}");
+    }
+}
