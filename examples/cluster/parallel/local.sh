@@ -20,4 +20,4 @@ mkdir -p "$parts"
 parallel -q --halt now,fail=1 \
     raylab render "$scene" --tile auto --of "$tiles" --threads 1 -o "$parts/tile-{#}.exr" "$@" \
     ::: $(seq "$tiles")
-raylab merge "$parts"/tile-*.exr -o "$output"
+raylab merge "$parts" -o "$output"

@@ -34,4 +34,4 @@ parallel -q --halt now,fail=1 --sshloginfile "$nodes" --jobs 1 --workdir raylab-
     "${send[@]}" --return "$(cd "$parts" && pwd)/./tile-{#}.exr" --cleanup \
     raylab render "$scene" --tile auto --of "$tiles" -o "tile-{#}.exr" "$@" \
     ::: $(seq "$tiles")
-raylab merge "$parts"/tile-*.exr -o "$output"
+raylab merge "$parts" -o "$output"
