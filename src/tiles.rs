@@ -295,7 +295,8 @@ mod tests {
             );
             let mut doubled = tiles.clone();
             doubled.push(tiles[k]);
-            prop_assert!(matches!(check_cover(&Rect::image(width, height), &doubled), Err(CoverError::Overlap { .. })));
+            let overlap = check_cover(&Rect::image(width, height), &doubled);
+            prop_assert!(matches!(overlap, Err(CoverError::Overlap { .. })), "{:?}", overlap);
         }
     }
 }

@@ -1408,7 +1408,11 @@ fn render_help_names_the_sequence_flags() {
     for flag in [
         "--turntable <FRAMES>",
         "--path <FILE>",
-        "--frames <N>",
+        "--frames <N|A..B>",
+        "--frame <K|auto>",
+        "--tile <K/N|auto>",
+        "--crop <X0,Y0,X1,Y1>",
+        "half-open",
         "%04d",
     ] {
         assert!(help.contains(flag), "{flag}: {help}");

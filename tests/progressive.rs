@@ -495,3 +495,62 @@ fn an_unwatched_render_ends_with_the_watched_renders_film_on_any_thread_count() 
         }
     }
 }
+
+#[test]
+fn the_decision_reach_is_one_pixel_per_adaptive_round() {
+    let mut settings = raylab::settings::RenderSettings::default();
+    for (samples, aa_threshold, reach) in [(16, 0.03, 4), (5, 0.03, 3), (16, 0.0, 0), (1, 0.03, 0)]
+    {
+        (settings.samples, settings.aa_threshold) = (samples, aa_threshold);
+        assert_eq!(
+            progressive::decision_reach(&settings),
+            reach,
+            "{samples} samples, threshold {aa_threshold}"
+        );
+    }
+}
+
+#[test]
+fn a_window_grown_by_the_decision_reach_renders_its_pixels_as_the_whole_image() {
+    use raylab::tiles::Rect;
+    let scene = default_scene(37, 23, 16, 0.03);
+    let (whole, _, _) = render_counting_as(&scene, Watched::No);
+    let whole = &whole;
+    let bvh = Bvh::build(&scene.geometry);
+    let tracer = Tracer::new(&scene, &bvh);
+    let image = Rect::image(37, 23);
+    let reach = progressive::decision_reach(&scene.settings);
+    let bits = |pixels: &[Color]| -> Vec<[u32; 3]> {
+        pixels
+            .iter()
+            .map(|c| c.to_array().map(f32::to_bits))
+            .collect()
+    };
+    // The pixels of `rect` rendered in a window `margin` pixels larger, as bits.
+    let render_rect = |rect: Rect, margin: u32| {
+        let film = Film::window(37, 23, rect.grown(margin, &image));
+        progressive::render_unwatched(&tracer, &Shaded, &film, &RenderControl::default()).unwrap();
+        bits(&film.pixels_in(rect))
+    };
+    let mut differs_without_margin = false;
+    for rect in raylab::tiles::split(37, 23, 6)
+        .unwrap()
+        .into_iter()
+        .chain([Rect {
+            x0: 3,
+            y0: 5,
+            x1: 30,
+            y1: 9,
+        }])
+    {
+        let expected: Vec<Color> = (rect.y0..rect.y1)
+            .flat_map(|y| (rect.x0..rect.x1).map(move |x| whole[(y * 37 + x) as usize]))
+            .collect();
+        assert_eq!(render_rect(rect, reach), bits(&expected), "{rect}");
+        differs_without_margin |= render_rect(rect, 0) != bits(&expected);
+    }
+    assert!(
+        differs_without_margin,
+        "the windows' edges matter without a margin"
+    );
+}

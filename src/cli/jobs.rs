@@ -11,7 +11,7 @@ use std::ops::Range;
 use std::str::FromStr;
 
 use clap::Args;
-use raylab::tiles::{self, Rect};
+use raylab::tiles::{self, Rect, SplitError};
 
 /// The flags that pick a rectangle of the image.
 #[derive(Args, Debug)]
@@ -49,13 +49,10 @@ impl FromStr for TileArg {
         let (k, n) = s.split_once('/').ok_or_else(bad)?;
         let (k, n): (u32, u32) = (k.parse().map_err(|_| bad())?, n.parse().map_err(|_| bad())?);
         if n == 0 {
-            return Err("the number of tiles N must be at least 1".into());
+            return Err(SplitError::NoTiles.to_string());
         }
         if k >= n {
-            return Err(format!(
-                "tile {k} of {n} does not exist: tiles are numbered 0 to {}",
-                n - 1
-            ));
+            return Err(SplitError::TileOutOfRange { k, n }.to_string());
         }
         Ok(TileArg::Tile { k, n })
     }
@@ -113,22 +110,22 @@ pub struct Job {
 }
 
 /// Picks the job of this run: of `frames` (the sequence's frames to render, `0..1` for one
-/// image), `frame` alone if given, and the tile or crop of `tiles`, for a `width × height`
+/// image), `frame` alone if given, and the tile or crop of `args`, for a `width × height`
 /// image, reading the scheduler's variables through `env` for `auto`.
 pub fn pick(
-    tiles: &TileArgs,
+    args: &TileArgs,
     frame: Option<FrameArg>,
     frames: Range<u32>,
     (width, height): (u32, u32),
     env: impl Fn(&str) -> Option<String>,
 ) -> Result<Job, String> {
-    if tiles.of.is_some() && tiles.tile != Some(TileArg::Auto) {
+    if args.of.is_some() && args.tile != Some(TileArg::Auto) {
         return Err("--of N gives the number of tiles of --tile auto".into());
     }
     let task = || task_index(&env);
     // The tile count of `--tile auto`.
     let tile_count = || -> Result<u32, String> {
-        let n = match tiles.of {
+        let n = match args.of {
             Some(n) => n,
             None if frame == Some(FrameArg::Auto) => {
                 return Err("--frame auto with --tile auto needs the number of tiles \
@@ -145,7 +142,7 @@ pub fn pick(
         }
         Ok(n)
     };
-    let (frame, tile) = match (frame, tiles.tile) {
+    let (frame, tile) = match (frame, args.tile) {
         (Some(FrameArg::Auto), Some(TileArg::Auto)) => {
             let n = tile_count()?;
             let (i, from) = task()?;
@@ -190,7 +187,7 @@ pub fn pick(
         None => frames,
     };
     let image = Rect::image(width, height);
-    let window = match (tile, tiles.crop) {
+    let window = match (tile, args.crop) {
         (Some((k, n)), _) => Some((
             tiles::tile(width, height, k, n).map_err(|e| format!("--tile: {e}"))?,
             Some((k, n)),
@@ -287,7 +284,7 @@ mod tests {
     fn bad_values_are_clear_errors() {
         for (value, expected) in [
             ("3/3", "tile 3 of 3 does not exist"),
-            ("0/0", "at least 1"),
+            ("0/0", "the number of tiles must be at least 1"),
             ("3", "is not K/N"),
             ("a/4", "is not K/N"),
             ("-1/4", "is not K/N"),

@@ -117,27 +117,20 @@ fn check_parts(files: &[PathBuf], infos: &[PartInfo]) -> Result<(), String> {
                 reference.width, reference.height, info.width, info.height
             ));
         }
+        if info.settings != reference.settings {
+            return Err(format!(
+                "{a} and {b} were rendered with different settings{}",
+                setting_that_differs(&reference.settings, &info.settings)
+            ));
+        }
+        if info.frame != reference.frame {
+            return Err(format!("{a} and {b} are parts of different frames"));
+        }
         if info.scene != reference.scene {
             return Err(format!(
                 "{a} and {b} come from different scenes or cameras (scene hash {} and {})",
                 reference.scene, info.scene
             ));
-        }
-        if info.settings != reference.settings {
-            let differ = reference
-                .settings
-                .lines()
-                .zip(info.settings.lines())
-                .find(|(x, y)| x != y)
-                .map_or(String::new(), |(x, y)| {
-                    format!(": {} and {}", x.trim(), y.trim())
-                });
-            return Err(format!(
-                "{a} and {b} were rendered with different settings{differ}"
-            ));
-        }
-        if info.frame != reference.frame {
-            return Err(format!("{a} and {b} are parts of different frames"));
         }
     }
     let image = Rect::image(reference.width, reference.height);
@@ -158,6 +151,28 @@ fn check_parts(files: &[PathBuf], infos: &[PartInfo]) -> Result<(), String> {
             None => Err(format!("no part covers pixel ({x}, {y})")),
         },
     }
+}
+
+/// The first setting that differs between the settings texts `a` and `b` (as parts hold them:
+/// `name: value` a line, a value over several lines after its name), as `: NAME (A and B)`.
+fn setting_that_differs(a: &str, b: &str) -> String {
+    let (a, b): (Vec<&str>, Vec<&str>) = (a.lines().collect(), b.lines().collect());
+    let Some(i) = (0..a.len().min(b.len())).find(|&i| a[i] != b[i]) else {
+        return String::new();
+    };
+    let name = a[..=i]
+        .iter()
+        .rev()
+        .find_map(|line| line.split_once(": ").or_else(|| line.split_once(" = ")))
+        .map_or("", |(name, _)| name.trim());
+    let value = |line: &str| {
+        let line = line.trim().trim_end_matches(',');
+        line.strip_prefix(&format!("{name}: "))
+            .or_else(|| line.strip_prefix(&format!("{name} = ")))
+            .unwrap_or(line)
+            .to_string()
+    };
+    format!(": {name} ({} and {})", value(a[i]), value(b[i]))
 }
 
 /// When every part is a tile of the same N: the tiles of N not among them, as `tile K/N (pixels

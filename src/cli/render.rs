@@ -126,7 +126,8 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     };
     if job.window.is_some() && format != OutputFormat::Exr {
         return Err(format!(
-            "-o {}: a part (--tile, --crop) is written as .exr, with the linear values and what              `raylab merge` needs to know; merge writes the image in any format",
+            "-o {}: a part (--tile, --crop) is written as .exr, with the linear values and what \
+             `raylab merge` needs to know; merge writes the image in any format",
             args.output.display()
         ));
     }

@@ -4,12 +4,15 @@
 //!
 //! A part is an ordinary OpenEXR image whose data window is its rectangle and whose display
 //! window is the whole image (as renderers write crops; any EXR viewer shows it in place), with
-//! raylab's own header attributes: the scene's content hash ([`scene_hash`]), the settings that
-//! shape the pixels as text, and the tile (`K/N`) and frame it is, when it is one. The metadata
+//! one header attribute of raylab's own, `raylabPart`, a text of lines: `scene = ` the scene's
+//! content hash ([`scene_hash`]), `tile = K/N` and `frame = F` when it is one, then `settings =`
+//! and, on the lines after it, the settings that shape the pixels. (One attribute, not four:
+//! the OpenEXR writer orders several as a hash map does, differently in each run, and a part
+//! rendered again should be the same file.) The metadata
 //! lives inside the file rather than in a sidecar: a part cannot lose it or be paired with
 //! another part's, and it is written atomically with the pixels.
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::fmt::{self, Write as _};
 use std::hash::Hasher;
 use std::path::{Path, PathBuf};
@@ -65,10 +68,8 @@ impl fmt::Display for PartError {
 
 impl std::error::Error for PartError {}
 
-const SCENE: &str = "raylabScene";
-const SETTINGS: &str = "raylabSettings";
-const TILE: &str = "raylabTile";
-const FRAME: &str = "raylabFrame";
+/// The header attribute that makes an OpenEXR file a part.
+const ATTRIBUTE: &str = "raylabPart";
 
 /// A hash of everything in `scene` that shapes its pixels (its settings, camera, lights, fog,
 /// materials, textures, background and geometry; not the names or warnings, which may hold
@@ -115,20 +116,17 @@ pub fn write_part(path: &Path, info: &PartInfo, pixels: &[Color]) -> Result<(), 
             pixels.len()
         )));
     }
-    let text = |value: &str| {
-        Text::new_or_none(value)
-            .map(AttributeValue::Text)
-            .ok_or_else(|| error(format!("cannot store {value:?} in an OpenEXR header")))
-    };
-    let mut other = HashMap::new();
-    other.insert(Text::from(SCENE), text(&info.scene)?);
-    other.insert(Text::from(SETTINGS), text(&info.settings)?);
+    let mut text = format!("scene = {}\n", info.scene);
     if let Some((k, n)) = info.tile {
-        other.insert(Text::from(TILE), text(&format!("{k}/{n}"))?);
+        text += &format!("tile = {k}/{n}\n");
     }
     if let Some(frame) = info.frame {
-        other.insert(Text::from(FRAME), text(&frame.to_string())?);
+        text += &format!("frame = {frame}\n");
     }
+    text += &format!("settings =\n{}", info.settings);
+    let text = Text::new_or_none(&text)
+        .ok_or_else(|| error(format!("cannot store {text:?} in an OpenEXR header")))?;
+    let other = HashMap::from([(Text::from(ATTRIBUTE), AttributeValue::Text(text))]);
     let width = rect.width() as usize;
     let channels = SpecificChannels::rgb(|at: Vec2<usize>| {
         let c = pixels[at.y() * width + at.x()];
@@ -229,13 +227,18 @@ fn part_info(
     position: (i32, i32),
     size: (usize, usize),
 ) -> Result<PartInfo, String> {
-    let text = |name: &str| match layer.other.get(&Text::from(name)) {
-        Some(AttributeValue::Text(t)) => Some(t.to_string()),
-        _ => None,
+    let Some(AttributeValue::Text(text)) = layer.other.get(&Text::from(ATTRIBUTE)) else {
+        return Err(format!("not a raylab part (no {ATTRIBUTE} in its header)"));
     };
-    let not_a_part = || "not a raylab part (no raylabScene in its header)".to_string();
-    let scene = text(SCENE).ok_or_else(not_a_part)?;
-    let settings = text(SETTINGS).ok_or_else(not_a_part)?;
+    let text = text.to_string();
+    let bad = || format!("{ATTRIBUTE} is not what raylab writes: {text:?}");
+    let (head, settings) = text.split_once("settings =\n").ok_or_else(bad)?;
+    let mut fields = BTreeMap::new();
+    for line in head.lines() {
+        let (name, value) = line.split_once(" = ").ok_or_else(bad)?;
+        fields.insert(name, value);
+    }
+    let scene = fields.get("scene").ok_or_else(bad)?.to_string();
     let display = attributes.display_window;
     let to_u32 = |v: i64| u32::try_from(v).ok();
     let bounds = (|| {
@@ -257,27 +260,24 @@ fn part_info(
     })();
     let (width, height, rect) =
         bounds.ok_or("its data window does not lie inside a display window at (0, 0)")?;
-    let tile = match text(TILE) {
+    let tile = match fields.get("tile") {
         None => None,
         Some(t) => Some(
             t.split_once('/')
                 .and_then(|(k, n)| Some((k.parse().ok()?, n.parse().ok()?)))
-                .ok_or_else(|| format!("raylabTile {t:?} is not K/N"))?,
+                .ok_or_else(bad)?,
         ),
     };
-    let frame = match text(FRAME) {
+    let frame = match fields.get("frame") {
         None => None,
-        Some(f) => Some(
-            f.parse()
-                .map_err(|_| format!("raylabFrame {f:?} is not a number"))?,
-        ),
+        Some(f) => Some(f.parse().map_err(|_| bad())?),
     };
     Ok(PartInfo {
         width,
         height,
         rect,
         scene,
-        settings,
+        settings: settings.to_string(),
         tile,
         frame,
     })
