@@ -81,7 +81,8 @@ impl Aabb {
     /// The slab test, axis by axis: where the ray `origin + t·dir` crosses the box's two planes
     /// on each axis, as the distances `(near, far)` at which it enters and leaves that slab.
     /// `inv_dir` is `1 / dir` per component: a ray parallel to a slab gets ±∞ there (and NaN
-    /// when it lies in one of its planes). The ray is inside the box where it is inside all
+    /// when it lies in one of its planes, unless `inv_dir` is the largest finite number there,
+    /// as the BVH's walk makes it). The ray is inside the box where it is inside all
     /// three slabs, from the largest `near` to the smallest `far` ([`Self::entry`]).
     #[inline(always)]
     pub fn slabs(&self, origin: Vec3, inv_dir: Vec3) -> (Vec3, Vec3) {

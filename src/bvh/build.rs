@@ -315,7 +315,8 @@ impl Bvh {
             return (0.0, 0);
         }
         let tree = subtree(&mut prims, 0, extent, 0);
-        (super::cost::sah_cost(&tree), tree.len())
+        let ids: Vec<PrimId> = prims.iter().map(BuildPrim::id).collect();
+        (super::cost::sah_cost(&tree, &ids), tree.len())
     }
 }
 
@@ -586,7 +587,7 @@ fn best_plane(bounds: &[Bounds], counts: &[u32], block: u32) -> Option<(f32, usi
 }
 
 /// Tests a leaf of `count` primitives takes when they are tested `block` at a time.
-fn tests(count: u32, block: u32) -> f32 {
+pub(super) fn tests(count: u32, block: u32) -> f32 {
     count.div_ceil(block) as f32
 }
 

@@ -4,8 +4,10 @@
 //! `sah_cost` estimates a whole tree's cost for a ray, as the builder does for one split.
 
 use super::Node;
-use super::build::TRAVERSAL_COST;
+use super::build::{TRAVERSAL_COST, tests};
 use crate::aabb::Aabb;
+use crate::primitive::PrimId;
+use crate::shapes::PACK_SIZE;
 
 /// Told of every node visited and every primitive tested during a traversal.
 pub trait TraversalCost {
@@ -50,10 +52,12 @@ impl TraversalCost for BvhCost {
 /// The surface area heuristic's estimate of a tree's cost: the expected number of node visits
 /// (each costing [`TRAVERSAL_COST`]) and primitive tests of a ray that passes through the
 /// root's box, with the chance of entering a node taken as its surface area over the root's.
-/// `nodes` is the builder's binary tree (root first, an interior node's children at `first`
-/// and `first + 1`; [`super::Bvh::binary_tree_cost`] measures the builder's): the lower, the
-/// fewer boxes and primitives a ray is expected to test. 0 for an empty tree.
-pub(super) fn sah_cost(nodes: &[Node]) -> f64 {
+/// A leaf of triangles costs a test per pack of [`PACK_SIZE`], as the traversal tests them; a
+/// leaf of objects one per object. `nodes` is the builder's binary tree (root first, an
+/// interior node's children at `first` and `first + 1`, a leaf's primitives `prims[first..]`;
+/// [`super::Bvh::binary_tree_cost`] measures the builder's): the lower, the fewer boxes and
+/// primitives a ray is expected to test. 0 for an empty tree.
+pub(super) fn sah_cost(nodes: &[Node], prims: &[PrimId]) -> f64 {
     let Some(root) = nodes.first() else {
         return 0.0;
     };
@@ -64,7 +68,10 @@ pub(super) fn sah_cost(nodes: &[Node]) -> f64 {
     while let Some(i) = stack.pop() {
         let node = &nodes[i];
         if node.is_leaf() {
-            cost += area(node) * node.count as f64;
+            // A leaf holds one kind of primitive: its first says which.
+            let triangles = prims[node.first as usize].kind().is_err();
+            let block = if triangles { PACK_SIZE as u32 } else { 1 };
+            cost += area(node) * tests(node.count, block) as f64;
         } else {
             cost += area(node) * TRAVERSAL_COST as f64;
             stack.extend([node.first as usize, node.first as usize + 1]);
@@ -87,20 +94,22 @@ mod tests {
     }
 
     #[test]
-    fn sah_cost_weighs_each_node_by_its_area() {
-        // A unit cube (area 6) split into two halves (area 4 each), one and three primitives.
+    fn sah_cost_weighs_each_node_by_its_area_and_packs_triangles() {
+        // A unit cube (area 6) split into two halves (area 4 each): one object on the left,
+        // five triangles on the right (two packs).
         let tree = [
             node([0.0; 3], [1.0; 3], 1, Node::INTERIOR | 2),
             node([0.0; 3], [0.5, 1.0, 1.0], 0, 1),
-            node([0.5, 0.0, 0.0], [1.0; 3], 1, 3),
+            node([0.5, 0.0, 0.0], [1.0; 3], 1, 5),
         ];
-        let expected = TRAVERSAL_COST as f64 + (4.0 * 1.0 + 4.0 * 3.0) / 6.0;
-        assert!(
-            (sah_cost(&tree) - expected).abs() < 1e-9,
-            "{}",
-            sah_cost(&tree)
-        );
-        assert_eq!(sah_cost(&tree[1..2]), 1.0);
-        assert_eq!(sah_cost(&[]), 0.0);
+        let prims = [PrimId::object(0)]
+            .into_iter()
+            .chain((0..5).map(PrimId::triangle))
+            .collect::<Vec<_>>();
+        let expected = TRAVERSAL_COST as f64 + (4.0 * 1.0 + 4.0 * 2.0) / 6.0;
+        let cost = sah_cost(&tree, &prims);
+        assert!((cost - expected).abs() < 1e-9, "{cost}");
+        assert_eq!(sah_cost(&tree[1..2], &prims), 1.0);
+        assert_eq!(sah_cost(&[], &[]), 0.0);
     }
 }

@@ -17,7 +17,16 @@ pub(super) struct RayBoxTest {
 
 impl RayBoxTest {
     pub(super) fn new(ray: &Ray) -> Self {
-        let inv_dir = ray.dir.recip();
+        // A direction component of ±0 gets the largest finite inverse of its sign rather than
+        // ±∞: a ray in a slab's plane then computes 0·MAX = 0 there, entering the slab, where
+        // 0·∞ would be NaN (and lose the slab). So no distance is ever NaN.
+        let inv_dir = ray.dir.recip().map(|inv| {
+            if inv.is_infinite() {
+                f32::MAX.copysign(inv)
+            } else {
+                inv
+            }
+        });
         RayBoxTest {
             origin: ray.origin,
             inv_dir,
@@ -161,5 +170,22 @@ mod tests {
             }
         }
         assert!(entered >= 12, "the rays enter boxes: {entered}");
+    }
+
+    #[test]
+    fn a_ray_in_the_plane_of_a_face_enters_the_box_on_every_path() {
+        // Along +x in the plane y = 0 of the box's bottom face, and along −z in its plane
+        // x = 1: with an infinite 1/dir these were 0·∞ = NaN, and missed.
+        let node = node_of(&[([0.0, 0.0, 0.0], [1.0, 1.0, 1.0])]);
+        let rays = [
+            (Ray::new(Vec3::new(-5.0, 0.0, 0.5), Vec3::X), 5.0),
+            (Ray::new(Vec3::new(1.0, 0.5, 3.0), -Vec3::Z), 2.0),
+        ];
+        for simd in Simd::supported() {
+            for (ray, t_enter) in &rays {
+                let (t, mask) = dispatch(simd, Enter8(&RayBoxTest::new(ray), &node, 100.0));
+                assert_eq!((mask, t[0]), (1, *t_enter), "{simd}: {ray:?}");
+            }
+        }
     }
 }

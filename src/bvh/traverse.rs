@@ -172,9 +172,7 @@ impl<C: TraversalCost, F: FnMut(&Hit) -> ControlFlow<()>> Kernel for AnyHit<'_, 
             return;
         }
         w.bvh
-            .walk::<L, C, false>(ray, t_min, t_max, w.cost, |leaf, _, cost| {
-                visit(leaf, cost)
-            });
+            .walk::<L, C, false>(ray, t_min, t_max, w.cost, |leaf, _, cost| visit(leaf, cost));
     }
 }
 

@@ -4,6 +4,7 @@
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::mpsc::{self, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
 use clap::Args;
@@ -261,13 +262,18 @@ fn render_frame(
     let film = Film::window(settings.width, settings.height, window);
     let control = RenderControl::default();
     let stats = std::thread::scope(|s| {
-        // Nobody sees the coarse passes: the film is traced in one sweep.
-        let render = s.spawn(|| {
-            pool.install(|| progressive::render_unwatched(tracer, view, &film, &control))
+        // Nobody sees the coarse passes: the film is traced in one sweep. The bar moves every
+        // 50 ms, and the render's end wakes this thread at once rather than at the next tick.
+        let (done, finished) = mpsc::channel();
+        let (film, control) = (&film, &control);
+        let render = s.spawn(move || {
+            let stats = pool.install(|| progressive::render_unwatched(tracer, view, film, control));
+            // Should this thread panic instead, dropping `done` ends the wait too.
+            let _ = done.send(());
+            stats
         });
-        while !render.is_finished() {
+        while finished.recv_timeout(Duration::from_millis(50)) == Err(RecvTimeoutError::Timeout) {
             progress(control.pixels_traced());
-            std::thread::sleep(Duration::from_millis(50));
         }
         render.join()
     })
