@@ -19,7 +19,8 @@ use std::hash::Hasher;
 use std::io::{BufReader, Cursor, Read, Seek};
 use std::path::{Path, PathBuf};
 
-use exr::meta::attribute::{AttributeValue, IntegerBounds, Text};
+use exr::meta::BlockDescription;
+use exr::meta::attribute::{AttributeValue, IntegerBounds, LevelMode, Text};
 use exr::prelude::{
     Encoding, Image, ImageAttributes, Layer, LayerAttributes, ReadChannels, ReadLayers,
     ReadSpecificChannel, SpecificChannels, Vec2, WritableImage, read,
@@ -74,6 +75,9 @@ impl std::error::Error for PartError {}
 
 /// The header attribute that makes an OpenEXR file a part.
 const ATTRIBUTE: &str = "raylabPart";
+
+/// Largest side of an OpenEXR tile in a part that is read (raylab writes 64).
+const MAX_TILE_SIDE: usize = 256;
 
 /// A hash of everything in `scene` that shapes its pixels (its settings, camera, lights, fog,
 /// materials, textures, background and geometry; not the names or warnings, which may hold
@@ -214,23 +218,30 @@ fn read_part_from(mut reader: impl Read + Seek, origin: &Path) -> Result<Part, P
         .required("G")
         .required("B")
         .collect_pixels(
-            |size: Vec2<usize>, _| (size.x(), vec![Color::ZERO; size.area()]),
-            |(width, pixels): &mut (usize, Vec<Color>),
+            // A row is allocated when its first pixel arrives, so that a file claiming many
+            // pixels it does not hold costs no more than it holds.
+            |size: Vec2<usize>, _| (size.x(), vec![Vec::new(); size.y()]),
+            |(width, rows): &mut (usize, Vec<Vec<Color>>),
              at: Vec2<usize>,
              (r, g, b): (f32, f32, f32)| {
-                pixels[at.y() * *width + at.x()] = Color::new(r, g, b);
+                let row = &mut rows[at.y()];
+                if row.is_empty() {
+                    *row = vec![Color::ZERO; *width];
+                }
+                row[at.x()] = Color::new(r, g, b);
             },
         )
         .first_valid_layer()
         .all_attributes()
         .from_buffered(reader)
         .map_err(|e| error(format!("not a readable OpenEXR file with R, G and B: {e}")))?;
-    let (_, pixels) = image.layer_data.channel_data.pixels;
-    if pixels.len() as u64 != rect.pixels() {
-        return Err(error(format!(
-            "its pixels are not the {} of its data window",
-            rect.pixels()
-        )));
+    let (_, rows) = image.layer_data.channel_data.pixels;
+    let mut pixels = Vec::with_capacity(rect.pixels() as usize);
+    for row in rows {
+        if row.len() != rect.width() as usize {
+            return Err(error("its pixels do not fill its data window".into()));
+        }
+        pixels.extend(row);
     }
     Ok(Part { info, pixels })
 }
@@ -244,12 +255,47 @@ fn read_header(reader: impl Read) -> Result<PartInfo, String> {
     };
     let position = header.own_attributes.layer_position;
     let size = header.layer_size;
-    part_info(
+    let info = part_info(
         &header.shared_attributes,
         &header.own_attributes,
         (position.x(), position.y()),
         (size.x(), size.y()),
-    )
+    )?;
+    // Stored much as `write_part` stores parts (tiles of 64 × 64), so that the OpenEXR reader's
+    // buffers for a block stay small: a tile size or a channel list in a header could ask for
+    // any size.
+    let small_blocks = match header.blocks {
+        BlockDescription::ScanLines => true,
+        BlockDescription::Tiles(tiles) => {
+            tiles.level_mode == LevelMode::Singular
+                && tiles.tile_size.x() <= MAX_TILE_SIDE
+                && tiles.tile_size.y() <= MAX_TILE_SIDE
+        }
+    };
+    if header.deep || !small_blocks {
+        return Err(format!(
+            "a raylab part is a flat image of one resolution, in scan lines or in tiles of at \
+             most {MAX_TILE_SIDE} pixels a side; this one is not"
+        ));
+    }
+    let channels: Vec<String> = header
+        .channels
+        .list
+        .iter()
+        .map(|c| c.name.to_string())
+        .collect();
+    let full = header
+        .channels
+        .list
+        .iter()
+        .all(|c| c.sampling == Vec2(1, 1));
+    if channels != ["B", "G", "R"] || !full {
+        return Err(format!(
+            "a raylab part has the channels B, G and R, each at every pixel; this one has {}",
+            channels.join(", ")
+        ));
+    }
+    Ok(info)
 }
 
 /// The part's description from its header: the image's and the layer's attributes, and where
