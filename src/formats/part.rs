@@ -453,6 +453,24 @@ mod tests {
     }
 
     #[test]
+    fn a_part_with_other_channels_is_refused_before_its_pixels() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("rgba.exr");
+        let text = "scene = 0123456789abcdef\nsettings =\nsamples = 1";
+        let attribute = AttributeValue::Text(Text::from(text));
+        let attributes = LayerAttributes {
+            other: HashMap::from([(Text::from(ATTRIBUTE), attribute)]),
+            ..LayerAttributes::default()
+        };
+        let channels = SpecificChannels::rgba(|_| (1.0f32, 1.0f32, 1.0f32, 1.0f32));
+        let layer = Layer::new((4, 3), attributes, Encoding::FAST_LOSSLESS, channels);
+        Image::from_layer(layer).write().to_file(&path).unwrap();
+        let err = read_part(&path).unwrap_err().to_string();
+        assert!(err.contains("has the channels B, G and R"), "{err}");
+        assert!(err.ends_with("this one has A, B, G, R"), "{err}");
+    }
+
+    #[test]
     fn an_image_that_is_not_a_part_is_an_error() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("plain.exr");
