@@ -95,6 +95,14 @@ fn the_kept_parts_read_or_fail_cleanly() {
     // gigabytes, is refused before its pixels are read.
     let message = harness::part(&kept("oom-tile-16515136x64")).unwrap_err();
     assert!(message.contains("tiles of at most 256 pixels"), "{message}");
+    // One in B44 compression, whose block overflowed the OpenEXR reader's B44 decompressor (a
+    // panic on a thread of its own, which aborted).
+    let message =
+        harness::part(&kept("crash-2df55c039b013a6fadc2006818455ac217d30ac1")).unwrap_err();
+    assert!(
+        message.ends_with("this one has b44 compression"),
+        "{message}"
+    );
 }
 
 #[test]

@@ -19,6 +19,7 @@ use std::hash::Hasher;
 use std::io::{BufReader, Cursor, Read, Seek};
 use std::path::{Path, PathBuf};
 
+use exr::compression::Compression;
 use exr::meta::BlockDescription;
 use exr::meta::attribute::{AttributeValue, IntegerBounds, LevelMode, Text};
 use exr::prelude::{
@@ -276,6 +277,17 @@ fn read_header(reader: impl Read) -> Result<PartInfo, String> {
         return Err(format!(
             "a raylab part is a flat image of one resolution, in scan lines or in tiles of at \
              most {MAX_TILE_SIDE} pixels a side; this one is not"
+        ));
+    }
+    // Nor is any other decompressor run on a part: OpenEXR's others are lossy or seldom used,
+    // and its B44 one overflows on a crafted block (fuzz/regressions/part/crash-2df55c…).
+    if !matches!(
+        header.compression,
+        Compression::RLE | Compression::Uncompressed
+    ) {
+        return Err(format!(
+            "a raylab part is stored with rle compression or none; this one has {}",
+            header.compression
         ));
     }
     let channels: Vec<String> = header
