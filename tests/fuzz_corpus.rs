@@ -73,6 +73,39 @@ fn the_kept_views_files_read_or_fail_cleanly() {
 }
 
 #[test]
+fn the_kept_parts_read_or_fail_cleanly() {
+    replay("part", harness::part);
+    let kept = |name: &str| {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/regressions/part");
+        std::fs::read(path.join(name)).unwrap()
+    };
+    // The seeds, parts raylab wrote, read.
+    for seed in ["seed_whole_4x3.exr", "seed_tile_1_of_4.exr"] {
+        assert_eq!(harness::part(&kept(seed)), Ok(()), "{seed}");
+    }
+    // A header that claims a million pixels a side is refused with raylab's limit.
+    for huge in ["huge_window_1000000x1000000.exr", "huge_display_window.exr"] {
+        let message = harness::part(&kept(huge)).unwrap_err();
+        assert!(
+            message.contains("image sides must be at most 16384, got 1000000×1000000"),
+            "{huge}: {message}"
+        );
+    }
+    // A 4 × 3 part in tiles of 16515136 × 64 pixels, for which the OpenEXR reader allocated
+    // gigabytes, is refused before its pixels are read.
+    let message = harness::part(&kept("oom-tile-16515136x64")).unwrap_err();
+    assert!(message.contains("tiles of at most 256 pixels"), "{message}");
+    // One in B44 compression, whose block overflowed the OpenEXR reader's B44 decompressor (a
+    // panic on a thread of its own, which aborted).
+    let message =
+        harness::part(&kept("crash-2df55c039b013a6fadc2006818455ac217d30ac1")).unwrap_err();
+    assert!(
+        message.ends_with("this one has b44 compression"),
+        "{message}"
+    );
+}
+
+#[test]
 fn the_shipped_scenes_read_and_render_with_the_fuzz_targets_files() {
     read_all("assets/scenes", ".toml", harness::toml_scene);
 }

@@ -1,6 +1,6 @@
 //! What the fuzz targets do with an input, as plain functions of its bytes: read it with one of
-//! raylab's readers and, when it reads, render a tiny image of the scene and trace the ray tree
-//! of one pixel. A reader's error is a fine outcome (returned as its message); a panic, a hang
+//! raylab's readers and, when it reads as a scene, render a tiny image of the scene and trace
+//! the ray tree of one pixel. A reader's error is a fine outcome (returned as its message); a panic, a hang
 //! or a runaway allocation is a bug. The fuzz targets (`fuzz/fuzz_targets/`) call these, and so
 //! does the replay of the kept corpus (`tests/fuzz_corpus.rs`), so this file uses raylab and
 //! std alone.
@@ -10,6 +10,7 @@ use std::path::Path;
 use raylab::bvh::Bvh;
 use raylab::camera::CameraSpec;
 use raylab::formats::nff::{NffDocument, NffLighting, parse_nff_document};
+use raylab::formats::part::read_part_bytes;
 use raylab::formats::sdl::parse_sdl;
 use raylab::formats::toml::{parse_scene_with, parse_views, views_text};
 use raylab::formats::{SceneError, SceneFiles, ascii_text, utf8_text};
@@ -122,6 +123,14 @@ pub fn views(data: &[u8]) -> Result<(), String> {
         assert_eq!(turntable(first, 5)?.len(), 5);
     }
     assert_eq!(path(&cameras, 7)?.len(), 7);
+    Ok(())
+}
+
+/// Reads `data` as a part of an image (an OpenEXR file from `raylab render --tile`), header
+/// first, and checks that its pixels fill its rectangle.
+pub fn part(data: &[u8]) -> Result<(), String> {
+    let part = read_part_bytes(data, Path::new("fuzz.exr")).map_err(|e| e.to_string())?;
+    assert_eq!(part.pixels.len() as u64, part.info.rect.pixels());
     Ok(())
 }
 

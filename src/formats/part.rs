@@ -14,18 +14,24 @@
 
 use std::collections::{BTreeMap, HashMap};
 use std::fmt::{self, Write as _};
+use std::fs::File;
 use std::hash::Hasher;
+use std::io::{BufReader, Cursor, Read, Seek};
 use std::path::{Path, PathBuf};
 
-use exr::meta::attribute::{AttributeValue, IntegerBounds, Text};
+use exr::compression::Compression;
+use exr::meta::BlockDescription;
+use exr::meta::attribute::{AttributeValue, IntegerBounds, LevelMode, Text};
 use exr::prelude::{
     Encoding, Image, ImageAttributes, Layer, LayerAttributes, ReadChannels, ReadLayers,
     ReadSpecificChannel, SpecificChannels, Vec2, WritableImage, read,
 };
 
 use crate::color::Color;
+use crate::memory;
 use crate::output::write_atomically;
 use crate::scene::Scene;
+use crate::settings::check_image_size;
 use crate::tiles::Rect;
 
 /// What a part says about itself.
@@ -70,6 +76,9 @@ impl std::error::Error for PartError {}
 
 /// The header attribute that makes an OpenEXR file a part.
 const ATTRIBUTE: &str = "raylabPart";
+
+/// Largest side of an OpenEXR tile in a part that is read (raylab writes 64).
+const MAX_TILE_SIDE: usize = 256;
 
 /// A hash of everything in `scene` that shapes its pixels (its settings, camera, lights, fog,
 /// materials, textures, background and geometry; not the names or warnings, which may hold
@@ -165,28 +174,43 @@ pub fn read_part_info(path: &Path) -> Result<PartInfo, PartError> {
         path: path.into(),
         message,
     };
-    let meta = exr::meta::MetaData::read_from_file(path, false)
-        .map_err(|e| error(format!("not a readable OpenEXR file: {e}")))?;
-    let [header] = meta.headers.as_slice() else {
-        return Err(error("a raylab part has one layer".into()));
-    };
-    let position = header.own_attributes.layer_position;
-    let size = header.layer_size;
-    part_info(
-        &header.shared_attributes,
-        &header.own_attributes,
-        (position.x(), position.y()),
-        (size.x(), size.y()),
-    )
-    .map_err(error)
+    let file = File::open(path).map_err(|e| error(e.to_string()))?;
+    read_header(BufReader::new(file)).map_err(error)
 }
 
 /// Reads the part at `path`: what it says and its pixels.
 pub fn read_part(path: &Path) -> Result<Part, PartError> {
-    let error = |message: String| PartError {
+    let file = File::open(path).map_err(|e| PartError {
         path: path.into(),
+        message: e.to_string(),
+    })?;
+    read_part_from(BufReader::new(file), path)
+}
+
+/// Reads the part held in `bytes` as [`read_part`] reads a file; `origin` names it in errors.
+pub fn read_part_bytes(bytes: &[u8], origin: &Path) -> Result<Part, PartError> {
+    read_part_from(Cursor::new(bytes), origin)
+}
+
+/// Reads a part from `reader`: first its header, which must describe a part of an image that
+/// raylab renders and fit in memory, and only then its pixels.
+fn read_part_from(mut reader: impl Read + Seek, origin: &Path) -> Result<Part, PartError> {
+    let error = |message: String| PartError {
+        path: origin.into(),
         message,
     };
+    let info = read_header(&mut reader).map_err(error)?;
+    let rect = info.rect;
+    memory::check(
+        &format!(
+            "reading the {}×{} pixels of a part",
+            rect.width(),
+            rect.height()
+        ),
+        rect.pixels() * std::mem::size_of::<Color>() as u64,
+    )
+    .map_err(error)?;
+    reader.rewind().map_err(|e| error(e.to_string()))?;
     let image = read()
         .no_deep_data()
         .largest_resolution_level()
@@ -195,28 +219,95 @@ pub fn read_part(path: &Path) -> Result<Part, PartError> {
         .required("G")
         .required("B")
         .collect_pixels(
-            |size: Vec2<usize>, _| (size.x(), vec![Color::ZERO; size.area()]),
-            |(width, pixels): &mut (usize, Vec<Color>),
+            // A row is allocated when its first pixel arrives, so that a file claiming many
+            // pixels it does not hold costs no more than it holds.
+            |size: Vec2<usize>, _| (size.x(), vec![Vec::new(); size.y()]),
+            |(width, rows): &mut (usize, Vec<Vec<Color>>),
              at: Vec2<usize>,
              (r, g, b): (f32, f32, f32)| {
-                pixels[at.y() * *width + at.x()] = Color::new(r, g, b);
+                let row = &mut rows[at.y()];
+                if row.is_empty() {
+                    *row = vec![Color::ZERO; *width];
+                }
+                row[at.x()] = Color::new(r, g, b);
             },
         )
         .first_valid_layer()
         .all_attributes()
-        .from_file(path)
+        .from_buffered(reader)
         .map_err(|e| error(format!("not a readable OpenEXR file with R, G and B: {e}")))?;
-    let layer = &image.layer_data;
-    let position = layer.attributes.layer_position;
-    let info = part_info(
-        &image.attributes,
-        &layer.attributes,
-        (position.x(), position.y()),
-        (layer.size.x(), layer.size.y()),
-    )
-    .map_err(error)?;
-    let (_, pixels) = image.layer_data.channel_data.pixels;
+    let (_, rows) = image.layer_data.channel_data.pixels;
+    let mut pixels = Vec::with_capacity(rect.pixels() as usize);
+    for row in rows {
+        if row.len() != rect.width() as usize {
+            return Err(error("its pixels do not fill its data window".into()));
+        }
+        pixels.extend(row);
+    }
     Ok(Part { info, pixels })
+}
+
+/// Reads a part's header from `reader`: what the part says about itself.
+fn read_header(reader: impl Read) -> Result<PartInfo, String> {
+    let meta = exr::meta::MetaData::read_from_buffered(reader, false)
+        .map_err(|e| format!("not a readable OpenEXR file: {e}"))?;
+    let [header] = meta.headers.as_slice() else {
+        return Err("a raylab part has one layer".into());
+    };
+    let position = header.own_attributes.layer_position;
+    let size = header.layer_size;
+    let info = part_info(
+        &header.shared_attributes,
+        &header.own_attributes,
+        (position.x(), position.y()),
+        (size.x(), size.y()),
+    )?;
+    // Stored much as `write_part` stores parts (tiles of 64 × 64), so that the OpenEXR reader's
+    // buffers for a block stay small: a tile size or a channel list in a header could ask for
+    // any size.
+    let small_blocks = match header.blocks {
+        BlockDescription::ScanLines => true,
+        BlockDescription::Tiles(tiles) => {
+            tiles.level_mode == LevelMode::Singular
+                && tiles.tile_size.x() <= MAX_TILE_SIDE
+                && tiles.tile_size.y() <= MAX_TILE_SIDE
+        }
+    };
+    if header.deep || !small_blocks {
+        return Err(format!(
+            "a raylab part is a flat image of one resolution, in scan lines or in tiles of at \
+             most {MAX_TILE_SIDE} pixels a side; this one is not"
+        ));
+    }
+    // Nor is any other decompressor run on a part: OpenEXR's others are lossy or seldom used,
+    // and its B44 one overflows on a crafted block (fuzz/regressions/part/crash-2df55c…).
+    if !matches!(
+        header.compression,
+        Compression::RLE | Compression::Uncompressed
+    ) {
+        return Err(format!(
+            "a raylab part is stored with rle compression or none; this one has {}",
+            header.compression
+        ));
+    }
+    let channels: Vec<String> = header
+        .channels
+        .list
+        .iter()
+        .map(|c| c.name.to_string())
+        .collect();
+    let full = header
+        .channels
+        .list
+        .iter()
+        .all(|c| c.sampling == Vec2(1, 1));
+    if channels != ["B", "G", "R"] || !full {
+        return Err(format!(
+            "a raylab part has the channels B, G and R, each at every pixel; this one has {}",
+            channels.join(", ")
+        ));
+    }
+    Ok(info)
 }
 
 /// The part's description from its header: the image's and the layer's attributes, and where
@@ -240,13 +331,19 @@ fn part_info(
     }
     let scene = fields.get("scene").ok_or_else(bad)?.to_string();
     let display = attributes.display_window;
+    let (Ok(width), Ok(height)) = (
+        u32::try_from(display.size.x()),
+        u32::try_from(display.size.y()),
+    ) else {
+        return Err("its display window is larger than any image".into());
+    };
+    // Before anything is made of the sizes, so that no part asks for more than a render would.
+    check_image_size(width, height).map_err(|e| format!("its display window: {e}"))?;
     let to_u32 = |v: i64| u32::try_from(v).ok();
-    let bounds = (|| {
+    let rect = (|| {
         if display.position != Vec2(0, 0) {
             return None;
         }
-        let width = to_u32(display.size.x() as i64)?;
-        let height = to_u32(display.size.y() as i64)?;
         let x0 = to_u32(position.0.into())?;
         let y0 = to_u32(position.1.into())?;
         let rect = Rect {
@@ -255,11 +352,9 @@ fn part_info(
             x1: x0.checked_add(to_u32(size.0 as i64)?)?,
             y1: y0.checked_add(to_u32(size.1 as i64)?)?,
         };
-        rect.is_inside(&Rect::image(width, height))
-            .then_some((width, height, rect))
-    })();
-    let (width, height, rect) =
-        bounds.ok_or("its data window does not lie inside a display window at (0, 0)")?;
+        rect.is_inside(&Rect::image(width, height)).then_some(rect)
+    })()
+    .ok_or("its data window does not lie inside a display window at (0, 0)")?;
     let tile = match fields.get("tile") {
         None => None,
         Some(t) => Some(
@@ -317,6 +412,74 @@ mod tests {
             p.iter().map(|c| c.to_array().map(f32::to_bits)).collect()
         };
         assert_eq!(bits(&part.pixels), bits(&pixels));
+    }
+
+    /// A part of a 4 × 3 image: its whole, as a file in `dir`.
+    fn small_part(dir: &Path) -> PathBuf {
+        let path = dir.join("small.exr");
+        let info = PartInfo {
+            width: 4,
+            height: 3,
+            rect: Rect::image(4, 3),
+            scene: "0123456789abcdef".into(),
+            settings: "samples = 1".into(),
+            tile: Some((0, 1)),
+            frame: None,
+        };
+        write_part(&path, &info, &[Color::ONE; 12]).unwrap();
+        path
+    }
+
+    /// `bytes` of an OpenEXR file with its box attribute `name` (`dataWindow`,
+    /// `displayWindow`) set to `[x_min, y_min, x_max, y_max]`, as a crafted file would have it.
+    fn with_box(bytes: &[u8], name: &str, bounds: [i32; 4]) -> Vec<u8> {
+        let key = format!("{name}\0box2i\0");
+        let at = bytes
+            .windows(key.len())
+            .position(|w| w == key.as_bytes())
+            .unwrap_or_else(|| panic!("no {name} in the header"));
+        let mut bytes = bytes.to_vec();
+        let values = at + key.len() + 4; // after the attribute's size, 16
+        for (i, v) in bounds.iter().enumerate() {
+            bytes[values + 4 * i..values + 4 * i + 4].copy_from_slice(&v.to_le_bytes());
+        }
+        bytes
+    }
+
+    #[test]
+    fn a_part_of_an_image_larger_than_raylab_renders_is_refused_before_its_pixels() {
+        let dir = tempfile::tempdir().unwrap();
+        let bytes = std::fs::read(small_part(dir.path())).unwrap();
+        let huge = [0, 0, 999_999, 999_999];
+        let whole = with_box(&with_box(&bytes, "displayWindow", huge), "dataWindow", huge);
+        let corner = with_box(&bytes, "displayWindow", huge);
+        for (name, bytes) in [("whole.exr", whole), ("corner.exr", corner)] {
+            let path = dir.path().join(name);
+            std::fs::write(&path, bytes).unwrap();
+            let expected = "image sides must be at most 16384, got 1000000×1000000";
+            let err = read_part_info(&path).unwrap_err().to_string();
+            assert!(err.contains(expected), "{err}");
+            let err = read_part(&path).unwrap_err().to_string();
+            assert!(err.contains(expected), "{err}");
+        }
+    }
+
+    #[test]
+    fn a_part_with_other_channels_is_refused_before_its_pixels() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("rgba.exr");
+        let text = "scene = 0123456789abcdef\nsettings =\nsamples = 1";
+        let attribute = AttributeValue::Text(Text::from(text));
+        let attributes = LayerAttributes {
+            other: HashMap::from([(Text::from(ATTRIBUTE), attribute)]),
+            ..LayerAttributes::default()
+        };
+        let channels = SpecificChannels::rgba(|_| (1.0f32, 1.0f32, 1.0f32, 1.0f32));
+        let layer = Layer::new((4, 3), attributes, Encoding::FAST_LOSSLESS, channels);
+        Image::from_layer(layer).write().to_file(&path).unwrap();
+        let err = read_part(&path).unwrap_err().to_string();
+        assert!(err.contains("has the channels B, G and R"), "{err}");
+        assert!(err.ends_with("this one has A, B, G, R"), "{err}");
     }
 
     #[test]
