@@ -141,7 +141,15 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     let pool = super::thread_pool(args.threads)?;
     let pixels = traced.pixels();
     memory::check(
-        &format!("rendering {}×{} pixels", traced.width(), traced.height()),
+        &if traced == image {
+            format!("rendering a {width}×{height} image")
+        } else {
+            format!(
+                "rendering {}×{} pixels (the part and its margin)",
+                traced.width(),
+                traced.height()
+            )
+        },
         Film::memory_bytes(traced.width(), traced.height())
             + progressive::memory_bytes(&scene.settings)
             + format.save_bytes(pixels),
