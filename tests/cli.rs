@@ -3,17 +3,8 @@
 use std::path::Path;
 use std::process::{Command, Output};
 
-fn raylab(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_raylab"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the binary runs")
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
+mod common;
+use common::run::{raylab, stderr};
 
 #[test]
 fn renders_the_default_scene_from_any_directory() {

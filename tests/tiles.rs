@@ -5,6 +5,9 @@
 use std::path::Path;
 use std::process::{Command, Output};
 
+mod common;
+use common::run::stderr;
+
 fn raylab_with(args: &[&str], dir: &Path, env: &[(&str, &str)]) -> Output {
     let mut command = Command::new(env!("CARGO_BIN_EXE_raylab"));
     for name in [
@@ -37,10 +40,6 @@ fn raylab_fails(args: &[&str], dir: &Path) -> String {
     let err = stderr(&out);
     assert!(!err.contains("panicked"), "{args:?}: {err}");
     err
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
 fn scene(name: &str) -> String {

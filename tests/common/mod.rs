@@ -1,10 +1,11 @@
-//! What several test binaries share: scenes built in code, seeded random numbers, and seeded
-//! mutations of texts.
+//! What several test binaries share: scenes built in code, seeded random numbers, seeded
+//! mutations of texts, and running the `raylab` binary.
 
 #![allow(dead_code)] // each test binary uses a different part
 
 pub mod fuzz;
 pub mod random;
+pub mod run;
 
 use glam::Vec3;
 use raylab::camera::{Camera, CameraSpec};
