@@ -4,6 +4,7 @@
 
 mod csg;
 mod cuboid;
+mod edge_bands;
 mod ellipsoid;
 mod paraboloid;
 mod plane;

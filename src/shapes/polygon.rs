@@ -3,6 +3,7 @@
 
 use glam::{Vec2, Vec3};
 
+use super::edge_bands::EdgeBands;
 use super::plane::tangent_axes;
 use super::{LocalSurface, ShapeHit};
 use crate::aabb::Aabb;
@@ -26,8 +27,8 @@ pub struct Polygon {
     /// The two coordinate axes kept by the projection (the normal's largest axis is dropped, so
     /// the projection squashes the polygon the least).
     kept_axes: [usize; 2],
-    /// The polygon's edges in the projection.
-    edges: Vec<ProjectedEdge>,
+    /// The polygon's edges in the projection, by band of height.
+    edges: EdgeBands,
     /// Bounds of the projected polygon, to reject most misses before walking the edges.
     projected_min: Vec2,
     projected_max: Vec2,
@@ -37,16 +38,6 @@ pub struct Polygon {
     texture_min: Vec2,
     texture_inv_extent: Vec2,
     bounds: Aabb,
-}
-
-/// One edge of the projected polygon, stored for the crossing test: where it starts, the `y` where
-/// it ends, and how fast `x` changes with `y` along it (0 for horizontal edges, which the test
-/// never asks about).
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct ProjectedEdge {
-    start: Vec2,
-    end_y: f32,
-    dx_dy: f32,
 }
 
 impl Polygon {
@@ -112,11 +103,9 @@ impl Polygon {
         let dropped = normal.abs().max_position();
         let kept_axes = [(dropped + 1) % 3, (dropped + 2) % 3];
         let project = |v: Vec3| Vec2::new(v[kept_axes[0]], v[kept_axes[1]]);
-        let edges = vertices
-            .iter()
-            .zip(vertices.iter().cycle().skip(1))
-            .map(|(&a, &b)| ProjectedEdge::new(project(a), project(b)))
-            .collect();
+        let (projected_min, projected_max) = (project(bounds.min), project(bounds.max));
+        let projected: Vec<Vec2> = vertices.iter().map(|&v| project(v)).collect();
+        let edges = EdgeBands::new(&projected, projected_min.y, projected_max.y);
 
         let texture_axes = tangent_axes(normal);
         let planar = |v: Vec3| Vec2::new(v.dot(texture_axes.0), v.dot(texture_axes.1));
@@ -135,8 +124,8 @@ impl Polygon {
             plane_offset: normal.dot(centre) + mean_offset * size,
             kept_axes,
             edges,
-            projected_min: project(bounds.min),
-            projected_max: project(bounds.max),
+            projected_min,
+            projected_max,
             texture_axes,
             texture_min,
             texture_inv_extent: Vec2::select(inv_extent.is_finite_mask(), inv_extent, Vec2::ZERO),
@@ -165,22 +154,13 @@ impl Polygon {
             .then_some(ShapeHit { t, part: 0 })
     }
 
-    /// Crossing-number test: a horizontal half-line from `q` towards +x crosses the edges an odd
-    /// number of times exactly when `q` is inside. Each edge counts its lower end and not its
-    /// upper one, so a half-line through a vertex is counted once.
+    /// Whether the projected point `q` is inside the polygon.
     #[inline]
     fn contains_projected(&self, q: Vec2) -> bool {
         if q.cmplt(self.projected_min).any() || q.cmpgt(self.projected_max).any() {
             return false;
         }
-        let mut inside = false;
-        for edge in &self.edges {
-            // Both tests always run (no early exit), which keeps the loop free of branches.
-            let straddles = (edge.start.y > q.y) != (edge.end_y > q.y);
-            let crossing_is_right_of_q = q.x < edge.start.x + (q.y - edge.start.y) * edge.dx_dy;
-            inside ^= straddles & crossing_is_right_of_q;
-        }
-        inside
+        self.edges.contains(q)
     }
 
     /// Planar mapping: coordinates along two axes in the plane, scaled so that the polygon's
@@ -211,22 +191,6 @@ fn spans_an_area(points: &[Vec3]) -> bool {
     points
         .iter()
         .any(|&p| farthest.cross(p - first).length() > MIN_RELATIVE_DOUBLE_AREA)
-}
-
-impl ProjectedEdge {
-    fn new(start: Vec2, end: Vec2) -> Self {
-        let dy = end.y - start.y;
-        let dx_dy = if dy == 0.0 {
-            0.0
-        } else {
-            (end.x - start.x) / dy
-        };
-        ProjectedEdge {
-            start,
-            end_y: end.y,
-            dx_dy,
-        }
-    }
 }
 
 #[cfg(test)]
