@@ -15,9 +15,12 @@ use raylab::camera::{Camera, CameraSpec, PIXEL_CENTRE};
 use raylab::mesh::Mesh;
 use raylab::primitive::{Geometry, Hit, Object, PrimId};
 use raylab::ray::Ray;
-use raylab::shapes::{Plane, Shape, Sphere};
+use raylab::shapes::{Plane, Polygon, Shape, Sphere};
 use raylab::transform::{Transform, TransformStep};
 
+/// A scene of `spheres` spheres (every third one transformed), half as many flat polygons
+/// (triangles, quads and hexagons; every fifth one transformed), `triangles` mesh triangles
+/// and `planes` planes: every kind of leaf the BVH makes.
 fn random_scene(seed: u64, spheres: usize, triangles: usize, planes: usize) -> Geometry {
     let mut rng = Rng::with_seed(seed);
     let mut g = Geometry::default();
@@ -39,6 +42,35 @@ fn random_scene(seed: u64, spheres: usize, triangles: usize, planes: usize) -> G
         });
         g.objects.push(Object {
             shape: sphere,
+            transform,
+            material: 0,
+        });
+    }
+    for i in 0..spheres / 2 {
+        // A regular polygon of 3, 4 or 6 corners in a random plane.
+        let corners = [3, 4, 6][i % 3];
+        let centre = in_cube(&mut rng, -10.0, 10.0);
+        let u = in_cube(&mut rng, -1.0, 1.0);
+        let v =
+            (u.cross(in_cube(&mut rng, -1.0, 1.0)) + Vec3::splat(1e-3)).normalize() * u.length();
+        let vertices = (0..corners)
+            .map(|k| {
+                let angle = k as f32 * std::f32::consts::TAU / corners as f32;
+                centre + u * angle.cos() + v * angle.sin()
+            })
+            .collect();
+        let Ok(polygon) = Polygon::new(vertices) else {
+            continue;
+        };
+        let transform = (i % 5 == 0).then(|| {
+            Transform::from_steps(&[TransformStep::Rotate {
+                axis: in_cube(&mut rng, -1.0, 1.0) + Vec3::splat(0.01),
+                degrees: in_range(&mut rng, 0.0, 360.0),
+            }])
+            .unwrap()
+        });
+        g.objects.push(Object {
+            shape: Shape::Polygon(polygon),
             transform,
             material: 0,
         });
@@ -267,6 +299,14 @@ fn the_tree_does_not_depend_on_the_thread_count() {
             .collect()
     };
     assert_eq!(packs(&one), packs(&four));
+    let tags = |bvh: &Bvh| -> Vec<_> {
+        let spheres = bvh.spheres.iter().map(|pack| pack.tags);
+        spheres
+            .chain(bvh.polygons.iter().map(|pack| pack.tags))
+            .collect()
+    };
+    assert!(!one.spheres.is_empty() && !one.polygons.is_empty());
+    assert_eq!(tags(&one), tags(&four));
 }
 
 #[test]

@@ -5,9 +5,8 @@
 
 use super::Node;
 use super::build::{TRAVERSAL_COST, tests};
+use super::leaf::LeafKind;
 use crate::aabb::Aabb;
-use crate::primitive::PrimId;
-use crate::shapes::PACK_SIZE;
 
 /// Told of every node visited and every primitive tested during a traversal.
 pub trait TraversalCost {
@@ -52,12 +51,13 @@ impl TraversalCost for BvhCost {
 /// The surface area heuristic's estimate of a tree's cost: the expected number of node visits
 /// (each costing [`TRAVERSAL_COST`]) and primitive tests of a ray that passes through the
 /// root's box, with the chance of entering a node taken as its surface area over the root's.
-/// A leaf of triangles costs a test per pack of [`PACK_SIZE`], as the traversal tests them; a
-/// leaf of objects one per object. `nodes` is the builder's binary tree (root first, an
-/// interior node's children at `first` and `first + 1`, a leaf's primitives `prims[first..]`;
+/// A leaf of packed primitives costs a test per pack of four, as the traversal tests
+/// them; a leaf of objects one per object. `nodes` is the builder's binary tree (root first,
+/// an interior node's children at `first` and `first + 1`, a leaf's primitives `first..`, whose
+/// kinds are `kinds[first..]`;
 /// [`super::Bvh::binary_tree_cost`] measures the builder's): the lower, the fewer boxes and
 /// primitives a ray is expected to test. 0 for an empty tree.
-pub(super) fn sah_cost(nodes: &[Node], prims: &[PrimId]) -> f64 {
+pub(super) fn sah_cost(nodes: &[Node], kinds: &[LeafKind]) -> f64 {
     let Some(root) = nodes.first() else {
         return 0.0;
     };
@@ -69,8 +69,7 @@ pub(super) fn sah_cost(nodes: &[Node], prims: &[PrimId]) -> f64 {
         let node = &nodes[i];
         if node.is_leaf() {
             // A leaf holds one kind of primitive: its first says which.
-            let triangles = prims[node.first as usize].kind().is_err();
-            let block = if triangles { PACK_SIZE as u32 } else { 1 };
+            let block = kinds[node.first as usize].block();
             cost += area(node) * tests(node.count, block) as f64;
         } else {
             cost += area(node) * TRAVERSAL_COST as f64;
@@ -102,14 +101,14 @@ mod tests {
             node([0.0; 3], [0.5, 1.0, 1.0], 0, 1),
             node([0.5, 0.0, 0.0], [1.0; 3], 1, 5),
         ];
-        let prims = [PrimId::object(0)]
+        let kinds = [LeafKind::Objects]
             .into_iter()
-            .chain((0..5).map(PrimId::triangle))
+            .chain([LeafKind::Triangles; 5])
             .collect::<Vec<_>>();
         let expected = TRAVERSAL_COST as f64 + (4.0 * 1.0 + 4.0 * 2.0) / 6.0;
-        let cost = sah_cost(&tree, &prims);
+        let cost = sah_cost(&tree, &kinds);
         assert!((cost - expected).abs() < 1e-9, "{cost}");
-        assert_eq!(sah_cost(&tree[1..2], &prims), 1.0);
+        assert_eq!(sah_cost(&tree[1..2], &kinds), 1.0);
         assert_eq!(sah_cost(&[], &[]), 0.0);
     }
 }

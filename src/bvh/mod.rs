@@ -3,22 +3,26 @@
 //! (`wide`) and stored as an array of [`WideNode`]s, each holding its children's boxes axis by
 //! axis. Traversal (`traverse`) tests a node's eight child boxes against a ray at once
 //! (`ray_box`), with the widest instruction set the processor has (`simd`); a tile of coherent
-//! eye rays walks the tree once, together ([`packet`]). Unbounded primitives (planes) are kept
-//! in a list beside the tree and tested against every ray.
+//! eye rays walks the tree once, together ([`packet`]). A leaf holds one [`LeafKind`] of
+//! primitive, tested its own way. Unbounded primitives (planes) are kept in a list beside the
+//! tree and tested against every ray.
 
 mod build;
 pub mod cost;
+mod leaf;
 pub mod packet;
 mod ray_box;
 mod simd;
 mod traverse;
 mod wide;
 
+pub use leaf::Leaf;
 pub use simd::Simd;
 
 use crate::aabb::Aabb;
 use crate::primitive::{Geometry, PrimId};
-use crate::shapes::TrianglePack;
+use crate::shapes::{PolygonPack, SpherePack, TrianglePack};
+use leaf::LeafKind;
 
 /// Children per node of the finished tree: one per lane of the box test.
 pub const WIDTH: usize = simd::LANES;
@@ -52,10 +56,9 @@ impl Node {
 pub struct WideNode {
     pub min: [[f32; WIDTH]; 3],
     pub max: [[f32; WIDTH]; 3],
-    /// An interior child's node index, or the first of a leaf's packs in [`Bvh::packs`] or
-    /// objects in [`Bvh::objects`].
+    /// An interior child's node index, or where a leaf starts in the array of its kind.
     pub first: [u32; WIDTH],
-    /// A leaf's number of packs plus `Child::TRIANGLES`, or of objects;
+    /// A leaf's number of packs or objects, with its kind in the top bits (`Child::leaf_of`);
     /// [`WideNode::INTERIOR`] for an interior child, 0 for an unused slot.
     pub count: [u32; WIDTH],
 }
@@ -79,33 +82,16 @@ impl WideNode {
     }
 }
 
-/// Where a child of a [`WideNode`] is: a node, or a leaf's triangles or objects.
+/// Where a child of a [`WideNode`] is: a node, or a leaf.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Child {
     pub first: u32,
     pub count: u32,
 }
 
-/// What a leaf holds: triangles in packs, or objects. A leaf never holds both kinds.
-#[derive(Clone, Copy, Debug)]
-pub enum Leaf<'a> {
-    Triangles(&'a [TrianglePack]),
-    Objects(&'a [PrimId]),
-}
-
-impl Leaf<'_> {
-    /// Primitive tests the leaf takes, for counting: four lanes to a pack.
-    pub fn tests(&self) -> usize {
-        match self {
-            Leaf::Triangles(packs) => packs.len() * crate::shapes::PACK_SIZE,
-            Leaf::Objects(objects) => objects.len(),
-        }
-    }
-}
-
 impl Child {
-    /// The bit of `count` that marks a leaf of triangles.
-    const TRIANGLES: u32 = 1 << 30;
+    /// Where the kind of a leaf starts in `count`.
+    const KIND_SHIFT: u32 = 28;
 
     /// The interior node `index`.
     const fn node(index: u32) -> Child {
@@ -115,17 +101,12 @@ impl Child {
         }
     }
 
-    /// A leaf of the `count` packs from `first` in [`Bvh::packs`].
-    fn triangles(first: u32, count: u32) -> Child {
+    /// A leaf of `count` entries from `first` in the BVH's array of `kind`.
+    fn leaf_of(kind: LeafKind, first: u32, count: u32) -> Child {
         Child {
             first,
-            count: count | Child::TRIANGLES,
+            count: count | (kind as u32) << Child::KIND_SHIFT,
         }
-    }
-
-    /// A leaf of the `count` objects from `first` in [`Bvh::objects`].
-    fn objects(first: u32, count: u32) -> Child {
-        Child { first, count }
     }
 
     pub fn is_leaf(&self) -> bool {
@@ -135,12 +116,9 @@ impl Child {
     /// A leaf's primitives (it must be a leaf).
     #[inline(always)]
     fn leaf<'a>(&self, bvh: &'a Bvh) -> Leaf<'a> {
-        let first = self.first as usize;
-        if self.count & Child::TRIANGLES != 0 {
-            Leaf::Triangles(&bvh.packs[first..][..(self.count & !Child::TRIANGLES) as usize])
-        } else {
-            Leaf::Objects(&bvh.objects[first..][..self.count as usize])
-        }
+        let kind = LeafKind::from_bits(self.count >> Child::KIND_SHIFT);
+        let count = self.count & ((1 << Child::KIND_SHIFT) - 1);
+        Leaf::in_bvh(bvh, kind, self.first as usize, count as usize)
     }
 }
 
@@ -153,7 +131,11 @@ pub struct Bvh {
     /// The triangles of the leaves, in leaf order, four to a pack; each lane's tag is its
     /// [`PrimId`].
     pub packs: Vec<TrianglePack>,
-    /// The bounded objects, in leaf order.
+    /// The spheres of the leaves of spheres, likewise.
+    pub spheres: Vec<SpherePack>,
+    /// The polygons of the leaves of polygons, likewise.
+    pub polygons: Vec<PolygonPack>,
+    /// The other bounded objects, in leaf order.
     pub objects: Vec<PrimId>,
     /// Primitives without bounds, tested against every ray.
     pub unbounded: Vec<PrimId>,
@@ -173,6 +155,8 @@ impl Bvh {
         let wide::Collapsed {
             nodes,
             packs,
+            spheres,
+            polygons,
             objects,
         } = wide::collapse(binary, prims, geometry);
         Bvh {
@@ -181,6 +165,8 @@ impl Bvh {
                 .first()
                 .map(|root| Aabb::new(root.min.into(), root.max.into())),
             packs,
+            spheres,
+            polygons,
             objects,
             unbounded,
             simd: Simd::best(),
@@ -192,20 +178,14 @@ impl Bvh {
         use std::mem::size_of;
         self.nodes.capacity() * size_of::<WideNode>()
             + self.packs.capacity() * size_of::<TrianglePack>()
+            + self.spheres.capacity() * size_of::<SpherePack>()
+            + self.polygons.capacity() * size_of::<PolygonPack>()
             + (self.objects.capacity() + self.unbounded.capacity()) * size_of::<PrimId>()
     }
 
     /// The primitives in the leaf `child`, for statistics and tests.
     pub fn leaf_prims(&self, child: Child) -> Vec<PrimId> {
-        match child.leaf(self) {
-            Leaf::Triangles(packs) => packs
-                .iter()
-                .flat_map(|pack| pack.tags)
-                .filter(|&tag| tag != u32::MAX)
-                .map(PrimId)
-                .collect(),
-            Leaf::Objects(objects) => objects.to_vec(),
-        }
+        child.leaf(self).prims()
     }
 
     /// The box around all bounded primitives (the root's), `None` when there are none.

@@ -11,9 +11,10 @@ use std::array;
 use arrayvec::ArrayVec;
 use glam::Vec4;
 
+use super::leaf::{closest_in_leaf, ones};
 use super::ray_box::RayBoxTest;
 use super::simd::{Kernel, Lanes, dispatch};
-use super::traverse::{STACK_SIZE, closest_in_leaf};
+use super::traverse::STACK_SIZE;
 use super::{Bvh, Child, Leaf, WIDTH};
 use crate::primitive::{Geometry, Hit};
 use crate::ray::Ray;
@@ -165,17 +166,6 @@ impl Kernel for Packet<'_> {
             }
         }
     }
-}
-
-/// The positions of the set bits of `mask`, lowest first.
-fn ones(mut mask: u64) -> impl Iterator<Item = usize> {
-    std::iter::from_fn(move || {
-        (mask != 0).then(|| {
-            let r = mask.trailing_zeros() as usize;
-            mask &= mask - 1;
-            r
-        })
-    })
 }
 
 /// The rays whose limit `t_limit` lies beyond `t` (bit r for ray r), four at a time.

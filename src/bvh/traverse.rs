@@ -9,12 +9,13 @@ use arrayvec::ArrayVec;
 
 use super::build::MAX_DEPTH;
 use super::cost::TraversalCost;
+use super::leaf::{closest_in_leaf, each_in_leaf};
 use super::ray_box::RayBoxTest;
 use super::simd::{Kernel, Lanes, dispatch};
 use super::{Bvh, Child, Leaf, WIDTH};
-use crate::primitive::{Geometry, Hit, PrimId};
+use crate::primitive::{Geometry, Hit};
 use crate::ray::Ray;
-use crate::shapes::{PackHits, ShearedRay, TriangleHit, TrianglePack};
+use crate::shapes::ShearedRay;
 
 /// Most entries the traversal stack can need: each level of the tree leaves at most
 /// `WIDTH − 1` siblings waiting.
@@ -146,27 +147,7 @@ impl<C: TraversalCost, F: FnMut(&Hit) -> ControlFlow<()>> Kernel for AnyHit<'_, 
         let sheared = ShearedRay::new(ray);
         let mut visit = |leaf: Leaf, cost: &mut C| {
             cost.prims_tested(leaf.tests());
-            match leaf {
-                Leaf::Triangles(packs) => {
-                    for pack in packs {
-                        let hits = pack.intersect(&sheared, t_min, t_max);
-                        for k in ones(hits.mask) {
-                            on_hit(&triangle_hit(pack, &hits, k))?;
-                        }
-                    }
-                }
-                Leaf::Objects(objects) => {
-                    for &id in objects {
-                        let hit = w
-                            .geometry
-                            .intersect_prepared(id, ray, &sheared, t_min, t_max);
-                        if let Some(hit) = hit {
-                            on_hit(&hit)?;
-                        }
-                    }
-                }
-            }
-            ControlFlow::Continue(())
+            each_in_leaf(w.geometry, leaf, ray, &sheared, (t_min, t_max), &mut on_hit)
         };
         if visit(Leaf::Objects(&w.bvh.unbounded), w.cost).is_break() {
             return;
@@ -266,71 +247,4 @@ impl Bvh {
             }
         }
     }
-}
-
-/// Tests the primitives of `leaf` against `ray` for its closest hit in `(t_min, t_limit)`: a
-/// nearer hit (or one at the same `t` from a primitive earlier in the scene) replaces `best`,
-/// and `t_limit` shrinks to just past it, so that the search still finds its ties. The answer
-/// does not depend on the order of the tests.
-#[inline(always)]
-pub(super) fn closest_in_leaf(
-    geometry: &Geometry,
-    leaf: Leaf,
-    ray: &Ray,
-    sheared: &ShearedRay,
-    t_min: f32,
-    t_limit: &mut f32,
-    best: &mut Option<Hit>,
-) {
-    // `t < t_limit` again: an earlier lane of the same pack may have lowered the limit.
-    let beats = |t: f32, id: PrimId, t_limit: f32, best: &Option<Hit>| {
-        t < t_limit && best.is_none_or(|b| t < b.t || id.scene_order() < b.prim.scene_order())
-    };
-    match leaf {
-        Leaf::Triangles(packs) => {
-            for pack in packs {
-                let hits = pack.intersect(sheared, t_min, *t_limit);
-                for k in ones(hits.mask) {
-                    if beats(hits.t[k], PrimId(pack.tags[k]), *t_limit, best) {
-                        *t_limit = hits.t[k].next_up();
-                        *best = Some(triangle_hit(pack, &hits, k));
-                    }
-                }
-            }
-        }
-        Leaf::Objects(objects) => {
-            for &id in objects {
-                if let Some(hit) = geometry.intersect_prepared(id, ray, sheared, t_min, *t_limit)
-                    && beats(hit.t, id, *t_limit, best)
-                {
-                    *t_limit = hit.t.next_up();
-                    *best = Some(hit);
-                }
-            }
-        }
-    }
-}
-
-/// The hit in lane `k` of `pack`.
-#[inline(always)]
-fn triangle_hit(pack: &TrianglePack, hits: &PackHits, k: usize) -> Hit {
-    let TriangleHit { t, bary } = hits.hit(k);
-    Hit {
-        t,
-        prim: PrimId(pack.tags[k]),
-        part: 0,
-        bary,
-    }
-}
-
-/// The positions of the set bits of `mask`, lowest first.
-#[inline(always)]
-pub(super) fn ones(mut mask: u32) -> impl Iterator<Item = usize> {
-    std::iter::from_fn(move || {
-        (mask != 0).then(|| {
-            let k = mask.trailing_zeros() as usize;
-            mask &= mask - 1;
-            k
-        })
-    })
 }

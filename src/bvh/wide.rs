@@ -6,15 +6,17 @@
 //! children of its own, until it has eight: the grandchildren that a ray is most likely to
 //! visit move up.
 //!
-//! A binary leaf holds one kind of primitive (the builder makes sure of it): triangles, copied
-//! into [`TrianglePack`]s of four in leaf order, or objects, listed in leaf order.
+//! A binary leaf holds one [`LeafKind`] of primitive (the builder makes sure of it): triangles,
+//! spheres or polygons, copied into packs of four in leaf order, or other objects, listed in
+//! leaf order.
 
 use arrayvec::ArrayVec;
 
+use super::leaf::LeafKind;
 use super::{Child, Node, WIDTH, WideNode};
 use crate::aabb::Aabb;
 use crate::primitive::{Geometry, PrimId};
-use crate::shapes::{PACK_SIZE, TrianglePack};
+use crate::shapes::{PACK_SIZE, PolygonPack, Shape, SpherePack, TrianglePack};
 
 /// A node with no children yet. An unused slot's box lies at +∞ on every axis: the slab test
 /// never enters it for a ray that stops at a finite distance (the traversal clamps its far
@@ -30,6 +32,8 @@ const EMPTY: WideNode = WideNode {
 pub(super) struct Collapsed {
     pub nodes: Vec<WideNode>,
     pub packs: Vec<TrianglePack>,
+    pub spheres: Vec<SpherePack>,
+    pub polygons: Vec<PolygonPack>,
     pub objects: Vec<PrimId>,
 }
 
@@ -42,12 +46,14 @@ pub(super) fn collapse(binary: &[Node], prims: &[PrimId], geometry: &Geometry) -
     // Exactly the packs needed, so that the largest array never moves.
     let packs = binary
         .iter()
-        .filter(|node| node.is_leaf() && is_triangle(prims[node.first as usize]))
+        .filter(|node| node.is_leaf() && prims[node.first as usize].kind().is_err())
         .map(|leaf| (leaf.count as usize).div_ceil(PACK_SIZE))
         .sum();
     let mut out = Collapsed {
         nodes: Vec::new(),
         packs: Vec::with_capacity(packs),
+        spheres: Vec::new(),
+        polygons: Vec::new(),
         objects: Vec::new(),
     };
     if !binary.is_empty() {
@@ -62,6 +68,8 @@ pub(super) fn collapse(binary: &[Node], prims: &[PrimId], geometry: &Geometry) -
     }
     out.nodes.shrink_to_fit();
     out.packs.shrink_to_fit();
+    out.spheres.shrink_to_fit();
+    out.polygons.shrink_to_fit();
     out.objects.shrink_to_fit();
     out
 }
@@ -100,27 +108,47 @@ impl Collapse<'_> {
         }
     }
 
-    /// The wide child of a binary leaf: its triangles in packs, or its objects.
+    /// The wide child of a binary leaf: its primitives in packs, or its objects.
     fn leaf(&mut self, leaf: &Node) -> Child {
         let prims = &self.prims[leaf.first as usize..][..leaf.count as usize];
-        if is_triangle(prims[0]) {
-            let first = self.out.packs.len() as u32;
-            for four in prims.chunks(PACK_SIZE) {
-                let mut lanes: ArrayVec<_, PACK_SIZE> = ArrayVec::new();
-                for &id in four {
-                    let t = id
-                        .kind()
-                        .expect_err("a leaf of triangles holds only triangles");
-                    lanes.push((self.geometry.triangle(t), id.0));
-                }
-                self.out.packs.push(TrianglePack::new(&lanes));
+        let geometry = self.geometry;
+        let out = &mut *self.out;
+        let kind = LeafKind::of(geometry, prims[0]);
+        let (first, count) = match kind {
+            LeafKind::Objects => {
+                out.objects.extend_from_slice(prims);
+                (out.objects.len() - prims.len(), prims.len())
             }
-            Child::triangles(first, self.out.packs.len() as u32 - first)
-        } else {
-            let first = self.out.objects.len() as u32;
-            self.out.objects.extend_from_slice(prims);
-            Child::objects(first, prims.len() as u32)
-        }
+            LeafKind::Spheres => {
+                add_packs(
+                    &mut out.spheres,
+                    prims,
+                    SpherePack::new,
+                    |id| match &geometry.objects[object_index(id)].shape {
+                        Shape::Sphere(sphere) => sphere,
+                        _ => unreachable!("a leaf of spheres holds only spheres"),
+                    },
+                )
+            }
+            LeafKind::Polygons => {
+                add_packs(
+                    &mut out.polygons,
+                    prims,
+                    PolygonPack::new,
+                    |id| match &geometry.objects[object_index(id)].shape {
+                        Shape::Polygon(polygon) => polygon,
+                        _ => unreachable!("a leaf of polygons holds only polygons"),
+                    },
+                )
+            }
+            LeafKind::Triangles => add_packs(&mut out.packs, prims, TrianglePack::new, |id| {
+                let t = id
+                    .kind()
+                    .expect_err("a leaf of triangles holds only triangles");
+                geometry.triangle(t)
+            }),
+        };
+        Child::leaf_of(kind, first as u32, count as u32)
     }
 
     /// The binary nodes that become the wide children of binary node `node`: its children,
@@ -151,8 +179,28 @@ impl Collapse<'_> {
     }
 }
 
-fn is_triangle(id: PrimId) -> bool {
-    id.kind().is_err()
+/// Appends to `packs` the primitives `prims` in packs of four, each lane made by `pack` from
+/// what `lane` gives for a primitive and tagged with its id. Where they start in `packs`, and
+/// how many.
+fn add_packs<P, T>(
+    packs: &mut Vec<P>,
+    prims: &[PrimId],
+    pack: impl Fn(&[(T, u32)]) -> P,
+    lane: impl Fn(PrimId) -> T,
+) -> (usize, usize) {
+    let first = packs.len();
+    for four in prims.chunks(PACK_SIZE) {
+        let lanes: ArrayVec<(T, u32), PACK_SIZE> =
+            four.iter().map(|&id| (lane(id), id.0)).collect();
+        packs.push(pack(&lanes));
+    }
+    (first, packs.len() - first)
+}
+
+/// The index of object `id` (it must be an object).
+fn object_index(id: PrimId) -> usize {
+    id.kind()
+        .expect("a leaf of spheres or polygons holds only objects")
 }
 
 fn area(node: &Node) -> f32 {

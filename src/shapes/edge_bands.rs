@@ -8,6 +8,10 @@ use glam::Vec2;
 /// edges are short.
 const EDGES_PER_BAND: usize = 2;
 
+/// Polygons with at most this many edges that are not horizontal have one band: looking up a
+/// band would cost more than testing them all.
+const ONE_BAND_MAX_EDGES: usize = 8;
+
 /// Most bands an edge may be listed in on average: the band count shrinks until the lists hold
 /// at most this many entries per edge, so a polygon whose long edges span many bands costs
 /// memory in proportion to its edges.
@@ -75,7 +79,11 @@ impl EdgeBands {
             .map(|(&a, &b)| ProjectedEdge::new(a, b))
             .filter(|edge| edge.start.y != edge.end_y)
             .collect();
-        let mut count = (edges.len() / EDGES_PER_BAND).max(1);
+        let mut count = if edges.len() <= ONE_BAND_MAX_EDGES {
+            1
+        } else {
+            edges.len() / EDGES_PER_BAND
+        };
         loop {
             let bands = EdgeBands::with_count(&edges, count, min_y, max_y);
             if count == 1 || bands.edges.len() <= MAX_ENTRIES_PER_EDGE * edges.len() {
@@ -120,6 +128,12 @@ impl EdgeBands {
             starts,
             edges: placed,
         }
+    }
+
+    /// Every edge that is not horizontal, when the polygon has one band (at most
+    /// [`ONE_BAND_MAX_EDGES`] of them).
+    pub fn single_band(&self) -> Option<&[ProjectedEdge]> {
+        (self.starts.len() == 2).then_some(&self.edges[..])
     }
 
     /// Crossing-number test: a horizontal half-line from `q` towards +x crosses the edges an odd

@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::edge_bands::EdgeBands;
+use super::edge_bands::{EdgeBands, ProjectedEdge};
 use super::plane::tangent_axes;
 use super::{LocalSurface, ShapeHit};
 use crate::aabb::Aabb;
@@ -21,17 +21,17 @@ const MIN_RELATIVE_DOUBLE_AREA: f32 = 1e-6;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Polygon {
     /// Unit normal (Newell's method), pointing to the front.
-    normal: Vec3,
+    pub(super) normal: Vec3,
     /// `normal · p` for every point `p` of the polygon's plane.
-    plane_offset: f32,
+    pub(super) plane_offset: f32,
     /// The two coordinate axes kept by the projection (the normal's largest axis is dropped, so
     /// the projection squashes the polygon the least).
-    kept_axes: [usize; 2],
+    pub(super) kept_axes: [usize; 2],
     /// The polygon's edges in the projection, by band of height.
     edges: EdgeBands,
     /// Bounds of the projected polygon, to reject most misses before walking the edges.
-    projected_min: Vec2,
-    projected_max: Vec2,
+    pub(super) projected_min: Vec2,
+    pub(super) projected_max: Vec2,
     /// Two unit axes in the plane along which texture coordinates are measured.
     texture_axes: (Vec3, Vec3),
     /// Maps the planar coordinates of a point to `[0, 1]²` over the polygon's extent.
@@ -131,6 +131,12 @@ impl Polygon {
             texture_inv_extent: Vec2::select(inv_extent.is_finite_mask(), inv_extent, Vec2::ZERO),
             bounds,
         })
+    }
+
+    /// The edges that a horizontal line of the projection can cross, when there are few
+    /// enough to test them all (see [`EdgeBands::single_band`]).
+    pub(super) fn crossable_edges(&self) -> Option<&[ProjectedEdge]> {
+        self.edges.single_band()
     }
 
     /// Unit normal on the polygon's front.

@@ -48,8 +48,10 @@ impl Sphere {
         let roots = if q == 0.0 {
             (0.0, 0.0)
         } else {
+            // Sorted by a comparison, not `min` and `max`, so that `SpherePack` can do the
+            // same in SIMD, lane by lane.
             let (t0, t1) = (q / a, c / q);
-            (t0.min(t1), t0.max(t1))
+            if t0 <= t1 { (t0, t1) } else { (t1, t0) }
         };
         let t = first_root_in(roots, t_min, t_max)?;
         Some(ShapeHit { t, part: 0 })

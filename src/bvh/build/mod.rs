@@ -3,8 +3,8 @@
 //! A node's primitives are split where the SAH says a ray pays least, among the planes between
 //! bins of their centroids on each axis: more bins for large nodes, fewer for small ones. The
 //! nodes at the top, fewer than the threads, bin and partition their primitives on all threads;
-//! below them, the two halves of a node are built in parallel. A leaf holds only triangles or
-//! only objects: where the SAH would make a leaf of both, the node is split by kind instead.
+//! below them, the two halves of a node are built in parallel. A leaf holds one
+//! [`LeafKind`]: where the SAH would make a leaf of several, the node is split by kind instead.
 //!
 //! The tree does not depend on the thread count: every choice is made from sums, minima and
 //! maxima, which come out the same whatever order the threads add them in; primitives are put
@@ -23,17 +23,18 @@ pub(super) use self::bins::tests;
 use self::bins::{BinMap, Bins, best_bin_plane, bin_count};
 use self::partition::{partition, partition_in_parallel};
 use self::prims::{BuildPrim, Extent};
+use super::leaf::LeafKind;
 use super::{Bvh, Node};
 use crate::aabb::Aabb;
 use crate::primitive::{Geometry, PrimId};
-use crate::shapes::PACK_SIZE;
 
 /// Relative cost of visiting a node against testing one primitive.
 pub(super) const TRAVERSAL_COST: f32 = 1.0;
 /// A leaf never holds more than this unless its primitives cannot be told apart.
 const MAX_LEAF_SIZE: usize = 8;
-/// Deepest tree the traversal stack allows: a node one level above it is a leaf, or, when it
-/// holds both kinds of primitive, split by kind into two leaves.
+/// Deepest tree the traversal stack allows: a node [`LeafKind::COUNT`] − 1 levels above it is
+/// a leaf, or, when it holds several kinds of primitive, split by kind (once per kind but one,
+/// at most).
 pub(super) const MAX_DEPTH: usize = 60;
 /// Nodes with at least this many primitives build their two halves in parallel; below it,
 /// handing work to another thread costs more than it saves.
@@ -69,8 +70,8 @@ impl Bvh {
             return (0.0, 0);
         }
         let tree = subtree(&mut prims, 0, extent, 0);
-        let ids: Vec<PrimId> = prims.iter().map(BuildPrim::id).collect();
-        (super::cost::sah_cost(&tree, &ids), tree.len())
+        let kinds: Vec<LeafKind> = prims.iter().map(BuildPrim::kind).collect();
+        (super::cost::sah_cost(&tree, &kinds), tree.len())
     }
 }
 
@@ -89,7 +90,11 @@ fn build_prims(geometry: &Geometry) -> (Vec<BuildPrim>, Extent, Vec<PrimId>) {
                 PrimId::triangle(i - objects)
             };
             let bounds = geometry.bounds(id).filter(Aabb::is_finite);
-            BuildPrim::new(bounds.unwrap_or(Aabb::EMPTY), id)
+            BuildPrim::new(
+                bounds.unwrap_or(Aabb::EMPTY),
+                id,
+                LeafKind::of(geometry, id),
+            )
         })
         .collect();
     let is_bounded = |p: &BuildPrim| p.bounds().min.x.is_finite();
@@ -152,8 +157,8 @@ impl SubtreeBuilder {
         if prims.len() <= 1 {
             return;
         }
-        // The deepest nodes are leaves; one level above, only a split by kind is left to make.
-        let split = if depth + 1 >= MAX_DEPTH {
+        // The deepest nodes are leaves; a few levels above, only splits by kind are left.
+        let split = if depth + LeafKind::COUNT > MAX_DEPTH {
             None
         } else {
             split(prims, &extent, &mut self.bins)
@@ -208,12 +213,13 @@ fn append_subtree(nodes: &mut Vec<Node>, at: usize, mut subtree: Vec<Node>) {
 fn split(prims: &mut [BuildPrim], extent: &Extent, bins: &mut Bins) -> Option<Split> {
     let n = prims.len();
     let area = extent.bounds.surface_area().max(f32::MIN_POSITIVE);
-    // Triangles are tested four at a time: a leaf of up to four costs one test.
-    let block = if prims.iter().any(BuildPrim::is_object) {
-        1
-    } else {
-        PACK_SIZE as u32
-    };
+    // Triangles and packed polygons are tested four at a time: a leaf of up to four costs one
+    // test; a leaf with other objects, one per primitive.
+    let block = prims
+        .iter()
+        .map(BuildPrim::kind)
+        .min()
+        .map_or(1, LeafKind::block);
     let pays =
         |cost: f32| TRAVERSAL_COST + cost / area < tests(n as u32, block) || n > MAX_LEAF_SIZE;
     if let [a, b] = prims {
@@ -267,12 +273,12 @@ fn split_pair(a: &mut BuildPrim, b: &mut BuildPrim) -> Option<f32> {
     Some(a.bounds().surface_area() + b.bounds().surface_area())
 }
 
-/// A leaf's primitives, when they are of both kinds, split by kind: objects left, triangles
-/// right. `None` when they are all of one kind.
+/// A leaf's primitives, when they are of several [`LeafKind`]s, split by kind: the first kind
+/// (in [`LeafKind`]'s order) left, the others right. `None` when they are all of one kind.
 fn split_by_kind(prims: &mut [BuildPrim]) -> Option<Split> {
-    let objects = prims.iter().filter(|p| p.is_object()).count();
-    (objects != 0 && objects != prims.len()).then(|| {
-        let (mid, _) = partition(prims, BuildPrim::is_object);
+    let first = prims.iter().map(BuildPrim::kind).min()?;
+    prims.iter().any(|p| p.kind() != first).then(|| {
+        let (mid, _) = partition(prims, |p| p.kind() == first);
         split_at(prims, mid)
     })
 }
@@ -292,7 +298,7 @@ mod tests {
     use super::*;
     use crate::mesh::Mesh;
     use crate::primitive::Object;
-    use crate::shapes::{Shape, Sphere};
+    use crate::shapes::{Ellipsoid, Shape, Sphere};
 
     /// A soup of `n` small triangles scattered in a cube, from a fixed seed.
     fn soup(n: u32) -> Geometry {
@@ -342,9 +348,9 @@ mod tests {
     }
 
     #[test]
-    fn a_leaf_holds_only_triangles_or_only_objects() {
-        // Spheres and triangles around the same few points: the SAH alone would put a sphere
-        // and the triangles around it in one leaf (no plane separates equal centroids).
+    fn a_leaf_holds_one_kind_of_primitive() {
+        // Spheres, other objects and triangles around the same few points: the SAH alone
+        // would put them in one leaf (no plane separates equal centroids).
         let mut geometry = soup(0);
         let mut mesh = Mesh::default();
         for k in 0..20 {
@@ -359,22 +365,29 @@ mod tests {
                 [first, first + 1, first + 2],
                 [first + 3, first + 4, first + 5],
             ]);
-            geometry.objects.push(Object {
-                shape: Shape::Sphere(Sphere {
-                    center: c,
-                    radius: 1.0,
-                }),
-                transform: None,
-                material: 0,
+            let sphere = Shape::Sphere(Sphere {
+                center: c,
+                radius: 1.0,
             });
+            let ellipsoid = Shape::Ellipsoid(Ellipsoid::new(c, Vec3::ONE).unwrap());
+            for shape in [sphere, ellipsoid] {
+                geometry.objects.push(Object {
+                    shape,
+                    transform: None,
+                    material: 0,
+                });
+            }
         }
         geometry.add_mesh(mesh);
         let (nodes, prims) = build(&geometry);
         let leaves = leaves(&nodes, &prims);
-        assert_eq!(leaves.iter().map(Vec::len).sum::<usize>(), 60);
+        assert_eq!(leaves.iter().map(Vec::len).sum::<usize>(), 80);
         for leaf in &leaves {
-            let objects = leaf.iter().filter(|id| id.kind().is_ok()).count();
-            assert!(objects == 0 || objects == leaf.len(), "mixed leaf {leaf:?}");
+            let kind = LeafKind::of(&geometry, leaf[0]);
+            assert!(
+                leaf.iter().all(|&id| LeafKind::of(&geometry, id) == kind),
+                "mixed leaf {leaf:?}"
+            );
         }
     }
 

@@ -5,6 +5,7 @@ use glam::{Vec3, Vec3A, Vec4, Vec4Swizzles};
 use rayon::prelude::*;
 
 use crate::aabb::Aabb;
+use crate::bvh::leaf::LeafKind;
 use crate::primitive::PrimId;
 
 /// Primitives per piece of a node binned or partitioned on all threads.
@@ -55,7 +56,8 @@ impl From<Bounds> for Aabb {
 }
 
 /// A primitive as the builder sees it, in 32 bytes: its box, with its id kept in the fourth
-/// lane of the box's min corner (where a [`Vec3A`] has an unused lane anyway).
+/// lane of the box's min corner (where a [`Vec3A`] has an unused lane anyway) and its
+/// [`LeafKind`] in the max corner's, as a small float.
 #[derive(Clone, Copy)]
 pub(super) struct BuildPrim {
     min: Vec4,
@@ -63,10 +65,10 @@ pub(super) struct BuildPrim {
 }
 
 impl BuildPrim {
-    pub(super) fn new(bounds: Aabb, id: PrimId) -> BuildPrim {
+    pub(super) fn new(bounds: Aabb, id: PrimId, kind: LeafKind) -> BuildPrim {
         BuildPrim {
             min: bounds.min.extend(f32::from_bits(id.0)),
-            max: bounds.max.extend(0.0),
+            max: bounds.max.extend(kind as u32 as f32),
         }
     }
 
@@ -91,8 +93,8 @@ impl BuildPrim {
         b.min + b.max
     }
 
-    pub(super) fn is_object(&self) -> bool {
-        self.id().kind().is_ok()
+    pub(super) fn kind(&self) -> LeafKind {
+        LeafKind::from_bits(self.max.w as u32)
     }
 }
 
