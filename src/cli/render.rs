@@ -193,7 +193,9 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
                     };
                     write_part(output, &info, &film.pixels_in(rect)).map_err(|e| e.to_string())
                 }
-                None => save_toned_image(output, width, height, &film.pixels(), tone)
+                // Copying and tone mapping run on the render's threads.
+                None => pool
+                    .install(|| save_toned_image(output, width, height, &film.pixels(), tone))
                     .map_err(|e| e.to_string()),
             }?;
             written.push(output);
