@@ -15,12 +15,13 @@ use raylab::camera::{Camera, CameraSpec, PIXEL_CENTRE};
 use raylab::mesh::Mesh;
 use raylab::primitive::{Geometry, Hit, Object, PrimId};
 use raylab::ray::Ray;
-use raylab::shapes::{Plane, Polygon, Shape, Sphere};
+use raylab::shapes::{Plane, Polygon, Shape, Sphere, TaperedCylinder};
 use raylab::transform::{Transform, TransformStep};
 
 /// A scene of `spheres` spheres (every third one transformed), half as many flat polygons
-/// (triangles, quads and hexagons; every fifth one transformed), `triangles` mesh triangles
-/// and `planes` planes: every kind of leaf the BVH makes.
+/// (triangles, quads and hexagons; every fifth one transformed) and a third as many tapered
+/// cylinders (open and capped; every fifth one transformed), `triangles` mesh triangles and
+/// `planes` planes: every kind of leaf the BVH makes.
 fn random_scene(seed: u64, spheres: usize, triangles: usize, planes: usize) -> Geometry {
     let mut rng = Rng::with_seed(seed);
     let mut g = Geometry::default();
@@ -71,6 +72,22 @@ fn random_scene(seed: u64, spheres: usize, triangles: usize, planes: usize) -> G
         });
         g.objects.push(Object {
             shape: Shape::Polygon(polygon),
+            transform,
+            material: 0,
+        });
+    }
+    for i in 0..spheres / 3 {
+        let base = in_cube(&mut rng, -10.0, 10.0);
+        let top = base + in_cube(&mut rng, -2.0, 2.0);
+        let radii = (in_range(&mut rng, 0.0, 1.0), in_range(&mut rng, 0.05, 1.0));
+        let Ok(cylinder) = TaperedCylinder::new(base, top, radii.0, radii.1, i % 2 == 1) else {
+            continue;
+        };
+        let transform = (i % 5 == 0).then(|| {
+            Transform::from_steps(&[TransformStep::Scale(in_cube(&mut rng, 0.5, 2.0))]).unwrap()
+        });
+        g.objects.push(Object {
+            shape: Shape::TaperedCylinder(cylinder),
             transform,
             material: 0,
         });
@@ -301,11 +318,11 @@ fn the_tree_does_not_depend_on_the_thread_count() {
     assert_eq!(packs(&one), packs(&four));
     let tags = |bvh: &Bvh| -> Vec<_> {
         let spheres = bvh.spheres.iter().map(|pack| pack.tags);
-        spheres
-            .chain(bvh.polygons.iter().map(|pack| pack.tags))
-            .collect()
+        let cylinders = bvh.cylinders.iter().map(|pack| pack.tags);
+        let polygons = bvh.polygons.iter().map(|pack| pack.tags);
+        spheres.chain(cylinders).chain(polygons).collect()
     };
-    assert!(!one.spheres.is_empty() && !one.polygons.is_empty());
+    assert!(!one.spheres.is_empty() && !one.cylinders.is_empty() && !one.polygons.is_empty());
     assert_eq!(tags(&one), tags(&four));
 }
 

@@ -1,5 +1,6 @@
 //! What the leaves of the BVH hold and how a ray tests them. A leaf holds one [`LeafKind`] of
-//! primitive: mesh triangles, spheres or small polygons placed in the world, each kind in packs
+//! primitive: mesh triangles, or spheres, open cylinders or small polygons placed in the world,
+//! each kind in packs
 //! of four tested at once ([`Pack`]), or any other objects, tested one by one through their
 //! shape. Whatever the kind, a ray gets exactly the hits the one-by-one tests would give.
 
@@ -9,8 +10,8 @@ use super::Bvh;
 use crate::primitive::{Geometry, Hit, Object, PrimId};
 use crate::ray::Ray;
 use crate::shapes::{
-    PACK_SIZE, PolygonPack, PolygonPackHits, Shape, ShearedRay, SpherePack, SpherePackHits,
-    TriangleHit, TrianglePack,
+    CylinderPack, CylinderPackHits, PACK_SIZE, PolygonPack, PolygonPackHits, Shape, ShearedRay,
+    SpherePack, SpherePackHits, TriangleHit, TrianglePack,
 };
 
 /// What a leaf holds; the builder never mixes kinds in a leaf. Ordered as the builder splits a
@@ -21,6 +22,8 @@ pub(super) enum LeafKind {
     Objects,
     /// Spheres placed in the world, in [`SpherePack`]s.
     Spheres,
+    /// Open tapered cylinders placed in the world, in [`CylinderPack`]s.
+    Cylinders,
     /// Polygons placed in the world that fit a [`PolygonPack`].
     Polygons,
     /// Mesh triangles, in [`TrianglePack`]s.
@@ -29,7 +32,7 @@ pub(super) enum LeafKind {
 
 impl LeafKind {
     /// How many kinds there are.
-    pub(super) const COUNT: usize = 4;
+    pub(super) const COUNT: usize = 5;
 
     /// The kind of leaf that primitive `id` goes in.
     pub(super) fn of(geometry: &Geometry, id: PrimId) -> LeafKind {
@@ -42,6 +45,11 @@ impl LeafKind {
                 transform: None,
                 ..
             } => LeafKind::Spheres,
+            Object {
+                shape: Shape::TaperedCylinder(cylinder),
+                transform: None,
+                ..
+            } if CylinderPack::fits(cylinder) => LeafKind::Cylinders,
             Object {
                 shape: Shape::Polygon(polygon),
                 transform: None,
@@ -64,7 +72,8 @@ impl LeafKind {
         match bits {
             0 => LeafKind::Objects,
             1 => LeafKind::Spheres,
-            2 => LeafKind::Polygons,
+            2 => LeafKind::Cylinders,
+            3 => LeafKind::Polygons,
             _ => LeafKind::Triangles,
         }
     }
@@ -75,6 +84,7 @@ impl LeafKind {
 pub enum Leaf<'a> {
     Objects(&'a [PrimId]),
     Spheres(&'a [SpherePack]),
+    Cylinders(&'a [CylinderPack]),
     Polygons(&'a [PolygonPack]),
     Triangles(&'a [TrianglePack]),
 }
@@ -86,6 +96,7 @@ impl Leaf<'_> {
         match kind {
             LeafKind::Objects => Leaf::Objects(&bvh.objects[first..][..count]),
             LeafKind::Spheres => Leaf::Spheres(&bvh.spheres[first..][..count]),
+            LeafKind::Cylinders => Leaf::Cylinders(&bvh.cylinders[first..][..count]),
             LeafKind::Polygons => Leaf::Polygons(&bvh.polygons[first..][..count]),
             LeafKind::Triangles => Leaf::Triangles(&bvh.packs[first..][..count]),
         }
@@ -96,6 +107,7 @@ impl Leaf<'_> {
         match self {
             Leaf::Objects(objects) => objects.len(),
             Leaf::Spheres(packs) => packs.len() * PACK_SIZE,
+            Leaf::Cylinders(packs) => packs.len() * PACK_SIZE,
             Leaf::Polygons(packs) => packs.len() * PACK_SIZE,
             Leaf::Triangles(packs) => packs.len() * PACK_SIZE,
         }
@@ -110,6 +122,7 @@ impl Leaf<'_> {
         match self {
             Leaf::Objects(objects) => objects.to_vec(),
             Leaf::Spheres(packs) => tagged(packs),
+            Leaf::Cylinders(packs) => tagged(packs),
             Leaf::Polygons(packs) => tagged(packs),
             Leaf::Triangles(packs) => tagged(packs),
         }
@@ -186,6 +199,25 @@ impl Pack for SpherePack {
     }
 }
 
+impl Pack for CylinderPack {
+    type Hits = CylinderPackHits;
+    #[inline(always)]
+    fn test(&self, ray: &Ray, _: &ShearedRay, t_min: f32, t_max: f32) -> Self::Hits {
+        self.intersect(ray, t_min, t_max)
+    }
+    #[inline(always)]
+    fn mask(hits: &Self::Hits) -> u32 {
+        hits.mask
+    }
+    #[inline(always)]
+    fn hit(&self, hits: &Self::Hits, k: usize) -> Hit {
+        object_hit(self.tags[k], hits.t[k])
+    }
+    fn tags(&self) -> &[u32; PACK_SIZE] {
+        &self.tags
+    }
+}
+
 impl Pack for PolygonPack {
     type Hits = PolygonPackHits;
     #[inline(always)]
@@ -228,6 +260,7 @@ pub(super) fn closest_in_leaf(
             }
         }
         Leaf::Spheres(packs) => closest_in_packs(packs, ray, sheared, t_min, t_limit, best),
+        Leaf::Cylinders(packs) => closest_in_packs(packs, ray, sheared, t_min, t_limit, best),
         Leaf::Polygons(packs) => closest_in_packs(packs, ray, sheared, t_min, t_limit, best),
         Leaf::Triangles(packs) => closest_in_packs(packs, ray, sheared, t_min, t_limit, best),
     }
@@ -284,6 +317,7 @@ pub(super) fn each_in_leaf(
             ControlFlow::Continue(())
         }
         Leaf::Spheres(packs) => each_in_packs(packs, ray, sheared, (t_min, t_max), on_hit),
+        Leaf::Cylinders(packs) => each_in_packs(packs, ray, sheared, (t_min, t_max), on_hit),
         Leaf::Polygons(packs) => each_in_packs(packs, ray, sheared, (t_min, t_max), on_hit),
         Leaf::Triangles(packs) => each_in_packs(packs, ray, sheared, (t_min, t_max), on_hit),
     }

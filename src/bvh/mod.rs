@@ -21,7 +21,7 @@ pub use simd::Simd;
 
 use crate::aabb::Aabb;
 use crate::primitive::{Geometry, PrimId};
-use crate::shapes::{PolygonPack, SpherePack, TrianglePack};
+use crate::shapes::{CylinderPack, PolygonPack, SpherePack, TrianglePack};
 use leaf::LeafKind;
 
 /// Children per node of the finished tree: one per lane of the box test.
@@ -133,6 +133,8 @@ pub struct Bvh {
     pub packs: Vec<TrianglePack>,
     /// The spheres of the leaves of spheres, likewise.
     pub spheres: Vec<SpherePack>,
+    /// The open cylinders of the leaves of cylinders, likewise.
+    pub cylinders: Vec<CylinderPack>,
     /// The polygons of the leaves of polygons, likewise.
     pub polygons: Vec<PolygonPack>,
     /// The other bounded objects, in leaf order.
@@ -156,6 +158,7 @@ impl Bvh {
             nodes,
             packs,
             spheres,
+            cylinders,
             polygons,
             objects,
         } = wide::collapse(binary, prims, geometry);
@@ -166,6 +169,7 @@ impl Bvh {
                 .map(|root| Aabb::new(root.min.into(), root.max.into())),
             packs,
             spheres,
+            cylinders,
             polygons,
             objects,
             unbounded,
@@ -179,6 +183,7 @@ impl Bvh {
         self.nodes.capacity() * size_of::<WideNode>()
             + self.packs.capacity() * size_of::<TrianglePack>()
             + self.spheres.capacity() * size_of::<SpherePack>()
+            + self.cylinders.capacity() * size_of::<CylinderPack>()
             + self.polygons.capacity() * size_of::<PolygonPack>()
             + (self.objects.capacity() + self.unbounded.capacity()) * size_of::<PrimId>()
     }

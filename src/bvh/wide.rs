@@ -7,7 +7,7 @@
 //! visit move up.
 //!
 //! A binary leaf holds one [`LeafKind`] of primitive (the builder makes sure of it): triangles,
-//! spheres or polygons, copied into packs of four in leaf order, or other objects, listed in
+//! spheres, cylinders or polygons, copied into packs of four in leaf order, or other objects, listed in
 //! leaf order.
 
 use arrayvec::ArrayVec;
@@ -16,7 +16,7 @@ use super::leaf::LeafKind;
 use super::{Child, Node, WIDTH, WideNode};
 use crate::aabb::Aabb;
 use crate::primitive::{Geometry, PrimId};
-use crate::shapes::{PACK_SIZE, PolygonPack, Shape, SpherePack, TrianglePack};
+use crate::shapes::{CylinderPack, PACK_SIZE, PolygonPack, Shape, SpherePack, TrianglePack};
 
 /// A node with no children yet. An unused slot's box lies at +∞ on every axis: the slab test
 /// never enters it for a ray that stops at a finite distance (the traversal clamps its far
@@ -33,6 +33,7 @@ pub(super) struct Collapsed {
     pub nodes: Vec<WideNode>,
     pub packs: Vec<TrianglePack>,
     pub spheres: Vec<SpherePack>,
+    pub cylinders: Vec<CylinderPack>,
     pub polygons: Vec<PolygonPack>,
     pub objects: Vec<PrimId>,
 }
@@ -53,6 +54,7 @@ pub(super) fn collapse(binary: &[Node], prims: &[PrimId], geometry: &Geometry) -
         nodes: Vec::new(),
         packs: Vec::with_capacity(packs),
         spheres: Vec::new(),
+        cylinders: Vec::new(),
         polygons: Vec::new(),
         objects: Vec::new(),
     };
@@ -69,6 +71,7 @@ pub(super) fn collapse(binary: &[Node], prims: &[PrimId], geometry: &Geometry) -
     out.nodes.shrink_to_fit();
     out.packs.shrink_to_fit();
     out.spheres.shrink_to_fit();
+    out.cylinders.shrink_to_fit();
     out.polygons.shrink_to_fit();
     out.objects.shrink_to_fit();
     out
@@ -114,38 +117,42 @@ impl Collapse<'_> {
         let geometry = self.geometry;
         let out = &mut *self.out;
         let kind = LeafKind::of(geometry, prims[0]);
+        // The shape of object `id`, which the builder put in a leaf of its kind.
+        let shape = |id: PrimId| {
+            let object = id
+                .kind()
+                .expect("a leaf of packed objects holds only objects");
+            &geometry.objects[object].shape
+        };
+        let mixed = || unreachable!("a leaf holds one kind of primitive");
         let (first, count) = match kind {
             LeafKind::Objects => {
                 out.objects.extend_from_slice(prims);
                 (out.objects.len() - prims.len(), prims.len())
             }
-            LeafKind::Spheres => {
-                add_packs(
-                    &mut out.spheres,
-                    prims,
-                    SpherePack::new,
-                    |id| match &geometry.objects[object_index(id)].shape {
-                        Shape::Sphere(sphere) => sphere,
-                        _ => unreachable!("a leaf of spheres holds only spheres"),
-                    },
-                )
-            }
-            LeafKind::Polygons => {
-                add_packs(
-                    &mut out.polygons,
-                    prims,
-                    PolygonPack::new,
-                    |id| match &geometry.objects[object_index(id)].shape {
-                        Shape::Polygon(polygon) => polygon,
-                        _ => unreachable!("a leaf of polygons holds only polygons"),
-                    },
-                )
-            }
+            LeafKind::Spheres => add_packs(&mut out.spheres, prims, SpherePack::new, |id| {
+                let Shape::Sphere(sphere) = shape(id) else {
+                    mixed()
+                };
+                sphere
+            }),
+            LeafKind::Cylinders => add_packs(&mut out.cylinders, prims, CylinderPack::new, |id| {
+                let Shape::TaperedCylinder(cylinder) = shape(id) else {
+                    mixed()
+                };
+                cylinder
+            }),
+            LeafKind::Polygons => add_packs(&mut out.polygons, prims, PolygonPack::new, |id| {
+                let Shape::Polygon(polygon) = shape(id) else {
+                    mixed()
+                };
+                polygon
+            }),
             LeafKind::Triangles => add_packs(&mut out.packs, prims, TrianglePack::new, |id| {
-                let t = id
-                    .kind()
-                    .expect_err("a leaf of triangles holds only triangles");
-                geometry.triangle(t)
+                geometry.triangle(
+                    id.kind()
+                        .expect_err("a leaf of triangles holds only triangles"),
+                )
             }),
         };
         Child::leaf_of(kind, first as u32, count as u32)
@@ -195,12 +202,6 @@ fn add_packs<P, T>(
         packs.push(pack(&lanes));
     }
     (first, packs.len() - first)
-}
-
-/// The index of object `id` (it must be an object).
-fn object_index(id: PrimId) -> usize {
-    id.kind()
-        .expect("a leaf of spheres or polygons holds only objects")
 }
 
 fn area(node: &Node) -> f32 {

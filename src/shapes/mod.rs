@@ -4,6 +4,7 @@
 
 mod csg;
 mod cuboid;
+mod cylinder_pack;
 mod edge_bands;
 mod ellipsoid;
 mod paraboloid;
@@ -24,6 +25,7 @@ pub use csg::{
     Csg, CsgOperation, Leaf, MAX_DEPTH as MAX_CSG_DEPTH, MAX_OPERANDS as MAX_CSG_OPERANDS, Operand,
 };
 pub use cuboid::Cuboid;
+pub use cylinder_pack::{CylinderPack, CylinderPackHits};
 pub use ellipsoid::Ellipsoid;
 pub use paraboloid::Paraboloid;
 pub use plane::Plane;
