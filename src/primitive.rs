@@ -7,7 +7,7 @@ use glam::{Vec2, Vec3};
 use crate::aabb::Aabb;
 use crate::mesh::Mesh;
 use crate::ray::Ray;
-use crate::shapes::{Shape, ShearedRay, Triangle};
+use crate::shapes::{LocalSurface, Shape, ShearedRay, Triangle};
 use crate::transform::Transform;
 
 /// An analytic shape in the world.
@@ -313,6 +313,12 @@ impl Geometry {
 
     /// The surface at `hit` along `ray`.
     pub fn surface(&self, ray: &Ray, hit: &Hit) -> SurfacePoint {
+        self.surface_with(ray, hit, true)
+    }
+
+    /// [`Self::surface`], with the texture coordinates only when `uv` asks for them (they are
+    /// left at zero otherwise): shading an untextured sphere needs no trigonometry.
+    pub fn surface_with(&self, ray: &Ray, hit: &Hit, uv: bool) -> SurfacePoint {
         let point = ray.at(hit.t);
         match hit.prim.kind() {
             Ok(o) => {
@@ -321,7 +327,14 @@ impl Geometry {
                     Some(tr) => tr.ray_to_object(ray).at(hit.t),
                     None => point,
                 };
-                let local = object.shape.surface(object_point, hit.part);
+                let local = if uv {
+                    object.shape.surface(object_point, hit.part)
+                } else {
+                    LocalSurface {
+                        normal: object.shape.normal(object_point, hit.part),
+                        uv: Vec2::ZERO,
+                    }
+                };
                 let normal = match &object.transform {
                     Some(tr) => tr.normal_to_world(local.normal),
                     None => local.normal.normalize(),
@@ -356,5 +369,60 @@ impl Geometry {
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes::{Sphere, TaperedCylinder};
+    use crate::transform::TransformStep;
+
+    #[test]
+    fn a_surface_without_texture_coordinates_is_the_same_surface() {
+        let sphere = Shape::Sphere(Sphere::new(Vec3::new(0.0, 0.0, -3.0), 1.0).unwrap());
+        let cone = TaperedCylinder::new(Vec3::ZERO, Vec3::Y * 2.0, 1.0, 0.5, true).unwrap();
+        let turned = Transform::from_steps(&[
+            TransformStep::Rotate {
+                axis: Vec3::X,
+                degrees: 90.0,
+            },
+            TransformStep::Translate(Vec3::new(0.3, 0.2, -1.0)),
+        ])
+        .unwrap();
+        let mut geometry = Geometry::default();
+        for (shape, transform) in [
+            (sphere, None),
+            (Shape::TaperedCylinder(cone), None),
+            (Shape::TaperedCylinder(cone), Some(turned)),
+        ] {
+            geometry.objects.push(Object {
+                shape,
+                transform,
+                material: 0,
+            });
+        }
+        let mut hits = 0;
+        for i in 0..64 {
+            let x = (i % 8) as f32 / 4.0 - 1.0;
+            let y = (i / 8) as f32 / 4.0 - 1.0;
+            let ray = Ray::new(Vec3::new(0.0, 0.5, 4.0), Vec3::new(x, y, -4.0));
+            for id in geometry.prim_ids() {
+                let Some(hit) = geometry.intersect(id, &ray, 1e-4, f32::INFINITY) else {
+                    continue;
+                };
+                hits += 1;
+                let full = geometry.surface(&ray, &hit);
+                let plain = geometry.surface_with(&ray, &hit, false);
+                assert_eq!(
+                    plain,
+                    SurfacePoint {
+                        uv: Vec2::ZERO,
+                        ..full
+                    }
+                );
+            }
+        }
+        assert!(hits > 40, "{hits} hits");
     }
 }

@@ -414,6 +414,8 @@ fn hits_lie_on_the_surface_inside_the_t_range_with_unit_outward_normals() {
             let slack = Vec3::splat(tolerance);
             prop_assert!(p.cmpge(bounds.min - slack).all() && p.cmple(bounds.max + slack).all());
             let surface = shape.surface(p, hit.part);
+            // The normal alone (shading without textures) is the surface's, bit for bit.
+            prop_assert_eq!(shape.normal(p, hit.part).to_array(), surface.normal.to_array());
             let n = surface.normal.normalize();
             prop_assert!((n.length() - 1.0).abs() < 1e-5, "normal {}", surface.normal);
             prop_assert!(n.dot(p - model.centre()) > 0.0, "normal {n} at {p} points in");

@@ -103,6 +103,7 @@ impl TraversalCost for Recorder<'_> {}
 impl TreeObserver for Recorder<'_> {
     const RECORDS_BLOCKERS: bool = true;
     const USES_SHADOW_CACHE: bool = false;
+    const WANTS_UV: bool = true;
 
     fn ray(&mut self, kind: RayKind, depth: u32, ray: &Ray, weight: f32, scale: Color) {
         let parent = self.open.last().copied();

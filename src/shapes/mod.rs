@@ -99,6 +99,17 @@ impl Shape {
         }
     }
 
+    /// The outward normal (any length) at the object-space point `p` of part `part`: what
+    /// [`Self::surface`] gives, without the texture coordinates, which cost trigonometry on
+    /// spheres and cylinders.
+    pub fn normal(&self, p: Vec3, part: u32) -> Vec3 {
+        match self {
+            Shape::Sphere(s) => s.normal(p),
+            Shape::TaperedCylinder(s) => s.normal(p, part),
+            _ => self.surface(p, part).normal,
+        }
+    }
+
     /// Normal and texture coordinates at the object-space point `p` of part `part`.
     pub fn surface(&self, p: Vec3, part: u32) -> LocalSurface {
         match self {

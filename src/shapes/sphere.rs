@@ -57,10 +57,15 @@ impl Sphere {
         Some(ShapeHit { t, part: 0 })
     }
 
+    /// The outward normal at `p`, of unit length on the sphere.
+    pub fn normal(&self, p: Vec3) -> Vec3 {
+        (p - self.center) / self.radius
+    }
+
     /// Spherical mapping: `u` around the vertical axis, `v` from the south pole (0) to the
     /// north pole (1).
     pub fn surface(&self, p: Vec3, _part: u32) -> LocalSurface {
-        let n = (p - self.center) / self.radius;
+        let n = self.normal(p);
         LocalSurface {
             normal: n,
             uv: sphere_uv(n.normalize_or(Vec3::Y)),

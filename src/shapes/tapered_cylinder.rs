@@ -156,32 +156,37 @@ impl TaperedCylinder {
         nearest
     }
 
+    /// The outward normal at `p` on part `part` (not of unit length on the side).
+    pub fn normal(&self, p: Vec3, part: u32) -> Vec3 {
+        match part {
+            BASE_CAP => -self.axis,
+            TOP_CAP => self.axis,
+            _ => {
+                // The gradient of `√(x² + y²) − r₀ − slope·z`; at a cone's apex the radial
+                // direction is undefined and any one will do.
+                let local = self.local_point(p);
+                let radial = Vec2::new(local.x, local.y).normalize_or(Vec2::X);
+                self.frame_x * radial.x + self.frame_y * radial.y - self.axis * self.slope
+            }
+        }
+    }
+
     /// The side maps cylindrically (`u` the angle around the axis over 2π, `v` the fraction of
     /// the height); each cap maps its disk onto `[0, 1]²`, the right way round seen from outside.
     pub fn surface(&self, p: Vec3, part: u32) -> LocalSurface {
         let local = self.local_point(p);
-        match part {
-            BASE_CAP => LocalSurface {
-                normal: -self.axis,
-                uv: disk_uv(Vec2::new(-local.x, local.y), self.base_radius),
-            },
-            TOP_CAP => LocalSurface {
-                normal: self.axis,
-                uv: disk_uv(Vec2::new(local.x, local.y), self.top_radius),
-            },
+        let uv = match part {
+            BASE_CAP => disk_uv(Vec2::new(-local.x, local.y), self.base_radius),
+            TOP_CAP => disk_uv(Vec2::new(local.x, local.y), self.top_radius),
             _ => {
-                // The gradient of `√(x² + y²) − r₀ − slope·z`; at a cone's apex the radial
-                // direction is undefined and any one will do.
-                let radial = Vec2::new(local.x, local.y).normalize_or(Vec2::X);
-                let normal =
-                    self.frame_x * radial.x + self.frame_y * radial.y - self.axis * self.slope;
                 let u = 0.5 + local.y.atan2(local.x) / TAU;
                 let v = (local.z / self.height).clamp(0.0, 1.0);
-                LocalSurface {
-                    normal,
-                    uv: Vec2::new(u, v),
-                }
+                Vec2::new(u, v)
             }
+        };
+        LocalSurface {
+            normal: self.normal(p, part),
+            uv,
         }
     }
 

@@ -220,8 +220,10 @@ impl<'a> Tracer<'a> {
     ) -> Color {
         let Branch { depth, weight, .. } = branch;
         let settings = &self.scene.settings;
-        let surface = self.scene.geometry.surface(ray, hit);
-        let material = &self.scene.materials[surface.material as usize];
+        let geometry = &self.scene.geometry;
+        let material = &self.scene.materials[geometry.material(hit) as usize];
+        let textured = material.texture.is_some() && settings.textures;
+        let surface = geometry.surface_with(ray, hit, textured || O::WANTS_UV);
         let base = self.base_color(material, &surface);
         let dir = ray.dir.normalize();
         // Face the normals towards the side the ray came from.

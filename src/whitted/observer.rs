@@ -41,6 +41,9 @@ pub trait TreeObserver: TraversalCost {
     /// The answer is the same either way, but what the search meets and costs then depends on
     /// the pixels traced before on the thread; observers that report those turn it off.
     const USES_SHADOW_CACHE: bool = true;
+    /// Whether [`Self::hit`] needs the surface's texture coordinates even where no texture
+    /// does (they cost trigonometry on curved shapes).
+    const WANTS_UV: bool = false;
 
     /// A ray starts. `scale` is what its colour is multiplied by in its parent's colour (one
     /// for the eye ray).
