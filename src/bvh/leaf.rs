@@ -10,8 +10,8 @@ use super::Bvh;
 use crate::primitive::{Geometry, Hit, Object, PrimId};
 use crate::ray::Ray;
 use crate::shapes::{
-    CylinderPack, CylinderPackHits, PACK_SIZE, PolygonPack, PolygonPackHits, Shape, ShearedRay,
-    SpherePack, SpherePackHits, TriangleHit, TrianglePack,
+    CylinderPack, LaneHits, ObjectPack, PACK_SIZE, PolygonPack, Shape, ShearedRay, SpherePack,
+    TriangleHit, TrianglePack,
 };
 
 /// What a leaf holds; the builder never mixes kinds in a leaf. Ordered as the builder splits a
@@ -143,18 +143,6 @@ pub(super) trait Pack {
     fn tags(&self) -> &[u32; PACK_SIZE];
 }
 
-/// The hit of object `tag` at `t`, as [`Geometry::intersect_prepared`] reports a one-part
-/// object's.
-#[inline(always)]
-fn object_hit(tag: u32, t: f32) -> Hit {
-    Hit {
-        t,
-        prim: PrimId(tag),
-        part: 0,
-        bary: glam::Vec2::ZERO,
-    }
-}
-
 impl Pack for TrianglePack {
     type Hits = crate::shapes::PackHits;
     #[inline(always)]
@@ -180,60 +168,29 @@ impl Pack for TrianglePack {
     }
 }
 
-impl Pack for SpherePack {
-    type Hits = SpherePackHits;
+/// The packs of objects (spheres, cylinders, polygons): a hit is the object's, at the lane's
+/// `t`, as [`Geometry::intersect_prepared`] reports a one-part object's.
+impl<P: ObjectPack> Pack for P {
+    type Hits = LaneHits;
     #[inline(always)]
-    fn test(&self, ray: &Ray, _: &ShearedRay, t_min: f32, t_max: f32) -> Self::Hits {
+    fn test(&self, ray: &Ray, _: &ShearedRay, t_min: f32, t_max: f32) -> LaneHits {
         self.intersect(ray, t_min, t_max)
     }
     #[inline(always)]
-    fn mask(hits: &Self::Hits) -> u32 {
+    fn mask(hits: &LaneHits) -> u32 {
         hits.mask
     }
     #[inline(always)]
-    fn hit(&self, hits: &Self::Hits, k: usize) -> Hit {
-        object_hit(self.tags[k], hits.t[k])
+    fn hit(&self, hits: &LaneHits, k: usize) -> Hit {
+        Hit {
+            t: hits.t[k],
+            prim: PrimId(ObjectPack::tags(self)[k]),
+            part: 0,
+            bary: glam::Vec2::ZERO,
+        }
     }
     fn tags(&self) -> &[u32; PACK_SIZE] {
-        &self.tags
-    }
-}
-
-impl Pack for CylinderPack {
-    type Hits = CylinderPackHits;
-    #[inline(always)]
-    fn test(&self, ray: &Ray, _: &ShearedRay, t_min: f32, t_max: f32) -> Self::Hits {
-        self.intersect(ray, t_min, t_max)
-    }
-    #[inline(always)]
-    fn mask(hits: &Self::Hits) -> u32 {
-        hits.mask
-    }
-    #[inline(always)]
-    fn hit(&self, hits: &Self::Hits, k: usize) -> Hit {
-        object_hit(self.tags[k], hits.t[k])
-    }
-    fn tags(&self) -> &[u32; PACK_SIZE] {
-        &self.tags
-    }
-}
-
-impl Pack for PolygonPack {
-    type Hits = PolygonPackHits;
-    #[inline(always)]
-    fn test(&self, ray: &Ray, _: &ShearedRay, t_min: f32, t_max: f32) -> Self::Hits {
-        self.intersect(ray, t_min, t_max)
-    }
-    #[inline(always)]
-    fn mask(hits: &Self::Hits) -> u32 {
-        hits.mask
-    }
-    #[inline(always)]
-    fn hit(&self, hits: &Self::Hits, k: usize) -> Hit {
-        object_hit(self.tags[k], hits.t[k])
-    }
-    fn tags(&self) -> &[u32; PACK_SIZE] {
-        &self.tags
+        ObjectPack::tags(self)
     }
 }
 

@@ -3,8 +3,8 @@
 //! (`wide`) and stored as an array of [`WideNode`]s, each holding its children's boxes axis by
 //! axis. Traversal (`traverse`) tests a node's eight child boxes against a ray at once
 //! (`ray_box`), with the widest instruction set the processor has (`simd`); a tile of coherent
-//! eye rays walks the tree once, together ([`packet`]). A leaf holds one [`LeafKind`] of
-//! primitive, tested its own way. Unbounded primitives (planes) are kept in a list beside the
+//! eye rays walks the tree once, together ([`packet`]). A leaf holds one kind of primitive,
+//! tested its own way (`leaf`). Unbounded primitives (planes) are kept in a list beside the
 //! tree and tested against every ray.
 
 mod build;

@@ -24,7 +24,7 @@ pub(super) const STACK_SIZE: usize = (WIDTH - 1) * (MAX_DEPTH + 1) + 1;
 impl Bvh {
     /// The closest hit of `ray` with `t` in `(t_min, t_max)`. When several primitives are hit
     /// at exactly the same `t` (a ray through the edge two polygons share), the one first in the
-    /// scene wins ([`PrimId::scene_order`]): the answer depends on the scene alone, not on the
+    /// scene wins ([`crate::primitive::PrimId::scene_order`]): the answer depends on the scene alone, not on the
     /// shape of the tree or the order of the walk.
     pub fn closest_hit(
         &self,

@@ -5,7 +5,8 @@
 
 use glam::Vec4;
 
-use super::{PACK_SIZE, TaperedCylinder};
+use super::quadratic::sorted_roots4;
+use super::{LaneHits, ObjectPack, PACK_SIZE, TaperedCylinder};
 use crate::ray::Ray;
 
 /// Up to [`PACK_SIZE`] open tapered cylinders, coordinate by coordinate (`base[axis][lane]`),
@@ -21,13 +22,6 @@ pub struct CylinderPack {
     base_radius: [f32; PACK_SIZE],
     slope: [f32; PACK_SIZE],
     pub tags: [u32; PACK_SIZE],
-}
-
-/// The lanes of a pack that a ray hits: bit k of `mask` where it hits cylinder k at `t[k]`.
-#[derive(Clone, Copy, Debug)]
-pub struct CylinderPackHits {
-    pub mask: u32,
-    pub t: [f32; PACK_SIZE],
 }
 
 impl CylinderPack {
@@ -65,25 +59,26 @@ impl CylinderPack {
         }
         pack
     }
+}
 
+impl ObjectPack for CylinderPack {
     /// Which cylinders `ray` hits with `t` in `(t_min, t_max)`, all four at once.
     #[inline(always)]
-    pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> CylinderPackHits {
-        let lanes = |a: &[f32; PACK_SIZE]| Vec4::from_array(*a);
+    fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> LaneHits {
         let dot = |u: [Vec4; 3], v: [Vec4; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-        let frame = self.frame.each_ref().map(|f| f.each_ref().map(lanes));
+        let frame = self.frame.map(|f| f.map(Vec4::from));
         let dir = ray.dir.to_array().map(Vec4::splat);
-        let rel = [0, 1, 2].map(|k| Vec4::splat(ray.origin[k]) - lanes(&self.base[k]));
+        let rel = [0, 1, 2].map(|k| Vec4::splat(ray.origin[k]) - Vec4::from(self.base[k]));
         // The ray in each cylinder's frame, as `TaperedCylinder::intersect` puts it.
         let d = frame.map(|f| dot(dir, f));
         let origin = frame.map(|f| dot(rel, f));
-        let height = lanes(&self.height);
+        let height = Vec4::from(self.height);
         let middle = [Vec4::ZERO, Vec4::ZERO, Vec4::splat(0.5) * height];
         let to_middle = [0, 1, 2].map(|k| middle[k] - origin[k]);
         let shift = dot(to_middle, d) / dot(d, d);
         let o = [0, 1, 2].map(|k| origin[k] + d[k] * shift);
-        let slope = lanes(&self.slope);
-        let radius_at_o = lanes(&self.base_radius) + slope * o[2];
+        let slope = Vec4::from(self.slope);
+        let radius_at_o = Vec4::from(self.base_radius) + slope * o[2];
         let a = (d[0] * d[0] + d[1] * d[1]) - slope * slope * d[2] * d[2];
         let half_b = (o[0] * d[0] + o[1] * d[1]) - slope * radius_at_o * d[2];
         let c = (o[0] * o[0] + o[1] * o[1]) - radius_at_o * radius_at_o;
@@ -91,12 +86,7 @@ impl CylinderPack {
         let linear = a.cmpeq(Vec4::ZERO);
         let t_linear = -c / (Vec4::splat(2.0) * half_b);
         let disc = half_b * half_b - a * c;
-        let q = -(half_b + disc.sqrt().copysign(half_b));
-        let (t0, t1) = (q / a, c / q);
-        let in_order = t0.cmple(t1);
-        let q_is_zero = q.cmpeq(Vec4::ZERO);
-        let near = Vec4::select(q_is_zero, Vec4::ZERO, Vec4::select(in_order, t0, t1));
-        let far = Vec4::select(q_is_zero, Vec4::ZERO, Vec4::select(in_order, t1, t0));
+        let (near, far) = sorted_roots4(a, half_b, c, disc);
         let (near, far) = (
             Vec4::select(linear, t_linear, near),
             Vec4::select(linear, t_linear, far),
@@ -114,10 +104,14 @@ impl CylinderPack {
         };
         let ((t_near, near_ok), (t_far, far_ok)) = (accept(near), accept(far));
         let found = shift.is_finite_mask() & has_roots & (near_ok | far_ok);
-        CylinderPackHits {
+        LaneHits {
             mask: found.bitmask(),
             t: Vec4::select(near_ok, t_near, t_far).to_array(),
         }
+    }
+
+    fn tags(&self) -> &[u32; PACK_SIZE] {
+        &self.tags
     }
 }
 
@@ -127,10 +121,7 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
-
-    fn point((x, y, z): (i32, i32, i32), scale: f32) -> Vec3 {
-        Vec3::new(x as f32, y as f32, z as f32) * scale
-    }
+    use crate::shapes::test_support::{grid_point, lane_ts, t_bits};
 
     #[test]
     fn rays_parallel_to_a_cone_side_take_the_linear_case_in_each_lane() {
@@ -151,12 +142,12 @@ mod tests {
                 let origin = Vec3::new(i as f32 / 8.0, i as f32 / 16.0, -3.0) - dir;
                 let ray = Ray::new(origin, dir);
                 let packed = pack.intersect(&ray, 1e-4, f32::INFINITY);
-                for (lane, cone) in cones.iter().enumerate() {
-                    let single = cone.intersect(&ray, 1e-4, f32::INFINITY);
-                    let lane_hit = (packed.mask >> lane & 1 == 1).then_some(packed.t[lane]);
-                    assert_eq!(lane_hit, single.map(|h| h.t), "lane {lane}, ray {ray:?}");
-                    hits += usize::from(single.is_some());
-                }
+                let singles: Vec<_> = cones
+                    .iter()
+                    .map(|cone| t_bits(cone.intersect(&ray, 1e-4, f32::INFINITY)))
+                    .collect();
+                assert_eq!(lane_ts(&packed, cones.len()), singles, "ray {ray:?}");
+                hits += singles.iter().flatten().count();
             }
         }
         assert!(hits > 50, "{hits} hits");
@@ -181,7 +172,7 @@ mod tests {
             let cylinders: Vec<TaperedCylinder> = cylinders
                 .iter()
                 .filter_map(|&(base, top, r0, r1)| {
-                    let (base, top) = (point(base, 1.0 / 16.0), point(top, 1.0 / 16.0));
+                    let (base, top) = (grid_point(base, 1.0 / 16.0), grid_point(top, 1.0 / 16.0));
                     TaperedCylinder::new(base, top, r0 as f32 / 16.0, r1 as f32 / 16.0, false).ok()
                 })
                 .collect();
@@ -190,8 +181,8 @@ mod tests {
             let pack = CylinderPack::new(&tagged);
             let (k, x, y, z) = aim;
             let aimed = &cylinders[k % cylinders.len()];
-            let mut origin = point(origin, 1.0 / 16.0);
-            let target = aimed.base + point((x, y, z), 1.0 / 32.0);
+            let mut origin = grid_point(origin, 1.0 / 16.0);
+            let target = aimed.base + grid_point((x, y, z), 1.0 / 32.0);
             if along_axis {
                 // Along the axis: `a` is 0 for a cylinder, the linear case.
                 origin = target - aimed.axis * 10.0;
@@ -199,12 +190,8 @@ mod tests {
             let ray = Ray::new(origin, target - origin);
             let t_max = t_max.map_or(f32::INFINITY, |t| t as f32 / 16.0);
             let hits = pack.intersect(&ray, 1e-4, t_max);
-            for (lane, cylinder) in cylinders.iter().enumerate() {
-                let single = cylinder.intersect(&ray, 1e-4, t_max);
-                let packed = (hits.mask >> lane & 1 == 1).then_some(hits.t[lane]);
-                prop_assert_eq!(packed.map(f32::to_bits), single.map(|h| h.t.to_bits()));
-            }
-            prop_assert_eq!(hits.mask >> cylinders.len(), 0);
+            let singles = cylinders.iter().map(|c| t_bits(c.intersect(&ray, 1e-4, t_max)));
+            prop_assert_eq!(lane_ts(&hits, cylinders.len()), singles.collect::<Vec<_>>());
         }
     }
 }

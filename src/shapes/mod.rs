@@ -7,6 +7,7 @@ mod cuboid;
 mod cylinder_pack;
 mod edge_bands;
 mod ellipsoid;
+mod pack;
 mod paraboloid;
 mod plane;
 mod polygon;
@@ -25,19 +26,20 @@ pub use csg::{
     Csg, CsgOperation, Leaf, MAX_DEPTH as MAX_CSG_DEPTH, MAX_OPERANDS as MAX_CSG_OPERANDS, Operand,
 };
 pub use cuboid::Cuboid;
-pub use cylinder_pack::{CylinderPack, CylinderPackHits};
+pub use cylinder_pack::CylinderPack;
 pub use ellipsoid::Ellipsoid;
+pub use pack::{LaneHits, ObjectPack, PACK_SIZE};
 pub use paraboloid::Paraboloid;
 pub use plane::Plane;
 pub use polygon::Polygon;
-pub use polygon_pack::{PolygonPack, PolygonPackHits};
+pub use polygon_pack::PolygonPack;
 pub use quadratic::solve_quadratic;
 pub use sphere::Sphere;
-pub use sphere_pack::{SpherePack, SpherePackHits};
+pub use sphere_pack::SpherePack;
 pub use tapered_cylinder::TaperedCylinder;
 pub use torus::Torus;
 pub use triangle::{ShearedRay, Triangle, TriangleHit};
-pub use triangle_pack::{PACK_SIZE, PackHits, TrianglePack};
+pub use triangle_pack::{PackHits, TrianglePack};
 
 use arrayvec::ArrayVec;
 use glam::{Vec2, Vec3};

@@ -8,7 +8,7 @@
 
 use glam::{BVec4A, Vec4};
 
-use super::{PACK_SIZE, Polygon};
+use super::{LaneHits, ObjectPack, PACK_SIZE, Polygon};
 use crate::ray::Ray;
 
 /// Most edges a packed polygon may have that can cross a horizontal line of its projection:
@@ -31,13 +31,6 @@ pub struct PolygonPack {
     /// Edge `e` of each lane: start x, start y, end y, dx/dy (`edges[e][field][lane]`).
     edges: [[[f32; PACK_SIZE]; 4]; MAX_PACKED_EDGES],
     pub tags: [u32; PACK_SIZE],
-}
-
-/// The lanes of a pack that a ray hits: bit k of `mask` where it hits polygon k at `t[k]`.
-#[derive(Clone, Copy, Debug)]
-pub struct PolygonPackHits {
-    pub mask: u32,
-    pub t: [f32; PACK_SIZE],
 }
 
 impl PolygonPack {
@@ -85,21 +78,22 @@ impl PolygonPack {
         }
         pack
     }
+}
 
+impl ObjectPack for PolygonPack {
     /// Which polygons `ray` hits with `t` in `(t_min, t_max)`, all four at once.
     #[inline(always)]
-    pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> PolygonPackHits {
-        let lanes = |a: &[f32; PACK_SIZE]| Vec4::from_array(*a);
+    fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> LaneHits {
         let o = ray.origin.to_array().map(Vec4::splat);
         let d = ray.dir.to_array().map(Vec4::splat);
-        let n = self.normal.each_ref().map(lanes);
+        let n = self.normal.map(Vec4::from);
         // The plane: as `Polygon::intersect`, dot products summed x, y, z.
         let denom = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
-        let t = (lanes(&self.plane_offset) - (n[0] * o[0] + n[1] * o[1] + n[2] * o[2])) / denom;
+        let t = (Vec4::from(self.plane_offset) - (n[0] * o[0] + n[1] * o[1] + n[2] * o[2])) / denom;
         let in_range =
             denom.cmpne(Vec4::ZERO) & t.cmpgt(Vec4::splat(t_min)) & t.cmplt(Vec4::splat(t_max));
         if !in_range.any() {
-            return PolygonPackHits {
+            return LaneHits {
                 mask: 0,
                 t: t.to_array(),
             };
@@ -107,27 +101,31 @@ impl PolygonPack {
         // The hit point, projected onto the two axes each polygon keeps.
         let p = [0, 1, 2].map(|k| o[k] + d[k] * t);
         let project = |c: usize| {
-            let axis = lanes(&self.kept_axes[c]);
+            let axis = Vec4::from(self.kept_axes[c]);
             let from_y_or_z = Vec4::select(axis.cmpeq(Vec4::ONE), p[1], p[2]);
             Vec4::select(axis.cmpeq(Vec4::ZERO), p[0], from_y_or_z)
         };
         let (qx, qy) = (project(0), project(1));
-        let outside_box = qx.cmplt(lanes(&self.projected_min[0]))
-            | qy.cmplt(lanes(&self.projected_min[1]))
-            | qx.cmpgt(lanes(&self.projected_max[0]))
-            | qy.cmpgt(lanes(&self.projected_max[1]));
+        let outside_box = qx.cmplt(Vec4::from(self.projected_min[0]))
+            | qy.cmplt(Vec4::from(self.projected_min[1]))
+            | qx.cmpgt(Vec4::from(self.projected_max[0]))
+            | qy.cmpgt(Vec4::from(self.projected_max[1]));
         // The crossing number, as `ProjectedEdge::crossed_from`.
         let mut inside = BVec4A::splat(false);
         for edge in &self.edges {
-            let [start_x, start_y, end_y, dx_dy] = edge.each_ref().map(lanes);
+            let [start_x, start_y, end_y, dx_dy] = edge.map(Vec4::from);
             let straddles = start_y.cmpgt(qy) ^ end_y.cmpgt(qy);
             let right_of_q = qx.cmplt(start_x + (qy - start_y) * dx_dy);
             inside ^= straddles & right_of_q;
         }
-        PolygonPackHits {
+        LaneHits {
             mask: (in_range & !outside_box & inside).bitmask(),
             t: t.to_array(),
         }
+    }
+
+    fn tags(&self) -> &[u32; PACK_SIZE] {
+        &self.tags
     }
 }
 
@@ -137,6 +135,7 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
+    use crate::shapes::test_support::{lane_ts, t_bits};
 
     /// A polygon from integer corners on a grid of 1/64, offset and turned by `tilt` so that
     /// its plane is oblique.
@@ -202,12 +201,8 @@ mod tests {
             let ray = Ray::new(origin, target - origin);
             let t_max = t_max.map_or(f32::INFINITY, |t| t as f32 / 16.0);
             let hits = pack.intersect(&ray, 1e-4, t_max);
-            for (lane, polygon) in polygons.iter().enumerate() {
-                let single = polygon.intersect(&ray, 1e-4, t_max);
-                let packed = (hits.mask >> lane & 1 == 1).then_some(hits.t[lane]);
-                prop_assert_eq!(packed.map(f32::to_bits), single.map(|h| h.t.to_bits()));
-            }
-            prop_assert_eq!(hits.mask >> polygons.len(), 0);
+            let singles = polygons.iter().map(|p| t_bits(p.intersect(&ray, 1e-4, t_max)));
+            prop_assert_eq!(lane_ts(&hits, polygons.len()), singles.collect::<Vec<_>>());
         }
     }
 }

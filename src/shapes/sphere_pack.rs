@@ -6,7 +6,8 @@
 
 use glam::Vec4;
 
-use super::{PACK_SIZE, Sphere};
+use super::quadratic::sorted_roots4;
+use super::{LaneHits, ObjectPack, PACK_SIZE, Sphere};
 use crate::ray::Ray;
 
 /// Up to [`PACK_SIZE`] spheres, coordinate by coordinate (`center[axis][lane]`), each with a
@@ -18,13 +19,6 @@ pub struct SpherePack {
     center: [[f32; PACK_SIZE]; 3],
     radius: [f32; PACK_SIZE],
     pub tags: [u32; PACK_SIZE],
-}
-
-/// The lanes of a pack that a ray hits: bit k of `mask` where it hits sphere k at `t[k]`.
-#[derive(Clone, Copy, Debug)]
-pub struct SpherePackHits {
-    pub mask: u32,
-    pub t: [f32; PACK_SIZE],
 }
 
 impl SpherePack {
@@ -45,16 +39,17 @@ impl SpherePack {
         }
         pack
     }
+}
 
+impl ObjectPack for SpherePack {
     /// Which spheres `ray` hits with `t` in `(t_min, t_max)`, all four at once: each lane's
     /// nearest root in the range.
     #[inline(always)]
-    pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> SpherePackHits {
-        let lanes = |a: &[f32; PACK_SIZE]| Vec4::from_array(*a);
+    fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> LaneHits {
         let d = ray.dir.to_array().map(Vec4::splat);
-        let oc = [0, 1, 2].map(|k| Vec4::splat(ray.origin[k]) - lanes(&self.center[k]));
+        let oc = [0, 1, 2].map(|k| Vec4::splat(ray.origin[k]) - Vec4::from(self.center[k]));
         let dot = |u: &[Vec4; 3], v: &[Vec4; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-        let radius = lanes(&self.radius);
+        let radius = Vec4::from(self.radius);
         let r2 = radius * radius;
         // As `Sphere::intersect`: the discriminant from the ray's distance to the centre.
         let a = Vec4::splat(ray.dir.length_squared());
@@ -65,37 +60,32 @@ impl SpherePack {
         let disc = a * (r2 - dot(&f, &f));
         let real = !disc.cmplt(Vec4::ZERO);
         if !real.any() {
-            return SpherePackHits {
+            return LaneHits {
                 mask: 0,
                 t: [0.0; PACK_SIZE],
             };
         }
-        let q = -(half_b + disc.sqrt().copysign(half_b));
-        let (t0, t1) = (q / a, c / q);
-        let in_order = t0.cmple(t1);
-        let q_is_zero = q.cmpeq(Vec4::ZERO);
-        let near = Vec4::select(q_is_zero, Vec4::ZERO, Vec4::select(in_order, t0, t1));
-        let far = Vec4::select(q_is_zero, Vec4::ZERO, Vec4::select(in_order, t1, t0));
+        let (near, far) = sorted_roots4(a, half_b, c, disc);
         // The first root in the range, as `first_root_in`.
         let in_range = |t: Vec4| t.cmpgt(Vec4::splat(t_min)) & t.cmplt(Vec4::splat(t_max));
         let (near_in, far_in) = (in_range(near), in_range(far));
-        SpherePackHits {
+        LaneHits {
             mask: (real & (near_in | far_in)).bitmask(),
             t: Vec4::select(near_in, near, far).to_array(),
         }
+    }
+
+    fn tags(&self) -> &[u32; PACK_SIZE] {
+        &self.tags
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use glam::Vec3;
     use proptest::prelude::*;
 
     use super::*;
-
-    fn coordinates((x, y, z): (i32, i32, i32), scale: f32) -> Vec3 {
-        Vec3::new(x as f32, y as f32, z as f32) * scale
-    }
+    use crate::shapes::test_support::{grid_point, lane_ts, t_bits};
 
     proptest! {
         /// Random spheres against random rays, from outside and inside, some grazing, some far:
@@ -113,24 +103,20 @@ mod tests {
         ) {
             let spheres: Vec<Sphere> = spheres
                 .iter()
-                .map(|&(c, r)| Sphere::new(coordinates(c, 1.0 / 16.0), r as f32 / 16.0).unwrap())
+                .map(|&(c, r)| Sphere::new(grid_point(c, 1.0 / 16.0), r as f32 / 16.0).unwrap())
                 .collect();
             let tagged: Vec<(&Sphere, u32)> = spheres.iter().zip(10..).collect();
             let pack = SpherePack::new(&tagged);
-            let origin = coordinates(origin, 1.0 / 16.0);
+            let origin = grid_point(origin, 1.0 / 16.0);
             // Towards a point near one of the spheres (grazing hits and near misses included).
             let (k, x, y, z) = aim;
-            let target = spheres[k % spheres.len()].center + coordinates((x, y, z), 1.0 / 32.0);
+            let target = spheres[k % spheres.len()].center + grid_point((x, y, z), 1.0 / 32.0);
             let ray = Ray::new(origin, target - origin);
             let t_min = t_min.map_or(1e-4, |t| t as f32 / 16.0);
             let t_max = t_max.map_or(f32::INFINITY, |t| t as f32 / 16.0);
             let hits = pack.intersect(&ray, t_min, t_max);
-            for (lane, sphere) in spheres.iter().enumerate() {
-                let single = sphere.intersect(&ray, t_min, t_max);
-                let packed = (hits.mask >> lane & 1 == 1).then_some(hits.t[lane]);
-                prop_assert_eq!(packed.map(f32::to_bits), single.map(|h| h.t.to_bits()));
-            }
-            prop_assert_eq!(hits.mask >> spheres.len(), 0);
+            let singles = spheres.iter().map(|s| t_bits(s.intersect(&ray, t_min, t_max)));
+            prop_assert_eq!(lane_ts(&hits, spheres.len()), singles.collect::<Vec<_>>());
         }
     }
 }

@@ -8,10 +8,7 @@
 
 use glam::{Vec2, Vec3, Vec4};
 
-use super::{ShearedRay, Triangle, TriangleHit};
-
-/// Triangles in one pack.
-pub const PACK_SIZE: usize = 4;
+use super::{PACK_SIZE, ShearedRay, Triangle, TriangleHit};
 
 /// Up to [`PACK_SIZE`] triangles, with a number per triangle for the caller (the BVH keeps
 /// primitive ids there). Unused lanes have NaN vertices, which no ray hits. 160 bytes.
