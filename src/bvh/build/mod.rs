@@ -213,8 +213,8 @@ fn append_subtree(nodes: &mut Vec<Node>, at: usize, mut subtree: Vec<Node>) {
 fn split(prims: &mut [BuildPrim], extent: &Extent, bins: &mut Bins) -> Option<Split> {
     let n = prims.len();
     let area = extent.bounds.surface_area().max(f32::MIN_POSITIVE);
-    // Triangles and packed polygons are tested four at a time: a leaf of up to four costs one
-    // test; a leaf with other objects, one per primitive.
+    // Packed primitives (triangles, spheres, open cylinders, small polygons) are tested four at
+    // a time: a leaf of up to four costs one test; a leaf with other objects, one per object.
     let block = prims
         .iter()
         .map(BuildPrim::kind)
