@@ -83,6 +83,8 @@ pub struct SurfacePoint {
     pub normal: Vec3,
     /// Unit geometric normal, on the same side as `normal`.
     pub geometric_normal: Vec3,
+    /// Texture coordinates; zero where the caller of [`Geometry::surface_with`] did not ask
+    /// for them.
     pub uv: Vec2,
     pub material: u32,
 }
