@@ -108,8 +108,41 @@ impl<'a, C> Walk<'a, C> {
     }
 }
 
+/// What a walk does at each leaf it reaches: test the leaf's primitives, shrinking the walk's
+/// far limit `t_max` (closest hit) or breaking off the walk (any hit). A trait with inlined
+/// methods rather than a closure, so that the leaf tests are compiled into each kernel with its
+/// instruction set instead of being called apart.
+trait VisitLeaf<C> {
+    fn visit(&mut self, leaf: Leaf, t_max: &mut f32, cost: &mut C) -> ControlFlow<()>;
+}
+
 /// The closest-hit query as a [`Kernel`].
 struct ClosestHit<'a, C>(Walk<'a, C>);
+
+/// The closest hit's leaf tests: the best hit so far.
+struct Closest<'a> {
+    geometry: &'a Geometry,
+    ray: &'a Ray,
+    sheared: ShearedRay,
+    t_min: f32,
+    best: Option<Hit>,
+}
+
+impl<C: TraversalCost> VisitLeaf<C> for Closest<'_> {
+    #[inline(always)]
+    fn visit(&mut self, leaf: Leaf, t_limit: &mut f32, cost: &mut C) -> ControlFlow<()> {
+        cost.prims_tested(leaf.tests());
+        let Closest {
+            geometry,
+            ray,
+            sheared,
+            t_min,
+            best,
+        } = self;
+        closest_in_leaf(geometry, leaf, ray, sheared, *t_min, t_limit, best);
+        ControlFlow::Continue(())
+    }
+}
 
 impl<C: TraversalCost> Kernel for ClosestHit<'_, C> {
     type Output = Option<Hit>;
@@ -117,43 +150,73 @@ impl<C: TraversalCost> Kernel for ClosestHit<'_, C> {
     #[inline(always)]
     fn run<L: Lanes>(self) -> Option<Hit> {
         let w = self.0;
-        let sheared = ShearedRay::new(w.ray);
-        let mut best: Option<Hit> = None;
-        let mut test = |leaf: Leaf, t_limit: &mut f32, cost: &mut C| {
-            cost.prims_tested(leaf.tests());
-            closest_in_leaf(
-                w.geometry, leaf, w.ray, &sheared, w.t_min, t_limit, &mut best,
-            );
-            ControlFlow::Continue(())
+        let mut closest = Closest {
+            geometry: w.geometry,
+            ray: w.ray,
+            sheared: ShearedRay::new(w.ray),
+            t_min: w.t_min,
+            best: None,
         };
         let mut t_limit = w.t_max;
-        let _ = test(Leaf::Objects(&w.bvh.unbounded), &mut t_limit, w.cost);
+        let _ = closest.visit(Leaf::Objects(&w.bvh.unbounded), &mut t_limit, w.cost);
         w.bvh
-            .walk::<L, C, true>(w.ray, w.t_min, t_limit, w.cost, test);
-        best
+            .walk::<L, C, true>(w.ray, w.t_min, t_limit, w.cost, &mut closest);
+        closest.best
     }
 }
 
 /// The any-hit query as a [`Kernel`].
 struct AnyHit<'a, C, F>(Walk<'a, C>, F);
 
+/// The any-hit search's leaf tests: every hit goes to `on_hit`.
+struct Each<'a, F> {
+    geometry: &'a Geometry,
+    ray: &'a Ray,
+    sheared: ShearedRay,
+    t_min: f32,
+    t_max: f32,
+    on_hit: F,
+}
+
+impl<C: TraversalCost, F: FnMut(&Hit) -> ControlFlow<()>> VisitLeaf<C> for Each<'_, F> {
+    #[inline(always)]
+    fn visit(&mut self, leaf: Leaf, _: &mut f32, cost: &mut C) -> ControlFlow<()> {
+        cost.prims_tested(leaf.tests());
+        let Each {
+            geometry,
+            ray,
+            sheared,
+            t_min,
+            t_max,
+            on_hit,
+        } = self;
+        each_in_leaf(geometry, leaf, ray, sheared, (*t_min, *t_max), on_hit)
+    }
+}
+
 impl<C: TraversalCost, F: FnMut(&Hit) -> ControlFlow<()>> Kernel for AnyHit<'_, C, F> {
     type Output = ();
 
     #[inline(always)]
     fn run<L: Lanes>(self) {
-        let AnyHit(w, mut on_hit) = self;
-        let (ray, t_min, t_max) = (w.ray, w.t_min, w.t_max);
-        let sheared = ShearedRay::new(ray);
-        let mut visit = |leaf: Leaf, cost: &mut C| {
-            cost.prims_tested(leaf.tests());
-            each_in_leaf(w.geometry, leaf, ray, &sheared, (t_min, t_max), &mut on_hit)
+        let AnyHit(w, on_hit) = self;
+        let mut each = Each {
+            geometry: w.geometry,
+            ray: w.ray,
+            sheared: ShearedRay::new(w.ray),
+            t_min: w.t_min,
+            t_max: w.t_max,
+            on_hit,
         };
-        if visit(Leaf::Objects(&w.bvh.unbounded), w.cost).is_break() {
+        let mut t_max = w.t_max;
+        if each
+            .visit(Leaf::Objects(&w.bvh.unbounded), &mut t_max, w.cost)
+            .is_break()
+        {
             return;
         }
         w.bvh
-            .walk::<L, C, false>(ray, t_min, t_max, w.cost, |leaf, _, cost| visit(leaf, cost));
+            .walk::<L, C, false>(w.ray, w.t_min, w.t_max, w.cost, &mut each);
     }
 }
 
@@ -172,7 +235,7 @@ impl Bvh {
         t_min: f32,
         t_max: f32,
         cost: &mut C,
-        mut leaf: impl FnMut(Leaf, &mut f32, &mut C) -> ControlFlow<()>,
+        leaf: &mut impl VisitLeaf<C>,
     ) {
         let Some(bounds) = &self.root_bounds else {
             return;
@@ -188,7 +251,7 @@ impl Bvh {
         let mut next = Child::node(0);
         loop {
             if next.is_leaf() {
-                if leaf(next.leaf(self), &mut t_max, cost).is_break() {
+                if leaf.visit(next.leaf(self), &mut t_max, cost).is_break() {
                     return;
                 }
             } else {

@@ -106,7 +106,7 @@ impl ObjectPack for CylinderPack {
         let found = shift.is_finite_mask() & has_roots & (near_ok | far_ok);
         LaneHits {
             mask: found.bitmask(),
-            t: Vec4::select(near_ok, t_near, t_far).to_array(),
+            t: Vec4::select(near_ok, t_near, t_far),
         }
     }
 

@@ -2,6 +2,8 @@
 //! objects placed in the world (spheres, open cylinders, small polygons) the hits they report
 //! and the one way they are tested ([`ObjectPack`]).
 
+use glam::Vec4;
+
 use crate::ray::Ray;
 
 /// Shapes in one pack: one per lane of an SSE register.
@@ -12,7 +14,9 @@ pub const PACK_SIZE: usize = 4;
 #[derive(Clone, Copy, Debug)]
 pub struct LaneHits {
     pub mask: u32,
-    pub t: [f32; PACK_SIZE],
+    /// Each lane's `t`, in a register rather than an array: a pack's hits are returned by
+    /// value, and four floats stored one by one and read back as a block stall the load.
+    pub t: Vec4,
 }
 
 /// Four objects of one kind tested against a ray at once, each lane giving exactly what the

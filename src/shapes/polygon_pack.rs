@@ -93,10 +93,7 @@ impl ObjectPack for PolygonPack {
         let in_range =
             denom.cmpne(Vec4::ZERO) & t.cmpgt(Vec4::splat(t_min)) & t.cmplt(Vec4::splat(t_max));
         if !in_range.any() {
-            return LaneHits {
-                mask: 0,
-                t: t.to_array(),
-            };
+            return LaneHits { mask: 0, t };
         }
         // The hit point, projected onto the two axes each polygon keeps.
         let p = [0, 1, 2].map(|k| o[k] + d[k] * t);
@@ -120,7 +117,7 @@ impl ObjectPack for PolygonPack {
         }
         LaneHits {
             mask: (in_range & !outside_box & inside).bitmask(),
-            t: t.to_array(),
+            t,
         }
     }
 

@@ -62,7 +62,7 @@ impl ObjectPack for SpherePack {
         if !real.any() {
             return LaneHits {
                 mask: 0,
-                t: [0.0; PACK_SIZE],
+                t: Vec4::ZERO,
             };
         }
         let (near, far) = sorted_roots4(a, half_b, c, disc);
@@ -71,7 +71,7 @@ impl ObjectPack for SpherePack {
         let (near_in, far_in) = (in_range(near), in_range(far));
         LaneHits {
             mask: (real & (near_in | far_in)).bitmask(),
-            t: Vec4::select(near_in, near, far).to_array(),
+            t: Vec4::select(near_in, near, far),
         }
     }
 

@@ -26,12 +26,13 @@ pub struct TrianglePack {
 pub struct PackHits {
     /// Bit k set where the ray hits triangle k within the `t` range.
     pub mask: u32,
-    pub t: [f32; PACK_SIZE],
+    /// Kept in registers rather than arrays (see [`super::LaneHits::t`]).
+    pub t: Vec4,
     /// The edge functions of p1 and p2 (the unnormalised barycentric coordinates) and their
     /// sum with p0's, the determinant.
-    v: [f32; PACK_SIZE],
-    w: [f32; PACK_SIZE],
-    det: [f32; PACK_SIZE],
+    v: Vec4,
+    w: Vec4,
+    det: Vec4,
 }
 
 impl PackHits {
@@ -98,10 +99,10 @@ impl TrianglePack {
             !outside & det.cmpne(zero) & t.cmpgt(Vec4::splat(t_min)) & t.cmplt(Vec4::splat(t_max));
         let mut hits = PackHits {
             mask: hit.bitmask() & !on_edge,
-            t: t.to_array(),
-            v: v.to_array(),
-            w: w.to_array(),
-            det: det.to_array(),
+            t,
+            v,
+            w,
+            det,
         };
         if on_edge != 0 {
             self.decide_edges(ray, t_min, t_max, on_edge, &mut hits);
