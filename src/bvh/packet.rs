@@ -134,15 +134,22 @@ impl Kernel for Packet<'_> {
                 continue;
             }
             let node = &bvh.nodes[child.first as usize];
+            // Which rays enter each child, and the nearest entry among them: a lane-wise
+            // minimum and a bit per child and ray, without a branch.
             let mut child_rays = [0u64; WIDTH];
-            let mut nearest = [f32::INFINITY; WIDTH];
-            for r in ones(active) {
-                let (t, entered) = tests[r].enter8::<L>(node, t_min, t_limit[r]);
-                for k in ones(u64::from(entered)) {
-                    child_rays[k] |= 1 << r;
-                    nearest[k] = nearest[k].min(t[k]);
+            // SAFETY: `L` is this kernel's lane type, which `dispatch` runs only on a
+            // processor with its instructions.
+            let nearest = unsafe {
+                let mut nearest = L::splat(f32::INFINITY);
+                for r in ones(active) {
+                    let (t, entered) = tests[r].enter8_lanes::<L>(node, t_min, t_limit[r]);
+                    nearest = nearest.min(t);
+                    for (k, rays) in child_rays.iter_mut().enumerate() {
+                        *rays |= u64::from(entered >> k & 1) << r;
+                    }
                 }
-            }
+                nearest.to_array()
+            };
             // The children entered go on the stack farthest first, so the nearest comes off
             // next.
             let base = stack.len();

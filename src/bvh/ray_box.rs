@@ -57,12 +57,43 @@ impl RayBoxTest {
         // SAFETY: `L` is the lane type of the kernel this runs in, which `simd::dispatch` runs
         // only on a processor with its instructions.
         unsafe {
+            let (near, far) = self.near_far::<L>(node, t_min, t_max);
+            (near.to_array(), near.le_mask(far))
+        }
+    }
+
+    /// [`Self::enter8`] with the entry distances left in lanes, +∞ in the lanes of the boxes
+    /// not entered, so that a packet can take their minimum over its rays without a branch.
+    ///
+    /// # Safety
+    /// As for [`Lanes`]: only inside a kernel of `L`'s path.
+    #[inline(always)]
+    pub(super) unsafe fn enter8_lanes<L: Lanes>(
+        &self,
+        node: &WideNode,
+        t_min: f32,
+        t_max: f32,
+    ) -> (L, u32) {
+        unsafe {
+            let (near, far) = self.near_far::<L>(node, t_min, t_max);
+            (near.le_or(far, L::splat(f32::INFINITY)), near.le_mask(far))
+        }
+    }
+
+    /// Where the ray enters and leaves each child box of `node`, clamped to `[t_min, t_max]`:
+    /// a box is entered where the first is at most the second.
+    ///
+    /// # Safety
+    /// As for [`Lanes`]: only inside a kernel of `L`'s path.
+    #[inline(always)]
+    unsafe fn near_far<L: Lanes>(&self, node: &WideNode, t_min: f32, t_max: f32) -> (L, L) {
+        unsafe {
             let (near_x, far_x) = self.slab::<L>(node, 0);
             let (near_y, far_y) = self.slab::<L>(node, 1);
             let (near_z, far_z) = self.slab::<L>(node, 2);
             let near = near_x.max(near_y).max(near_z).max(L::splat(t_min));
             let far = far_x.min(far_y).min(far_z).min(L::splat(t_max));
-            (near.to_array(), near.le_mask(far))
+            (near, far)
         }
     }
 
@@ -121,6 +152,21 @@ mod tests {
         }
     }
 
+    /// The packet's box test on one path, as a kernel: its lanes and mask.
+    struct Enter8Lanes<'a>(&'a RayBoxTest, &'a WideNode, f32);
+
+    impl Kernel for Enter8Lanes<'_> {
+        type Output = ([f32; LANES], u32);
+        #[inline(always)]
+        fn run<L: Lanes>(self) -> Self::Output {
+            // SAFETY: run by `dispatch`, on a processor with `L`'s instructions.
+            unsafe {
+                let (t, mask) = self.0.enter8_lanes::<L>(self.1, 0.0, self.2);
+                (t.to_array(), mask)
+            }
+        }
+    }
+
     #[test]
     fn eight_boxes_at_once_answer_as_one_box_at_a_time_on_every_path() {
         let boxes = [
@@ -152,6 +198,17 @@ mod tests {
                 let test = RayBoxTest::new(ray);
                 for t_max in [100.0, f32::MAX] {
                     let (t, mask) = dispatch(simd, Enter8(&test, &node, t_max));
+                    // The packet's lanes: the same entries, +∞ where a box is not entered.
+                    let (lanes, lanes_mask) = dispatch(simd, Enter8Lanes(&test, &node, t_max));
+                    assert_eq!(lanes_mask, mask, "{simd}: {ray:?}");
+                    for (k, (t_k, lane)) in t.iter().zip(lanes).enumerate() {
+                        let expected = if mask >> k & 1 == 1 {
+                            *t_k
+                        } else {
+                            f32::INFINITY
+                        };
+                        assert_eq!(lane.to_bits(), expected.to_bits(), "{simd}: lane {k}");
+                    }
                     for (k, t_k) in t.into_iter().enumerate() {
                         let one = match boxes.get(k) {
                             Some(&(min, max)) => {

@@ -149,6 +149,8 @@ pub(super) trait Lanes: Copy {
     unsafe fn max(self, other: Self) -> Self;
     /// Bit k set where lane k of `self` ≤ lane k of `other`.
     unsafe fn le_mask(self, other: Self) -> u32;
+    /// Lane k of `self` where it is ≤ lane k of `other`, else lane k of `otherwise`.
+    unsafe fn le_or(self, other: Self, otherwise: Self) -> Self;
     unsafe fn to_array(self) -> [f32; LANES];
 }
 
@@ -196,6 +198,16 @@ impl Lanes for Portable {
     #[inline(always)]
     unsafe fn le_mask(self, other: Self) -> u32 {
         (0..LANES).fold(0, |mask, k| mask | u32::from(self.0[k] <= other.0[k]) << k)
+    }
+    #[inline(always)]
+    unsafe fn le_or(self, other: Self, otherwise: Self) -> Self {
+        Portable(std::array::from_fn(|k| {
+            if self.0[k] <= other.0[k] {
+                self.0[k]
+            } else {
+                otherwise.0[k]
+            }
+        }))
     }
     #[inline(always)]
     unsafe fn to_array(self) -> [f32; LANES] {
@@ -266,6 +278,18 @@ mod x86 {
             }
         }
         #[inline(always)]
+        unsafe fn le_or(self, o: Self, otherwise: Self) -> Self {
+            // SSE2 has no blend: (self and mask) or (otherwise and not mask).
+            let pick = |a: __m128, b: __m128, or: __m128| unsafe {
+                let mask = _mm_cmple_ps(a, b);
+                _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, or))
+            };
+            Sse(
+                pick(self.0, o.0, otherwise.0),
+                pick(self.1, o.1, otherwise.1),
+            )
+        }
+        #[inline(always)]
         unsafe fn to_array(self) -> [f32; LANES] {
             let mut out = [0.0; LANES];
             unsafe {
@@ -321,6 +345,12 @@ mod x86 {
         }
         #[inline]
         #[target_feature(enable = "avx2")]
+        unsafe fn le_or(self, o: Self, otherwise: Self) -> Self {
+            let mask = _mm256_cmp_ps::<_CMP_LE_OQ>(self.0, o.0);
+            Avx2(_mm256_blendv_ps(otherwise.0, self.0, mask))
+        }
+        #[inline]
+        #[target_feature(enable = "avx2")]
         unsafe fn to_array(self) -> [f32; LANES] {
             let mut out = [0.0; LANES];
             unsafe { _mm256_storeu_ps(out.as_mut_ptr(), self.0) };
@@ -367,6 +397,12 @@ mod x86 {
         #[target_feature(enable = "avx2,avx512f,avx512vl")]
         unsafe fn le_mask(self, o: Self) -> u32 {
             u32::from(_mm256_cmp_ps_mask::<_CMP_LE_OQ>(self.0.0, o.0.0))
+        }
+        #[inline]
+        #[target_feature(enable = "avx2,avx512f,avx512vl")]
+        unsafe fn le_or(self, o: Self, otherwise: Self) -> Self {
+            let mask = _mm256_cmp_ps_mask::<_CMP_LE_OQ>(self.0.0, o.0.0);
+            Avx512(Avx2(_mm256_mask_blend_ps(mask, otherwise.0.0, self.0.0)))
         }
         #[inline]
         #[target_feature(enable = "avx2,avx512f,avx512vl")]
