@@ -8,9 +8,13 @@
 //!
 //! A binary leaf holds one [`LeafKind`] of primitive (the builder makes sure of it): triangles,
 //! spheres, cylinders or polygons, copied into packs of four in leaf order, or other objects, listed in
-//! leaf order.
+//! leaf order. The walk down the tree only counts out the triangle packs; they are filled
+//! afterwards on all threads, since a large mesh's copy of its triangles is most of the work.
+
+use std::ops::Range;
 
 use arrayvec::ArrayVec;
+use rayon::prelude::*;
 
 use super::leaf::LeafKind;
 use super::{Child, Node, WIDTH, WideNode};
@@ -44,32 +48,43 @@ pub(super) struct Collapsed {
 /// follow one another, and each child's subtree comes before the next child's children (depth
 /// first), as do the leaves' packs and objects.
 pub(super) fn collapse(binary: &[Node], prims: &[PrimId], geometry: &Geometry) -> Collapsed {
-    // Exactly the packs needed, so that the largest array never moves.
-    let packs = binary
-        .iter()
-        .filter(|node| node.is_leaf() && prims[node.first as usize].kind().is_err())
-        .map(|leaf| (leaf.count as usize).div_ceil(PACK_SIZE))
-        .sum();
     let mut out = Collapsed {
         nodes: Vec::new(),
-        packs: Vec::with_capacity(packs),
+        packs: Vec::new(),
         spheres: Vec::new(),
         cylinders: Vec::new(),
         polygons: Vec::new(),
         objects: Vec::new(),
     };
+    let mut triangle_packs = Vec::new();
     if !binary.is_empty() {
         let mut collapse = Collapse {
             binary,
             prims,
             geometry,
             out: &mut out,
+            triangle_packs: &mut triangle_packs,
         };
         collapse.out.nodes.push(EMPTY);
         collapse.fill(0, 0);
     }
+    // An indexed parallel iterator collects into one allocation of the exact size.
+    out.packs = triangle_packs
+        .into_par_iter()
+        .map(|range| {
+            let lanes: ArrayVec<_, PACK_SIZE> = prims[range]
+                .iter()
+                .map(|&id| {
+                    let index = id
+                        .kind()
+                        .expect_err("a leaf of triangles holds only triangles");
+                    (geometry.triangle(index), id.0)
+                })
+                .collect();
+            TrianglePack::new(&lanes)
+        })
+        .collect();
     out.nodes.shrink_to_fit();
-    out.packs.shrink_to_fit();
     out.spheres.shrink_to_fit();
     out.cylinders.shrink_to_fit();
     out.polygons.shrink_to_fit();
@@ -82,6 +97,9 @@ struct Collapse<'a> {
     prims: &'a [PrimId],
     geometry: &'a Geometry,
     out: &'a mut Collapsed,
+    /// Where in `prims` the primitives of each triangle pack are, in pack order: the packs
+    /// are filled once the tree is done.
+    triangle_packs: &'a mut Vec<Range<usize>>,
 }
 
 impl Collapse<'_> {
@@ -148,12 +166,15 @@ impl Collapse<'_> {
                 };
                 polygon
             }),
-            LeafKind::Triangles => add_packs(&mut out.packs, prims, TrianglePack::new, |id| {
-                geometry.triangle(
-                    id.kind()
-                        .expect_err("a leaf of triangles holds only triangles"),
-                )
-            }),
+            LeafKind::Triangles => {
+                let first = self.triangle_packs.len();
+                let start = leaf.first as usize;
+                let end = start + prims.len();
+                let packs = (start..end).step_by(PACK_SIZE);
+                let ranges = packs.map(|pack| pack..(pack + PACK_SIZE).min(end));
+                self.triangle_packs.extend(ranges);
+                (first, self.triangle_packs.len() - first)
+            }
         };
         Child::leaf_of(kind, first as u32, count as u32)
     }
