@@ -237,13 +237,12 @@ impl Bvh {
         cost: &mut C,
         leaf: &mut impl VisitLeaf<C>,
     ) {
-        let Some(bounds) = &self.root_bounds else {
-            return;
-        };
-        let test = RayBoxTest::new(ray);
-        if test.enter(bounds, t_min, t_max) == f32::INFINITY {
+        if self.nodes.is_empty() {
             return;
         }
+        // No test of the root's own box: the root's children's boxes lie inside it, so a ray
+        // that misses it misses them all, at the cost of one node's test.
+        let test = RayBoxTest::new(ray);
         // A finite far limit keeps the unused slots of a node, whose boxes lie at +∞, shut.
         let mut t_max = t_max.min(f32::MAX);
         // Children still to visit, with the distance at which the ray enters them.
