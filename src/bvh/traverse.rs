@@ -132,14 +132,15 @@ impl<C: TraversalCost> VisitLeaf<C> for Closest<'_> {
     #[inline(always)]
     fn visit(&mut self, leaf: Leaf, t_limit: &mut f32, cost: &mut C) -> ControlFlow<()> {
         cost.prims_tested(leaf.tests());
-        let Closest {
-            geometry,
-            ray,
-            sheared,
-            t_min,
-            best,
-        } = self;
-        closest_in_leaf(geometry, leaf, ray, sheared, *t_min, t_limit, best);
+        closest_in_leaf(
+            self.geometry,
+            leaf,
+            self.ray,
+            &self.sheared,
+            self.t_min,
+            t_limit,
+            &mut self.best,
+        );
         ControlFlow::Continue(())
     }
 }
@@ -182,15 +183,15 @@ impl<C: TraversalCost, F: FnMut(&Hit) -> ControlFlow<()>> VisitLeaf<C> for Each<
     #[inline(always)]
     fn visit(&mut self, leaf: Leaf, _: &mut f32, cost: &mut C) -> ControlFlow<()> {
         cost.prims_tested(leaf.tests());
-        let Each {
-            geometry,
-            ray,
-            sheared,
-            t_min,
-            t_max,
-            on_hit,
-        } = self;
-        each_in_leaf(geometry, leaf, ray, sheared, (*t_min, *t_max), on_hit)
+        let range = (self.t_min, self.t_max);
+        each_in_leaf(
+            self.geometry,
+            leaf,
+            self.ray,
+            &self.sheared,
+            range,
+            &mut self.on_hit,
+        )
     }
 }
 
