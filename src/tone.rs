@@ -7,7 +7,7 @@
 use std::fmt;
 use std::str::FromStr;
 
-use crate::color::{Color, srgb8};
+use crate::color::{Color, SrgbEncoder, srgb8};
 use rayon::prelude::*;
 
 /// Largest linear value a curve looks at: beyond it every curve is white anyway, and the filmic
@@ -122,15 +122,17 @@ impl Tone {
 
     /// The sRGB bytes of linear colours, three per colour.
     pub fn to_srgb8(self, pixels: &[Color]) -> Vec<u8> {
-        // On all threads, in pieces: three `powf` a pixel add up to milliseconds for an image.
+        // On all threads, in pieces, through the sRGB table: [`Self::map`]'s bytes without its
+        // three `powf` a pixel, which add up to milliseconds for an image.
         const PIECE: usize = 4096;
+        let (encoder, scale) = (SrgbEncoder::shared(), self.scale());
         let mut bytes = vec![0; pixels.len() * 3];
         let pieces = bytes
             .par_chunks_mut(3 * PIECE)
             .zip(pixels.par_chunks(PIECE));
         pieces.for_each(|(bytes, pixels)| {
-            for (rgb, &c) in bytes.chunks_exact_mut(3).zip(pixels) {
-                rgb.copy_from_slice(&self.map(c));
+            for (byte, &v) in bytes.iter_mut().zip(pixels.iter().flat_map(|c| c.as_ref())) {
+                *byte = encoder.encode(self.curve.apply(v * scale));
             }
         });
         bytes
@@ -155,6 +157,22 @@ mod tests {
             .collect();
         assert_eq!(Tone::default().to_srgb8(&pixels), to_srgb8(&pixels));
         assert_eq!(Tone::default().scale(), 1.0);
+    }
+
+    #[test]
+    fn a_whole_image_gets_each_pixels_own_bytes() {
+        // `to_srgb8` goes through the sRGB table, `map` through `powf`.
+        let pixels: Vec<Color> = sweep()
+            .chain([-1.0, f32::NAN, f32::INFINITY, 250.0])
+            .map(|v| Color::new(v, v * 0.5, v * 3.0))
+            .collect();
+        for curve in ToneCurve::ALL {
+            for exposure in [-2.0, 0.0, 0.5, 1.0, 3.0] {
+                let tone = Tone::new(exposure, curve).unwrap();
+                let one_by_one: Vec<u8> = pixels.iter().flat_map(|&c| tone.map(c)).collect();
+                assert_eq!(tone.to_srgb8(&pixels), one_by_one, "{tone:?}");
+            }
+        }
     }
 
     #[test]

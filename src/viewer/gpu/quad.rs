@@ -258,7 +258,7 @@ mod tests {
     use super::*;
     use crate::viewer::gpu::device::Gpu;
     use crate::viewer::gpu::screenshot::{offscreen_target, read_texture};
-    use crate::viewer::gpu::upload::{SrgbEncoder, TEXEL_BYTES, write_rows};
+    use crate::viewer::gpu::upload::{TEXEL_BYTES, texel, write_rows};
     use crate::viewer::ui::layout::letterbox;
 
     const CLEAR: [u8; 4] = [0, 0, 255, 255];
@@ -273,10 +273,10 @@ mod tests {
     /// Uploads `pixels` as the quad's `width`-wide image.
     fn upload(gpu: &Gpu, quad: &mut QuadRenderer, width: u32, pixels: &[Color]) {
         let height = pixels.len() as u32 / width;
-        let encoder = SrgbEncoder::new();
+        let encoder = raylab::color::SrgbEncoder::shared();
         let mut bytes = vec![0; pixels.len() * TEXEL_BYTES];
         for (c, out) in pixels.iter().zip(bytes.chunks_exact_mut(TEXEL_BYTES)) {
-            encoder.texel(*c, 1.0, ToneCurve::Clamp, out);
+            texel(encoder, *c, 1.0, ToneCurve::Clamp, out);
         }
         let (texture, _) = quad.image_texture(&gpu.device, width, height);
         write_rows(

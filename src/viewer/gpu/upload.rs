@@ -2,83 +2,33 @@
 //! film's [`version`](raylab::film::Film::version) says its pixels changed, and then only the
 //! rows the film says changed ([`Film::take_changed_rows`]), one write per run of rows (the
 //! whole image for a new film, a new texture or a new [`Tone`]). Each pixel goes up as the bytes
-//! the display shows: its linear colour through the exposure and tone curve, then sRGB through a
-//! table indexed by the float's top bits, which gives exactly the library's
-//! [`Tone::map`] without a `powf` per channel. Doing this here, on the rows that changed, rather
+//! the display shows: its linear colour through the exposure and tone curve, then sRGB through
+//! the library's table ([`SrgbEncoder`]), which gives exactly [`Tone::map`]'s bytes without a
+//! `powf` per channel, as a saved image does. Doing this here, on the rows that changed, rather
 //! than in the quad's shader for every screen pixel of every frame keeps the frame rate of a
 //! software GPU (lavapipe) where it was, and what is saved is what is shown by construction.
 
 use std::ops::Range;
 use std::sync::Arc;
 
-use raylab::color::{Color, srgb8 as srgb_byte};
+use raylab::color::{Color, SrgbEncoder};
 use raylab::film::Film;
 use raylab::tone::{Tone, ToneCurve};
 
 /// Bytes of one texel of [`IMAGE_FORMAT`](super::quad::IMAGE_FORMAT): red, green, blue, alpha.
 pub const TEXEL_BYTES: usize = 4;
 
-/// Bucket of a linear value in [0, 1): its bit pattern without the lowest bits. Each bucket is
-/// 1/128 of an octave wide, narrower than the gap between two byte thresholds, so it holds at
-/// most one of them.
-const BUCKET_SHIFT: u32 = 16;
-
-/// Linear → sRGB byte by table: for each bucket of values, the byte of its lowest value and the
-/// value (if any) from which the byte is one more.
-pub struct SrgbEncoder {
-    buckets: Vec<(u8, f32)>,
-}
-
-impl SrgbEncoder {
-    pub fn new() -> SrgbEncoder {
-        let buckets = (0..1f32.to_bits() >> BUCKET_SHIFT)
-            .map(|k| {
-                let (lo, hi) = (k << BUCKET_SHIFT, ((k + 1) << BUCKET_SHIFT) - 1);
-                let base = srgb_byte(f32::from_bits(lo));
-                if srgb_byte(f32::from_bits(hi)) == base {
-                    return (base, f32::INFINITY);
-                }
-                // Bit patterns of non-negative floats are ordered like the floats.
-                let (mut lo, mut hi) = (lo, hi);
-                while lo < hi {
-                    let mid = lo + (hi - lo) / 2;
-                    if srgb_byte(f32::from_bits(mid)) > base {
-                        hi = mid;
-                    } else {
-                        lo = mid + 1;
-                    }
-                }
-                (base, f32::from_bits(lo))
-            })
-            .collect();
-        SrgbEncoder { buckets }
+/// One film pixel as its texel: the bytes a [`Tone`] of `scale` ([`Tone::scale`]) and `curve`
+/// makes of its colour, through the sRGB table, opaque.
+pub fn texel(encoder: &SrgbEncoder, c: Color, scale: f32, curve: ToneCurve, out: &mut [u8]) {
+    for (byte, v) in out.iter_mut().zip(c.to_array()) {
+        *byte = encoder.encode(curve.apply(v * scale));
     }
-
-    pub fn encode(&self, v: f32) -> u8 {
-        if v.is_nan() || v <= 0.0 {
-            // Zero, negative or NaN, as the library clamps them.
-            return 0;
-        }
-        if v >= 1.0 {
-            return 255;
-        }
-        let (base, step) = self.buckets[(v.to_bits() >> BUCKET_SHIFT) as usize];
-        base + u8::from(v >= step)
-    }
-
-    /// One film pixel as its texel: the bytes a [`Tone`] of `scale` ([`Tone::scale`]) and
-    /// `curve` makes of its colour, opaque.
-    pub fn texel(&self, c: Color, scale: f32, curve: ToneCurve, out: &mut [u8]) {
-        for (byte, v) in out.iter_mut().zip(c.to_array()) {
-            *byte = self.encode(curve.apply(v * scale));
-        }
-        out[3] = 255;
-    }
+    out[3] = 255;
 }
 
 /// Keeps the texture in step with a film.
 pub struct Uploader {
-    encoder: SrgbEncoder,
     /// The film last uploaded, its version then and the tone its bytes were made with.
     uploaded: Option<(Arc<Film>, u64, Tone)>,
     bytes: Vec<u8>,
@@ -87,7 +37,6 @@ pub struct Uploader {
 impl Uploader {
     pub fn new() -> Uploader {
         Uploader {
-            encoder: SrgbEncoder::new(),
             uploaded: None,
             bytes: Vec::new(),
         }
@@ -131,12 +80,11 @@ impl Uploader {
         };
         self.bytes.resize(w * h as usize * TEXEL_BYTES, 0);
         let row_bytes = w * TEXEL_BYTES;
-        let scale = tone.scale();
+        let (encoder, scale) = (SrgbEncoder::shared(), tone.scale());
         for y in rows.iter().flat_map(|run| run.clone()) {
             let row = &mut self.bytes[y as usize * row_bytes..(y as usize + 1) * row_bytes];
             for (x, out) in row.chunks_exact_mut(TEXEL_BYTES).enumerate() {
-                self.encoder
-                    .texel(film.get(x as u32, y), scale, tone.curve, out);
+                texel(encoder, film.get(x as u32, y), scale, tone.curve, out);
             }
         }
         self.uploaded = Some((film.clone(), version, tone));
@@ -185,31 +133,8 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_table_encodes_exactly_like_the_library() {
-        let encoder = SrgbEncoder::new();
-        let mut v = 1e-7f32;
-        while v < 1.5 {
-            assert_eq!(encoder.encode(v), srgb_byte(v), "{v}");
-            v *= 1.0007;
-        }
-        for &(base, step) in &encoder.buckets {
-            if step.is_finite() {
-                let below = f32::from_bits(step.to_bits() - 1);
-                assert_eq!(encoder.encode(step), srgb_byte(step));
-                assert_eq!(encoder.encode(step), base + 1, "one step per bucket");
-                assert_eq!(encoder.encode(below), srgb_byte(below));
-            }
-        }
-        let steps = encoder.buckets.iter().filter(|b| b.1.is_finite()).count();
-        assert_eq!(steps, 255, "every byte boundary is in the table once");
-        for v in [-1.0, 0.0, f32::NAN, f32::INFINITY, 1.0] {
-            assert_eq!(encoder.encode(v), srgb_byte(v), "{v}");
-        }
-    }
-
-    #[test]
     fn texels_are_the_librarys_tone_mapping() {
-        let encoder = SrgbEncoder::new();
+        let encoder = SrgbEncoder::shared();
         let mut out = [0; TEXEL_BYTES];
         for curve in ToneCurve::ALL {
             for exposure in [-2.0, 0.0, 0.5, 1.0, 3.0] {
@@ -217,7 +142,7 @@ mod tests {
                 let mut v = 1e-5f32;
                 while v < 64.0 {
                     let c = Color::new(v, v * 0.5, v * 3.0);
-                    encoder.texel(c, tone.scale(), tone.curve, &mut out);
+                    texel(encoder, c, tone.scale(), tone.curve, &mut out);
                     let [r, g, b] = tone.map(c);
                     assert_eq!(out, [r, g, b, 255], "{tone:?} at {c}");
                     v *= 1.01;
