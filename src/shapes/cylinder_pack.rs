@@ -84,14 +84,22 @@ impl ObjectPack for CylinderPack {
         let c = (o[0] * o[0] + o[1] * o[1]) - radius_at_o * radius_at_o;
         // `solve_quadratic`, both of its cases in every lane, the right one kept.
         let linear = a.cmpeq(Vec4::ZERO);
-        let t_linear = -c / (Vec4::splat(2.0) * half_b);
         let disc = half_b * half_b - a * c;
+        let has_roots = linear & half_b.cmpne(Vec4::ZERO) | !linear & !disc.cmplt(Vec4::ZERO);
+        let has_roots = shift.is_finite_mask() & has_roots;
+        // Most packs a ray reaches it misses altogether: it is told before the divisions.
+        if !has_roots.any() {
+            return LaneHits {
+                mask: 0,
+                t: Vec4::ZERO,
+            };
+        }
+        let t_linear = -c / (Vec4::splat(2.0) * half_b);
         let (near, far) = sorted_roots4(a, half_b, c, disc);
         let (near, far) = (
             Vec4::select(linear, t_linear, near),
             Vec4::select(linear, t_linear, far),
         );
-        let has_roots = linear & half_b.cmpne(Vec4::ZERO) | !linear & !disc.cmplt(Vec4::ZERO);
         // `first_root_between_ends`: the first root in range whose point lies between the ends.
         let accept = |s: Vec4| {
             let t = s + shift;
@@ -103,7 +111,7 @@ impl ObjectPack for CylinderPack {
             (t, ok)
         };
         let ((t_near, near_ok), (t_far, far_ok)) = (accept(near), accept(far));
-        let found = shift.is_finite_mask() & has_roots & (near_ok | far_ok);
+        let found = has_roots & (near_ok | far_ok);
         LaneHits {
             mask: found.bitmask(),
             t: Vec4::select(near_ok, t_near, t_far),

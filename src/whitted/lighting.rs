@@ -231,6 +231,9 @@ impl Tracer<'_> {
     /// What a primitive lets through of the light behind it: `transparency × colour`; nothing
     /// through glass that bends light when the caustic photons bring that light instead.
     fn tint(&self, hit: &Hit) -> Color {
+        if self.opaque {
+            return Color::ZERO;
+        }
         let material = &self.scene.materials[self.scene.geometry.material(hit) as usize];
         if self.caustics.is_some() && material.bends_light() {
             return Color::ZERO;

@@ -63,6 +63,9 @@ pub struct Tracer<'a> {
     pub caustics: Option<&'a PhotonMap>,
     /// Whether any material has a medium: shadow rays in scenes without look for none.
     pub media: bool,
+    /// Whether every material is opaque (lets no light through): a shadow ray then stops at
+    /// the first hit without looking up its material.
+    pub opaque: bool,
 }
 
 impl<'a> Tracer<'a> {
@@ -79,6 +82,10 @@ impl<'a> Tracer<'a> {
             fog,
             caustics: None,
             media: scene.materials.iter().any(|m| m.medium.is_some()),
+            opaque: scene
+                .materials
+                .iter()
+                .all(|m| m.transparency * m.color == Color::ZERO),
         }
     }
 
