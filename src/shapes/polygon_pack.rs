@@ -107,6 +107,10 @@ impl ObjectPack for PolygonPack {
             | qy.cmplt(Vec4::from(self.projected_min[1]))
             | qx.cmpgt(Vec4::from(self.projected_max[0]))
             | qy.cmpgt(Vec4::from(self.projected_max[1]));
+        let candidates = in_range & !outside_box;
+        if !candidates.any() {
+            return LaneHits { mask: 0, t };
+        }
         // The crossing number, as `ProjectedEdge::crossed_from`.
         let mut inside = BVec4A::splat(false);
         for edge in &self.edges {
@@ -116,7 +120,7 @@ impl ObjectPack for PolygonPack {
             inside ^= straddles & right_of_q;
         }
         LaneHits {
-            mask: (in_range & !outside_box & inside).bitmask(),
+            mask: (candidates & inside).bitmask(),
             t,
         }
     }
