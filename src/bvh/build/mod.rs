@@ -215,11 +215,14 @@ fn split(prims: &mut [BuildPrim], extent: &Extent, bins: &mut Bins) -> Option<Sp
     let area = extent.bounds.surface_area().max(f32::MIN_POSITIVE);
     // Packed primitives (triangles, spheres, open cylinders, small polygons) are tested four at
     // a time: a leaf of up to four costs one test; a leaf with other objects, one per object.
-    let block = prims
-        .iter()
-        .map(BuildPrim::kind)
-        .min()
-        .map_or(1, LeafKind::block);
+    let holds_objects =
+        extent.may_hold_objects && prims.iter().any(|p| p.kind() == LeafKind::Objects);
+    let block = if holds_objects {
+        LeafKind::Objects
+    } else {
+        LeafKind::Triangles
+    }
+    .block();
     let pays =
         |cost: f32| TRAVERSAL_COST + cost / area < tests(n as u32, block) || n > MAX_LEAF_SIZE;
     if let [a, b] = prims {
@@ -250,10 +253,12 @@ fn split(prims: &mut [BuildPrim], extent: &Extent, bins: &mut Bins) -> Option<Sp
                 left: Extent {
                     bounds: left,
                     centroids: centroids[1],
+                    may_hold_objects: holds_objects,
                 },
                 right: Extent {
                     bounds: right,
                     centroids: centroids[0],
+                    may_hold_objects: holds_objects,
                 },
             }
         });

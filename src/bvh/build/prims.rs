@@ -104,12 +104,17 @@ impl BuildPrim {
 pub(super) struct Extent {
     pub(super) bounds: Bounds,
     pub(super) centroids: Bounds,
+    /// Whether some of the primitives may be of [`LeafKind::Objects`]. `false` only where none
+    /// is: a node without them has children without them, so a mesh is looked through for
+    /// them once, at the root.
+    pub(super) may_hold_objects: bool,
 }
 
 impl Extent {
     const EMPTY: Extent = Extent {
         bounds: Bounds::EMPTY,
         centroids: Bounds::EMPTY,
+        may_hold_objects: true,
     };
 
     pub(super) fn of(prims: &[BuildPrim]) -> Extent {
@@ -129,6 +134,7 @@ impl Extent {
         Extent {
             bounds: self.bounds.union(p.bounds()),
             centroids: self.centroids.grow(p.centroid()),
+            ..self
         }
     }
 
@@ -136,6 +142,7 @@ impl Extent {
         Extent {
             bounds: self.bounds.union(other.bounds),
             centroids: self.centroids.union(other.centroids),
+            may_hold_objects: self.may_hold_objects || other.may_hold_objects,
         }
     }
 }
