@@ -87,7 +87,8 @@ impl ObjectPack for CylinderPack {
         let disc = half_b * half_b - a * c;
         let has_roots = linear & half_b.cmpne(Vec4::ZERO) | !linear & !disc.cmplt(Vec4::ZERO);
         let has_roots = shift.is_finite_mask() & has_roots;
-        // Most packs a ray reaches it misses altogether: it is told before the divisions.
+        // A ray misses all four cylinders of most packs it reaches: that is told before the
+        // divisions.
         if !has_roots.any() {
             return LaneHits {
                 mask: 0,
