@@ -54,6 +54,12 @@ impl Default for Material {
 }
 
 impl Material {
+    /// What the material lets through of the light behind it: `transparency × colour` (zero
+    /// for an opaque material).
+    pub fn filter(&self) -> Color {
+        self.transparency * self.color
+    }
+
     /// Whether the material is transparent and bends the light that passes it (index not 1):
     /// a shadow ray cannot follow that light; caustic photons do.
     pub fn bends_light(&self) -> bool {

@@ -238,6 +238,6 @@ impl Tracer<'_> {
         if self.caustics.is_some() && material.bends_light() {
             return Color::ZERO;
         }
-        material.transparency * material.color
+        material.filter()
     }
 }

@@ -82,10 +82,7 @@ impl<'a> Tracer<'a> {
             fog,
             caustics: None,
             media: scene.materials.iter().any(|m| m.medium.is_some()),
-            opaque: scene
-                .materials
-                .iter()
-                .all(|m| m.transparency * m.color == Color::ZERO),
+            opaque: scene.materials.iter().all(|m| m.filter() == Color::ZERO),
         }
     }
 
