@@ -43,7 +43,7 @@ fn random_scene(seed: u64, spheres: usize, triangles: usize, planes: usize) -> G
         });
         g.objects.push(Object {
             shape: sphere,
-            transform,
+            transform: transform.map(Box::new),
             material: 0,
         });
     }
@@ -72,7 +72,7 @@ fn random_scene(seed: u64, spheres: usize, triangles: usize, planes: usize) -> G
         });
         g.objects.push(Object {
             shape: Shape::Polygon(polygon),
-            transform,
+            transform: transform.map(Box::new),
             material: 0,
         });
     }
@@ -88,7 +88,7 @@ fn random_scene(seed: u64, spheres: usize, triangles: usize, planes: usize) -> G
         });
         g.objects.push(Object {
             shape: Shape::TaperedCylinder(cylinder),
-            transform,
+            transform: transform.map(Box::new),
             material: 0,
         });
     }
@@ -339,6 +339,7 @@ fn empty_and_single_primitive_scenes() {
     };
     let at = one.objects[0]
         .transform
+        .as_ref()
         .map_or(s.center, |t| t.point_to_world(s.center));
     let ray = Ray::new(at + Vec3::new(0.0, 0.0, 50.0), -Vec3::Z);
     assert!(bvh.closest_hit(&one, &ray, 0.0, f32::INFINITY).is_some());

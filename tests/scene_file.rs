@@ -394,7 +394,10 @@ fn full_feature_file_composes_transforms_in_file_order() {
             radius: 2.0,
         })
     );
-    let transform = sphere.transform.expect("the sphere has a transform");
+    let transform = sphere
+        .transform
+        .as_ref()
+        .expect("the sphere has a transform");
     // Translate by +y, then rotate 90° about y, then scale y by 2: (1, 0, 0) → (1, 1, 0) →
     // (0, 1, -1) → (0, 2, -1).
     let p = transform.point_to_world(Vec3::X);

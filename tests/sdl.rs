@@ -37,6 +37,7 @@ fn error(text: &str) -> SceneError {
 fn placed(scene: &Scene, i: usize, p: Vec3) -> Vec3 {
     scene.geometry.objects[i]
         .transform
+        .as_ref()
         .unwrap()
         .point_to_world(p)
 }

@@ -244,7 +244,11 @@ mod tests {
             let by_child = rays_by_child(&by_ray);
             for (k, rays) in by_child.iter().enumerate() {
                 for (r, children) in by_ray.iter().enumerate() {
-                    assert_eq!(rays >> r & 1, u64::from(children >> k & 1), "ray {r}, child {k}");
+                    assert_eq!(
+                        rays >> r & 1,
+                        u64::from(children >> k & 1),
+                        "ray {r}, child {k}"
+                    );
                 }
             }
         }

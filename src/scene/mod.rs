@@ -85,7 +85,7 @@ impl Scene {
     ) -> usize {
         self.geometry.objects.push(Object {
             shape,
-            transform,
+            transform: transform.map(Box::new),
             material,
         });
         self.geometry.objects.len() - 1

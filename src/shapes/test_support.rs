@@ -18,7 +18,9 @@ pub fn hit_in_world(
     let geometry = Geometry {
         objects: vec![Object {
             shape,
-            transform: Some(Transform::from_steps(steps).expect("valid transform")),
+            transform: Some(Box::new(
+                Transform::from_steps(steps).expect("valid transform"),
+            )),
             material: 0,
         }],
         ..Geometry::default()

@@ -479,7 +479,7 @@ impl<'a> Parser<'a> {
                 .expect("one object was added");
             operands.push(Operand {
                 shape: object.shape,
-                transform: object.transform,
+                transform: object.transform.map(|transform| *transform),
                 material: object.material,
             });
         }

@@ -722,7 +722,7 @@ impl GeometryBuilder<'_> {
         self.check_bounds(&shape, transform, span)?;
         self.geometry.objects.push(Object {
             shape,
-            transform,
+            transform: transform.map(Box::new),
             material: material.unwrap_or(DEFAULT_MATERIAL),
         });
         Ok(())
