@@ -175,8 +175,8 @@ impl Kernel for Packet<'_> {
 }
 
 /// The rays that entered each child (bit r of entry k for ray r) from the children each ray
-/// entered (bit k of byte r): a 64 × 8 matrix of bits transposed, eight rays at a time. Done
-/// bit by bit, it cost eight shifts and ors per ray at every node, more than the box test.
+/// entered (bit k of byte r): a 64 × 8 matrix of bits transposed, eight rays at a time, where
+/// moving the bits one by one would take eight shifts and ors per ray at every node.
 #[inline(always)]
 fn rays_by_child(children_by_ray: &[u8; PACKET_SIZE]) -> [u64; WIDTH] {
     let mut rays_by_child = [0u64; WIDTH];
