@@ -133,6 +133,21 @@ impl Geometry {
         Triangle::new(corners, face)
     }
 
+    /// Triangles `ts`, each as [`Self::triangle`] makes it, read stage by stage: every face
+    /// first, then every face's vertex indices, then the positions. Reading a triangle is three
+    /// dependent loads, each likely a cache miss when the triangles are far apart in their
+    /// mesh; a stage's loads do not wait on one another, so the processor overlaps their
+    /// misses.
+    pub fn triangles<const N: usize>(&self, ts: [usize; N]) -> [Triangle; N] {
+        let meshes = ts.map(|t| self.mesh_of(t));
+        let faces = ts.map(|t| self.triangle_faces[t]);
+        let indices = std::array::from_fn::<_, N, _>(|k| meshes[k].faces[faces[k] as usize]);
+        std::array::from_fn(|k| {
+            let corners = indices[k].map(|v| meshes[k].positions[v as usize]);
+            Triangle::new(corners, faces[k])
+        })
+    }
+
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }

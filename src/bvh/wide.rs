@@ -72,14 +72,18 @@ pub(super) fn collapse(binary: &[Node], prims: &[PrimId], geometry: &Geometry) -
     out.packs = triangle_packs
         .into_par_iter()
         .map(|range| {
-            let lanes: ArrayVec<_, PACK_SIZE> = prims[range]
-                .iter()
-                .map(|&id| {
-                    let index = id
-                        .kind()
-                        .expect_err("a leaf of triangles holds only triangles");
-                    (geometry.triangle(index), id.0)
-                })
+            let ids = &prims[range];
+            // A pack's triangles are read together; a pack of fewer reads its last one again.
+            let triangle = |k: usize| {
+                let id = ids[k.min(ids.len() - 1)];
+                id.kind()
+                    .expect_err("a leaf of triangles holds only triangles")
+            };
+            let triangles = geometry.triangles(std::array::from_fn::<_, PACK_SIZE, _>(triangle));
+            let lanes: ArrayVec<_, PACK_SIZE> = triangles
+                .into_iter()
+                .zip(ids)
+                .map(|(triangle, id)| (triangle, id.0))
                 .collect();
             TrianglePack::new(&lanes)
         })

@@ -84,6 +84,14 @@ fn build_prims(geometry: &Geometry) -> (Vec<BuildPrim>, Extent, Vec<PrimId>) {
     let mut prims: Vec<BuildPrim> = (0..geometry.len())
         .into_par_iter()
         .map(|i| {
+            if i >= objects {
+                let t = i - objects;
+                if let Some(prim) =
+                    BuildPrim::of_triangle(&geometry.triangle(t), PrimId::triangle(t))
+                {
+                    return prim;
+                }
+            }
             let id = if i < objects {
                 PrimId::object(i)
             } else {
@@ -131,6 +139,7 @@ fn subtree(prims: &mut [BuildPrim], first: usize, extent: Extent, depth: usize) 
     let mut builder = SubtreeBuilder {
         nodes,
         bins: Bins::new(),
+        scratch: Vec::new(),
     };
     builder.subdivide(prims, 0, first, extent, depth);
     builder.nodes
@@ -140,6 +149,8 @@ fn subtree(prims: &mut [BuildPrim], first: usize, extent: Extent, depth: usize) 
 struct SubtreeBuilder {
     nodes: Vec<Node>,
     bins: Box<Bins>,
+    /// Room for the partition's lists.
+    scratch: Vec<u32>,
 }
 
 impl SubtreeBuilder {
@@ -161,9 +172,9 @@ impl SubtreeBuilder {
         let split = if depth + LeafKind::COUNT > MAX_DEPTH {
             None
         } else {
-            split(prims, &extent, &mut self.bins)
+            split(prims, &extent, &mut self.bins, &mut self.scratch)
         };
-        let Some(split) = split.or_else(|| split_by_kind(prims)) else {
+        let Some(split) = split.or_else(|| split_by_kind(prims, &mut self.scratch)) else {
             return;
         };
         let nodes = &mut self.nodes;
@@ -210,7 +221,12 @@ fn append_subtree(nodes: &mut Vec<Node>, at: usize, mut subtree: Vec<Node>) {
 /// Reorders `prims` around the best SAH split and returns it, or `None` when a leaf is
 /// cheaper (and small enough), or the primitives cannot be told apart and are few enough for
 /// a leaf.
-fn split(prims: &mut [BuildPrim], extent: &Extent, bins: &mut Bins) -> Option<Split> {
+fn split(
+    prims: &mut [BuildPrim],
+    extent: &Extent,
+    bins: &mut Bins,
+    scratch: &mut Vec<u32>,
+) -> Option<Split> {
     let n = prims.len();
     let area = extent.bounds.surface_area().max(f32::MIN_POSITIVE);
     // Packed primitives (triangles, spheres, open cylinders, small polygons) are tested four at
@@ -246,7 +262,7 @@ fn split(prims: &mut [BuildPrim], extent: &Extent, bins: &mut Bins) -> Option<Sp
             let centroids = if parallel {
                 partition_in_parallel(prims, mid, goes_left)
             } else {
-                partition(prims, goes_left).1
+                partition(prims, mid, goes_left, scratch)
             };
             Split {
                 mid,
@@ -280,10 +296,11 @@ fn split_pair(a: &mut BuildPrim, b: &mut BuildPrim) -> Option<f32> {
 
 /// A leaf's primitives, when they are of several [`LeafKind`]s, split by kind: the first kind
 /// (in [`LeafKind`]'s order) left, the others right. `None` when they are all of one kind.
-fn split_by_kind(prims: &mut [BuildPrim]) -> Option<Split> {
+fn split_by_kind(prims: &mut [BuildPrim], scratch: &mut Vec<u32>) -> Option<Split> {
     let first = prims.iter().map(BuildPrim::kind).min()?;
-    prims.iter().any(|p| p.kind() != first).then(|| {
-        let (mid, _) = partition(prims, |p| p.kind() == first);
+    let mid = prims.iter().filter(|p| p.kind() == first).count();
+    (mid < prims.len()).then(|| {
+        partition(prims, mid, |p| p.kind() == first, scratch);
         split_at(prims, mid)
     })
 }

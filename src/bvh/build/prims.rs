@@ -7,6 +7,7 @@ use rayon::prelude::*;
 use crate::aabb::Aabb;
 use crate::bvh::leaf::LeafKind;
 use crate::primitive::PrimId;
+use crate::shapes::Triangle;
 
 /// Primitives per piece of a node binned or partitioned on all threads.
 pub(super) const CHUNK: usize = 1 << 13;
@@ -70,6 +71,17 @@ impl BuildPrim {
             min: bounds.min.extend(f32::from_bits(id.0)),
             max: bounds.max.extend(kind as u32 as f32),
         }
+    }
+
+    /// A triangle with finite corners, its box made in SIMD registers (the same box as
+    /// [`Aabb::from_points`] makes); `None` when a corner is not finite.
+    #[inline(always)]
+    pub(super) fn of_triangle(triangle: &Triangle, id: PrimId) -> Option<BuildPrim> {
+        let [a, b, c] = [triangle.p0, triangle.p1, triangle.p2].map(Vec3A::from);
+        (a.is_finite() && b.is_finite() && c.is_finite()).then(|| BuildPrim {
+            min: a.min(b).min(c).extend(f32::from_bits(id.0)),
+            max: a.max(b).max(c).extend(LeafKind::Triangles as u32 as f32),
+        })
     }
 
     pub(super) fn id(&self) -> PrimId {
