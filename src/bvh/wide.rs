@@ -7,9 +7,11 @@
 //! visit move up.
 //!
 //! A binary leaf holds one [`LeafKind`] of primitive (the builder makes sure of it): triangles,
-//! spheres, cylinders or polygons, copied into packs of four in leaf order, or other objects, listed in
-//! leaf order. The walk down the tree only counts out the triangle packs; they are filled
-//! afterwards on all threads, since a large mesh's copy of its triangles is most of the work.
+//! spheres, cylinders or polygons, copied into packs of four in leaf order, or other objects,
+//! listed in leaf order. The walk down the tree only counts out the triangle packs; they are
+//! filled afterwards on all threads, since a large mesh's copy of its triangles is most of the
+//! work. Below the root, the subtrees are walked on all threads, each into arrays of its own
+//! ([`Part`]), joined in order afterwards.
 
 use std::ops::Range;
 
@@ -48,28 +50,19 @@ pub(super) struct Collapsed {
 /// follow one another, and each child's subtree comes before the next child's children (depth
 /// first), as do the leaves' packs and objects.
 pub(super) fn collapse(binary: &[Node], prims: &[PrimId], geometry: &Geometry) -> Collapsed {
-    let mut out = Collapsed {
-        nodes: Vec::new(),
-        packs: Vec::new(),
-        spheres: Vec::new(),
-        cylinders: Vec::new(),
-        polygons: Vec::new(),
-        objects: Vec::new(),
-    };
-    let mut triangle_packs = Vec::new();
-    if !binary.is_empty() {
-        let mut collapse = Collapse {
+    let tree = if binary.is_empty() {
+        Part::default()
+    } else {
+        Collapse {
             binary,
             prims,
             geometry,
-            out: &mut out,
-            triangle_packs: &mut triangle_packs,
-        };
-        collapse.out.nodes.push(EMPTY);
-        collapse.fill(0, 0);
-    }
+        }
+        .tree()
+    };
     // An indexed parallel iterator collects into one allocation of the exact size.
-    out.packs = triangle_packs
+    let packs = tree
+        .triangle_packs
         .into_par_iter()
         .map(|range| {
             let ids = &prims[range];
@@ -88,39 +81,146 @@ pub(super) fn collapse(binary: &[Node], prims: &[PrimId], geometry: &Geometry) -
             TrianglePack::new(&lanes)
         })
         .collect();
-    out.nodes.shrink_to_fit();
-    out.spheres.shrink_to_fit();
-    out.cylinders.shrink_to_fit();
-    out.polygons.shrink_to_fit();
-    out.objects.shrink_to_fit();
-    out
+    Collapsed {
+        nodes: tree.nodes,
+        packs,
+        spheres: tree.spheres,
+        cylinders: tree.cylinders,
+        polygons: tree.polygons,
+        objects: tree.objects,
+    }
+}
+
+/// A subtree of the wide tree and its leaves, collapsed on its own: its root is its node 0, and
+/// its children point into its own arrays.
+#[derive(Default)]
+struct Part {
+    nodes: Vec<WideNode>,
+    spheres: Vec<SpherePack>,
+    cylinders: Vec<CylinderPack>,
+    polygons: Vec<PolygonPack>,
+    objects: Vec<PrimId>,
+    /// Where in `prims` the primitives of each triangle pack are, in pack order: the packs
+    /// are filled once the whole tree is done.
+    triangle_packs: Vec<Range<usize>>,
+}
+
+impl Part {
+    /// A part whose root is still to be written.
+    fn new() -> Part {
+        Part {
+            nodes: vec![EMPTY],
+            ..Part::default()
+        }
+    }
+
+    /// How many entries it has in the array of each [`LeafKind`].
+    fn lengths(&self) -> [usize; LeafKind::COUNT] {
+        let mut lengths = [0; LeafKind::COUNT];
+        lengths[LeafKind::Objects as usize] = self.objects.len();
+        lengths[LeafKind::Spheres as usize] = self.spheres.len();
+        lengths[LeafKind::Cylinders as usize] = self.cylinders.len();
+        lengths[LeafKind::Polygons as usize] = self.polygons.len();
+        lengths[LeafKind::Triangles as usize] = self.triangle_packs.len();
+        lengths
+    }
+
+    /// Appends `parts`, the subtrees of this part's interior nodes 1, 2, … in order, which
+    /// stand in for their roots: each part's root replaces its stand-in, the rest of its
+    /// nodes and its leaves go at the end, and the indices move with them. The result is
+    /// what collapsing the whole on one thread writes.
+    fn join(&mut self, parts: Vec<Part>) {
+        let total = |length: fn(&Part) -> usize| parts.iter().map(length).sum::<usize>();
+        self.nodes.reserve_exact(total(|p| p.nodes.len() - 1));
+        self.objects.reserve_exact(total(|p| p.objects.len()));
+        self.spheres.reserve_exact(total(|p| p.spheres.len()));
+        self.cylinders.reserve_exact(total(|p| p.cylinders.len()));
+        self.polygons.reserve_exact(total(|p| p.polygons.len()));
+        self.triangle_packs
+            .reserve_exact(total(|p| p.triangle_packs.len()));
+        for (j, part) in parts.into_iter().enumerate() {
+            // The part's node i ≥ 1 lands at `self.nodes.len() + i − 1`; its interior
+            // children are never its root.
+            let shift = self.nodes.len() as u32 - 1;
+            let starts = self.lengths();
+            for (i, mut node) in part.nodes.into_iter().enumerate() {
+                for k in 0..WIDTH {
+                    match node.count[k] {
+                        0 => {}
+                        WideNode::INTERIOR => node.first[k] += shift,
+                        count => {
+                            let kind = (count >> Child::KIND_SHIFT) as usize;
+                            node.first[k] += starts[kind] as u32;
+                        }
+                    }
+                }
+                if i == 0 {
+                    self.nodes[1 + j] = node;
+                } else {
+                    self.nodes.push(node);
+                }
+            }
+            self.objects.extend(part.objects);
+            self.spheres.extend(part.spheres);
+            self.cylinders.extend(part.cylinders);
+            self.polygons.extend(part.polygons);
+            self.triangle_packs.extend(part.triangle_packs);
+        }
+    }
 }
 
 struct Collapse<'a> {
     binary: &'a [Node],
     prims: &'a [PrimId],
     geometry: &'a Geometry,
-    out: &'a mut Collapsed,
-    /// Where in `prims` the primitives of each triangle pack are, in pack order: the packs
-    /// are filled once the tree is done.
-    triangle_packs: &'a mut Vec<Range<usize>>,
 }
 
 impl Collapse<'_> {
-    /// Writes into wide node `at` the children of binary node `node`, and their subtrees after.
-    fn fill(&mut self, node: usize, at: usize) {
-        let mut interior: ArrayVec<(usize, usize), WIDTH> = ArrayVec::new();
+    /// The whole tree. The wide root is written here; the subtrees of its interior children
+    /// are collapsed in parallel, each on its own, and joined in order.
+    fn tree(&self) -> Part {
+        let mut tree = Part::new();
+        let interior = self.write_children(&mut tree, 0, 0);
+        let parts = interior
+            .par_iter()
+            .map(|&(c, _)| {
+                let mut part = Part::new();
+                self.fill(&mut part, c, 0);
+                part
+            })
+            .collect();
+        tree.join(parts);
+        tree
+    }
+
+    /// Writes into wide node `at` of `out` the children of binary node `node`, and their
+    /// subtrees after.
+    fn fill(&self, out: &mut Part, node: usize, at: usize) {
+        for (c, index) in self.write_children(out, node, at) {
+            self.fill(out, c, index);
+        }
+    }
+
+    /// Writes into wide node `at` of `out` the children of binary node `node`: the leaves'
+    /// contents, and a node for each interior child, whose binary and wide indices it returns.
+    fn write_children(
+        &self,
+        out: &mut Part,
+        node: usize,
+        at: usize,
+    ) -> ArrayVec<(usize, usize), WIDTH> {
+        let mut interior = ArrayVec::new();
         for (k, c) in self.wide_children(node).into_iter().enumerate() {
             let child = &self.binary[c];
             let slot = if child.is_leaf() {
-                self.leaf(child)
+                self.leaf(out, child)
             } else {
-                self.out.nodes.push(EMPTY);
-                let index = self.out.nodes.len() - 1;
+                out.nodes.push(EMPTY);
+                let index = out.nodes.len() - 1;
                 interior.push((c, index));
                 Child::node(index as u32)
             };
-            let wide = &mut self.out.nodes[at];
+            let wide = &mut out.nodes[at];
             for axis in 0..3 {
                 wide.min[axis][k] = child.min[axis];
                 wide.max[axis][k] = child.max[axis];
@@ -128,16 +228,13 @@ impl Collapse<'_> {
             wide.first[k] = slot.first;
             wide.count[k] = slot.count;
         }
-        for (c, index) in interior {
-            self.fill(c, index);
-        }
+        interior
     }
 
     /// The wide child of a binary leaf: its primitives in packs, or its objects.
-    fn leaf(&mut self, leaf: &Node) -> Child {
+    fn leaf(&self, out: &mut Part, leaf: &Node) -> Child {
         let prims = &self.prims[leaf.first as usize..][..leaf.count as usize];
         let geometry = self.geometry;
-        let out = &mut *self.out;
         let kind = LeafKind::of(geometry, prims[0]);
         // The shape of object `id`, which the builder put in a leaf of its kind.
         let shape = |id: PrimId| {
@@ -171,13 +268,13 @@ impl Collapse<'_> {
                 polygon
             }),
             LeafKind::Triangles => {
-                let first = self.triangle_packs.len();
+                let first = out.triangle_packs.len();
                 let start = leaf.first as usize;
                 let end = start + prims.len();
                 let packs = (start..end).step_by(PACK_SIZE);
                 let ranges = packs.map(|pack| pack..(pack + PACK_SIZE).min(end));
-                self.triangle_packs.extend(ranges);
-                (first, self.triangle_packs.len() - first)
+                out.triangle_packs.extend(ranges);
+                (first, out.triangle_packs.len() - first)
             }
         };
         Child::leaf_of(kind, first as u32, count as u32)
