@@ -20,9 +20,11 @@ pub(super) fn partition(
     goes_left: impl Fn(&BuildPrim) -> bool,
     scratch: &mut Vec<u32>,
 ) -> [Bounds; 2] {
-    scratch.clear();
-    scratch.resize(prims.len(), 0);
-    let (to_right, to_left) = scratch.split_at_mut(mid);
+    // Grown, never cleared: the lists are written before they are read.
+    if scratch.len() < prims.len() {
+        scratch.resize(prims.len(), 0);
+    }
+    let (to_right, to_left) = scratch[..prims.len()].split_at_mut(mid);
     let (front, back) = prims.split_at_mut(mid);
     let (n, [fr, fl]) = list_misplaced(front, false, &goes_left, to_right);
     let (m, [br, bl]) = list_misplaced(back, true, &goes_left, to_left);
