@@ -84,19 +84,17 @@ fn build_prims(geometry: &Geometry) -> (Vec<BuildPrim>, Extent, Vec<PrimId>) {
     let mut prims: Vec<BuildPrim> = (0..geometry.len())
         .into_par_iter()
         .map(|i| {
-            if i >= objects {
-                let t = i - objects;
-                if let Some(prim) =
-                    BuildPrim::of_triangle(&geometry.triangle(t), PrimId::triangle(t))
-                {
-                    return prim;
-                }
-            }
             let id = if i < objects {
                 PrimId::object(i)
             } else {
                 PrimId::triangle(i - objects)
             };
+            // A triangle's box is made in SIMD registers, unless a corner is not finite.
+            if let Err(t) = id.kind()
+                && let Some(prim) = BuildPrim::of_triangle(&geometry.triangle(t), id)
+            {
+                return prim;
+            }
             let bounds = geometry.bounds(id).filter(Aabb::is_finite);
             BuildPrim::new(
                 bounds.unwrap_or(Aabb::EMPTY),
