@@ -36,9 +36,11 @@ const MAX_LEAF_SIZE: usize = 8;
 /// a leaf, or, when it holds several kinds of primitive, split by kind (once per kind but one,
 /// at most).
 pub(super) const MAX_DEPTH: usize = 60;
-/// Nodes with at least this many primitives build their two halves in parallel; below it,
-/// handing work to another thread costs more than it saves.
-const PARALLEL_MIN_PRIMS: usize = 1 << 14;
+/// Nodes with at least this many primitives build their two halves in parallel. Such a half
+/// takes a few hundred microseconds to build, against microseconds to hand it to another
+/// thread, so scenes of a few thousand primitives are built on all threads too; below it, the
+/// handing over would cost more than it saves.
+const PARALLEL_MIN_PRIMS: usize = 1 << 11;
 /// Nodes with at least this many primitives bin and partition them on all threads, in pieces
 /// of [`CHUNK`]: the top of the tree, where there are fewer nodes than threads.
 const DATA_PARALLEL_MIN_PRIMS: usize = 1 << 16;
