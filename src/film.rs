@@ -51,8 +51,8 @@ impl Film {
             height,
             origin: (rect.x0, rect.y0),
             image_size: (image_width, image_height),
-            channels: (0..n * 3).map(|_| AtomicU32::new(0)).collect(),
-            samples: (0..n).map(|_| AtomicU32::new(0)).collect(),
+            channels: zeroed_atomics(n * 3),
+            samples: zeroed_atomics(n),
             version: AtomicU64::new(0),
             changed_rows: (0..height.div_ceil(64))
                 .map(|_| AtomicU64::new(0))
@@ -174,15 +174,12 @@ impl Film {
 
     /// A copy of the pixels, row by row.
     pub fn pixels(&self) -> Vec<Color> {
-        let mut pixels = vec![Color::ZERO; self.width as usize * self.height as usize];
-        // Row by row on all threads: a large film takes milliseconds to copy.
-        let rows = pixels.par_chunks_mut(self.width.max(1) as usize);
-        rows.enumerate().for_each(|(y, row)| {
-            for (x, pixel) in row.iter_mut().enumerate() {
-                *pixel = self.get(x as u32, y as u32);
-            }
-        });
-        pixels
+        // On all threads, each pixel written once: a large film takes milliseconds to copy.
+        let width = self.width.max(1);
+        (0..self.width * self.height)
+            .into_par_iter()
+            .map(|i| self.get(i % width, i / width))
+            .collect()
     }
 
     /// A copy of the pixels `rect` of the image, row by row: a rectangle inside the film's
@@ -194,6 +191,15 @@ impl Film {
             .map(|(x, y)| self.get(x, y))
             .collect()
     }
+}
+
+/// `n` atomics holding 0, in memory allocated zeroed: a large allocation is fresh pages the
+/// system zeroes itself as they are first touched, so a film costs nothing to clear and its
+/// pages are touched by the threads that trace them, not all by the one that made it.
+fn zeroed_atomics(n: usize) -> Vec<AtomicU32> {
+    let zeroed = Box::<[AtomicU32]>::new_zeroed_slice(n);
+    // SAFETY: an `AtomicU32` has the bit validity of a `u32`; all-zero bits are 0.
+    unsafe { zeroed.assume_init() }.into_vec()
 }
 
 #[cfg(test)]
