@@ -117,14 +117,22 @@ impl<'a> Entity<'_, 'a> {
     }
 
     /// The next token, which `what` should be; running out of text is an error at the keyword.
+    #[inline]
     fn token(&mut self, what: &str) -> Result<Token<'a>, SceneError> {
         match self.parser.tokens.next() {
             Some(token) => Ok(token),
-            None => Err(self.error_here(format!(
-                "`{}` is cut short: the file ends before {what}",
-                self.keyword.text
-            ))),
+            None => Err(self.cut_short(what)),
         }
+    }
+
+    /// The error for a file that ends before `what`. Errors are made apart from the reading
+    /// (`#[cold]`), so that reading a number stays a few instructions.
+    #[cold]
+    fn cut_short(&self, what: &str) -> SceneError {
+        self.error_here(format!(
+            "`{}` is cut short: the file ends before {what}",
+            self.keyword.text
+        ))
     }
 
     /// An error at `token`, which is not the `what` expected.
@@ -145,15 +153,24 @@ impl<'a> Entity<'_, 'a> {
 
     /// The next token as a finite number, with the token. raylab renders in single
     /// precision, so larger magnitudes than it holds are errors here, where they are written.
+    #[inline]
     fn number_token(&mut self, what: &str) -> Result<(f64, Token<'a>), SceneError> {
         let token = self.token(what)?;
         match token.text.parse::<f64>() {
             Ok(x) if (x as f32).is_finite() => Ok((x, token)),
-            Ok(x) if x.is_finite() => Err(self.out_of_range(
+            number => Err(self.not_a_number(token, number.ok(), what)),
+        }
+    }
+
+    /// The error for `token`, read as `number`, which is not a finite single-precision `what`.
+    #[cold]
+    fn not_a_number(&self, token: Token, number: Option<f64>, what: &str) -> SceneError {
+        match number {
+            Some(x) if x.is_finite() => self.out_of_range(
                 token,
                 format!("{what} is too large for single precision: {x}"),
-            )),
-            _ => Err(self.unexpected(token, &format!("a number for {what}"))),
+            ),
+            _ => self.unexpected(token, &format!("a number for {what}")),
         }
     }
 
