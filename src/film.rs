@@ -207,6 +207,31 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_new_film_is_black_and_unsampled_and_pixels_copies_it_row_by_row() {
+        // Large enough that its arrays are fresh pages from the system, zeroed by it.
+        let (width, height) = (701, 499);
+        let film = Film::new(width, height);
+        assert!(film.pixels().iter().all(|&c| c == Color::ZERO));
+        assert!((0..height).all(|y| (0..width).all(|x| film.samples(x, y) == 0)));
+        let colour = |x: u32, y: u32| Color::new(x as f32, y as f32, (x ^ y) as f32);
+        for (x, y) in [(0, 0), (700, 0), (0, 498), (700, 498), (350, 250)] {
+            film.set(x, y, colour(x, y));
+        }
+        let pixels = film.pixels();
+        assert_eq!(pixels.len(), (width * height) as usize);
+        for y in 0..height {
+            for x in 0..width {
+                assert_eq!(
+                    pixels[(y * width + x) as usize],
+                    film.get(x, y),
+                    "({x}, {y})"
+                );
+            }
+        }
+        assert_eq!(pixels[(498 * width + 700) as usize], colour(700, 498));
+    }
+
+    #[test]
     fn changed_rows_are_given_once_as_runs() {
         let film = Film::new(3, 200);
         assert!(film.take_changed_rows().is_empty());
