@@ -3,8 +3,8 @@
 #   1. Embree (embree_anchor.py): its build time and Mrays/s on its meshes and rays;
 #   2. raylab's BVH, the `bvh` crate and `obvhs` on the same dumped meshes and rays (raylab-peers);
 #   3. POV-Ray 3.7 against `raylab render` on the seven SPD standard scenes, 512x512, depth 5,
-#      no anti-aliasing, 2 threads: whole-process wall time, and POV's own trace time against
-#      raylab's render time;
+#      no anti-aliasing, 2 threads, the two by turns: whole-process wall time, and POV's own
+#      trace time against raylab's render time;
 #   4. `raylab bench --scaling` (the standard set, 2 threads) for the figures of raylab alone.
 #
 # usage: peers/run.sh [OUT_DIR=/tmp/raylab-peers] [RUNS=5]
@@ -66,21 +66,27 @@ if wants povray; then
     echo "| scene | POV whole | raylab whole | POV ÷ raylab | POV trace | raylab render | POV ÷ raylab |"
     echo "|---|---|---|---|---|---|---|"
     for scene in "${scenes[@]}"; do
-        pov_log="$out/povray-$scene.log"
-        POV_WARMUP=1 "$shared/tools/povray-time.sh" "$shared/scenes/spd-pov/$scene.pov" "$threads" "$runs" \
-            "$out/povray-$scene.png" >"$pov_log"
-        pov_whole=$(sed -n 's/^median wall: \([0-9.]*\) s.*/\1/p' "$pov_log")
-        pov_trace=$(sed -n 's/.*Trace Time:.*(\([0-9.]*\) seconds).*/\1/p' "$pov_log")
-        # raylab: one warm-up run, then the same wall-clock measure as povray-time.sh.
-        "${raylab[@]}" "$shared/scenes/spd/$scene.nff" -o "$out/raylab-$scene.png" >/dev/null
-        walls=() renders=()
+        pov_scene="$shared/scenes/spd-pov/$scene.pov"
+        nff="$shared/scenes/spd/$scene.nff"
+        # One warm-up run each, then POV-Ray and raylab by turns, so that both meet the same
+        # load on a shared machine; POV-Ray's own trace time is read from each of its runs.
+        POV_WARMUP=0 "$shared/tools/povray-time.sh" "$pov_scene" "$threads" 1 >/dev/null
+        "${raylab[@]}" "$nff" -o "$out/raylab-$scene.png" >/dev/null
+        pov_walls=() pov_traces=() walls=() renders=()
         for ((i = 0; i < runs; i++)); do
+            pov_log="$out/povray-$scene.log"
+            POV_WARMUP=0 "$shared/tools/povray-time.sh" "$pov_scene" "$threads" 1 \
+                "$out/povray-$scene.png" >"$pov_log"
+            pov_walls+=("$(sed -n 's/^median wall: \([0-9.]*\) s.*/\1/p' "$pov_log")")
+            pov_traces+=("$(sed -n 's/.*Trace Time:.*(\([0-9.]*\) seconds).*/\1/p' "$pov_log")")
             t0=$(date +%s.%N)
-            line=$("${raylab[@]}" "$shared/scenes/spd/$scene.nff" -o "$out/raylab-$scene.png")
+            line=$("${raylab[@]}" "$nff" -o "$out/raylab-$scene.png")
             t1=$(date +%s.%N)
             walls+=("$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f", b - a }')")
             renders+=("$(sed -n 's/^[0-9]*×[0-9]*: \([0-9.]*\) s.*/\1/p' <<<"$line")")
         done
+        pov_whole=$(printf '%s\n' "${pov_walls[@]}" | median)
+        pov_trace=$(printf '%s\n' "${pov_traces[@]}" | median)
         ray_whole=$(printf '%s\n' "${walls[@]}" | median)
         ray_render=$(printf '%s\n' "${renders[@]}" | median)
         awk -v s="$scene" -v pw="$pov_whole" -v rw="$ray_whole" -v pt="$pov_trace" -v rr="$ray_render" \
