@@ -33,6 +33,15 @@ impl RayBoxTest {
         }
     }
 
+    pub(super) fn origin(&self) -> Vec3 {
+        self.origin
+    }
+
+    /// The inverse direction, ±0 components replaced as [`Self::new`] says.
+    pub(super) fn inv_dir(&self) -> Vec3 {
+        self.inv_dir
+    }
+
     /// Entry distance into `bounds` within `[t_min, t_max]`, or +∞ for a miss: the slab test
     /// of [`Aabb::entry`].
     #[inline(always)]
