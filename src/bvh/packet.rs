@@ -294,9 +294,7 @@ impl SharedOrigin {
             (rays, nearest)
         }
     }
-}
 
-impl SharedOrigin {
     /// Where rays `8 group` to `8 group + 7` enter and leave the slab of child `k` along
     /// `axis`, one ray to a lane: each ray's plane distance times its inverse direction.
     ///
