@@ -5,8 +5,9 @@
 //! box it entered itself (so rays that part ways cost no more than traced alone), and the
 //! sorting and stack work is shared. When the rays start at one point (eye rays), a node's
 //! children that no ray can enter are found for the whole packet with one test, and the rest
-//! are tested eight rays at a time ([`SharedOrigin`]). At a leaf each ray tests the primitives with the same code as
-//! [`Bvh::closest_hit`], so each ray gets exactly the hit that it would get alone.
+//! are tested eight rays at a time (`SharedOrigin`). At a leaf each ray tests the primitives
+//! with the same code as [`Bvh::closest_hit`], so each ray gets exactly the hit that it would
+//! get alone.
 
 use std::array;
 
