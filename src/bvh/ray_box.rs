@@ -33,6 +33,7 @@ impl RayBoxTest {
         }
     }
 
+    /// The ray's origin.
     pub(super) fn origin(&self) -> Vec3 {
         self.origin
     }
