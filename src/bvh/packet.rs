@@ -410,13 +410,8 @@ mod tests {
 
     #[test]
     fn rays_from_one_point_enter_the_children_they_enter_one_by_one_on_every_path() {
-        let mut state = 0x2545_F491_4F6C_DD1D_u64;
-        let mut random = move |n: u32| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state % u64::from(n)) as f32
-        };
+        let mut rng = fastrand::Rng::with_seed(0x2545_F491_4F6C_DD1D);
+        let mut random = move |n: u32| rng.u32(..n) as f32;
         let mut entered = 0;
         for round in 0..300 {
             let origin = Vec3::new(random(9) - 4.0, random(9) - 4.0, random(9) - 4.0);
@@ -469,15 +464,10 @@ mod tests {
 
     #[test]
     fn the_rays_of_each_child_are_the_children_of_each_ray_transposed() {
-        // Bytes from a xorshift generator, with rays that entered no child and rays that
-        // entered all eight mixed in.
-        let mut state = 0x9E37_79B9_7F4A_7C15_u64;
-        let mut next_byte = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state as u8
-        };
+        // Random bytes, with rays that entered no child and rays that entered all eight
+        // mixed in.
+        let mut rng = fastrand::Rng::with_seed(0x9E37_79B9_7F4A_7C15);
+        let mut next_byte = || rng.u8(..);
         for round in 0..200 {
             let by_ray: [u8; PACKET_SIZE] = array::from_fn(|r| match (round + r) % 5 {
                 0 => 0,

@@ -269,13 +269,8 @@ mod tests {
 
     #[test]
     fn the_three_lane_sweep_picks_the_plane_each_axis_alone_would() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut random = move |n: u64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state % n
-        };
+        let mut rng = fastrand::Rng::with_seed(0x9e37_79b9_7f4a_7c15);
+        let mut random = move |n: u64| rng.u64(..n);
         for round in 0..2000 {
             let count = [MIN_BINS, 12, MAX_BINS][round % 3];
             let block = [1, 4][round % 2];
