@@ -1,6 +1,6 @@
 //! Materials: how a surface answers light, in the terms of the lecture's shading model
-//! (ambient, Lambert diffuse, Phong specular) plus mirror reflection and transparency, and the
-//! medium that may fill the object inside.
+//! (emission, ambient, Lambert diffuse, Phong specular) plus mirror reflection and
+//! transparency, and the medium that may fill the object inside.
 
 use crate::color::Color;
 use crate::medium::Medium;
@@ -11,6 +11,9 @@ pub struct Material {
     pub color: Color,
     /// Index into the scene's textures that drives `color`.
     pub texture: Option<u32>,
+    /// Light the surface gives off of itself (the book's `emissive`), seen at every hit
+    /// whatever lights it; it lights nothing else (a Whitted tracer has no area lights).
+    pub emission: Color,
     /// Ambient coefficient `ka`: the share of the global ambient light reflected.
     pub ambient: f32,
     /// Diffuse (Lambert) coefficient `kd`.
@@ -39,6 +42,7 @@ impl Default for Material {
         Material {
             color: Color::splat(0.8),
             texture: None,
+            emission: Color::ZERO,
             ambient: 0.1,
             diffuse: 0.8,
             specular: 0.0,

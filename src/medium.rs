@@ -1,7 +1,7 @@
 //! Participating media: homogeneous [`Medium`]s, one filling the scene (the fog, the scene
-//! file's `[atmosphere]`, in the part of space [`Fog`] says) and one inside each object whose
-//! material has a `medium` (smoky glass, coloured liquid). Which of them a ray runs through
-//! the tracer keeps track of (`whitted::Within`, by the rule below).
+//! file's `[atmosphere]`, see [`Fog`]) and one inside each object whose material has a
+//! `medium` (smoky glass, coloured liquid). Which of them a ray runs through the tracer keeps
+//! track of (`whitted::Within`, by the rule below).
 //!
 //! Light travelling a distance `d` through a medium of extinction coefficient `σ` (its
 //! `density`, per unit length) keeps the fraction `T(d) = exp(−σ·d)` (Beer–Lambert); of what is
@@ -16,18 +16,19 @@
 //! Reflected rays stay where their parent was. Nested media are not tracked: a ray leaving a
 //! ball of liquid inside a smoky ball is taken to be in the fog, not in the smoke, so nested
 //! objects should have clear material between them (a glass cup and the liquid in it with a
-//! thin gap of air). Rays inside an object are in no fog.
+//! thin gap of air). Rays inside an object are in no fog. A ray inside an object that meets no
+//! further surface (an object that is not closed) is taken to have left it: it is not
+//! attenuated.
 //!
-//! Where the fog ends: fog filling all of space would swallow the background and the light of
-//! directional lights (which comes from infinitely far) whole, however thin. So the fog fills a
-//! ball around the scene: the smallest ball around the box of its bounded objects, its point
-//! and spot lights and the camera's eye ([`Fog::new`]); a ball rather than that box, because
-//! the box's edges would show as creases in the fog over an infinite floor. A ray is attenuated
-//! by the length it travels inside the ball: a ray to the background by the distance to where
-//! it leaves the ball (a backdrop at distance `d`, and the background past the ball's surface
-//! at distance `d`, are both dimmed by exactly `exp(−σ·d)`), and a shadow ray to a directional
-//! light likewise. Infinite planes reach beyond the ball: past it they are seen through the fog
-//! between them and the ball only.
+//! The fog fills all of space: whatever a ray meets at distance `t` (eye, reflected,
+//! transmitted, shadow ray or photon, infinite planes included) is seen through exactly
+//! `exp(−σ·t)` and with the light scattered into the whole segment. Only what lies at no
+//! distance needs a convention, since infinitely much fog would swallow it whole: the
+//! background, and the light of directional lights, which comes from infinitely far. Both are
+//! taken to lie at the [`Backdrop`]: by default the far side of the ball around the scene (its
+//! bounded objects, point and spot lights and the eye), or at `background_distance` along the
+//! ray from its start when the scene file says (`inf`: the fog hides the background, and a
+//! directional light, entirely).
 
 use glam::Vec3;
 
@@ -52,8 +53,22 @@ pub struct Medium {
     pub color: Color,
 }
 
-/// The medium filling the scene between objects: the fog.
-pub type Atmosphere = Medium;
+/// The medium filling the scene between objects, the fog, and how far it reaches along rays
+/// that meet nothing.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Atmosphere {
+    pub medium: Medium,
+    /// Where rays that meet nothing see the background, along the ray from its start: `None`
+    /// for the far side of the ball around the scene ([`Backdrop::Ball`]).
+    pub background_distance: Option<f32>,
+}
+
+impl Atmosphere {
+    /// Whether there is no fog at all.
+    pub fn is_clear(&self) -> bool {
+        self.medium.is_clear()
+    }
+}
 
 impl Default for Medium {
     /// Clear air.
@@ -83,13 +98,37 @@ impl Medium {
     }
 }
 
-/// The atmosphere of a scene and the ball it fills.
+/// The fog: the scene's medium, filling all of space, and where rays that meet nothing end.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Fog {
-    pub atmosphere: Atmosphere,
-    /// The centre of the ball the fog fills.
-    pub center: Vec3,
-    pub radius: f32,
+    pub medium: Medium,
+    pub backdrop: Backdrop,
+}
+
+/// Where a ray that meets nothing (one to the background, a shadow ray to a directional light)
+/// stops running through the fog.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Backdrop {
+    /// Where the ray leaves the ball around the scene (its start, if it starts outside the
+    /// ball and runs away from it or past it).
+    Ball { center: Vec3, radius: f32 },
+    /// At this distance along every ray from its start (infinite: nowhere).
+    Distance(f32),
+}
+
+impl Backdrop {
+    /// How far along the ray `origin + s·dir` (`dir` a unit vector) the backdrop lies. The ray
+    /// is inside the ball between the roots of `|origin + s·dir − center|² = radius²`.
+    pub fn distance(&self, origin: Vec3, dir: Vec3) -> f32 {
+        match *self {
+            Backdrop::Ball { center, radius } => {
+                let to_origin = origin - center;
+                let c = to_origin.length_squared() - radius * radius;
+                solve_quadratic(1.0, to_origin.dot(dir), c).map_or(0.0, |(_, leave)| leave.max(0.0))
+            }
+            Backdrop::Distance(distance) => distance,
+        }
+    }
 }
 
 /// Where a ray runs through a medium: from distance `start` to `end` along a unit direction.
@@ -106,8 +145,10 @@ impl Segment {
 }
 
 impl Fog {
-    /// The fog of `atmosphere` in the ball around the box of `object_bounds`, the positions of
-    /// `lights` and `eye`; `None` in clear air.
+    /// The fog of `atmosphere`; `None` in clear air. Without a `background_distance` its
+    /// backdrop is the smallest ball around the box of `object_bounds`, the positions of
+    /// `lights` and `eye` (a ball rather than that box, whose edges would show as creases in
+    /// the fog over an infinite floor).
     pub fn new(
         atmosphere: Atmosphere,
         object_bounds: Option<Aabb>,
@@ -117,38 +158,45 @@ impl Fog {
         if atmosphere.is_clear() {
             return None;
         }
-        let light_positions = lights.iter().filter_map(|light| match light {
-            Light::Point { position, .. } => Some(*position),
-            Light::Spot(spot) => Some(spot.position),
-            Light::Directional { .. } => None,
-        });
-        let bounds = Aabb::from_points(light_positions)
-            .grow(eye)
-            .union(object_bounds.unwrap_or(Aabb::EMPTY));
+        let backdrop = match atmosphere.background_distance {
+            Some(distance) => Backdrop::Distance(distance),
+            None => {
+                let light_positions = lights.iter().filter_map(|light| match light {
+                    Light::Point { position, .. } => Some(*position),
+                    Light::Spot(spot) => Some(spot.position),
+                    Light::Directional { .. } => None,
+                });
+                let bounds = Aabb::from_points(light_positions)
+                    .grow(eye)
+                    .union(object_bounds.unwrap_or(Aabb::EMPTY));
+                Backdrop::Ball {
+                    center: bounds.center(),
+                    radius: bounds.extent().length() / 2.0,
+                }
+            }
+        };
         Some(Fog {
-            atmosphere,
-            center: bounds.center(),
-            radius: bounds.extent().length() / 2.0,
+            medium: atmosphere.medium,
+            backdrop,
         })
     }
 
     /// The part of the ray `origin + s·dir` (`dir` a unit vector), `start ≤ s ≤ end`, that
-    /// lies in the fog; `None` if it misses the fog's ball there. The ray is inside the ball
-    /// between the roots of `|origin + s·dir − center|² = radius²`.
+    /// runs through the fog: all of it up to a surface at `end`, or up to the backdrop when
+    /// `end` is infinite; `None` if that is empty.
     pub fn segment(&self, origin: Vec3, dir: Vec3, start: f32, end: f32) -> Option<Segment> {
-        let to_origin = origin - self.center;
-        let c = to_origin.length_squared() - self.radius * self.radius;
-        let (enter, leave) = solve_quadratic(1.0, to_origin.dot(dir), c)?;
-        let (start, end) = (start.max(enter), end.min(leave));
+        let end = if end.is_finite() {
+            end
+        } else {
+            self.backdrop.distance(origin, dir)
+        };
         (start < end).then_some(Segment { start, end })
     }
 
     /// The fraction of light that passes along the ray from `start` to `end`.
     pub fn transmittance(&self, origin: Vec3, dir: Vec3, start: f32, end: f32) -> f32 {
         self.segment(origin, dir, start, end)
-            .map_or(1.0, |segment| {
-                self.atmosphere.transmittance(segment.length())
-            })
+            .map_or(1.0, |segment| self.medium.transmittance(segment.length()))
     }
 }
 
@@ -158,15 +206,18 @@ mod tests {
 
     fn fog(density: f32) -> Atmosphere {
         Atmosphere {
-            density,
-            albedo: 0.5,
-            color: Color::new(1.0, 0.5, 0.25),
+            medium: Medium {
+                density,
+                albedo: 0.5,
+                color: Color::new(1.0, 0.5, 0.25),
+            },
+            background_distance: None,
         }
     }
 
     #[test]
     fn beer_lambert_halves_the_light_every_ln2_over_sigma() {
-        let a = fog(0.5);
+        let a = fog(0.5).medium;
         assert_eq!(a.transmittance(0.0), 1.0);
         assert!((a.transmittance(2.0 * std::f32::consts::LN_2) - 0.5).abs() < 1e-6);
         assert_eq!(a.scattering(), Color::new(0.25, 0.125, 0.0625));
@@ -174,7 +225,7 @@ mod tests {
     }
 
     #[test]
-    fn the_fog_fills_the_ball_around_the_objects_the_point_lights_and_the_eye() {
+    fn the_backdrop_is_the_ball_around_the_objects_the_point_lights_and_the_eye() {
         let objects = Aabb::new(Vec3::ZERO, Vec3::ONE);
         let lights = [
             Light::Point {
@@ -189,37 +240,66 @@ mod tests {
         // The box from (0, 0, −4) to (1, 5, 1), whose diagonal is √51.
         let eye = Vec3::new(0.5, 0.5, -4.0);
         let f = Fog::new(fog(1.0), Some(objects), &lights, eye).unwrap();
-        assert_eq!(f.center, Vec3::new(0.5, 2.5, -1.5));
-        assert!((f.radius - 51f32.sqrt() / 2.0).abs() < 1e-6);
+        let Backdrop::Ball { center, radius } = f.backdrop else {
+            panic!("{f:?}");
+        };
+        assert_eq!(center, Vec3::new(0.5, 2.5, -1.5));
+        assert!((radius - 51f32.sqrt() / 2.0).abs() < 1e-6);
         let clear = Atmosphere::default();
         assert_eq!(Fog::new(clear, Some(objects), &lights, eye), None);
-        // Only a directional light (and maybe infinite planes): the fog is the eye's point, and
-        // no ray crosses any of it.
-        let f = Fog::new(fog(1.0), None, &lights[1..], eye).unwrap();
-        assert_eq!(f.transmittance(eye, Vec3::X, 0.0, f32::INFINITY), 1.0);
+        let far = Atmosphere {
+            background_distance: Some(40.0),
+            ..fog(1.0)
+        };
+        let f = Fog::new(far, Some(objects), &lights, eye).unwrap();
+        assert_eq!(f.backdrop, Backdrop::Distance(40.0));
     }
 
     #[test]
-    fn a_ray_is_attenuated_only_inside_the_ball() {
+    fn a_surface_is_seen_through_all_the_fog_before_it_and_the_background_up_to_the_backdrop() {
         // The box from (−1, −1, −1) to (1, 1, 1): the ball of radius √3 around the origin.
         let box_ = Some(Aabb::new(-Vec3::ONE, Vec3::ONE));
         let f = Fog::new(fog(1.0), box_, &[], Vec3::ZERO).unwrap();
         let r = 3f32.sqrt();
-        // From outside, through the centre: a diameter of fog.
+        // A surface anywhere, inside the ball or far outside it: all the way.
         let origin = Vec3::new(-5.0, 0.0, 0.0);
+        for end in [3.0, 5.0, 100.0] {
+            let segment = f.segment(origin, Vec3::X, 0.5, end).unwrap();
+            assert_eq!(segment, Segment { start: 0.5, end });
+            let t = f.transmittance(origin, Vec3::X, 0.0, end);
+            assert!((t - (-end).exp()).abs() < 1e-6);
+        }
+        // Nothing met: up to where the ray leaves the ball.
         let through = f.segment(origin, Vec3::X, 0.0, f32::INFINITY).unwrap();
-        assert!((through.start - (5.0 - r)).abs() < 1e-5 && (through.end - (5.0 + r)).abs() < 1e-5);
-        let t = f.transmittance(origin, Vec3::X, 0.0, f32::INFINITY);
-        assert!((t - (-2.0 * r).exp()).abs() < 1e-5);
-        // Stopped at the centre, from the centre out, or turned away.
-        assert!((f.segment(origin, Vec3::X, 0.0, 5.0).unwrap().length() - r).abs() < 1e-5);
-        assert!((f.segment(Vec3::ZERO, Vec3::Y, 0.0, 9.0).unwrap().length() - r).abs() < 1e-6);
+        assert!((through.end - (5.0 + r)).abs() < 1e-5, "{through:?}");
+        assert!(
+            (f.segment(Vec3::ZERO, Vec3::Y, 0.0, f32::INFINITY)
+                .unwrap()
+                .end
+                - r)
+                .abs()
+                < 1e-6
+        );
+        // Turned away from the ball, or passing beside it: the backdrop is at the start.
         assert_eq!(f.segment(origin, -Vec3::X, 0.0, f32::INFINITY), None);
         assert_eq!(f.transmittance(origin, -Vec3::X, 0.0, f32::INFINITY), 1.0);
-        // Passing beside the ball.
+        let beside = Vec3::new(-5.0, 2.0, 0.0);
+        assert_eq!(f.segment(beside, Vec3::X, 0.0, f32::INFINITY), None);
+        // A backdrop at a distance, or nowhere.
+        let at = |d| Fog {
+            backdrop: Backdrop::Distance(d),
+            ..f
+        };
         assert_eq!(
-            f.segment(Vec3::new(-5.0, 2.0, 0.0), Vec3::X, 0.0, 9.0),
-            None
+            at(7.0).segment(beside, Vec3::X, 0.0, f32::INFINITY),
+            Some(Segment {
+                start: 0.0,
+                end: 7.0
+            })
+        );
+        assert_eq!(
+            at(f32::INFINITY).transmittance(beside, Vec3::X, 0.0, f32::INFINITY),
+            0.0
         );
     }
 }

@@ -10,7 +10,7 @@ use raylab::color::Color;
 use raylab::inspect::{RayTree, trace_ray_tree};
 use raylab::light::Light;
 use raylab::material::Material;
-use raylab::medium::Atmosphere;
+use raylab::medium::{Atmosphere, Medium};
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::{Plane, Shape, Sphere};
@@ -331,9 +331,12 @@ fn in_fog_each_ray_outside_objects_shows_its_transmittance_and_in_scattered_ligh
     let mut scene = glass_ball(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO);
     let density = 0.2;
     scene.atmosphere = Atmosphere {
-        density,
-        albedo: 0.5,
-        color: Color::ONE,
+        medium: Medium {
+            density,
+            albedo: 0.5,
+            color: Color::ONE,
+        },
+        background_distance: None,
     };
     let tree = centre_tree(&scene);
     let fogs: Vec<_> = tree.nodes.iter().map(|n| n.fog).collect();
@@ -359,4 +362,22 @@ fn in_fog_each_ray_outside_objects_shows_its_transmittance_and_in_scattered_ligh
         eye.transmittance * 0.9 * Color::ONE,
         1e-5
     ));
+}
+
+#[test]
+fn a_hits_emission_is_shown_and_is_part_of_its_local_colour() {
+    let mut scene = Scene::new(settings(1, 0.0), camera(Vec3::ZERO, -Vec3::Z, 1.0));
+    let glow = Color::new(0.5, 0.25, 0.0);
+    let lamp = scene.add_material(Material {
+        emission: glow,
+        ambient: 0.0,
+        ..Material::default()
+    });
+    scene.add_object(plane(Vec3::new(0.0, 0.0, -5.0), Vec3::Z), None, lamp);
+    let tree = centre_tree(&scene);
+    let eye = &tree.nodes[0];
+    assert_eq!(eye.hit.as_ref().map(|hit| hit.emission), Some(glow));
+    assert_eq!(eye.local_color, glow, "no light: the emission alone");
+    let text = tree.to_text();
+    assert!(text.contains("emission (0.5000, 0.2500, 0.0000)"), "{text}");
 }

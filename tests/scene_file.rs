@@ -213,6 +213,7 @@ scale = [3, 2]
 [materials.red]
 color = [0.8, 0.1, 0.1]
 texture = "checks"
+emission = [0.05, 0.1, 0]
 ambient = 0.2
 diffuse = 0.7
 specular = 0.5
@@ -348,6 +349,7 @@ fn full_feature_file_numbers_materials_and_textures_by_name() {
         Material {
             color: Color::new(0.8, 0.1, 0.1),
             texture: Some(0),
+            emission: Color::new(0.05, 0.1, 0.0),
             ambient: 0.2,
             diffuse: 0.7,
             specular: 0.5,
@@ -1177,19 +1179,27 @@ fn an_atmosphere_is_read_with_defaults_for_what_it_leaves_out() {
     assert_eq!(
         scene.atmosphere,
         Atmosphere {
-            density: 0.2,
-            albedo: 0.5,
-            color: Color::new(1.0, 0.9, 0.8),
+            medium: Medium {
+                density: 0.2,
+                albedo: 0.5,
+                color: Color::new(1.0, 0.9, 0.8),
+            },
+            background_distance: None,
         }
     );
-    let thin = parse("[atmosphere]\ndensity = 0.1\n").unwrap();
+    let thin = parse("[atmosphere]\ndensity = 0.1\nbackground_distance = 50\n").unwrap();
     assert_eq!(
         thin.atmosphere,
         Atmosphere {
-            density: 0.1,
-            ..Atmosphere::default()
+            medium: Medium {
+                density: 0.1,
+                ..Medium::default()
+            },
+            background_distance: Some(50.0),
         }
     );
+    let endless = parse("[atmosphere]\ndensity = 0.1\nbackground_distance = inf\n").unwrap();
+    assert_eq!(endless.atmosphere.background_distance, Some(f32::INFINITY));
     assert!(parse("").unwrap().atmosphere.is_clear());
     assert_eq!(RenderSettings::default().fog_steps, 16);
 }
@@ -1245,6 +1255,18 @@ fn atmosphere_mistakes_are_errors_at_their_value() {
         "missing field `density`",
     );
     assert_error("[atmosphere]\ndensity = 1\ndensty = 1\n", 3, 1, "`density`");
+    assert_error(
+        "[atmosphere]\ndensity = 1\nbackground_distance = 0\n",
+        3,
+        23,
+        "a positive number or inf",
+    );
+    assert_error(
+        "[materials.m]\nmedium = { density = 1, background_distance = 5 }\n",
+        2,
+        25,
+        "unknown field `background_distance`",
+    );
     assert_error(
         "[render]\nfog_steps = 0\n",
         2,

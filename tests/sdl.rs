@@ -81,12 +81,13 @@ fn the_books_defaults() {
 #[test]
 fn every_material_keyword() {
     let s = scene(
-        "ambient .2 .2 .2 diffuse .4 .2 .0 specular .5 .25 0 emissive 0 0 0 specularExponent 30\n\
+        "ambient .2 .2 .2 diffuse .4 .2 .0 specular .5 .25 0 emissive .3 .2 .1 specularExponent 30\n\
          reflectivity .3 transparency .6 speedOfLight .5 specularFraction .1 surfaceRoughness 2\n\
          sphere defaultMaterials cube",
     );
     let m = &s.materials[0];
     assert_eq!(m.color, Vec3::new(0.4, 0.2, 0.0));
+    assert_eq!(m.emission, Vec3::new(0.3, 0.2, 0.1));
     assert!(
         (m.ambient - 1.0).abs() < 1e-6,
         "ambient mean .2 over diffuse mean .2"
@@ -100,6 +101,7 @@ fn every_material_keyword() {
         (30.0, 0.3, 0.6)
     );
     assert_eq!(m.ior, 2.0, "speedOfLight .5 is an index of refraction of 2");
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
     assert_eq!(s.materials.len(), 2);
     assert_eq!(
         s.materials[1].color,
@@ -256,11 +258,11 @@ fn numbers_as_cpp_reads_them() {
 
 #[test]
 fn unknown_keywords_suggest_the_nearest() {
-    let e = error("sphere\n  exponent 50");
+    let e = error("sphere\n  specularExponnent 50");
     assert_eq!((e.line, e.column), (2, 3));
     assert_eq!(
         e.message,
-        "unknown keyword `exponent`, did you mean `specularExponent`?"
+        "unknown keyword `specularExponnent`, did you mean `specularExponent`?"
     );
     let e = error("shpere");
     assert!(e.message.ends_with("did you mean `sphere`?"), "{e}");
@@ -666,10 +668,10 @@ fn load_any_reads_dat_and_sdl_files_and_their_meshes() {
         );
     }
     let path = folder.path().join("bad.dat");
-    std::fs::write(&path, "\n\nexponent 3").unwrap();
+    std::fs::write(&path, "\n\nexponentt 3").unwrap();
     let message = load_any(path.to_str().unwrap()).unwrap_err().to_string();
     assert!(
-        message.contains("bad.dat:3:1: unknown keyword `exponent`"),
+        message.contains("bad.dat:3:1: unknown keyword `exponentt`"),
         "{message}"
     );
 }
@@ -752,4 +754,18 @@ fn load_any_frames_an_sdl_scene_which_has_no_camera() {
         "{framed:?}"
     );
     assert!(framed.eye.distance(framed.look_at) > 1.0);
+}
+
+#[test]
+fn the_books_exponent_is_read_as_specular_exponent_with_one_warning() {
+    // As the book's own bookScene.dat writes it.
+    let s = scene("specular .5 .5 .5 exponent 50 sphere exponent 20 cube");
+    assert_eq!(s.materials[0].shininess, 50.0);
+    assert_eq!(s.materials[1].shininess, 20.0);
+    assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+    assert!(
+        s.warnings[0].starts_with("t.dat:1: `exponent` is read as `specularExponent`"),
+        "{:?}",
+        s.warnings
+    );
 }

@@ -78,6 +78,31 @@ fn a_point_in_shadow_gets_only_ambient_light() {
 }
 
 #[test]
+fn emission_adds_to_every_hit_whatever_lights_it_and_lights_nothing_else() {
+    let glow = Color::new(2.0, 1.0, 0.5);
+    let lamp = Material {
+        emission: glow,
+        ..Material::default()
+    };
+    let scene = sphere_over_floor(lamp.clone());
+    let dark = sphere_over_floor(Material::default());
+    // The floor in the glowing ball's shadow: ambient only, as under a ball that gives off
+    // nothing.
+    let ray = ray_to_floor_under_sphere();
+    assert_eq!(trace(&scene, &ray).0, trace(&dark, &ray).0);
+    // The ball's underside, turned from the light: emission and ambient.
+    let up = eye_ray(Vec3::new(0.0, 0.5, 0.0), Vec3::Y);
+    let ambient = lamp.ambient * lamp.color * scene.settings.ambient;
+    let (c, _) = trace(&scene, &up);
+    assert!((c - (glow + ambient)).length() < 1e-6, "{c}");
+    // Its top, lit head-on: emission, ambient and diffuse.
+    let down = eye_ray(Vec3::new(0.0, 5.0, 0.0), -Vec3::Y);
+    let (c, _) = trace(&scene, &down);
+    let expected = glow + ambient + lamp.diffuse * lamp.color;
+    assert!((c - expected).length() < 1e-5, "{c} != {expected}");
+}
+
+#[test]
 fn a_lit_point_gets_lambert_diffuse_light() {
     let mut scene = sphere_over_floor(Material::default());
     scene.geometry.objects.pop(); // no blocker

@@ -55,6 +55,8 @@ pub struct NodeHit {
     pub uv: Vec2,
     /// The ray came from the front side of the surface (into the object, for a solid).
     pub entering: bool,
+    /// The light the surface gives off of itself, part of the local colour.
+    pub emission: Color,
 }
 
 /// What the fog did to a ray on its way back to its parent (only in scenes with fog).

@@ -150,6 +150,7 @@ impl TreeObserver for Recorder<'_> {
             normal,
             uv: surface.uv,
             entering,
+            emission: scene.materials[surface.material as usize].emission,
         });
     }
 

@@ -6,6 +6,7 @@ use std::fmt::Write;
 use glam::Vec3;
 
 use super::ray_tree::{RayNode, RayTree, ShadowRay};
+use crate::color::Color;
 use crate::whitted::{RayKind, StopReason};
 
 impl RayTree {
@@ -83,6 +84,9 @@ fn write_ray(out: &mut String, pad: &str, index: usize, node: &RayNode) {
         None => {
             let _ = writeln!(out, "{pad}  missed: background");
         }
+    }
+    if let Some(hit) = node.hit.as_ref().filter(|hit| hit.emission != Color::ZERO) {
+        let _ = writeln!(out, "{pad}  emission {}", vec3(hit.emission));
     }
     if let Some(caustic) = node.caustic {
         let _ = writeln!(out, "{pad}  caustic irradiance {}", vec3(caustic));

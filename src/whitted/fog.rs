@@ -17,8 +17,9 @@
 //! shadows cast dark beams; the media of the objects it passes dim it) and `T_light` the fog's
 //! transmittance along that shadow ray. The
 //! integral is estimated light by light with `fog_steps` stratified samples: the samples'
-//! range is cut into equal strata and each is sampled at one jittered point, spread evenly
-//! along the ray or, for spot lights, equiangularly ([`Spread`]). The jitter is a hash of the
+//! range is cut into equal strata and each is sampled at one jittered point, crowded where the
+//! medium still lets light through or, for spot lights, equiangularly ([`Spread`]), so a
+//! segment of any length, out to the horizon, is covered by the same number of samples. The jitter is a hash of the
 //! ray itself, so a pixel comes out the same whatever thread renders it, and neighbouring
 //! pixels' errors differ, which the eye sees as fine noise rather than bands.
 //!
@@ -95,18 +96,21 @@ impl Tracer<'_> {
         counts: &mut RayCounts,
         observer: &mut O,
     ) -> Color {
+        if medium.is_clear() {
+            return Color::ZERO;
+        }
         let steps = self.scene.settings.fog_steps;
         let (seed_origin, seed_dir) = (hash_vec3(origin), hash_vec3(dir));
         let mut gathered = Color::ZERO;
         for (index, light) in self.scene.lights.iter().enumerate() {
-            let spread = Spread::new(light, origin, dir, segment);
+            let spread = Spread::new(light, origin, dir, segment, medium.density);
             for k in 0..steps {
                 // Sample k of the light, jittered inside the k-th of `steps` equal strata.
                 let (u, _) = jitter(seed_origin, seed_dir, index as u32 * steps + k);
                 let (s, weight) = spread.at((k as f32 + u) / steps as f32);
                 let point = origin + dir * s;
                 let arriving = self.light_in_medium(light, point, counts, observer);
-                gathered += (weight * medium.transmittance(s - segment.start)) * arriving;
+                gathered += weight * arriving;
             }
         }
         gathered * medium.scattering() * (ISOTROPIC_PHASE / steps as f32)
@@ -157,12 +161,21 @@ fn dim(fog: &Fog, point: Vec3, sample: &mut LightSample) {
     sample.color *= fog.transmittance(point, sample.dir, 0.0, sample.distance);
 }
 
-/// How a light's sample points are spread along a fog segment. Each sample at distance `s`
-/// is weighted by `1 / pdf(s)`, so any spread gives the right integral on average; a spread
-/// that is dense where the integrand is large gives it with less noise.
+/// How a light's sample points are spread along a segment of a medium. Each sample at distance
+/// `s` is weighted by `T(s − start) / pdf(s)`, so any spread gives the right integral on
+/// average; a spread that is dense where the integrand is large gives it with less noise.
 enum Spread {
-    /// Evenly: for point and directional lights, whose light hardly changes along the ray.
-    Uniform { start: f32, length: f32 },
+    /// As the medium's transmittance from the segment's start falls, `pdf(s) ∝ exp(−σ·(s −
+    /// start))`: for point and directional lights, whose light changes little along the ray
+    /// next to how the fog dims it. On a long segment (a floor plane near the horizon, a
+    /// backdrop far away, or none) the samples stay where the fog still lets light through,
+    /// and each is weighted by the constant `(1 − exp(−σ·L)) / σ`.
+    Transmittance {
+        start: f32,
+        density: f32,
+        /// `1 − exp(−σ·L)`: the share of the light that the whole segment takes away.
+        mass: f32,
+    },
     /// Equiangular sampling (Kulla and Fajardo, 2012) for spot lights, whose light falls off as
     /// `1/r²`: the samples are spread evenly in the angle under which the light sees the ray,
     /// so they crowd where the ray passes closest to the light, and the weight `1/pdf`, which
@@ -170,6 +183,8 @@ enum Spread {
     /// nearest the light, `height` the light's distance from the ray, and the angles are those
     /// of the segment's ends seen from the light, measured from the foot.
     Equiangular {
+        start: f32,
+        density: f32,
         foot: f32,
         height: f32,
         angle_start: f32,
@@ -178,22 +193,27 @@ enum Spread {
 }
 
 impl Spread {
-    fn new(light: &Light, origin: Vec3, dir: Vec3, segment: Segment) -> Spread {
-        let uniform = Spread::Uniform {
+    /// The spread for `light` along `segment` of the ray from `origin` along the unit vector
+    /// `dir`, through a medium of extinction coefficient `density` (more than zero).
+    fn new(light: &Light, origin: Vec3, dir: Vec3, segment: Segment, density: f32) -> Spread {
+        let by_transmittance = Spread::Transmittance {
             start: segment.start,
-            length: segment.length(),
+            density,
+            mass: -(-density * segment.length()).exp_m1(),
         };
         let Light::Spot(spot) = light else {
-            return uniform;
+            return by_transmittance;
         };
         let to_light = spot.position - origin;
         let foot = to_light.dot(dir);
         let height = (to_light - foot * dir).length();
         // A ray through the light itself: no angles to spread over.
         if height <= f32::EPSILON * to_light.length() {
-            return uniform;
+            return by_transmittance;
         }
         Spread::Equiangular {
+            start: segment.start,
+            density,
             foot,
             height,
             angle_start: ((segment.start - foot) / height).atan(),
@@ -201,11 +221,22 @@ impl Spread {
         }
     }
 
-    /// The sample at `u` (from 0 to 1): its distance along the ray and its weight `1 / pdf`.
+    /// The sample at `u` (from 0 to 1): its distance along the ray and its weight
+    /// `T(s − start) / pdf(s)`.
     fn at(&self, u: f32) -> (f32, f32) {
         match *self {
-            Spread::Uniform { start, length } => (start + u * length, length),
+            Spread::Transmittance {
+                start,
+                density,
+                mass,
+            } => {
+                // The inverse of the distribution `(1 − exp(−σ·(s − start))) / mass`.
+                let s = start - (-u * mass).ln_1p() / density;
+                (s, mass / density)
+            }
             Spread::Equiangular {
+                start,
+                density,
                 foot,
                 height,
                 angle_start,
@@ -214,7 +245,8 @@ impl Spread {
                 let angle = angle_start + u * (angle_end - angle_start);
                 let along = height * angle.tan();
                 let weight = (angle_end - angle_start) * (height * height + along * along) / height;
-                (foot + along, weight)
+                let s = foot + along;
+                (s, weight * (-density * (s - start)).exp())
             }
         }
     }

@@ -1,4 +1,5 @@
-//! The local colour at a hit (the lecture's shading model): ambient light, plus the diffuse
+//! The local colour at a hit (the lecture's shading model): the surface's own emission and
+//! ambient light, plus the diffuse
 //! (Lambert) and specular (Phong) light of every light that a shadow ray reaches, plus, with
 //! caustics on, the diffuse light of the caustic photons nearby. Transparent blockers tint the
 //! light that passes them, and those filled with a medium dim it by the length the shadow ray
@@ -18,7 +19,8 @@ use crate::shapes::Shape;
 use crate::stats::RayCounts;
 
 impl Tracer<'_> {
-    /// Ambient, plus the diffuse and specular light of every light the point can see.
+    /// Emission and ambient, plus the diffuse and specular light of every light the point can
+    /// see.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn local_color<O: TreeObserver>(
         &self,
@@ -32,7 +34,7 @@ impl Tracer<'_> {
         observer: &mut O,
     ) -> Color {
         let settings = &self.scene.settings;
-        let mut color = material.ambient * base * settings.ambient;
+        let mut color = material.emission + material.ambient * base * settings.ambient;
         let shadow_origin = offset_origin(surface.point, geometric_normal);
         for (light_index, light) in self.scene.lights.iter().enumerate() {
             let mut sample = light.sample(surface.point);

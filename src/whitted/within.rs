@@ -48,7 +48,7 @@ impl Within {
         match self {
             Within::Fog => {
                 let fog = fog?;
-                Some((fog.atmosphere, fog.segment(origin, dir, 0.0, end)?))
+                Some((fog.medium, fog.segment(origin, dir, 0.0, end)?))
             }
             Within::Medium(material) if end.is_finite() => {
                 let medium = materials[*material as usize].medium?;

@@ -176,6 +176,7 @@ fn material(fill: &Fill) -> Material {
     Material {
         color: fill.color.as_vec3(),
         texture: None,
+        emission: Color::ZERO,
         ambient: fill.kd as f32,
         diffuse: fill.kd as f32,
         specular: fill.ks as f32,

@@ -43,6 +43,7 @@ const FIRST_MEMORY_CHECK: u64 = 1 << 20;
 /// sets them.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct SdlMaterial {
+    pub emissive: Color,
     pub ambient: Color,
     pub diffuse: Color,
     pub specular: Color,
@@ -61,6 +62,7 @@ pub(crate) struct SdlMaterial {
 impl Default for SdlMaterial {
     fn default() -> Self {
         SdlMaterial {
+            emissive: Color::ZERO,
             ambient: Color::splat(0.1),
             diffuse: Color::splat(0.8),
             specular: Color::ZERO,
@@ -90,6 +92,7 @@ impl SdlMaterial {
         Material {
             color: self.diffuse,
             texture: None,
+            emission: self.emissive,
             ambient,
             diffuse: 1.0,
             specular,

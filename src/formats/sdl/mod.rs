@@ -18,8 +18,10 @@
 //! - A zero scale is an error (the book divides by it and carries on).
 //! - raylab's materials have one colour: the diffuse colour, the ambient colour becoming the
 //!   ambient coefficient (its mean over the diffuse colour's mean), the specular colour the
-//!   highlight's colour. `emissive` is read and ignored, with a warning. `minReflectivity` and
-//!   `minTransparency` become raylab's one adaptive cut-off, the smaller of the two.
+//!   highlight's colour, `emissive` the material's emission, added at every hit as the book's
+//!   shading adds it. `exponent` (the book's own `bookScene.dat` writes it) is read as
+//!   `specularExponent`, with a warning. `minReflectivity` and `minTransparency` become
+//!   raylab's one adaptive cut-off, the smaller of the two.
 //! - Textures mean what they mean in the book's ray tracer (`Scene::texture`, `Scene::shade`):
 //!   −1 the checkerboard (its cells counted with `floor`, where the book truncates towards
 //!   zero and doubles the cells through the origin), −2 wood, −3 marble (the book's ring and

@@ -162,11 +162,12 @@ impl<'a> Parser<'a> {
             "ambient" => self.build.material.ambient = self.vector(word, "a colour")?,
             "diffuse" => self.build.material.diffuse = self.vector(word, "a colour")?,
             "specular" => self.build.material.specular = self.vector(word, "a colour")?,
-            "emissive" => {
-                self.vector(word, "a colour")?;
-                self.warn_once(word, "`emissive` is read, but raylab has no emission yet");
-            }
+            "emissive" => self.build.material.emissive = self.vector(word, "a colour")?,
             "specularExponent" => {
+                self.build.material.specular_exponent = self.number(word, "a number")?;
+            }
+            "exponent" => {
+                self.warn_once(word, "`exponent` is read as `specularExponent`");
                 self.build.material.specular_exponent = self.number(word, "a number")?;
             }
             "reflectivity" => self.build.material.reflectivity = self.number(word, "a number")?,

@@ -10,8 +10,8 @@ use glam::{Vec2, Vec3};
 use toml::Spanned;
 
 use super::file::{
-    CameraFile, CsgOperationFile, LightFile, MaterialFile, MediumFile, ObjectFile, RenderFile,
-    SceneFile, ShapeFile, TextureFile, TransformStepFile, WrapFile,
+    AtmosphereFile, CameraFile, CsgOperationFile, LightFile, MaterialFile, MediumFile, ObjectFile,
+    RenderFile, SceneFile, ShapeFile, TextureFile, TransformStepFile, WrapFile,
 };
 use super::values::{ColorValue, Direction, Exact, NonNegative, TexCoord, Vector};
 use crate::camera::{Camera, CameraError, CameraSpec};
@@ -57,7 +57,9 @@ pub(crate) fn build_scene(
         .into_iter()
         .map(|light| build_light(light, source))
         .collect::<Result<_, _>>()?;
-    let atmosphere = file.atmosphere.map_or(Atmosphere::default(), build_medium);
+    let atmosphere = file
+        .atmosphere
+        .map_or(Atmosphere::default(), build_atmosphere);
 
     let texture_names = Names::new("texture", file.textures.keys(), 0);
     let material_names = Names::new("material", file.materials.keys(), DEFAULT_MATERIAL + 1);
@@ -302,6 +304,18 @@ fn build_light(light: LightFile, source: Source) -> Result<Light, SceneError> {
     })
 }
 
+fn build_atmosphere(atmosphere: AtmosphereFile) -> Atmosphere {
+    let medium = MediumFile {
+        density: atmosphere.density,
+        albedo: atmosphere.albedo,
+        color: atmosphere.color,
+    };
+    Atmosphere {
+        medium: build_medium(medium),
+        background_distance: atmosphere.background_distance.map(|d| d.0),
+    }
+}
+
 fn build_medium(medium: MediumFile) -> Medium {
     let clear = Medium::default();
     Medium {
@@ -370,6 +384,7 @@ fn build_material(
             .texture
             .map(|name| textures.resolve(&name, source))
             .transpose()?,
+        emission: material.emission.map_or(default.emission, |c| c.0),
         ambient: material.ambient.map_or(default.ambient, |x| x.0),
         diffuse: material.diffuse.map_or(default.diffuse, |x| x.0),
         specular: material.specular.map_or(default.specular, |x| x.0),

@@ -131,6 +131,9 @@ fn write_material(table: &mut dyn TableLike, old: &Material, new: &Material) {
     if old.color != new.color {
         set(table, "color", triple(new.color.to_array()));
     }
+    if old.emission != new.emission {
+        set(table, "emission", triple(new.emission.to_array()));
+    }
     if old.specular_color != new.specular_color {
         set(
             table,

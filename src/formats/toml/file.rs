@@ -13,8 +13,8 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::values::{
-    ColorValue, Direction, Exact, Finite, Fraction, NonNegative, Positive, ScaleFactors, TexCoord,
-    Vector,
+    ColorValue, Direction, Exact, Finite, Fraction, NonNegative, Positive, PositiveOrInfinite,
+    ScaleFactors, TexCoord, Vector,
 };
 
 /// The whole file.
@@ -26,7 +26,7 @@ pub struct SceneFile {
     pub camera: Option<Spanned<CameraFile>>,
     #[serde(default)]
     pub lights: Vec<LightFile>,
-    pub atmosphere: Option<MediumFile>,
+    pub atmosphere: Option<AtmosphereFile>,
     /// By name; the scene's textures are numbered in name order.
     #[serde(default)]
     pub textures: BTreeMap<String, TextureFile>,
@@ -76,8 +76,19 @@ pub struct RenderFile {
     pub caustic_gather: Option<Spanned<u32>>,
 }
 
-/// `[atmosphere]` and a material's `medium = { … }`: the fields of [`crate::medium::Medium`];
-/// `density` is required.
+/// `[atmosphere]`: the fields of [`crate::medium::Atmosphere`]; `density` is required.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AtmosphereFile {
+    pub density: NonNegative,
+    pub albedo: Option<Fraction>,
+    pub color: Option<ColorValue>,
+    /// How far along a ray that meets nothing the background lies; `inf` for nowhere.
+    pub background_distance: Option<PositiveOrInfinite>,
+}
+
+/// A material's `medium = { … }`: the fields of [`crate::medium::Medium`]; `density` is
+/// required.
 #[derive(Debug, Deserialize)]
 #[serde(
     deny_unknown_fields,
@@ -169,6 +180,8 @@ pub struct MaterialFile {
     pub color: Option<ColorValue>,
     /// A name from `[textures]`.
     pub texture: Option<Spanned<String>>,
+    /// Light the surface gives off of itself.
+    pub emission: Option<ColorValue>,
     pub ambient: Option<NonNegative>,
     pub diffuse: Option<NonNegative>,
     pub specular: Option<NonNegative>,

@@ -234,6 +234,24 @@ impl TryFrom<f32> for Positive {
     }
 }
 
+/// A number greater than zero, `inf` included.
+#[derive(Clone, Copy, Debug)]
+pub struct PositiveOrInfinite(pub f32);
+
+deserialize_checked!(PositiveOrInfinite, f32);
+
+impl TryFrom<f32> for PositiveOrInfinite {
+    type Error = String;
+
+    fn try_from(x: f32) -> Result<Self, String> {
+        if x > 0.0 {
+            Ok(PositiveOrInfinite(x))
+        } else {
+            Err(format!("expected a positive number or inf, got {x}"))
+        }
+    }
+}
+
 /// A finite number, zero or more.
 #[derive(Clone, Copy, Debug)]
 pub struct NonNegative(pub f32);

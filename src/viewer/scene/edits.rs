@@ -13,6 +13,7 @@ use raylab::material::Material;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum MaterialEdit {
     Color(Color),
+    Emission(Color),
     Ambient(f32),
     Diffuse(f32),
     Specular(f32),
@@ -25,7 +26,7 @@ pub enum MaterialEdit {
 }
 
 /// The field names a script's `material` step takes.
-const MATERIAL_FIELDS: &str = "color, ka (ambient), kd (diffuse), ks (specular), \
+const MATERIAL_FIELDS: &str = "color, emission, ka (ambient), kd (diffuse), ks (specular), \
     specular_color, shininess, kr (reflectivity), kt (transparency), ior, fresnel";
 
 impl MaterialEdit {
@@ -41,6 +42,7 @@ impl MaterialEdit {
         };
         match field {
             "color" | "colour" => three(MaterialEdit::Color),
+            "emission" | "emissive" => three(MaterialEdit::Emission),
             "ka" | "ambient" => one(MaterialEdit::Ambient),
             "kd" | "diffuse" => one(MaterialEdit::Diffuse),
             "ks" | "specular" => one(MaterialEdit::Specular),
@@ -61,6 +63,7 @@ impl MaterialEdit {
     pub fn apply(self, m: &mut Material) {
         match self {
             MaterialEdit::Color(c) => m.color = c,
+            MaterialEdit::Emission(c) => m.emission = c,
             MaterialEdit::Ambient(x) => m.ambient = x,
             MaterialEdit::Diffuse(x) => m.diffuse = x,
             MaterialEdit::Specular(x) => m.specular = x,
@@ -179,6 +182,7 @@ pub fn check_material(m: &Material) -> Result<(), String> {
         return Err(format!("ior must be more than 0, got {}", m.ior));
     }
     check_color("color", m.color)?;
+    check_color("emission", m.emission)?;
     check_color("specular colour", m.specular_color)
 }
 

@@ -64,6 +64,7 @@ fn material_fields(ui: &mut egui::Ui, m: &mut Material) {
         }
         None => color(ui, "colour", &mut m.color),
     }
+    color(ui, "emission", &mut m.emission);
     let coefficient = |ui: &mut egui::Ui, x: &mut f32, text: &str| {
         ui.add(Slider::new(x, 0.0..=1.0).text(text));
     };

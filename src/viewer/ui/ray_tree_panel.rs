@@ -5,6 +5,7 @@
 
 use egui::{Color32, RichText};
 use glam::{Vec2, Vec3};
+use raylab::color::Color;
 use raylab::inspect::{RayNode, RayTree, ShadowRay};
 use raylab::whitted::{RayKind, StopReason};
 
@@ -160,6 +161,9 @@ fn node_fields(ui: &mut egui::Ui, node: &RayNode) {
         row("uv", vec2(hit.uv));
         let side = if hit.entering { "front" } else { "back" };
         row("side", side.to_string());
+        if hit.emission != Color::ZERO {
+            row("emission", vec3(hit.emission));
+        }
     }
     if let Some(fog) = &node.fog {
         row("fog transmittance", format!("{:.4}", fog.transmittance));
