@@ -55,6 +55,8 @@ pub enum Texture {
     },
 }
 
+/// The book's wood: the two colours its rings alternate in, whatever the diffuse colour.
+pub const WOOD_COLORS: (Color, Color) = (Color::new(0.6, 0.5, 0.2), Color::new(1.0, 0.62, 0.26));
 /// How far apart the wood's rings are, in object units.
 pub const WOOD_RING_WIDTH: f32 = 0.12;
 /// How far the rings wobble, in rings; how many wobbles go round the axis; how fast they turn

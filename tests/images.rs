@@ -122,7 +122,13 @@ fn default_scene_matches_its_reference() {
 #[test]
 fn teaching_scenes_match_their_references() {
     let names = [
-        "shadows", "mirrors", "glass", "textures", "meshes", "quadrics",
+        "shadows",
+        "mirrors",
+        "glass",
+        "textures",
+        "wood_and_marble",
+        "meshes",
+        "quadrics",
     ];
     check(
         SIZE,

@@ -18,7 +18,7 @@ use raylab::medium::{Atmosphere, Medium};
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::Shape;
-use raylab::texture::{Texture, Wrap};
+use raylab::texture::{Texture, WOOD_COLORS, Wrap};
 
 fn assets() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("assets")
@@ -129,6 +129,58 @@ fn textures_scene_loads_the_image_relative_to_the_scene_file() {
     let right = &scene.geometry.objects[2];
     assert!(right.transform.is_some());
     assert_eq!(scene.materials[right.material as usize].texture, Some(1));
+}
+
+#[test]
+fn wood_and_marble_scene_names_the_books_solid_textures_and_a_background_image() {
+    let scene = shipped_scene("wood_and_marble.toml");
+    // Textures by name: carrara, oak, verde, walnut. Left out, a colour is the book's.
+    assert_eq!(
+        scene.textures[1],
+        Texture::Wood {
+            a: WOOD_COLORS.0,
+            b: WOOD_COLORS.1
+        }
+    );
+    assert_eq!(
+        scene.textures[3],
+        Texture::Wood {
+            a: Color::new(0.35, 0.2, 0.1),
+            b: Color::new(0.55, 0.33, 0.16)
+        }
+    );
+    assert!(matches!(scene.textures[0], Texture::Marble { .. }));
+    assert_eq!(
+        scene.textures[2],
+        Texture::Marble {
+            color: Color::new(0.3, 0.7, 0.45)
+        }
+    );
+    let sky = scene.background_image.as_ref().expect("a background image");
+    assert_eq!((sky.width, sky.height), (192, 96));
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+}
+
+#[test]
+fn a_background_image_that_cannot_be_loaded_is_an_error_at_its_name() {
+    assert_error(
+        "[render]\nbackground_image = \"missing.png\"\n",
+        2,
+        20,
+        "cannot load background image",
+    );
+    assert_error(
+        "[render]\nbackground_image = \"wood_and_marble.toml\"\n",
+        2,
+        20,
+        "cannot load background image",
+    );
+    assert_error(
+        "[textures.t]\ntype = \"wood\"\nc = [1, 1, 1]\n",
+        3,
+        1,
+        "unexpected keys in table: c",
+    );
 }
 
 #[test]

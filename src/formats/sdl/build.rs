@@ -18,7 +18,7 @@ use crate::mesh::Mesh;
 use crate::scene::Scene;
 use crate::settings::RenderSettings;
 use crate::shapes::{Csg, CsgOperation, Operand, Shape};
-use crate::texture::{Texture, TextureImage, Wrap};
+use crate::texture::{Texture, TextureImage, WOOD_COLORS, Wrap};
 use crate::transform::{Transform, TransformStep};
 
 /// How many pixmaps `makePixmap` can fill (numbers 0 to 15), as in the book's ray tracer.
@@ -27,8 +27,6 @@ pub const PIXMAPS: usize = 16;
 /// The book's checkerboard: cubes of side ½, the diffuse colour at 20% and 80%.
 const CHECKER_SIZE: f32 = 0.5;
 const CHECKER_SHADES: (f32, f32) = (0.2, 0.8);
-/// The book's wood: a light and a dark ring colour, whatever the diffuse colour.
-const WOOD: (Color, Color) = (Color::new(0.6, 0.5, 0.2), Color::new(1.0, 0.62, 0.26));
 
 /// Memory a triangle of a mesh takes, at most, with its share of the BVH (an estimate).
 const BYTES_PER_TRIANGLE: u64 = 256;
@@ -233,8 +231,8 @@ impl Builder {
                 size: CHECKER_SIZE,
             }),
             -2 => Some(Texture::Wood {
-                a: WOOD.0,
-                b: WOOD.1,
+                a: WOOD_COLORS.0,
+                b: WOOD_COLORS.1,
             }),
             -3 => Some(Texture::Marble { color: diffuse }),
             n if n > 0 => match self.pixmaps.get(n as usize).and_then(Option::as_ref) {

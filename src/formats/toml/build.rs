@@ -31,7 +31,7 @@ use crate::shapes::{
     Csg, CsgOperation, Cuboid, Ellipsoid, Operand, Paraboloid, Plane, Polygon, Shape, Sphere,
     TaperedCylinder, Torus, Triangle,
 };
-use crate::texture::{Texture, TextureImage, Wrap};
+use crate::texture::{Texture, TextureImage, WOOD_COLORS, Wrap};
 use crate::transform::{Transform, TransformStep};
 
 /// Index of the material of objects that name none: `Material::default()`. The named materials
@@ -43,6 +43,8 @@ const CHECKER_A: Color = Color::splat(0.9);
 const CHECKER_B: Color = Color::splat(0.1);
 const CHECKER_SIZE: f32 = 1.0;
 const CHECKER_UV_COUNT: f32 = 8.0;
+/// The default colour of marble's stone, darkened in its veins.
+const MARBLE_COLOR: Color = Color::new(0.9, 0.88, 0.85);
 
 /// Builds the scene. File names are looked up in `files`.
 pub(crate) fn build_scene(
@@ -50,6 +52,10 @@ pub(crate) fn build_scene(
     source: Source,
     files: SceneFiles,
 ) -> Result<Scene, SceneError> {
+    let background_image = match &file.render.background_image {
+        Some(name) => Some(load_image(name, "background image", source, files)?),
+        None => None,
+    };
     let settings = build_settings(file.render, source)?;
     let camera = build_camera(file.camera, CameraSpec::default(), source)?;
     let lights = file
@@ -119,7 +125,7 @@ pub(crate) fn build_scene(
         materials: builder.materials,
         material_names: builder.names,
         textures,
-        background_image: None,
+        background_image,
         geometry: builder.geometry,
         warnings: builder.warnings,
     })
@@ -325,6 +331,26 @@ fn build_medium(medium: MediumFile) -> Medium {
     }
 }
 
+/// The image the file names at `file` (relative to the scene file's folder), the `what` of
+/// the error if it cannot be read or decoded.
+fn load_image(
+    file: &Spanned<String>,
+    what: &str,
+    source: Source,
+    files: SceneFiles,
+) -> Result<Arc<TextureImage>, SceneError> {
+    let path = files.path(file.get_ref());
+    let fail = |message: String| {
+        let path = path.display();
+        source.error(
+            file.span(),
+            format!("cannot load {what} `{path}`: {message}"),
+        )
+    };
+    let bytes = files.read(&path).map_err(fail)?;
+    Ok(Arc::new(TextureImage::from_bytes(&bytes).map_err(fail)?))
+}
+
 fn build_texture(
     texture: TextureFile,
     source: Source,
@@ -348,19 +374,17 @@ fn build_texture(
             u_count: u_count.map_or(CHECKER_UV_COUNT, |n| n.0),
             v_count: v_count.map_or(CHECKER_UV_COUNT, |n| n.0),
         },
+        TextureFile::Wood { a, b } => Texture::Wood {
+            a: color(a, WOOD_COLORS.0),
+            b: color(b, WOOD_COLORS.1),
+        },
+        TextureFile::Marble { color: stone } => Texture::Marble {
+            color: color(stone, MARBLE_COLOR),
+        },
         TextureFile::Image { file, wrap, scale } => {
-            let path = files.path(file.get_ref());
-            let fail = |message: String| {
-                let path = path.display();
-                source.error(
-                    file.span(),
-                    format!("cannot load texture image `{path}`: {message}"),
-                )
-            };
-            let bytes = files.read(&path).map_err(fail)?;
-            let image = TextureImage::from_bytes(&bytes).map_err(fail)?;
+            let image = load_image(&file, "texture image", source, files)?;
             Texture::Image {
-                image: Arc::new(image),
+                image,
                 wrap: match wrap {
                     None | Some(WrapFile::Repeat) => Wrap::Repeat,
                     Some(WrapFile::Clamp) => Wrap::Clamp,

@@ -65,6 +65,9 @@ pub struct RenderFile {
     pub samples: Option<Spanned<u32>>,
     pub aa_threshold: Option<Spanned<f32>>,
     pub background: Option<Spanned<ColorValue>>,
+    /// PNG, JPEG or BMP, relative to the scene file's folder: stands on the image plane, as
+    /// tall as the view, centred at its own aspect ratio, the background colour around it.
+    pub background_image: Option<Spanned<String>>,
     pub ambient: Option<Spanned<ColorValue>>,
     pub shadows: Option<Spanned<bool>>,
     pub reflections: Option<Spanned<bool>>,
@@ -156,6 +159,13 @@ pub enum TextureFile {
         u_count: Option<Positive>,
         v_count: Option<Positive>,
     },
+    /// Hill & Kelley's wood grain, ringing the object's z axis (turn the object to turn it).
+    Wood {
+        a: Option<ColorValue>,
+        b: Option<ColorValue>,
+    },
+    /// Hill & Kelley's marble, veined across the object's z axis.
+    Marble { color: Option<ColorValue> },
     Image {
         /// PNG, JPEG or BMP, relative to the scene file's folder.
         file: Spanned<String>,
