@@ -49,7 +49,7 @@ pub fn run(args: MergeArgs) -> Result<(), String> {
     let pixels = u64::from(width) * u64::from(height);
     memory::check(
         &format!("merging a {width}×{height} image"),
-        pixels * std::mem::size_of::<Color>() as u64 + format.save_bytes(pixels),
+        pixels * std::mem::size_of::<Color>() as u64 + format.save_bytes(width),
     )?;
     let mut image = vec![Color::ZERO; pixels as usize];
     for (file, info) in files.iter().zip(&infos) {

@@ -12,7 +12,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use raylab::bvh::Bvh;
 use raylab::film::Film;
 use raylab::formats::SceneFormat;
-use raylab::formats::image::{OutputFormat, check_image_path, save_image, save_toned_image};
+use raylab::formats::image::{OutputFormat, check_image_path, save_image, save_toned_pixels};
 use raylab::formats::nff::NffLighting;
 use raylab::formats::part::{PartInfo, scene_hash, write_part};
 use raylab::inspect::DebugView;
@@ -152,7 +152,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         },
         Film::memory_bytes(traced.width(), traced.height())
             + progressive::memory_bytes(&scene.settings)
-            + format.save_bytes(pixels),
+            + format.save_bytes(traced.width()),
     )?;
 
     let build_start = Instant::now();
@@ -193,10 +193,12 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
                     };
                     write_part(output, &info, &film.pixels_in(rect)).map_err(|e| e.to_string())
                 }
-                // Copying and tone mapping run on the render's threads.
-                None => pool
-                    .install(|| save_toned_image(output, width, height, &film.pixels(), tone))
-                    .map_err(|e| e.to_string()),
+                // Read out of the film and tone mapped on the render's threads.
+                None => {
+                    let pixel = |x, y| film.get(x, y);
+                    pool.install(|| save_toned_pixels(output, width, height, &pixel, tone))
+                        .map_err(|e| e.to_string())
+                }
             }?;
             written.push(output);
             Ok(frame_stats)

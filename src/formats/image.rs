@@ -3,11 +3,18 @@
 //! an exposure and tone curve ([`save_toned_image`]). A path can be checked before long
 //! work ([`check_image_path`]). The file is written safely, as [`crate::output`] writes every
 //! file: atomically, through a symbolic link, never over a read-only file.
+//!
+//! Every format is written a band of rows at a time from a function that gives each pixel's
+//! colour ([`save_toned_pixels`]), so saving a film needs no copy of it: the memory it takes
+//! is a band's, whatever the image's size.
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use image::codecs::pnm::{PnmEncoder, PnmSubtype, SampleEncoding};
-use image::{DynamicImage, ImageFormat, Rgb32FImage, RgbImage};
+use exr::prelude::{
+    Encoding, Image, Layer, LayerAttributes, SpecificChannels, Vec2, WritableImage,
+};
+use rayon::prelude::*;
 
 use crate::color::Color;
 use crate::output::{check_writable, write_atomically};
@@ -22,17 +29,26 @@ pub enum OutputFormat {
     Hdr,
 }
 
+/// About how many pixels a band of rows holds while it is encoded.
+const BAND_PIXELS: usize = 1 << 18;
+/// What an encoder keeps whatever the image's size (a compressor's window and tables).
+const ENCODER_BYTES: u64 = 1 << 20;
+
 impl OutputFormat {
     pub const EXTENSIONS: &'static str = "png, ppm, exr, hdr";
 
-    /// Memory that saving an image of `pixels` pixels takes, at most: the linear pixels handed
-    /// to [`save_image`], the encoder's input and what the encoder keeps while it writes.
-    pub fn save_bytes(self, pixels: u64) -> u64 {
-        let per_pixel = match self {
-            OutputFormat::Png | OutputFormat::Ppm => 12 + 3 + 3,
-            OutputFormat::Exr | OutputFormat::Hdr => 12 + 12 + 12,
-        };
-        pixels * per_pixel
+    /// Memory that saving an image `width` pixels wide takes, at most: a band of rows as
+    /// linear colours and as the bytes the encoder is handed, and the encoder's own buffers
+    /// (OpenEXR compresses blocks of 16 rows on every thread, with a few blocks in flight).
+    pub fn save_bytes(self, width: u32) -> u64 {
+        let band = BAND_PIXELS.max(width as usize) as u64;
+        let row = u64::from(width);
+        ENCODER_BYTES
+            + match self {
+                OutputFormat::Png | OutputFormat::Ppm => band * (12 + 3) + row * 8,
+                OutputFormat::Hdr => band * 12 + row * 8,
+                OutputFormat::Exr => row * 16 * 12 * 4 * rayon::current_num_threads() as u64,
+            }
     }
 
     /// The format a file name's extension asks for.
@@ -53,7 +69,7 @@ impl OutputFormat {
 pub enum OutputError {
     UnknownFormat(PathBuf),
     Io(PathBuf, std::io::Error),
-    Encode(PathBuf, image::ImageError),
+    Encode(PathBuf, String),
     /// The pixel buffer does not hold `width × height` pixels.
     PixelCount {
         expected: usize,
@@ -109,54 +125,167 @@ pub fn save_toned_image(
     pixels: &[Color],
     tone: Tone,
 ) -> Result<(), OutputError> {
-    let format = check_image_path(path)?;
     let expected = width as usize * height as usize;
     if pixels.len() != expected {
+        check_image_path(path)?;
         return Err(OutputError::PixelCount {
             expected,
             got: pixels.len(),
         });
     }
+    let pixel = |x: u32, y: u32| pixels[y as usize * width as usize + x as usize];
+    save_toned_pixels(path, width, height, &pixel, tone)
+}
+
+/// The linear colour of an image's pixel `(x, y)`, row 0 at the top, asked for from any thread.
+pub type PixelAt<'a> = &'a (dyn Fn(u32, u32) -> Color + Sync);
+
+/// As [`save_toned_image`], the colours given by `pixel` a band of rows at a time, so that no
+/// copy of the whole image is made.
+pub fn save_toned_pixels(
+    path: &Path,
+    width: u32,
+    height: u32,
+    pixel: PixelAt,
+    tone: Tone,
+) -> Result<(), OutputError> {
+    let format = check_image_path(path)?;
     let io = |e| OutputError::Io(path.into(), e);
-    let encode = |e| OutputError::Encode(path.into(), e);
-    write_atomically(path, io, |out| {
-        match format {
-            OutputFormat::Png | OutputFormat::Ppm => {
-                let srgb = RgbImage::from_raw(width, height, tone.to_srgb8(pixels)).ok_or(
-                    OutputError::PixelCount {
-                        expected,
-                        got: pixels.len(),
-                    },
-                )?;
-                if format == OutputFormat::Png {
-                    srgb.write_to(out, ImageFormat::Png).map_err(encode)?;
-                } else {
-                    let encoder = PnmEncoder::new(out)
-                        .with_subtype(PnmSubtype::Pixmap(SampleEncoding::Binary));
-                    srgb.write_with_encoder(encoder).map_err(encode)?;
+    let encode = |e: String| OutputError::Encode(path.into(), e);
+    let bands = Bands::new(width, height, pixel);
+    write_atomically(path, io, |out| match format {
+        OutputFormat::Png => write_png(out, &bands, tone).map_err(|e| encode(e.to_string())),
+        OutputFormat::Ppm => write_ppm(out, &bands, tone).map_err(io),
+        OutputFormat::Exr => write_exr(out, &bands).map_err(|e| encode(e.to_string())),
+        OutputFormat::Hdr => write_hdr(out, &bands).map_err(io),
+    })
+}
+
+/// An image's rows in bands of about [`BAND_PIXELS`] pixels, each computed on all threads.
+struct Bands<'a> {
+    width: u32,
+    height: u32,
+    rows: u32,
+    pixel: PixelAt<'a>,
+}
+
+impl<'a> Bands<'a> {
+    fn new(width: u32, height: u32, pixel: PixelAt<'a>) -> Self {
+        let rows = (BAND_PIXELS / width.max(1) as usize).clamp(1, height.max(1) as usize);
+        Bands {
+            width,
+            height,
+            rows: rows as u32,
+            pixel,
+        }
+    }
+
+    /// Calls `write` with each band's colours, row by row, top to bottom.
+    fn each<E>(&self, mut write: impl FnMut(&[Color]) -> Result<(), E>) -> Result<(), E> {
+        let width = self.width.max(1);
+        let mut band = Vec::new();
+        for top in (0..self.height).step_by(self.rows as usize) {
+            let bottom = (top + self.rows).min(self.height);
+            band.clear();
+            (top * width..bottom * width)
+                .into_par_iter()
+                .map(|i| (self.pixel)(i % width, top + (i - top * width) / width))
+                .collect_into_vec(&mut band);
+            write(&band)?;
+        }
+        Ok(())
+    }
+}
+
+fn write_png(out: &mut impl Write, bands: &Bands, tone: Tone) -> Result<(), png::EncodingError> {
+    let mut encoder = png::Encoder::new(out, bands.width, bands.height);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder.write_header()?;
+    let mut stream = writer.stream_writer()?;
+    bands.each(|band| stream.write_all(&tone.to_srgb8(band)))?;
+    stream.finish()?;
+    writer.finish()
+}
+
+/// Binary PPM (P6).
+fn write_ppm(out: &mut impl Write, bands: &Bands, tone: Tone) -> std::io::Result<()> {
+    write!(out, "P6\n{} {}\n255\n", bands.width, bands.height)?;
+    bands.each(|band| out.write_all(&tone.to_srgb8(band)))
+}
+
+/// OpenEXR, losslessly compressed; the encoder asks for the pixels block by block.
+fn write_exr(
+    out: &mut (impl Write + std::io::Seek),
+    bands: &Bands,
+) -> Result<(), exr::error::Error> {
+    let pixel = bands.pixel;
+    let channels = SpecificChannels::rgb(|at: Vec2<usize>| {
+        let c = pixel(at.x() as u32, at.y() as u32);
+        (c.x, c.y, c.z)
+    });
+    let size = (bands.width as usize, bands.height as usize);
+    let layer = Layer::new(
+        size,
+        LayerAttributes::default(),
+        Encoding::FAST_LOSSLESS,
+        channels,
+    );
+    Image::from_layer(layer).write().to_buffered(out)
+}
+
+/// Radiance HDR: RGBE pixels, each scanline run-length encoded channel by channel (runs are not
+/// looked for: every byte goes out as part of a literal run), or flat where the format has no
+/// run-length encoding (scanlines under 8 or over 32,767 pixels wide).
+fn write_hdr(out: &mut impl Write, bands: &Bands) -> std::io::Result<()> {
+    let width = bands.width as usize;
+    write!(
+        out,
+        "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y {} +X {}\n",
+        bands.height, bands.width
+    )?;
+    let encoded = (8..=32_767).contains(&width);
+    let mut channels = vec![0u8; 4 * width];
+    bands.each(|band| {
+        for row in band.chunks(width) {
+            if !encoded {
+                for &c in row {
+                    out.write_all(&rgbe(c))?;
+                }
+                continue;
+            }
+            for (x, &c) in row.iter().enumerate() {
+                for (channel, byte) in rgbe(c).into_iter().enumerate() {
+                    channels[channel * width + x] = byte;
                 }
             }
-            OutputFormat::Exr | OutputFormat::Hdr => {
-                let floats: Vec<f32> = pixels.iter().flat_map(|c| c.to_array()).collect();
-                let linear = Rgb32FImage::from_raw(width, height, floats).ok_or(
-                    OutputError::PixelCount {
-                        expected,
-                        got: pixels.len(),
-                    },
-                )?;
-                let image_format = if format == OutputFormat::Exr {
-                    ImageFormat::OpenExr
-                } else {
-                    ImageFormat::Hdr
-                };
-                DynamicImage::ImageRgb32F(linear)
-                    .write_to(out, image_format)
-                    .map_err(encode)?;
+            out.write_all(&[2, 2, (width >> 8) as u8, width as u8])?;
+            for channel in channels.chunks(width) {
+                for literal in channel.chunks(128) {
+                    out.write_all(&[literal.len() as u8])?;
+                    out.write_all(literal)?;
+                }
             }
         }
         Ok(())
     })
 }
+
+/// A linear colour as Radiance's shared-exponent bytes: three mantissas and the exponent of the
+/// brightest channel, offset by 128 (black for anything under 10⁻³²).
+fn rgbe(c: Color) -> [u8; 4] {
+    let c = c.max(Color::ZERO);
+    let brightest = c.max_element();
+    if !(brightest >= 1e-32) || !brightest.is_finite() {
+        return [0; 4];
+    }
+    // brightest = m · 2^e with m in [0.5, 1).
+    let e = brightest.log2().floor() as i32 + 1;
+    let scale = 256.0 / 2f32.powi(e);
+    let m = (c * scale).to_array().map(|v| (v as u32).min(255) as u8);
+    [m[0], m[1], m[2], (e + 128).clamp(0, 255) as u8]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -201,6 +330,42 @@ mod tests {
             })
             .count();
         assert_eq!(leftovers, 0, "no temporary files left behind");
+    }
+
+    #[test]
+    fn images_taller_than_a_band_are_written_band_by_band_exactly() {
+        let dir = tempfile::tempdir().unwrap();
+        // Wide enough for run-length encoded HDR scanlines, tall enough for several bands;
+        // and narrow, for flat HDR scanlines.
+        for (w, h) in [(1000, 700), (5, 3)] {
+            let pixels = gradient(w, h);
+            assert!(w < 8 || Bands::new(w, h, &|_, _| Color::ZERO).rows < h);
+            for ext in ["png", "ppm", "exr", "hdr"] {
+                let path = dir.path().join(format!("big.{ext}"));
+                save_image(&path, w, h, &pixels).unwrap();
+                let back = image::open(&path).unwrap().to_rgb32f();
+                assert_eq!((back.width(), back.height()), (w, h), "{ext}");
+                for (i, (c, got)) in pixels.iter().zip(back.pixels()).enumerate() {
+                    for ch in 0..3 {
+                        let (got, want) = (got[ch], c[ch]);
+                        let close = match ext {
+                            "exr" => got == want,
+                            // Eight bits of mantissa for the brightest channel.
+                            "hdr" => (got - want).abs() <= c.max_element() / 128.0,
+                            _ => (got * 255.0).round() == (linear_to_srgb(want) * 255.0).round(),
+                        };
+                        assert!(close, "{ext} {w}×{h} pixel {i}: {got} vs {want}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn rgbe_keeps_the_brightest_channels_exponent() {
+        assert_eq!(rgbe(Color::ZERO), [0; 4]);
+        assert_eq!(rgbe(Color::new(1.0, 0.5, 0.0)), [128, 64, 0, 129]);
+        assert_eq!(rgbe(Color::new(0.75, 0.0, 3.0)), [48, 0, 192, 130]);
     }
 
     #[test]

@@ -1,5 +1,5 @@
 //! Saving what the viewer shows: the image as a PNG, through the exposure and tone curve shown
-//! (atomically, through the library's [`save_toned_image`]) and the camera as a `[camera]` snippet to paste into a scene file.
+//! (atomically, through the library's [`save_toned_pixels`]) and the camera as a `[camera]` snippet to paste into a scene file.
 
 use std::io::Write;
 use std::path::Path;
@@ -7,7 +7,7 @@ use std::path::Path;
 use raylab::camera::CameraSpec;
 use raylab::film::Film;
 use raylab::formats::camera_path;
-use raylab::formats::image::save_toned_image;
+use raylab::formats::image::save_toned_pixels;
 use raylab::formats::toml::camera_table;
 use raylab::output::write_atomically;
 use raylab::tone::Tone;
@@ -26,7 +26,8 @@ pub fn save_view(
     camera: &CameraSpec,
     tone: Tone,
 ) -> Result<String, String> {
-    save_toned_image(path, film.width(), film.height(), &film.pixels(), tone)
+    let pixel = |x, y| film.get(x, y);
+    save_toned_pixels(path, film.width(), film.height(), &pixel, tone)
         .map_err(|e| e.to_string())?;
     let snippet_path = camera_path(path);
     let snippet = camera_snippet(camera);
