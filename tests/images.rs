@@ -11,9 +11,8 @@ use std::path::{Path, PathBuf};
 use raylab::bvh::Bvh;
 use raylab::color::to_srgb8;
 use raylab::formats::image::save_image;
-use raylab::formats::nff::NffLighting;
+use raylab::formats::load_any;
 use raylab::formats::toml::{default_scene, load_scene};
-use raylab::formats::{load_any, load_any_with};
 use raylab::photon::scene_caustics;
 use raylab::progressive;
 use raylab::scene::Scene;
@@ -231,12 +230,6 @@ fn spd_scenes_match_their_references() {
         (name.replace(':', "-"), scene)
     });
     check(SPD_SIZE, scenes.into());
-}
-
-#[test]
-fn povray_lighting_matches_its_reference() {
-    let scene = load_any_with("spd:mount:5", NffLighting::Povray).unwrap();
-    check(SPD_SIZE, vec![("spd-mount-5-povray".into(), scene)]);
 }
 
 #[test]

@@ -136,13 +136,13 @@ fn lights_without_a_colour_share_the_readme_intensity() {
 }
 
 #[test]
-fn povray_lighting_is_brighter_and_has_no_ambient_light() {
+fn povray_lighting_is_brighter_and_its_ambient_light_white() {
     let scene = parse_nff(EVERY_ENTITY, Path::new("t.nff"), NffLighting::Povray).unwrap();
     let share = 1.0 / 2f32.sqrt();
     assert!(
         matches!(scene.lights[0], Light::Point { color, .. } if close(color, Vec3::splat(share)))
     );
-    assert_eq!(scene.settings.ambient, Vec3::ZERO);
+    assert_eq!(scene.settings.ambient, Vec3::ONE);
 }
 
 #[test]

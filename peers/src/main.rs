@@ -119,10 +119,13 @@ fn run() -> Result<(), String> {
 
 fn print_builds(reports: &[(&AnchorMesh, Vec<TracerReport>)], embree: Option<&EmbreeFigures>) {
     println!("\n### BVH build, median ms (1 thread / 2 threads)\n");
-    let names: Vec<&str> = reports
-        .first()
-        .map_or(Vec::new(), |(_, tracers)| tracers.iter().map(|t| t.name).collect());
-    println!("| mesh | triangles | {} | Embree (2 CPUs) |", names.join(" | "));
+    let names: Vec<&str> = reports.first().map_or(Vec::new(), |(_, tracers)| {
+        tracers.iter().map(|t| t.name).collect()
+    });
+    println!(
+        "| mesh | triangles | {} | Embree (2 CPUs) |",
+        names.join(" | ")
+    );
     println!("|---|---|{}---|", "---|".repeat(names.len()));
     for (mesh, tracers) in reports {
         let cells: Vec<String> = tracers

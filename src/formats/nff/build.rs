@@ -10,6 +10,7 @@ use glam::{DVec3, Vec3};
 
 use super::document::{Fill, Item, NffDocument, PatchVertex, View};
 use super::lighting::NffLighting;
+use super::povray;
 use crate::camera::{Camera, CameraSpec};
 use crate::color::Color;
 use crate::light::Light;
@@ -94,7 +95,11 @@ impl NffDocument {
         }
 
         let nff_name = |index: usize| format!("nff #{index}");
-        let mut material = scene.add_named_material(nff_name(0), material(&Fill::DEFAULT));
+        let material_of = |fill: &Fill| match lighting {
+            NffLighting::Readme => material(fill),
+            NffLighting::Povray => povray::material(fill),
+        };
+        let mut material = scene.add_named_material(nff_name(0), material_of(&Fill::DEFAULT));
         let mut patches: BTreeMap<u32, Mesh> = BTreeMap::new();
         for (i, item) in self.items.iter().enumerate() {
             let at = |message| BuildError {
@@ -104,7 +109,7 @@ impl NffDocument {
             let shape = match item {
                 Item::Fill(fill) => {
                     let name = nff_name(scene.materials.len());
-                    material = scene.add_named_material(name, self::material(fill));
+                    material = scene.add_named_material(name, material_of(fill));
                     continue;
                 }
                 Item::Patch(vertices) => {

@@ -1,6 +1,7 @@
 //! How bright an NFF scene's lights are. NFF leaves it open: a light written without a colour
 //! is "non-zero, of no particular value", and there is no ambient light in the file. raylab
-//! follows the SPD readme by default and can follow SPD's POV-Ray exporter instead.
+//! follows the SPD readme by default and can follow SPD's POV-Ray exporter instead, which also
+//! gives each material what NFF leaves out (see `povray`).
 
 use std::fmt;
 use std::str::FromStr;
@@ -13,7 +14,8 @@ pub enum NffLighting {
     /// √N / (2N) (so N lights together give √N / 2).
     #[default]
     Readme,
-    /// SPD's POV-Ray exporter: every light 1 / √N, no ambient light.
+    /// SPD's POV-Ray exporter, as POV-Ray 3.7 renders its files: every light 1 / √N, white
+    /// ambient light, and the materials as the exporter writes them.
     Povray,
 }
 
@@ -30,11 +32,12 @@ impl NffLighting {
         }
     }
 
-    /// Intensity of the ambient light in a scene with `lights` lights.
+    /// Intensity of the ambient light in a scene with `lights` lights (each material's ambient
+    /// coefficient scales it).
     pub fn ambient(self, lights: usize) -> f64 {
         match self {
             NffLighting::Readme => self.light_intensity(lights),
-            NffLighting::Povray => 0.0,
+            NffLighting::Povray => 1.0,
         }
     }
 }
@@ -76,10 +79,10 @@ mod tests {
     }
 
     #[test]
-    fn povray_uses_one_over_root_n_and_no_ambient() {
+    fn povray_uses_one_over_root_n_and_white_ambient_light() {
         let l = NffLighting::Povray;
         assert!((l.light_intensity(5) - 0.447214).abs() < 1e-6);
-        assert_eq!(l.ambient(5), 0.0);
+        assert_eq!(l.ambient(5), 1.0);
     }
 
     #[test]

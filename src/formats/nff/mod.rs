@@ -8,6 +8,7 @@ mod document;
 mod format_g;
 mod lighting;
 mod parse;
+mod povray;
 mod tokens;
 mod write;
 
