@@ -53,7 +53,7 @@ pub struct ViewArgs {
     /// CURVE (clamp, reinhard, filmic), snapshot (keep the image to compare with, as the key B),
     /// compare on|off (the split view: snapshot left, live right), divider FRACTION (0 to 1),
     /// material NAME|#K FIELD VALUE… (e.g. `material red kd 0.2`, `material red color 1 0 0`; fields
-    /// color, ka, kd, ks, specular_color, shininess, kr, kt, ior, fresnel on|off), light N FIELD
+    /// color, emission, ka, kd, ks, specular_color, shininess, kr, kt, ior, fresnel on|off), light N FIELD
     /// VALUE… (N from 1; position, direction, color, intensity), save-scene (write the edited
     /// materials and lights into the TOML scene file), skip (block size 1 at once), pause, resume,
     /// sleep SECONDS, print-status, bookmark N (store the camera as view N, 1 to 9, as Ctrl+N),

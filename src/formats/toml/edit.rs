@@ -290,6 +290,7 @@ material = \"red\"
         materials[red].diffuse = 0.2;
         materials[red].color = Color::new(0.0, 0.5, 1.0);
         materials[red].fresnel = true;
+        materials[red].emission = Color::new(0.25, 0.0, 0.0);
         let saved = edit_text(
             FILE,
             Looks::of(&before),
@@ -301,7 +302,10 @@ material = \"red\"
         let expected = FILE
             .replace("diffuse = 0.7   # kd", "diffuse = 0.2   # kd")
             .replace("color = [1, 0, 0]", "color = [0.0, 0.5, 1.0]")
-            .replace("specular = 0.3\n", "specular = 0.3\nfresnel = true\n");
+            .replace(
+                "specular = 0.3\n",
+                "specular = 0.3\nemission = [0.25, 0.0, 0.0]\nfresnel = true\n",
+            );
         assert_eq!(saved.text, expected);
         let after = read(&saved.text);
         assert_eq!(after.materials, materials);

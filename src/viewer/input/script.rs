@@ -25,7 +25,8 @@
 //!   split is, from 0 (left edge) to 1 (right edge);
 //! - `material NAME FIELD VALUE…`: changes a field of the material called NAME (or numbered `#K`,
 //!   as in the Materials panel; 0 is the TOML reader's default material): `color R G B`,
-//!   `ka`, `kd`, `ks`, `shininess`, `kr`, `kt`, `ior` (one number each), `specular_color R G B`,
+//!   `emission R G B`, `ka`, `kd`, `ks`, `shininess`, `kr`, `kt`, `ior` (one number each),
+//!   `specular_color R G B`,
 //!   `fresnel on|off` (e.g. `material red kd 0.2`, `material red color 1 0 0`);
 //! - `light N FIELD VALUE…`: changes light N (counted from 1, in the file's order):
 //!   `position X Y Z`, `direction X Y Z`, `color R G B` (its brightest channel 1), `intensity I`;
@@ -489,6 +490,7 @@ mod tests {
 
         let mut script = Script::parse(
             "material red kd 0.2; material red color 1 0 0; material glass fresnel on; \
+             material lamp emission 2 1 0; \
              light 2 intensity 3; light 1 position 0 5 -1; save-scene",
         )
         .unwrap();
@@ -503,6 +505,7 @@ mod tests {
                 material("red", MaterialEdit::Diffuse(0.2)),
                 material("red", MaterialEdit::Color(Color::new(1.0, 0.0, 0.0))),
                 material("glass", MaterialEdit::Fresnel(true)),
+                material("lamp", MaterialEdit::Emission(Color::new(2.0, 1.0, 0.0))),
                 Action::EditLight {
                     number: 2,
                     edit: LightEdit::Intensity(3.0)
