@@ -276,7 +276,7 @@ fn write_hdr(out: &mut impl Write, bands: &Bands) -> std::io::Result<()> {
 fn rgbe(c: Color) -> [u8; 4] {
     let c = c.max(Color::ZERO);
     let brightest = c.max_element();
-    if !(brightest >= 1e-32) || !brightest.is_finite() {
+    if !brightest.is_finite() || brightest < 1e-32 {
         return [0; 4];
     }
     // brightest = m · 2^e with m in [0.5, 1).

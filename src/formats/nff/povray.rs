@@ -21,36 +21,39 @@ use crate::material::Material;
 /// The exponent SPD writes for "no highlight".
 const NO_HIGHLIGHT: f64 = 100_000.0;
 
-/// `((Kd, Ks, Shine, T), (ka, phong))` for every material of SPD's generators, as their calls
-/// of `lib_output_color` give them: balls (floor, spheres), gears (floor, glass gears, solid
-/// gears), jacks, lattice (cylinders; its spheres are balls'), mount (glass, mountain), rings
-/// (rings; the wall is a solid gear's), shells, sombrero and teapot (pot, checks).
-const GENERATOR_FINISHES: [((f64, f64, f64, f64), (f64, f64)); 13] = [
-    ((0.8, 0.0, NO_HIGHLIGHT, 0.0), (0.2, 0.0)),
-    ((0.5, 0.5, 3.0827, 0.0), (0.0, 0.5)),
-    ((0.3, 0.6, 3.0827, 0.0), (0.0, 0.3)),
-    ((0.2, 0.0, NO_HIGHLIGHT, 0.8), (0.0, 0.0)),
-    ((1.0, 0.0, NO_HIGHLIGHT, 0.0), (0.0, 0.0)),
-    ((0.7, 0.7, 11.1434, 0.0), (0.1, 0.4)),
-    ((0.99, 0.0, NO_HIGHLIGHT, 0.0), (0.1, 0.0)),
-    ((0.1, 0.1, 101.148, 0.9), (0.0, 0.4)),
-    ((0.5, 0.2, 3.0827, 0.0), (0.0, 0.3)),
-    ((0.8, 0.2, 45.2776, 0.0), (0.0, 0.5)),
-    ((0.8, 0.0, 2.60078, 0.0), (0.1, 0.5)),
-    ((0.75, 0.25, 3.0827, 0.0), (0.0, 0.25)),
-    ((0.5, 0.5, 4.81884, 0.0), (0.0, 0.5)),
+/// `[Kd, Ks, Shine, T]`: what tells the generators' materials apart.
+type Key = [f64; 4];
+/// `(ka, phong)`: what NFF leaves out.
+type Finish = (f64, f64);
+
+/// The finish of every material of SPD's generators, as their calls of `lib_output_color` give
+/// them: balls (floor, spheres), gears (floor, glass gears, solid gears), jacks, lattice
+/// (cylinders; its spheres are balls'), mount (glass, mountain), rings (rings; the wall is a
+/// solid gear's), shells, sombrero and teapot (pot, checks).
+const GENERATOR_FINISHES: [(Key, Finish); 13] = [
+    ([0.8, 0.0, NO_HIGHLIGHT, 0.0], (0.2, 0.0)),
+    ([0.5, 0.5, 3.0827, 0.0], (0.0, 0.5)),
+    ([0.3, 0.6, 3.0827, 0.0], (0.0, 0.3)),
+    ([0.2, 0.0, NO_HIGHLIGHT, 0.8], (0.0, 0.0)),
+    ([1.0, 0.0, NO_HIGHLIGHT, 0.0], (0.0, 0.0)),
+    ([0.7, 0.7, 11.1434, 0.0], (0.1, 0.4)),
+    ([0.99, 0.0, NO_HIGHLIGHT, 0.0], (0.1, 0.0)),
+    ([0.1, 0.1, 101.148, 0.9], (0.0, 0.4)),
+    ([0.5, 0.2, 3.0827, 0.0], (0.0, 0.3)),
+    ([0.8, 0.2, 45.2776, 0.0], (0.0, 0.5)),
+    ([0.8, 0.0, 2.60078, 0.0], (0.1, 0.5)),
+    ([0.75, 0.25, 3.0827, 0.0], (0.0, 0.25)),
+    ([0.5, 0.5, 4.81884, 0.0], (0.0, 0.5)),
 ];
 
 /// The ambient coefficient and the highlight's strength the exporter gave the material `fill`.
-pub fn finish(fill: &Fill) -> (f64, f64) {
+pub fn finish(fill: &Fill) -> Finish {
     let key = [fill.kd, fill.ks, fill.shine, fill.transmittance];
     // The file's numbers have six significant digits.
     let same = |a: f64, b: f64| (a - b).abs() <= 1e-5 * b.abs().max(1.0);
-    let known = GENERATOR_FINISHES.iter().find(|((kd, ks, shine, t), _)| {
-        key.iter()
-            .zip([kd, ks, shine, t])
-            .all(|(&a, &b)| same(a, b))
-    });
+    let known = GENERATOR_FINISHES
+        .iter()
+        .find(|(known, _)| key.iter().zip(known).all(|(&a, &b)| same(a, b)));
     match known {
         Some((_, finish)) => *finish,
         None if fill.shine < NO_HIGHLIGHT => (0.0, fill.ks),
