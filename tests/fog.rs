@@ -116,31 +116,35 @@ fn what_lies_at_distance_d_is_dimmed_by_exp_minus_sigma_d() {
     assert_eq!(see(&at("inf"), Vec3::X), Color::ZERO);
 }
 
-/// The wall as an infinite plane 10 units in front of the eye, with the `rest` of a scene, in
-/// fog of density 0.1 that only absorbs.
-fn far_wall(rest: &str) -> Scene {
-    let objects = format!(
+/// Scene-file text: a plane of the wall's material through `point` facing `normal`, in fog of
+/// `density` that only absorbs.
+fn plane_in_absorbing_fog(point: [f32; 3], normal: [f32; 3], density: f32) -> String {
+    format!(
         r#"
         [[objects]]
         type = "plane"
-        point = [0, 0, -10]
-        normal = [0, 0, 1]
+        point = {point:?}
+        normal = {normal:?}
         material = "wall"
 
         [atmosphere]
-        density = 0.1
+        density = {density}
         albedo = 0
-
-        {rest}
         "#
-    );
-    scene_of(&objects, AMBIENT_WALL)
+    )
+}
+
+/// The wall as an infinite plane 10 units in front of the eye, with the `rest` of a scene, in
+/// fog of density 0.1 that only absorbs.
+fn far_wall(rest: &str) -> Scene {
+    let wall = plane_in_absorbing_fog([0.0, 0.0, -10.0], [0.0, 0.0, 1.0], 0.1);
+    scene_of(&format!("{wall}\n{rest}"), AMBIENT_WALL)
 }
 
 #[test]
 fn a_wall_at_ten_in_fog_of_density_a_tenth_is_dimmed_by_one_over_e_whatever_else_is_there() {
-    let expected = WALL * (-1f32).exp();
     // Within the rounding of the hit points along ten units.
+    let expected = WALL * (-1f32).exp();
     // The plane alone: nothing bounded, no light.
     assert_close(see(&far_wall(""), -Vec3::Z), expected, 1e-4);
     // A small ball and a light far to the side change nothing.
@@ -169,35 +173,15 @@ fn a_wall_at_ten_in_fog_of_density_a_tenth_is_dimmed_by_one_over_e_whatever_else
         normal = [0, 0, -1]
         material = "mirror"
         "#;
-    let behind = r#"
-        [[objects]]
-        type = "plane"
-        point = [0, 0, -6]
-        normal = [0, 0, 1]
-        material = "wall"
-
-        [atmosphere]
-        density = 0.1
-        albedo = 0
-        "#;
+    let behind = plane_in_absorbing_fog([0.0, 0.0, -6.0], [0.0, 0.0, 1.0], 0.1);
     let mirrored = scene_of(&format!("{behind}\n{mirror}"), AMBIENT_WALL);
     assert_close(see(&mirrored, Vec3::Z), expected, 1e-4);
 }
 
 #[test]
 fn a_fogged_floor_darkens_steadily_towards_the_horizon() {
-    let floor = r#"
-        [[objects]]
-        type = "plane"
-        point = [0, -1, 0]
-        normal = [0, 1, 0]
-        material = "wall"
-
-        [atmosphere]
-        density = 0.05
-        albedo = 0
-        "#;
-    let scene = scene_of(floor, AMBIENT_WALL);
+    let floor = plane_in_absorbing_fog([0.0, -1.0, 0.0], [0.0, 1.0, 0.0], 0.05);
+    let scene = scene_of(&floor, AMBIENT_WALL);
     // Rays ever closer to the horizon meet the floor ever further away: 1/sin of the angle.
     let mut previous = f32::INFINITY;
     for k in 0..40 {

@@ -381,3 +381,31 @@ fn a_hits_emission_is_shown_and_is_part_of_its_local_colour() {
     let text = tree.to_text();
     assert!(text.contains("emission (0.5000, 0.2500, 0.0000)"), "{text}");
 }
+
+#[test]
+fn a_wall_alone_in_fog_shows_the_transmittance_of_its_distance() {
+    // Only an infinite plane 10 units ahead: nothing bounded, no light.
+    let mut scene = Scene::new(settings(1, 0.0), camera(Vec3::ZERO, -Vec3::Z, 1.0));
+    let wall = scene.add_material(Material::default());
+    scene.add_object(plane(Vec3::new(0.0, 0.0, -10.0), Vec3::Z), None, wall);
+    scene.atmosphere = Atmosphere {
+        medium: Medium {
+            density: 0.1,
+            albedo: 0.0,
+            color: Color::ONE,
+        },
+        background_distance: None,
+    };
+    let tree = centre_tree(&scene);
+    let fog = tree.nodes[0].fog.expect("the eye ray runs through fog");
+    assert!(
+        (fog.transmittance - (-1f32).exp()).abs() < 1e-4,
+        "{}",
+        tree.to_text()
+    );
+    assert!(
+        tree.to_text().contains("fog: transmittance 0.3679"),
+        "{}",
+        tree.to_text()
+    );
+}

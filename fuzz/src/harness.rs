@@ -25,14 +25,15 @@ const TETRA_MTL: &[u8] = include_bytes!("../../assets/models/tetra.mtl");
 const GRID_PNG: &[u8] = include_bytes!("../../assets/textures/grid.png");
 
 /// The files a fuzzed TOML scene may name: the shipped scenes' models and textures, by the
-/// names the shipped scenes use. The large ones (the torus, the bricks) are played by the small
-/// ones, so that every shipped scene loads, and renders fast.
+/// names the shipped scenes use. The large ones (the torus, the bricks, the sky) are played by
+/// the small ones, so that every shipped scene loads, and renders fast.
 const SCENE_FILES: &[(&str, &[u8])] = &[
     ("../models/tetra.obj", TETRA_OBJ),
     ("../models/tetra.mtl", TETRA_MTL),
     ("../models/torus.obj", TETRA_OBJ),
     ("../textures/grid.png", GRID_PNG),
     ("../textures/bricks.png", GRID_PNG),
+    ("../textures/sky.bmp", GRID_PNG),
 ];
 
 /// The scene the `obj` target loads its input in, as a scene file's `type = "obj"` object.
