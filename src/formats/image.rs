@@ -39,7 +39,7 @@ impl OutputFormat {
 
     /// Memory that saving an image `width` pixels wide takes, at most: a band of rows as
     /// linear colours and as the bytes the encoder is handed, and the encoder's own buffers
-    /// (OpenEXR compresses blocks of 16 rows on every thread, with a few blocks in flight).
+    /// (OpenEXR compresses blocks of 16 rows, with a few of them in flight).
     pub fn save_bytes(self, width: u32) -> u64 {
         let band = BAND_PIXELS.max(width as usize) as u64;
         let row = u64::from(width);
@@ -47,7 +47,7 @@ impl OutputFormat {
             + match self {
                 OutputFormat::Png | OutputFormat::Ppm => band * (12 + 3) + row * 8,
                 OutputFormat::Hdr => band * 12 + row * 8,
-                OutputFormat::Exr => row * 16 * 12 * 4 * rayon::current_num_threads() as u64,
+                OutputFormat::Exr => row * 16 * 12 * 8,
             }
     }
 

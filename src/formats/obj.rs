@@ -360,8 +360,8 @@ impl ObjLines<'_> {
 }
 
 /// A raylab material from an MTL one: `Kd` is the colour (reflected in full), `Ks` the
-/// highlight (its brightest channel the coefficient), `Ns` the shininess, `d` the opacity and
-/// `Ni` the index of refraction. Values that are missing or out of range keep the default.
+/// highlight (its brightest channel the coefficient), `Ke` the emission, `Ns` the shininess,
+/// `d` the opacity and `Ni` the index of refraction. Values that are missing or out of range keep the default.
 fn mtl_material(mtl: &tobj::Material) -> Material {
     let default = Material::default();
     let color_of = |c: Option<[f32; 3]>| {
@@ -377,6 +377,7 @@ fn mtl_material(mtl: &tobj::Material) -> Material {
         } else {
             default.diffuse
         },
+        emission: color_of(mtl.emissive).unwrap_or(default.emission),
         specular: specular.map_or(default.specular, |s| s.max_element()),
         specular_color: specular.map_or(default.specular_color, |s| s / s.max_element()),
         shininess: mtl
@@ -414,6 +415,7 @@ mod tests {
         let mtl = tobj::Material {
             diffuse: Some([0.5, 0.25, 0.0]),
             specular: Some([0.0, 0.4, 0.2]),
+            emissive: Some([0.1, 0.2, 0.3]),
             shininess: Some(64.0),
             dissolve: Some(0.25),
             optical_density: Some(1.5),
@@ -423,6 +425,7 @@ mod tests {
         assert_eq!(m.color, Color::new(0.5, 0.25, 0.0));
         assert_eq!(m.diffuse, 1.0);
         assert_eq!(m.specular, 0.4);
+        assert_eq!(m.emission, Color::new(0.1, 0.2, 0.3));
         assert_eq!(m.specular_color, Color::new(0.0, 1.0, 0.5));
         assert_eq!(m.shininess, 64.0);
         assert_eq!(m.transparency, 0.75);
