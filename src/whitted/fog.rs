@@ -15,13 +15,13 @@
 //! colour), `phase` the isotropic phase function, and for each light what arrives at the point
 //! `x(s)`: its colour `L_light`, `V` what a shadow ray from `x(s)` lets through (0 in shadow, so
 //! shadows cast dark beams; the media of the objects it passes dim it) and `T_light` the fog's
-//! transmittance along that shadow ray. The
-//! integral is estimated light by light with `fog_steps` stratified samples: the samples'
-//! range is cut into equal strata and each is sampled at one jittered point, crowded where the
-//! medium still lets light through or, for spot lights, equiangularly ([`Spread`]), so a
-//! segment of any length, out to the horizon, is covered by the same number of samples. The jitter is a hash of the
-//! ray itself, so a pixel comes out the same whatever thread renders it, and neighbouring
-//! pixels' errors differ, which the eye sees as fine noise rather than bands.
+//! transmittance along that shadow ray. The integral is estimated light by light with
+//! `fog_steps` stratified samples: the samples' range is cut into equal strata and each is
+//! sampled at one jittered point, crowded where the medium still lets light through or, for
+//! spot lights, equiangularly ([`Spread`]), so a segment of any length, out to the horizon, is
+//! covered by the same number of samples. The jitter is a hash of the ray itself, so a pixel
+//! comes out the same whatever thread renders it, and neighbouring pixels' errors differ,
+//! which the eye sees as fine noise rather than bands.
 //!
 //! Rays inside objects (a transmitted ray in a glass ball) are in no fog: the fog fills the
 //! space between objects. Inside an object whose material has a medium, the segment is the

@@ -57,7 +57,7 @@ pub const RAY_BUDGET: u64 = 1024;
 pub struct Tracer<'a> {
     pub scene: &'a Scene,
     pub bvh: &'a Bvh,
-    /// The scene's fog and the box it fills; `None` in clear air.
+    /// The scene's fog and its backdrop; `None` in clear air.
     pub fog: Option<Fog>,
     /// The caustic photon map, with caustics on ([`Self::with_caustics`]).
     pub caustics: Option<&'a PhotonMap>,
