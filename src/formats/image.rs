@@ -189,7 +189,7 @@ impl<'a> Bands<'a> {
             band.clear();
             (top * width..bottom * width)
                 .into_par_iter()
-                .map(|i| (self.pixel)(i % width, top + (i - top * width) / width))
+                .map(|i| (self.pixel)(i % width, i / width))
                 .collect_into_vec(&mut band);
             write(&band)?;
         }
