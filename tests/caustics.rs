@@ -12,7 +12,8 @@ use raylab::color::Color;
 use raylab::inspect::trace_ray_tree;
 use raylab::light::Light;
 use raylab::material::Material;
-use raylab::photon::{PhotonMap, caustic_map};
+use raylab::medium::{Atmosphere, Medium};
+use raylab::photon::{Photon, PhotonMap, caustic_map};
 use raylab::ray::Ray;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
@@ -320,4 +321,55 @@ fn the_inspector_shows_the_caustic_light_at_each_diffuse_hit() {
     // Without caustics, no such line.
     let plain = trace_ray_tree(&tracer, 32, 32);
     assert_eq!(plain.nodes[0].caustic, None);
+}
+
+#[test]
+fn a_directional_lights_photons_cross_the_fog_its_light_crosses() {
+    // Light falling straight down onto a mirror at 45° round the origin, which sends it along
+    // +x to a diffuse wall at x = 3, in fog that only absorbs with the background (and so the
+    // directional light) 20 units along every ray. A photon stored at height y on the wall
+    // left the mirror at x = −y: it crossed 20 units of fog down to the mirror and 3 + y to
+    // the wall.
+    let sigma = 0.05;
+    let mut scene = empty_scene();
+    let m = scene.add_material(mirror(1.0));
+    let d = scene.add_material(diffuse());
+    let facing = Vec3::new(1.0, 1.0, 0.0).normalize();
+    scene.add_object(square(Vec3::ZERO, facing, 0.5), None, m);
+    scene.add_object(plane(Vec3::new(3.0, 0.0, 0.0), -Vec3::X), None, d);
+    scene.lights.push(OVERHEAD);
+    let clear = map_of(&scene, 20_000);
+    scene.atmosphere = Atmosphere {
+        medium: Medium {
+            density: sigma,
+            albedo: 0.0,
+            color: Color::ONE,
+        },
+        background_distance: Some(20.0),
+    };
+    let foggy = map_of(&scene, 20_000);
+    assert!(clear.len() > 1000, "{} photons stored", clear.len());
+    // The same photons (the fog changes no path), dimmed, within the rounding of the hits.
+    let mut clear_photons = clear.photons().to_vec();
+    let mut foggy_photons = foggy.photons().to_vec();
+    let by_place = |a: &Photon, b: &Photon| {
+        a.position
+            .to_array()
+            .partial_cmp(&b.position.to_array())
+            .unwrap()
+    };
+    clear_photons.sort_by(by_place);
+    foggy_photons.sort_by(by_place);
+    assert_eq!(clear_photons.len(), foggy_photons.len());
+    for (clear, foggy) in clear_photons.iter().zip(&foggy_photons) {
+        assert_eq!(clear.position, foggy.position);
+        let path = 20.0 + 3.0 + clear.position.y;
+        let expected = clear.power.x * (-sigma * path).exp();
+        assert!(
+            (foggy.power.x - expected).abs() <= 1e-4 * expected,
+            "at {}: {} vs {expected}",
+            clear.position,
+            foggy.power.x
+        );
+    }
 }

@@ -97,6 +97,12 @@ impl Emitter {
         })
     }
 
+    /// Whether the light comes from infinitely far (a directional light), so that its photons
+    /// start at no particular distance (`start_distance` back from their disc).
+    pub fn from_afar(&self) -> bool {
+        matches!(self.light, Light::Directional { .. })
+    }
+
     /// Roughly the power the light sends at its targets, for sharing the photons out between
     /// lights.
     pub fn power(&self) -> f32 {

@@ -4,7 +4,9 @@
 //! roulette with the same weights the Whitted tracer gives its reflected and transmitted rays,
 //! so that the power the photons carry on average is the power the light keeps. Between
 //! surfaces a photon loses power to the medium it runs through, the fog or the medium inside
-//! an object, by Beer–Lambert (the same rule as the Whitted tracer's, see [`crate::medium`]).
+//! an object, by Beer–Lambert (the same rule as the Whitted tracer's, see [`crate::medium`]);
+//! a directional light's photon, on its way to its first surface, to the fog its light
+//! crosses from the backdrop.
 
 use rayon::prelude::*;
 
@@ -91,7 +93,8 @@ impl PhotonSource {
             }
             pick -= chance;
         }
-        let (mut ray, power) = self.emitters[light].emit([u(1), u(2), u(3)]);
+        let emitter = &self.emitters[light];
+        let (mut ray, power) = emitter.emit([u(1), u(2), u(3)]);
         let mut power = power / self.chances[light];
         let mut turned = false;
         let mut within = Within::Fog;
@@ -108,10 +111,18 @@ impl PhotonSource {
             let fog = tracer.fog.as_ref();
             let end = hit.t * ray.dir.length();
             let materials = &scene.materials;
-            if let Some((medium, segment)) = within.segment(fog, materials, ray.origin, dir, end) {
+            let surface = scene.geometry.surface(&ray, &hit);
+            if bounce == 0 && emitter.from_afar() {
+                // It starts at no particular distance: it crosses the fog that the light's own
+                // light crosses to reach the hit, from the backdrop.
+                if let Some(fog) = fog {
+                    power *= fog.transmittance(surface.point, -dir, 0.0, f32::INFINITY);
+                }
+            } else if let Some((medium, segment)) =
+                within.segment(fog, materials, ray.origin, dir, end)
+            {
                 power *= medium.transmittance(segment.length());
             }
-            let surface = scene.geometry.surface(&ray, &hit);
             let material = &scene.materials[surface.material as usize];
             if turned && material.diffuse > 0.0 {
                 stored.push(Photon {
