@@ -99,7 +99,7 @@ impl Emitter {
 
     /// Whether the light comes from infinitely far (a directional light), so that its photons
     /// start at no particular distance (`start_distance` back from their disc).
-    pub fn from_afar(&self) -> bool {
+    pub fn is_afar(&self) -> bool {
         matches!(self.light, Light::Directional { .. })
     }
 

@@ -112,7 +112,7 @@ impl PhotonSource {
             let end = hit.t * ray.dir.length();
             let materials = &scene.materials;
             let surface = scene.geometry.surface(&ray, &hit);
-            if bounce == 0 && emitter.from_afar() {
+            if bounce == 0 && emitter.is_afar() {
                 // It starts at no particular distance: it crosses the fog that the light's own
                 // light crosses to reach the hit, from the backdrop.
                 if let Some(fog) = fog {
