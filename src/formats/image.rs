@@ -186,7 +186,6 @@ impl<'a> Bands<'a> {
         let mut band = Vec::new();
         for top in (0..self.height).step_by(self.rows as usize) {
             let bottom = (top + self.rows).min(self.height);
-            band.clear();
             (top * width..bottom * width)
                 .into_par_iter()
                 .map(|i| (self.pixel)(i % width, i / width))
