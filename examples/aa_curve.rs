@@ -14,11 +14,10 @@
 use std::path::Path;
 
 use image::{Rgb, RgbImage};
-use raylab::bvh::Bvh;
 use raylab::color::{Color, to_srgb8};
 use raylab::formats::load_any;
 use raylab::progressive::render_image;
-use raylab::whitted::Tracer;
+use raylab::render::assemble;
 
 /// The sample caps measured.
 const CAPS: [u32; 6] = [1, 2, 4, 8, 16, 32];
@@ -53,11 +52,12 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         .ok_or(format!("`{size}` is not a size WIDTHxHEIGHT"))?;
     let mut scene = load_any("assets/scenes/default.toml")?;
     (scene.settings.width, scene.settings.height) = (width, height);
-    let bvh = Bvh::build(&scene.geometry);
+    let assembled = assemble(scene)?;
     let render = |samples, aa_threshold| {
-        let mut scene = scene.clone();
-        (scene.settings.samples, scene.settings.aa_threshold) = (samples, aa_threshold);
-        render_image(&Tracer::new(&scene, &bvh))
+        let mut assembled = assembled.clone();
+        let settings = &mut assembled.scene.settings;
+        (settings.samples, settings.aa_threshold) = (samples, aa_threshold);
+        render_image(&assembled.tracer())
     };
     eprintln!("the {REFERENCE_SAMPLES}-spp reference at {width}×{height}…");
     let (reference, _) = render(REFERENCE_SAMPLES, 0.0);

@@ -5,10 +5,9 @@
 //! cargo run --example ray_tree -- assets/scenes/glass.toml 320 240
 //! ```
 
-use raylab::bvh::Bvh;
 use raylab::formats::load_any;
 use raylab::inspect::trace_ray_tree;
-use raylab::whitted::Tracer;
+use raylab::render::assemble;
 
 fn main() {
     if let Err(error) = run() {
@@ -25,8 +24,8 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let pixel = |i: usize, middle: u32| args.get(i).map_or(Ok(middle), |s| s.parse());
     let (x, y) = (pixel(1, width / 2)?, pixel(2, height / 2)?);
 
-    let bvh = Bvh::build(&scene.geometry);
-    let tree = trace_ray_tree(&Tracer::new(&scene, &bvh), x, y);
+    let assembled = assemble(scene)?;
+    let tree = trace_ray_tree(&assembled.tracer(), x, y);
     print!("{}", tree.to_text());
     Ok(())
 }

@@ -9,11 +9,10 @@
 
 use std::path::Path;
 
-use raylab::bvh::Bvh;
 use raylab::formats::image::save_image;
 use raylab::formats::load_any;
 use raylab::progressive::render_image;
-use raylab::whitted::Tracer;
+use raylab::render::assemble;
 
 fn main() {
     if let Err(error) = run() {
@@ -28,11 +27,11 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let out = args.next().unwrap_or("render.png".into());
 
     let scene = load_any(&scene_name)?; // scene file → Scene
-    let bvh = Bvh::build(&scene.geometry); // Scene → BVH
-    let tracer = Tracer::new(&scene, &bvh); // the Whitted tracer over both
+    let assembled = assemble(scene)?; // Scene → BVH → caustic photons
+    let tracer = assembled.tracer(); // the Whitted tracer over them
     let (pixels, stats) = render_image(&tracer); // every pass, on all cores
 
-    let (width, height) = (scene.settings.width, scene.settings.height);
+    let (width, height) = (tracer.scene.settings.width, tracer.scene.settings.height);
     save_image(Path::new(&out), width, height, &pixels)?;
     println!(
         "{width}×{height} in {:.2} s, {} rays → {out}",

@@ -8,17 +8,16 @@
 use std::path::Path;
 
 use glam::Vec3;
-use raylab::bvh::Bvh;
 use raylab::camera::{Camera, CameraSpec};
 use raylab::color::Color;
 use raylab::formats::image::save_image;
 use raylab::light::Light;
 use raylab::material::Material;
 use raylab::progressive::render_image;
+use raylab::render::assemble;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::{Plane, Shape, Sphere};
-use raylab::whitted::Tracer;
 
 fn main() {
     if let Err(error) = run() {
@@ -74,8 +73,8 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         color: Color::ONE,
     });
 
-    let bvh = Bvh::build(&scene.geometry);
-    let (pixels, _) = render_image(&Tracer::new(&scene, &bvh));
+    let assembled = assemble(scene)?;
+    let (pixels, _) = render_image(&assembled.tracer());
     let out = std::env::args()
         .nth(1)
         .unwrap_or("scene_in_code.png".into());

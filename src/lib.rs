@@ -51,6 +51,7 @@ pub mod photon_map;
 pub mod primitive;
 pub mod progressive;
 pub mod ray;
+pub mod render;
 pub mod sampling;
 pub mod scene;
 pub mod settings;

@@ -8,15 +8,13 @@
 
 use std::path::{Path, PathBuf};
 
-use raylab::bvh::Bvh;
 use raylab::color::to_srgb8;
 use raylab::formats::image::save_image;
 use raylab::formats::load_any;
 use raylab::formats::toml::{default_scene, load_scene};
-use raylab::photon::scene_caustics;
 use raylab::progressive;
+use raylab::render::assemble;
 use raylab::scene::Scene;
-use raylab::whitted::Tracer;
 
 /// The size of the teaching scenes' pictures.
 const SIZE: (u32, u32) = (160, 120);
@@ -31,10 +29,8 @@ fn reference_dir() -> PathBuf {
 fn render_small(mut scene: Scene, (width, height): (u32, u32)) -> Vec<u8> {
     scene.settings.width = width;
     scene.settings.height = height;
-    let bvh = Bvh::build(&scene.geometry);
-    let tracer = Tracer::new(&scene, &bvh);
-    let caustics = scene_caustics(&tracer).unwrap();
-    let (pixels, _) = progressive::render_image(&tracer.with_caustics(caustics.as_ref()));
+    let assembled = assemble(scene).unwrap();
+    let (pixels, _) = progressive::render_image(&assembled.tracer());
     to_srgb8(&pixels)
 }
 

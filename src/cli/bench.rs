@@ -10,6 +10,7 @@
 
 use std::io::Write;
 use std::path::PathBuf;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use clap::Args;
@@ -21,6 +22,7 @@ use raylab::large_mesh::{bumpy_sphere_scene, check_bumpy_triangles};
 use raylab::output::{check_writable, write_atomically};
 use raylab::photon::{Caustics, PhotonMap};
 use raylab::progressive;
+use raylab::render::Assembled;
 use raylab::scene::Scene;
 use raylab::whitted::Tracer;
 
@@ -128,19 +130,24 @@ fn bench_scene(
     let start = Instant::now();
     let scene = load(name, args.size)?;
     let setup = start.elapsed();
-    let mut builds = Vec::new();
-    let mut bvh = Bvh::default();
-    for _ in 0..args.repeat {
+    // The render's BVH is the first of the `--repeat` builds timed.
+    let mut assembled = pool.install(|| Assembled::without_caustics(scene));
+    let mut builds = vec![assembled.bvh_time];
+    for _ in 1..args.repeat {
         let start = Instant::now();
-        bvh = pool.install(|| Bvh::build(&scene.geometry));
+        drop(pool.install(|| Bvh::build(&assembled.scene.geometry)));
         builds.push(start.elapsed());
     }
-    let plain = Tracer::new(&scene, &bvh);
-    let caustics = match scene.settings.caustic_photons {
+    let caustics = match assembled.scene.settings.caustic_photons {
         0 => None,
-        _ => Some(bench_caustics(&plain, args, pool, single)?),
+        _ => {
+            let (map, bench) = bench_caustics(&assembled.tracer(), args, pool, single)?;
+            assembled.caustics = Some(Arc::new(map));
+            Some(bench)
+        }
     };
-    let tracer = plain.with_caustics(caustics.as_ref().map(|(map, _)| map));
+    let tracer = assembled.tracer();
+    let plain = assembled.tracer().with_caustics(None);
     let (mut renders, mut first_passes, mut single_renders) = (Vec::new(), Vec::new(), Vec::new());
     let mut renders_off = Vec::new();
     let mut rays = Default::default();
@@ -158,16 +165,16 @@ fn bench_scene(
     }
     Ok(BenchResult {
         name: name.to_string(),
-        primitives: scene.geometry.len(),
+        primitives: assembled.scene.geometry.len(),
         setup,
         build: median(builds),
         first_pass: median(first_passes),
         render: median(renders),
         render_one_thread: single.map(|_| median(single_renders)),
         rays,
-        scene_bytes: scene.geometry.memory_bytes() + bvh.memory_bytes(),
+        scene_bytes: assembled.scene.geometry.memory_bytes() + assembled.bvh.memory_bytes(),
         peak_rss_bytes: peak_rss_bytes(),
-        caustics: caustics.map(|(_, c)| CausticBench {
+        caustics: caustics.map(|c| CausticBench {
             render_off: median(renders_off),
             ..c
         }),

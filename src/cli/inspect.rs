@@ -3,13 +3,12 @@
 use std::io::Write;
 
 use clap::Args;
-use raylab::bvh::Bvh;
+
 use raylab::formats::SceneFormat;
 use raylab::formats::nff::NffLighting;
 use raylab::inspect::trace_ray_tree;
-use raylab::photon::scene_caustics;
+use raylab::render::assemble;
 use raylab::settings::SettingsOverrides;
-use raylab::whitted::Tracer;
 
 use super::overrides::OverrideArgs;
 
@@ -55,10 +54,8 @@ pub fn run(args: InspectArgs) -> Result<(), String> {
             "pixel ({x}, {y}) is outside the {width}×{height} image (x < {width}, y < {height})"
         ));
     }
-    let bvh = Bvh::build(&scene.geometry);
-    let tracer = Tracer::new(&scene, &bvh);
-    let caustics = scene_caustics(&tracer)?;
-    let tree = trace_ray_tree(&tracer.with_caustics(caustics.as_ref()), x, y);
+    let assembled = assemble(scene)?;
+    let tree = trace_ray_tree(&assembled.tracer(), x, y);
     let text = if args.json {
         let json = serde_json::to_string_pretty(&tree)
             .map_err(|e| format!("cannot write the tree as JSON: {e}"))?;

@@ -5,11 +5,10 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{self, RecvTimeoutError};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use raylab::bvh::Bvh;
 use raylab::film::Film;
 use raylab::formats::SceneFormat;
 use raylab::formats::image::{OutputFormat, check_image_path, save_image, save_toned_pixels};
@@ -17,8 +16,8 @@ use raylab::formats::nff::NffLighting;
 use raylab::formats::part::{PartInfo, scene_hash, write_part};
 use raylab::inspect::DebugView;
 use raylab::memory;
-use raylab::photon::scene_caustics;
 use raylab::progressive::{self, RenderControl, RenderStats};
+use raylab::render::assemble;
 use raylab::settings::{RenderSettings, SettingsOverrides};
 use raylab::tiles::Rect;
 use raylab::tone::{Tone, ToneCurve};
@@ -155,26 +154,20 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
             + format.save_bytes(traced.width()),
     )?;
 
-    let build_start = Instant::now();
-    let bvh = pool.install(|| Bvh::build(&scene.geometry));
-    let build_time = build_start.elapsed();
-
-    let tracer = Tracer::new(&scene, &bvh);
-    let caustics_start = Instant::now();
-    let caustics = pool.install(|| scene_caustics(&tracer))?;
-    let caustics_time = caustics_start.elapsed();
-    let legend = args.view.legend(&tracer.with_caustics(caustics.as_ref()));
+    let mut assembled = pool.install(|| assemble(scene))?;
+    let legend = args.view.legend(&assembled.tracer());
     let legend_path = outputs[0].with_extension("legend.png");
     if legend.is_some() {
         check_image_path(&legend_path).map_err(|e| e.to_string())?;
     }
-    let per_frame = pixels * u64::from(scene.settings.samples);
+    let per_frame = pixels * u64::from(assembled.scene.settings.samples);
     let bar = progress_bar(per_frame * cameras.len() as u64);
     let mut stats = RenderStats::default();
     let mut written = Vec::new();
     for (k, (camera, output)) in cameras.iter().zip(&outputs).enumerate() {
-        scene.camera = *camera;
-        let tracer = Tracer::new(&scene, &bvh).with_caustics(caustics.as_ref());
+        assembled.scene.camera = *camera;
+        let tracer = assembled.tracer();
+        let scene = tracer.scene;
         let done = per_frame * k as u64;
         let frame = render_frame(&tracer, &args.view, traced, &pool, |traced| {
             bar.set_position(done + traced)
@@ -186,7 +179,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
                         width,
                         height,
                         rect,
-                        scene: scene_hash(&scene),
+                        scene: scene_hash(scene),
                         settings: format!("{:#?}\nview = {}", scene.settings, args.view),
                         tile,
                         frame: (total > 1).then_some(job.frames.start + k as u32),
@@ -243,15 +236,20 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         writeln!(
             out,
             "{}",
-            summary(&scene.settings, &stats, build_time, &args.output)
+            summary(
+                &assembled.scene.settings,
+                &stats,
+                assembled.bvh_time,
+                &args.output
+            )
         )?;
-        if let Some(map) = &caustics {
+        if let Some(map) = &assembled.caustics {
             writeln!(
                 out,
                 "caustics: {} photons shot, {} stored, {:.3} s",
                 map.shot(),
                 map.len(),
-                caustics_time.as_secs_f64()
+                assembled.caustics_time.as_secs_f64()
             )?;
         }
         if let Some(legend) = &legend {

@@ -36,15 +36,6 @@ pub fn caustic_map(tracer: &Tracer, count: u32) -> Result<PhotonMap, String> {
     Ok(caustics.map())
 }
 
-/// The caustic map the tracer's scene asks for (`caustic_photons` photons); `None` with
-/// caustics off. The error says the photons would not fit in memory.
-pub fn scene_caustics(tracer: &Tracer) -> Result<Option<PhotonMap>, String> {
-    match tracer.scene.settings.caustic_photons {
-        0 => Ok(None),
-        count => caustic_map(tracer, count).map(Some),
-    }
-}
-
 /// A caustic photon map that grows: more photons shot sharpen the same caustics (each photon's
 /// power is shared with all the photons shot, and the estimates gather from nearer).
 #[derive(Clone, Debug)]

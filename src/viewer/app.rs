@@ -139,7 +139,7 @@ impl App {
                 }
             }
             Ok(loaded) => {
-                for warning in &loaded.scene.warnings {
+                for warning in &loaded.scene().warnings {
                     eprintln!("warning: {warning}");
                 }
                 if let Some(gfx) = &self.gpu {

@@ -98,7 +98,7 @@ impl App {
         let Some(s) = self.scene.shown_mut() else {
             return;
         };
-        let names = &s.scene.scene.material_names;
+        let names = &s.scene.scene().material_names;
         let number = || name.strip_prefix('#')?.parse::<usize>().ok();
         let index = names.iter().position(|n| n == name).or_else(number);
         match index.filter(|&i| i < names.len()) {
@@ -152,7 +152,7 @@ impl App {
             return;
         };
         let size = (controls.settings.width, controls.settings.height);
-        let point = pick::surface_point(&scene.scene, &scene.bvh, &camera, size, (x, y));
+        let point = pick::surface_point(scene.scene(), &scene.assembled.bvh, &camera, size, (x, y));
         match point.and_then(|p| navigation::look_at_point(&controls.camera, p)) {
             Some(spec) => controls.camera = spec,
             None => self.ui.panel.message = Some("no surface under the cursor".into()),
@@ -284,7 +284,7 @@ fn navigate(s: &mut Shown, action: Action, shown: PixelRect) {
             Some(navigation::fly(spec, motion, distance))
         }
         Action::Frame => spec.framing(&bounds, size.0 as f32 / size.1.max(1) as f32),
-        Action::ResetCamera => Some(s.scene.scene.camera.spec),
+        Action::ResetCamera => Some(s.scene.scene().camera.spec),
         _ => None,
     };
     if let Some(new) = new {

@@ -32,10 +32,16 @@ mod tests {
     #[test]
     fn the_centre_of_the_image_hits_what_the_camera_looks_at() {
         let loaded = source::load(None, None).unwrap();
-        let camera = loaded.scene.camera;
+        let camera = loaded.assembled.scene.camera;
         let size = (64, 48);
-        let centre =
-            surface_point(&loaded.scene, &loaded.bvh, &camera, size, (32.0, 24.0)).unwrap();
+        let centre = surface_point(
+            &loaded.assembled.scene,
+            &loaded.assembled.bvh,
+            &camera,
+            size,
+            (32.0, 24.0),
+        )
+        .unwrap();
         // The point lies on the view axis, in front of the eye.
         let to_point = (centre - camera.eye).normalize();
         assert!(to_point.dot(-camera.n) > 0.999, "{centre}");
@@ -44,13 +50,19 @@ mod tests {
     #[test]
     fn a_ray_into_the_sky_hits_nothing() {
         let loaded = source::load(None, None).unwrap();
-        let camera = loaded.scene.camera;
+        let camera = loaded.assembled.scene.camera;
         // The top-left corner of a very wide view looks up past everything.
         let mut spec = camera.spec;
         spec.look_at = spec.eye + glam::Vec3::new(0.0, 1.0, -0.2);
         let up = Camera::new(spec).unwrap();
         assert_eq!(
-            surface_point(&loaded.scene, &loaded.bvh, &up, (64, 48), (0.5, 0.5)),
+            surface_point(
+                &loaded.assembled.scene,
+                &loaded.assembled.bvh,
+                &up,
+                (64, 48),
+                (0.5, 0.5)
+            ),
             None
         );
     }

@@ -177,7 +177,7 @@ impl SceneSlot {
         // The scene with the overrides applied (they were checked before the window opened, so
         // only a scene's own bad settings can fail here).
         let with_overrides = result.and_then(|loaded| {
-            let controls = Controls::with_overrides(&loaded.scene, &self.overrides, self.view)?;
+            let controls = Controls::with_overrides(loaded.scene(), &self.overrides, self.view)?;
             Ok((loaded, controls))
         });
         let (loaded, with_overrides) = match with_overrides {
@@ -191,7 +191,7 @@ impl SceneSlot {
             }
         };
         // The file's own controls, to tell on the next reload what the file changed.
-        let file_controls = Controls::from_scene(&loaded.scene);
+        let file_controls = Controls::from_scene(loaded.scene());
         let controls = match last_good {
             Some(old) if old.scene.path == loaded.path => {
                 let mut controls = old.controls;
@@ -285,7 +285,7 @@ impl SceneSlot {
             _ => return Err(cannot_save(&shown.scene)),
         };
         shown.controls.check_edits()?;
-        let names = &shown.scene.scene.material_names;
+        let names = &shown.scene.scene().material_names;
         let saved = save_edits(
             &path,
             looks(names, &shown.file_controls),

@@ -6,18 +6,18 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use raylab::aabb::Aabb;
-use raylab::bvh::Bvh;
 use raylab::formats::nff::NffLighting;
 use raylab::formats::toml::load_views;
 use raylab::formats::toml::{default_scene, load_scene};
 use raylab::formats::{SceneFormat, load_any_as, views_path};
+use raylab::render::Assembled;
 use raylab::scene::Scene;
 use raylab::views::Views;
 
 /// A scene ready to trace, with where it came from.
 pub struct LoadedScene {
-    pub scene: Scene,
-    pub bvh: Bvh,
+    /// The scene and its BVH; the viewer shoots the caustic photons of each view itself.
+    pub assembled: Assembled,
     /// The scene file; `None` for the built-in default scene.
     pub path: Option<PathBuf>,
     /// The scene was read from a TOML file, which "Save scene" can write edits back into.
@@ -31,6 +31,10 @@ pub struct LoadedScene {
 }
 
 impl LoadedScene {
+    pub fn scene(&self) -> &Scene {
+        &self.assembled.scene
+    }
+
     /// A name for the window title and messages.
     pub fn name(&self) -> String {
         match &self.path {
@@ -57,14 +61,13 @@ pub fn load(path: Option<&Path>, format: Option<SceneFormat>) -> Result<LoadedSc
         Some(file) => load_views(&file, scene.camera.spec).map_err(|e| e.to_string())?,
         None => Views::default(),
     };
-    let bvh = Bvh::build(&scene.geometry);
-    let bounds = bvh.bounds().unwrap_or(Aabb::EMPTY);
+    let assembled = Assembled::without_caustics(scene);
+    let bounds = assembled.bvh.bounds().unwrap_or(Aabb::EMPTY);
     let toml_file = path.is_some_and(|p| {
         p.is_file() && format.unwrap_or_else(|| SceneFormat::of(p)) == SceneFormat::Toml
     });
     Ok(LoadedScene {
-        scene,
-        bvh,
+        assembled,
         path: path.map(Path::to_path_buf),
         toml_file,
         bounds,
@@ -132,13 +135,13 @@ mod tests {
         let loaded = load(None, None).unwrap();
         assert!(loaded.path.is_none());
         assert!(loaded.bounds.min.is_finite() && loaded.bounds.max.is_finite());
-        assert!(!loaded.scene.lights.is_empty());
+        assert!(!loaded.scene().lights.is_empty());
     }
 
     #[test]
     fn spd_names_load_too() {
         let loaded = load(Some(Path::new("spd:balls:1")), None).unwrap();
-        assert!(!loaded.scene.geometry.objects.is_empty());
+        assert!(!loaded.scene().geometry.objects.is_empty());
     }
 
     #[test]

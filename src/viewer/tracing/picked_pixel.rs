@@ -233,7 +233,7 @@ mod tests {
     #[test]
     fn a_pick_is_traced_again_when_the_camera_moves_and_dropped_outside_the_image() {
         let scene = Arc::new(source::load(None, None).unwrap());
-        let mut controls = Controls::from_scene(&scene.scene);
+        let mut controls = Controls::from_scene(scene.scene());
         (controls.settings.width, controls.settings.height) = (32, 32);
         let mut picked = PickedPixel::start(1, SharedCaustics::default(), || {}).unwrap();
         picked.pick((5, 7));
@@ -243,10 +243,10 @@ mod tests {
             let traced = picked.tree.as_ref().expect("a tree");
             assert_eq!(traced.camera.spec, controls.camera);
             // The same tree as the library's for that pixel of that view.
-            let mut expected = scene.scene.clone();
+            let mut expected = scene.scene().clone();
             expected.settings = controls.settings.clone();
             expected.camera = traced.camera;
-            let tracer = Tracer::new(&expected, &scene.bvh);
+            let tracer = Tracer::new(&expected, &scene.assembled.bvh);
             assert_eq!(traced.tree, inspect::trace_ray_tree(&tracer, 5, 7));
         }
         picked.want_object_ids();

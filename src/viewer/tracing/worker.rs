@@ -250,19 +250,19 @@ mod tests {
     use crate::viewer::scene::source;
 
     fn job(scene: &Arc<LoadedScene>, size: u32) -> Job {
-        let mut settings = scene.scene.settings.clone();
+        let mut settings = scene.scene().settings.clone();
         settings.width = size;
         settings.height = size;
         settings.block_size = 8;
         Job {
             scene: scene.clone(),
             setup: TraceSetup {
-                camera: scene.scene.camera,
+                camera: scene.scene().camera,
                 settings,
                 light_scale: 1.0,
                 view: Default::default(),
-                materials: scene.scene.materials.clone(),
-                lights: scene.scene.lights.clone(),
+                materials: scene.scene().materials.clone(),
+                lights: scene.scene().lights.clone(),
                 caustic_round: 0,
             },
             film: Arc::new(Film::new(size, size)),
@@ -322,7 +322,7 @@ mod tests {
         let good = Arc::new(source::load(None, None).unwrap());
         let mut broken = source::load(None, None).unwrap();
         // An object whose material does not exist makes the tracer index out of bounds.
-        for object in &mut broken.scene.geometry.objects {
+        for object in &mut broken.assembled.scene.geometry.objects {
             object.material = 9999;
         }
         let broken = Arc::new(broken);

@@ -11,7 +11,7 @@ use raylab::inspect::DebugView;
 use raylab::light::Light;
 use raylab::material::Material;
 use raylab::photon::PhotonMap;
-use raylab::scene::Scene;
+use raylab::render::Assembled;
 use raylab::settings::RenderSettings;
 use raylab::whitted::Tracer;
 
@@ -37,9 +37,7 @@ pub struct TraceSetup {
 /// A thread's copy of the scene it traces.
 #[derive(Default)]
 pub struct WorkingScene {
-    copy: Option<(Arc<LoadedScene>, Scene)>,
-    /// The caustic photon map of the last tracer.
-    caustics: Option<Arc<PhotonMap>>,
+    copy: Option<(Arc<LoadedScene>, Assembled)>,
 }
 
 impl WorkingScene {
@@ -58,9 +56,11 @@ impl WorkingScene {
         {
             self.copy = None;
         }
-        let (loaded, scene) = self
+        let (_, copy) = self
             .copy
-            .get_or_insert_with(|| (loaded.clone(), loaded.scene.clone()));
+            .get_or_insert_with(|| (loaded.clone(), loaded.assembled.clone()));
+        copy.caustics = caustics;
+        let scene = &mut copy.scene;
         scene.camera = setup.camera;
         scene.settings = setup.settings.clone();
         scene.materials.clone_from(&setup.materials);
@@ -69,7 +69,6 @@ impl WorkingScene {
             .iter()
             .map(|l| l.scaled(setup.light_scale))
             .collect();
-        self.caustics = caustics;
-        Tracer::new(scene, &loaded.bvh).with_caustics(self.caustics.as_deref())
+        copy.tracer()
     }
 }

@@ -22,7 +22,7 @@ pub fn show(
     scene: &SceneInfo<'_>,
     actions: &mut Vec<Action>,
 ) {
-    let names = &scene.scene.scene.material_names;
+    let names = &scene.scene.scene().material_names;
     egui::CollapsingHeader::new("Materials")
         .default_open(true)
         .show(ui, |ui| {

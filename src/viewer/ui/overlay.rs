@@ -221,7 +221,6 @@ pub fn highlight_mask(ids: &ObjectIds, object: u32) -> egui::ColorImage {
 #[cfg(test)]
 mod tests {
     use raylab::inspect::trace_ray_tree;
-    use raylab::whitted::Tracer;
 
     use super::*;
     use crate::viewer::scene::source;
@@ -250,9 +249,12 @@ mod tests {
     fn the_eye_ray_lands_on_its_pixel_and_blocked_shadow_rays_are_marked() {
         let mut loaded = source::load(None, None).unwrap();
         let size = 32;
-        (loaded.scene.settings.width, loaded.scene.settings.height) = (size, size);
-        let tracer = Tracer::new(&loaded.scene, &loaded.bvh);
-        let camera = loaded.scene.camera;
+        (
+            loaded.assembled.scene.settings.width,
+            loaded.assembled.scene.settings.height,
+        ) = (size, size);
+        let tracer = loaded.assembled.tracer();
+        let camera = loaded.assembled.scene.camera;
         let mut blocked = 0;
         for (x, y) in (0..size).flat_map(|y| (0..size).map(move |x| (x, y))) {
             let tree = trace_ray_tree(&tracer, x, y);

@@ -50,7 +50,7 @@ pub fn side_panel(
                 camera_section(ui, controls, &mut actions);
                 views_section(ui, scene.views, &mut actions);
                 tracing_section(ui, controls, state, legend);
-                lights_section(ui, controls, scene.scene.scene.lights.len());
+                lights_section(ui, controls, scene.scene.scene().lights.len());
                 display::section(ui, &mut state.display, &mut actions);
                 materials_panel::show(ui, controls, scene, &mut actions);
                 save_section(ui, state, &mut actions);
@@ -114,7 +114,7 @@ fn scene_section(
                 ui.colored_label(Color32::from_rgb(255, 90, 90), e);
                 ui.label("(showing the last good scene)");
             }
-            for warning in &scene.scene.scene.warnings {
+            for warning in &scene.scene.scene().warnings {
                 ui.colored_label(
                     Color32::from_rgb(255, 200, 80),
                     format!("warning: {warning}"),

@@ -236,7 +236,6 @@ fn vec2(v: Vec2) -> String {
 #[cfg(test)]
 mod tests {
     use raylab::inspect::trace_ray_tree;
-    use raylab::whitted::Tracer;
 
     use super::*;
     use crate::viewer::scene::source;
@@ -244,8 +243,11 @@ mod tests {
     #[test]
     fn the_headings_follow_the_tree_indented_by_depth() {
         let mut loaded = source::load(None, None).unwrap();
-        (loaded.scene.settings.width, loaded.scene.settings.height) = (24, 24);
-        let tracer = Tracer::new(&loaded.scene, &loaded.bvh);
+        (
+            loaded.assembled.scene.settings.width,
+            loaded.assembled.scene.settings.height,
+        ) = (24, 24);
+        let tracer = loaded.assembled.tracer();
         let trees = (0..24).flat_map(|y| (0..24).map(move |x| (x, y)));
         let tree = trees
             .map(|(x, y)| trace_ray_tree(&tracer, x, y))

@@ -1,0 +1,299 @@
+//! The CPU sweep of a progressive render: each pass on all of rayon's threads, band by band of
+//! 8 rows of the pass's grid (8 rows of `b × b` blocks, so 8·b rows of pixels in block pass `b`),
+//! each band tile by tile of 8 × 8 pixels whose eye rays are traced together, up to 64 at a time
+//! ([`crate::bvh::packet`]). A band reports its progress and statistics to the render's
+//! [`RenderControl`] as it goes, stops when cancelled from another thread, waits before it starts
+//! while paused, and marks its rows of the film as changed ([`Film::touch_rows`]). Each pixel
+//! sample is what the caller's [`Shader`] makes of its eye ray.
+
+use std::ops::Range;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
+
+use arrayvec::ArrayVec;
+use rayon::prelude::*;
+
+use super::control::{Cancelled, PassStats, RenderControl, RenderStats, run_plan};
+use super::plan::{Pass, PassGrid, passes, take_snapshot, unwatched_passes};
+use crate::bvh::packet::PACKET_SIZE;
+use crate::camera::PIXEL_CENTRE;
+use crate::color::Color;
+use crate::film::Film;
+use crate::ray::Ray;
+use crate::sampling::jitter;
+use crate::stats::RayCounts;
+use crate::whitted::Tracer;
+
+/// What the renderer writes for the pixel samples whose eye rays it traces: the shaded image
+/// ([`Shaded`]) or another view of the scene.
+pub trait Shader: Sync {
+    /// The colours of the neighbouring eye rays `rays` (up to [`PACKET_SIZE`]), into `colors`,
+    /// counting the rays traced into `counts`.
+    fn shade(&self, tracer: &Tracer, rays: &[Ray], colors: &mut [Color], counts: &mut RayCounts);
+}
+
+/// The shaded image: the Whitted colour of each eye ray, the eye rays traced as one packet
+/// ([`Tracer::trace_eye_packet`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Shaded;
+
+impl Shader for Shaded {
+    #[inline]
+    fn shade(&self, tracer: &Tracer, rays: &[Ray], colors: &mut [Color], counts: &mut RayCounts) {
+        tracer.trace_eye_packet(rays, colors, counts);
+    }
+}
+
+/// Traced pixels per side of a tile: a tile's eye rays go through the BVH as one packet of
+/// [`PACKET_SIZE`].
+const TILE: u32 = 8;
+const _: () = assert!((TILE * TILE) as usize == PACKET_SIZE);
+
+/// Renders `tracer`'s scene as `shader` shows it into `film` (which must have the settings'
+/// size), pass after pass, calling `on_pass` after each. Runs on the current rayon thread pool.
+///
+/// ```
+/// use raylab::bvh::Bvh;
+/// use raylab::film::Film;
+/// use raylab::formats::load_any;
+/// use raylab::progressive::{Pass, RenderControl, Shaded, render};
+/// use raylab::whitted::Tracer;
+///
+/// let mut scene = load_any("assets/scenes/default.toml")?;
+/// scene.settings.width = 64;
+/// scene.settings.height = 48;
+/// scene.settings.block_size = 16;
+/// let bvh = Bvh::build(&scene.geometry);
+/// let tracer = Tracer::new(&scene, &bvh);
+/// let film = Film::new(64, 48);
+///
+/// let mut block_sizes = Vec::new();
+/// let stats = render(&tracer, &Shaded, &film, &RenderControl::default(), |pass| {
+///     block_sizes.push(pass.pass) // a viewer would show the film here
+/// })
+/// .expect("only another thread holding the control can cancel it");
+///
+/// // Coarse first, refined down to one pixel; every pixel traced exactly once.
+/// let expected = [16, 8, 4, 2, 1].map(Pass::Block);
+/// assert_eq!(block_sizes, expected);
+/// assert_eq!(stats.rays.primary, 64 * 48);
+/// # Ok::<(), raylab::formats::SceneError>(())
+/// ```
+pub fn render(
+    tracer: &Tracer,
+    shader: &dyn Shader,
+    film: &Film,
+    control: &RenderControl,
+    on_pass: impl FnMut(&PassStats),
+) -> Result<RenderStats, Cancelled> {
+    let settings = &tracer.scene.settings;
+    let plan = passes(
+        settings.block_size,
+        settings.samples,
+        settings.aa_threshold > 0.0,
+    );
+    let start_block = settings.block_size;
+    let mut shown = Vec::new();
+    run_plan(&plan, control, on_pass, |pass| {
+        run_pass(tracer, shader, film, control, pass, start_block, &mut shown)
+    })
+}
+
+/// [`render`] for a film nobody looks at before it is finished (a render to a file): the
+/// [`unwatched_passes`], the same film in the end.
+pub fn render_unwatched(
+    tracer: &Tracer,
+    shader: &dyn Shader,
+    film: &Film,
+    control: &RenderControl,
+) -> Result<RenderStats, Cancelled> {
+    let settings = &tracer.scene.settings;
+    let plan = unwatched_passes(settings.samples, settings.aa_threshold > 0.0);
+    let start_block = settings.block_size;
+    let mut shown = Vec::new();
+    run_plan(
+        &plan,
+        control,
+        |_| {},
+        |pass| run_pass(tracer, shader, film, control, pass, start_block, &mut shown),
+    )
+}
+
+/// Runs one pass over the whole image (an anti-aliasing round compares the pixels as the film
+/// has them now).
+pub fn render_pass(
+    tracer: &Tracer,
+    shader: &dyn Shader,
+    film: &Film,
+    control: &RenderControl,
+    pass: Pass,
+    start_block: u32,
+) -> Result<PassStats, Cancelled> {
+    run_pass(
+        tracer,
+        shader,
+        film,
+        control,
+        pass,
+        start_block,
+        &mut Vec::new(),
+    )
+}
+
+/// [`render_pass`], keeping the film's shown colours in `shown` for an anti-aliasing round.
+fn run_pass(
+    tracer: &Tracer,
+    shader: &dyn Shader,
+    film: &Film,
+    control: &RenderControl,
+    pass: Pass,
+    start_block: u32,
+    shown: &mut Vec<[u8; 3]>,
+) -> Result<PassStats, Cancelled> {
+    let started = Instant::now();
+    if let Pass::Refine(_) = pass {
+        take_snapshot(film, shown);
+    }
+    let grid = PassGrid::new(
+        pass,
+        start_block,
+        film,
+        shown,
+        tracer.scene.settings.aa_threshold,
+    );
+    let step = pass.step();
+    let (rows, columns) = (film.height().div_ceil(step), film.width().div_ceil(step));
+    control.start_pass(step, pass.samples(), rows);
+    let rays_before = control.rays();
+    let pixels = AtomicU64::new(0);
+    // Bands of TILE rows of the grid go to the threads; each band is traced tile by tile. Each
+    // band is a job of its own that an idle thread can take: left to itself, rayon would hand a
+    // thread runs of up to a quarter of the bands, and the other would wait at the end of the
+    // pass for the rest of the run it cannot take.
+    (0..rows.div_ceil(TILE))
+        .into_par_iter()
+        .with_max_len(1)
+        .try_for_each(|band| {
+            control.wait_for_band()?;
+            let band_rows = band * TILE..((band + 1) * TILE).min(rows);
+            let mut counts = RayCounts::default();
+            let mut traced = Traced::default();
+            for c in (0..columns).step_by(TILE as usize) {
+                let tile_columns = c..(c + TILE).min(columns);
+                let tile = trace_tile(tracer, shader, &grid, &band_rows, tile_columns, &mut counts);
+                traced.pixels += tile.pixels;
+                traced.samples += tile.samples;
+            }
+            control.band_done(band_rows.len() as u32, traced.samples, &counts);
+            pixels.fetch_add(traced.pixels, Ordering::Relaxed);
+            film.touch_rows(band_rows.start * step..band_rows.end * step);
+            Ok(())
+        })?;
+    let rays = control.rays() - rays_before;
+    Ok(PassStats {
+        pass,
+        pixels: pixels.into_inner(),
+        rays,
+        time: started.elapsed(),
+    })
+}
+
+/// What a tile (or a band) traced.
+#[derive(Clone, Copy, Debug, Default)]
+struct Traced {
+    /// Pixels that took samples.
+    pixels: u64,
+    samples: u64,
+}
+
+/// Up to [`PACKET_SIZE`] pixel samples whose eye rays are traced together: the pixel and the
+/// sample's number for each ray.
+#[derive(Default)]
+struct Packet {
+    samples: ArrayVec<(u32, u32, u32), PACKET_SIZE>,
+    rays: ArrayVec<Ray, PACKET_SIZE>,
+}
+
+impl Packet {
+    /// Traces the packet's rays and writes their colours to the film: a block painted for a
+    /// pixel's first sample, otherwise a sample added to the pixel's mean. Empties the packet.
+    fn trace(
+        &mut self,
+        tracer: &Tracer,
+        shader: &dyn Shader,
+        grid: &PassGrid,
+        counts: &mut RayCounts,
+    ) {
+        let mut colors = [Color::ZERO; PACKET_SIZE];
+        let colors = &mut colors[..self.rays.len()];
+        shader.shade(tracer, &self.rays, colors, counts);
+        for (&(x, y, sample), &color) in self.samples.iter().zip(colors.iter()) {
+            if sample == 0 {
+                grid.film.fill_block(x, y, grid.step, color);
+            } else {
+                grid.film.add_sample(x, y, color);
+            }
+        }
+        self.samples.clear();
+        self.rays.clear();
+    }
+}
+
+/// Traces the samples the pass takes in one tile of `grid` (`rows` × `columns` of it), the eye
+/// rays in packets of up to [`PACKET_SIZE`], and writes them to the film.
+fn trace_tile(
+    tracer: &Tracer,
+    shader: &dyn Shader,
+    grid: &PassGrid,
+    rows: &Range<u32>,
+    columns: Range<u32>,
+    counts: &mut RayCounts,
+) -> Traced {
+    let camera = &tracer.scene.camera;
+    // The film may be a window of the image: rays and jitter go by the pixel's place in it.
+    let size = grid.film.image_size();
+    let (left, top) = grid.film.origin();
+    let mut packet = Packet::default();
+    let mut traced = Traced::default();
+    for row in rows.clone() {
+        for column in columns.clone() {
+            let (x, y) = (column * grid.step, row * grid.step);
+            let samples = grid.samples_at(x, y);
+            traced.pixels += u64::from(!samples.is_empty());
+            traced.samples += u64::from(samples.len() as u32);
+            for k in samples {
+                if packet.rays.is_full() {
+                    packet.trace(tracer, shader, grid, counts);
+                }
+                let pixel = (left + x, top + y);
+                let offset = if k == 0 {
+                    PIXEL_CENTRE
+                } else {
+                    jitter(pixel.0, pixel.1, k)
+                };
+                packet.rays.push(camera.eye_ray(pixel, offset, size));
+                packet.samples.push((x, y, k));
+            }
+        }
+    }
+    if !packet.rays.is_empty() {
+        packet.trace(tracer, shader, grid, counts);
+    }
+    traced
+}
+
+/// Renders the whole shaded image in one go (no progressive display), returning its pixels.
+pub fn render_image(tracer: &Tracer) -> (Vec<Color>, RenderStats) {
+    render_image_with(tracer, &Shaded)
+}
+
+/// [`render_image`] of what `shader` shows.
+pub fn render_image_with(tracer: &Tracer, shader: &dyn Shader) -> (Vec<Color>, RenderStats) {
+    let settings = &tracer.scene.settings;
+    let film = Film::new(settings.width, settings.height);
+    let control = RenderControl::default();
+    let stats = render(tracer, shader, &film, &control, |_| {}).unwrap_or_else(|Cancelled| {
+        unreachable!("nobody else holds this render's control, so it cannot be cancelled")
+    });
+    (film.pixels(), stats)
+}
