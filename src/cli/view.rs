@@ -9,7 +9,7 @@ use raylab::output::check_writable;
 use raylab::settings::{RenderSettings, SettingsOverrides};
 
 use super::overrides::{OverrideArgs, parse_size};
-use crate::viewer::{self, Options, Script};
+use crate::viewer::{self, Options, Script, script_steps};
 
 #[derive(Args, Debug)]
 pub struct ViewArgs {
@@ -45,22 +45,8 @@ pub struct ViewArgs {
     /// first image (and the block size it started at) and to block size 1 on screen, and pauses.
     #[arg(long)]
     stats: bool,
-    /// Scripted input, steps separated by `;`: wait (for refinement to finish), wait-load N (for
-    /// N scene loads, the first included), orbit YAW PITCH [FRAMES], pan DX DY [FRAMES], dolly STEPS,
-    /// fly X Y Z SECONDS, frame, reset, save, print-camera, open [PATH], resize W H, pick X Y
-    /// (inspect image pixel X Y), click X Y (a left click on that pixel), close-inspector,
-    /// print-tree (print the inspector's node headings), view NAME, exposure STOPS, tonemap
-    /// CURVE (clamp, reinhard, filmic), snapshot (keep the image to compare with, as the key B),
-    /// compare on|off (the split view: snapshot left, live right), divider FRACTION (0 to 1),
-    /// material NAME|#K FIELD VALUE… (e.g. `material red kd 0.2`, `material red color 1 0 0`; fields
-    /// color, emission, ka, kd, ks, specular_color, shininess, kr, kt, ior, fresnel on|off), light N FIELD
-    /// VALUE… (N from 1; position, direction, color, intensity), save-scene (write the edited
-    /// materials and lights into the TOML scene file), skip (block size 1 at once), pause, resume,
-    /// sleep SECONDS, print-status, bookmark N (store the camera as view N, 1 to 9, as Ctrl+N),
-    /// recall N (go to view N), turntable FRAMES (preview a turntable), play-path [FRAMES]
-    /// (preview the path through the views; while a preview plays, either stops it, and wait
-    /// waits for it to end).
-    #[arg(long, value_name = "STEPS", value_parser = Script::parse)]
+    /// Scripted input, steps separated by `;` (`--help` lists them).
+    #[arg(long, value_name = "STEPS", value_parser = Script::parse, long_help = script_steps::help())]
     script: Option<Script>,
     /// Most frames per second while refining.
     #[arg(long, default_value_t = 60.0)]
@@ -85,7 +71,7 @@ pub fn run(args: ViewArgs) -> Result<(), String> {
         scene: args.scene,
         format: args.format,
         overrides,
-        view: args.view,
+        debug_view: args.view,
         threads,
         window: args.window.unwrap_or((1100, 720)),
         save_path: args.save,

@@ -4,24 +4,30 @@
 //! settings (any change restarts refinement). Only the binary knows about it; the data still
 //! flows one way: scene file → scene → BVH → tracer → film → texture → window.
 //!
-//! Its rooms, each owning one part of the [`app::App`]:
-//! - `gpu/`: the window's GPU (wgpu): device, surface, image quad, upload, painting, screenshots;
-//! - `ui/`: what egui shows: side panel, status line, ray tree panel, overlay, legend, layout;
-//! - `input/`: mouse, keys and the script, the [`input::action::Action`]s they make, and carrying
-//!   them out (navigation, picking);
+//! Its rooms, each owning one part of the [`app::App`], from the bottom up; each room uses only
+//! rooms above it in this list:
+//! - `layout.rs`: where things are in the window (pixel rectangles, the image's resolution);
+//!   `timing.rs`: the viewer's own measurements (`--stats`); `save.rs`: the image and camera
+//!   written to files;
 //! - `scene/`: loading and watching scene files, the scene's state and the user's controls;
-//! - `tracing/`: the render worker, the render in progress and the picked pixel's ray tree thread;
-//! - `frame/`: one frame (update, then paint) and when the next one comes;
-//! - `app.rs` the event loop, `save.rs` the image and camera written to files.
+//! - `workers/`: the threads that trace: the render worker, the render in progress, the caustic
+//!   photons they share, the picked pixel's ray tree thread, the status line;
+//! - `display/`: the window's GPU (wgpu): device, surface, image quad, upload, painting,
+//!   screenshots;
+//! - `input/`: mouse, keys and the script, and the [`input::action::Action`]s they make;
+//! - `ui/`: what egui shows: side panel, ray tree panel, overlay, legend, display controls;
+//! - `app/`: the event loop, one frame (update, then paint) and when the next one comes, and
+//!   carrying out the actions: the only room that changes several others at once.
 
 mod app;
-mod frame;
-mod gpu;
+mod display;
 mod input;
+mod layout;
 mod save;
 mod scene;
-mod tracing;
+mod timing;
 mod ui;
+mod workers;
 
 use std::path::PathBuf;
 
@@ -31,6 +37,7 @@ use raylab::settings::SettingsOverrides;
 use winit::event_loop::EventLoop;
 
 pub use input::script::Script;
+pub use input::script_steps;
 
 /// How the viewer starts.
 pub struct Options {
@@ -41,7 +48,7 @@ pub struct Options {
     /// The command line's overrides of each scene's settings, applied on every load.
     pub overrides: SettingsOverrides,
     /// What the image shows at the start: the shaded colour or a debug view.
-    pub view: DebugView,
+    pub debug_view: DebugView,
     /// Tracing threads (0: one per core).
     pub threads: usize,
     /// Window size in logical pixels.

@@ -35,8 +35,8 @@ pub enum Action {
     /// A left click at the centre of image pixel (x, y), sent as the pointer events of a real
     /// mouse (scripts only).
     Click { x: u32, y: u32 },
-    /// Show this view of the scene (restarts refinement).
-    SetView(DebugView),
+    /// Show this debug view of the scene (restarts refinement).
+    SetDebugView(DebugView),
     /// Open a scene file (`None`: the built-in default scene).
     Open(Option<PathBuf>),
     /// Save the image and the camera snippet.
@@ -45,7 +45,7 @@ pub enum Action {
     PrintCamera,
     /// Ask for a new window size, in logical pixels (scripts only).
     ResizeWindow { width: u32, height: u32 },
-    /// Skip the coarse passes: trace the current view at block size 1 at once.
+    /// Skip the coarse passes: trace the current image at block size 1 at once.
     Skip,
     /// Pause refinement if it runs, resume it if paused.
     TogglePause,

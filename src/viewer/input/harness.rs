@@ -5,7 +5,7 @@ use egui::{Event, Pos2, vec2};
 
 use super::action::Action;
 use super::mouse_and_keys::{self, ImageArea};
-use crate::viewer::ui::layout::PixelRect;
+use crate::viewer::layout::PixelRect;
 
 /// Feeds egui frames of events (each frame 1/60 s after the last) over a 100×100 image area
 /// showing a 10×10 image, and collects the actions.
@@ -35,7 +35,7 @@ impl Harness {
             let rect = ui.available_rect_before_wrap();
             let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
             let area = ImageArea {
-                shown: PixelRect {
+                image_rect: PixelRect {
                     x: 0.0,
                     y: 0.0,
                     width: 100.0,

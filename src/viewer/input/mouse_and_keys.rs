@@ -11,8 +11,8 @@ use egui::{Key, Modifiers, MouseWheelUnit, PointerButton};
 use glam::Vec3;
 
 use super::action::Action;
+use crate::viewer::layout::{PixelRect, image_pixel, image_point};
 use crate::viewer::scene::views::TURNTABLE_FRAMES;
-use crate::viewer::ui::layout::{PixelRect, image_pixel, image_point};
 
 /// Degrees of orbit per point of drag.
 const ORBIT_DEGREES_PER_POINT: f32 = 0.3;
@@ -46,7 +46,7 @@ const VIEW_KEYS: [Key; 9] = [
 pub struct ImageArea {
     /// Where the image is shown (letterboxed, or filling the area in fit mode), in physical
     /// pixels.
-    pub shown: PixelRect,
+    pub image_rect: PixelRect,
     pub pixels_per_point: f32,
     pub image_size: (u32, u32),
 }
@@ -80,7 +80,7 @@ pub fn actions(
     if response.double_clicked()
         && let Some(pos) = response.interact_pointer_pos()
         && let Some((x, y)) = image_point(
-            area.shown,
+            area.image_rect,
             area.image_size.0,
             area.image_size.1,
             pos.x * ppp,
@@ -101,7 +101,7 @@ pub fn actions(
     };
     if let Some(pos) = inspect_at
         && let Some((x, y)) = image_pixel(
-            area.shown,
+            area.image_rect,
             area.image_size.0,
             area.image_size.1,
             pos.x * ppp,

@@ -1,40 +1,6 @@
 //! Scripted input, for tests and demonstrations: `--script "wait; orbit 30 10 5; wait"` drives
 //! the viewer through the same [`Action`]s as the mouse and keys. Steps, separated by `;` or new
-//! lines, starting once the first scene has loaded:
-//!
-//! - `wait`: until refinement has reached its last pass and the image is on screen;
-//! - `wait-load N`: until N scene loads (or failed loads) have finished since the start, the
-//!   first scene's included: `wait-load 2` waits for the watched file to be saved and reloaded;
-//! - `orbit YAW PITCH [FRAMES]`: degrees, spread over FRAMES frames like a drag (default 1);
-//! - `pan DX DY [FRAMES]`: pixels, likewise; `dolly STEPS`: wheel steps;
-//! - `fly X Y Z SECONDS`: as the W/A/S/D/Q/E keys; `frame`; `reset`;
-//! - `save`: the image and camera; `print-camera`; `open PATH` (`open` alone: the default scene);
-//! - `resize WIDTH HEIGHT`: asks for a new window size (logical pixels);
-//! - `pick X Y`: inspects image pixel (X, Y) (from the top left); `click X Y`: a left click at the
-//!   centre of that pixel, through the window's input like a mouse's; `close-inspector`;
-//!   `print-tree`: prints the ray tree panel's node headings on the terminal;
-//! - `view NAME`: shows a debug view (`shaded`, `normals`, `depth`, …);
-//! - `skip`: skips the coarse passes (block size 1 at once, as the Enter key);
-//! - `pause`, `resume`: pause and resume refinement (as the Space key); a `wait` while paused
-//!   waits for ever, so `resume` first;
-//! - `sleep SECONDS`: lets that much time pass (frames keep coming); `print-status`: prints the
-//!   status line on the terminal after `status: `;
-//! - `exposure STOPS`, `tonemap NAME` (`clamp`, `reinhard`, `filmic`): how the image is shown;
-//! - `snapshot`: keeps the image on screen to compare with (as the key B), and shows the split;
-//!   `compare on|off`: the split view (snapshot left, live right); `divider FRACTION`: where the
-//!   split is, from 0 (left edge) to 1 (right edge);
-//! - `material NAME FIELD VALUE…`: changes a field of the material called NAME (or numbered `#K`,
-//!   as in the Materials panel; 0 is the TOML reader's default material): `color R G B`,
-//!   `emission R G B`, `ka`, `kd`, `ks`, `shininess`, `kr`, `kt`, `ior` (one number each),
-//!   `specular_color R G B`,
-//!   `fresnel on|off` (e.g. `material red kd 0.2`, `material red color 1 0 0`);
-//! - `light N FIELD VALUE…`: changes light N (counted from 1, in the file's order):
-//!   `position X Y Z`, `direction X Y Z`, `color R G B` (its brightest channel 1), `intensity I`;
-//! - `save-scene`: writes the edited materials and lights into the TOML scene file;
-//! - `bookmark N`: stores the camera as view N (1 to 9), as Ctrl+N; `recall N`: goes to it, as N;
-//! - `turntable FRAMES`: previews a turntable of FRAMES frames (as T, which plays 72);
-//!   `play-path [FRAMES]`: previews the path through the views (as P); while a preview plays,
-//!   either stops it, and `wait` waits for it to end.
+//! lines, start once the first scene has loaded; [`STEPS`](super::script_steps::STEPS) lists them.
 
 use std::collections::VecDeque;
 use std::path::PathBuf;
@@ -45,6 +11,7 @@ use raylab::inspect::DebugView;
 use raylab::tone::{Tone, ToneCurve};
 
 use super::action::Action;
+use super::script_steps::keywords;
 use crate::viewer::scene::edits::{LightEdit, MaterialEdit};
 
 #[derive(Clone, Debug, PartialEq)]
@@ -198,7 +165,7 @@ fn parse_step(step: &str) -> Result<Step, String> {
                 _ => Action::Click { x, y },
             })
         }
-        "view" if args.len() == 1 => once(Action::SetView(args[0].parse::<DebugView>()?)),
+        "view" if args.len() == 1 => once(Action::SetDebugView(args[0].parse::<DebugView>()?)),
         "view" => return Err("takes one view name".into()),
         "snapshot" if args.is_empty() => once(Action::Snapshot),
         "compare" => match args[..] {
@@ -312,13 +279,7 @@ fn parse_step(step: &str) -> Result<Step, String> {
             return Err("takes no arguments".into());
         }
         _ => {
-            return Err(
-                "unknown step (use wait, wait-load, orbit, pan, dolly, fly, frame, reset, \
-                 save, print-camera, open, resize, pick, click, close-inspector, print-tree, \
-                 view, exposure, tonemap, snapshot, compare, divider, material, light, save-scene, \
-                 skip, pause, resume, sleep, print-status, bookmark, recall, turntable, play-path)"
-                    .into(),
-            );
+            return Err(format!("unknown step (use {})", keywords()));
         }
     })
 }
@@ -395,7 +356,7 @@ mod tests {
                 Action::Click { x: 0, y: 7 },
                 Action::PrintTree,
                 Action::CloseRayTree,
-                Action::SetView(DebugView::BvhCost),
+                Action::SetDebugView(DebugView::BvhCost),
             ]
         );
     }

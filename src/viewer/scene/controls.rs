@@ -11,13 +11,29 @@ use raylab::scene::Scene;
 use raylab::settings::{RenderSettings, SettingsOverrides};
 
 use super::edits;
-use crate::viewer::tracing::working_scene::TraceSetup;
 
 /// The viewer refines a scene that asks for one sample per pixel to a clean image: adaptive
 /// anti-aliasing up to this many samples per pixel…
 pub const VIEWER_SAMPLES: u32 = 16;
 /// …where a pixel differs from a neighbour by more than this (see `RenderSettings::aa_threshold`).
 pub const VIEWER_AA_THRESHOLD: f32 = 0.03;
+
+/// What the controls change in a scene before it is traced.
+#[derive(Clone, Debug)]
+pub struct TraceSetup {
+    pub camera: Camera,
+    pub settings: RenderSettings,
+    /// Multiplies the colour of every light of the scene.
+    pub light_scale: f32,
+    /// What the image shows.
+    pub debug_view: DebugView,
+    /// The scene's materials and lights as edited (the lights before `light_scale`).
+    pub materials: Vec<Material>,
+    pub lights: Vec<Light>,
+    /// The rounds of caustic photons the map holds already, of which the render wants one more
+    /// (see `caustics`): 0 for a new render, which takes the map as it is if it has any.
+    pub caustic_round: u32,
+}
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Controls {
@@ -26,14 +42,14 @@ pub struct Controls {
     /// Multiplies the colour of every light of the scene.
     pub light_scale: f32,
     /// What the image shows: the shaded colour or a debug view.
-    pub view: DebugView,
+    pub debug_view: DebugView,
     /// The scene's materials, index for index, as the Materials panel edits them.
     pub materials: Vec<Material>,
     /// The scene's lights, index for index, as the Lights panel edits them (before
     /// `light_scale`).
     pub lights: Vec<Light>,
     /// The viewer picks the starting block size from the tracing speed
-    /// ([`crate::viewer::tracing::start_block`]); otherwise refinement starts at the settings'
+    /// ([`crate::viewer::workers::start_block`]); otherwise refinement starts at the settings'
     /// `block_size` (given on the command line or chosen in the panel).
     pub auto_block: bool,
 }
@@ -45,7 +61,7 @@ impl Controls {
             camera: scene.camera.spec,
             settings: scene.settings.clone(),
             light_scale: 1.0,
-            view: DebugView::Shaded,
+            debug_view: DebugView::Shaded,
             materials: scene.materials.clone(),
             lights: scene.lights.clone(),
             auto_block: true,
@@ -53,7 +69,7 @@ impl Controls {
     }
 
     /// The scene's controls as the viewer starts them: its camera and settings with the command
-    /// line's `overrides` applied, showing `view`. The error says which override is wrong.
+    /// line's `overrides` applied, showing `debug_view`. The error says which override is wrong.
     ///
     /// Unlike `raylab render`, the viewer anti-aliases by default: when the scene asks for one
     /// sample per pixel and the command line gives neither `--samples` nor `--aa-threshold`, it
@@ -62,7 +78,7 @@ impl Controls {
     pub fn with_overrides(
         scene: &Scene,
         overrides: &SettingsOverrides,
-        view: DebugView,
+        debug_view: DebugView,
     ) -> Result<Controls, String> {
         let mut controls = Controls::from_scene(scene);
         let sampling_given = overrides.samples.is_some() || overrides.aa_threshold.is_some();
@@ -72,7 +88,7 @@ impl Controls {
         }
         overrides.apply(&mut controls.settings)?;
         controls.camera = overrides.apply_camera(controls.camera)?.spec;
-        controls.view = view;
+        controls.debug_view = debug_view;
         controls.auto_block = overrides.block_size.is_none();
         Ok(controls)
     }
@@ -110,7 +126,7 @@ impl Controls {
             camera: Camera::new(self.camera).map_err(|e| format!("camera: {e}"))?,
             settings: self.settings.clone(),
             light_scale: self.light_scale,
-            view: self.view,
+            debug_view: self.debug_view,
             materials: self.materials.clone(),
             lights: self.lights.iter().map(edits::normalized).collect(),
             caustic_round: 0,
@@ -145,7 +161,7 @@ mod tests {
         assert_eq!(c.settings, expected);
         assert_eq!((c.settings.width, c.settings.height), (100, 480));
         assert_eq!(c.settings.min_weight, 0.5);
-        assert_eq!(c.view, DebugView::Normals);
+        assert_eq!(c.debug_view, DebugView::Normals);
         assert!(c.auto_block, "no --block-size: the viewer picks it");
         let fixed_start = SettingsOverrides {
             block_size: Some(4),

@@ -1,5 +1,5 @@
 //! The scene being shown: loading scene files (or the built-in scene) in the background, watching
-//! the file for changes, the controls (camera, settings, lights, view, materials) the user edits,
+//! the file for changes, the controls (camera, settings, lights, debug view, materials) the user edits,
 //! saving the edited materials and lights back into a TOML scene file, and the bookmarked views
 //! (`views`). Where the scene stands is one [`SceneState`]: loading, failed or loaded.
 
@@ -16,16 +16,28 @@ use raylab::formats::SceneFormat;
 use raylab::formats::toml::{Looks, save_edits};
 use raylab::inspect::DebugView;
 use raylab::settings::SettingsOverrides;
-use winit::event_loop::EventLoopProxy;
 
 use self::controls::Controls;
 use self::source::LoadedScene;
 use self::views::SceneViews;
 use self::watch::SceneWatcher;
-use crate::viewer::app::UserEvent;
+
+/// What the loader and the watcher tell the window, from their own threads.
+pub enum SceneNews {
+    /// A scene finished loading (or failed to); `generation` tells stale loads apart.
+    Loaded {
+        generation: u64,
+        result: Result<Box<LoadedScene>, String>,
+    },
+    /// The watched scene file (or its camera file, the path given) changed on disk.
+    FileChanged(PathBuf),
+}
+
+/// Where the loader and the watcher send their news (and wake the window).
+pub type NewsSender = Arc<dyn Fn(SceneNews) + Send + Sync>;
 
 /// A loaded scene and the user's controls over it.
-pub struct Shown {
+pub struct ShownScene {
     pub scene: Arc<LoadedScene>,
     /// What the user controls: the file's camera and settings with the overrides, then edited.
     pub controls: Controls,
@@ -44,10 +56,10 @@ pub enum SceneState {
     /// stays on screen.
     Failed {
         error: String,
-        last_good: Option<Shown>,
+        last_good: Option<ShownScene>,
     },
     /// A scene is shown.
-    Loaded(Shown),
+    Loaded(ShownScene),
 }
 
 /// The shown scene as the side panel sees it.
@@ -64,11 +76,11 @@ pub struct SceneInfo<'a> {
 /// The scene, the loads that bring it and the file watched for changes.
 pub struct SceneSlot {
     state: SceneState,
-    /// The command line's overrides of each scene's settings, and the view each scene starts
-    /// with. A size or a view the user picks later replaces them, so that it stays for the next
-    /// scenes.
+    /// The command line's overrides of each scene's settings, and the debug view each scene
+    /// starts with. A size or a debug view the user picks later replaces them, so that it stays
+    /// for the next scenes.
     overrides: SettingsOverrides,
-    view: DebugView,
+    debug_view: DebugView,
     /// The scene file asked for last (watched even while it fails to load); `None` for the
     /// built-in default scene.
     requested: Option<PathBuf>,
@@ -88,7 +100,7 @@ pub struct SceneSlot {
     /// watcher's news of that write does not reload it.
     written: Option<(PathBuf, String)>,
     /// Where the loader and the watcher send their news.
-    proxy: EventLoopProxy<UserEvent>,
+    news: NewsSender,
 }
 
 impl SceneSlot {
@@ -98,13 +110,13 @@ impl SceneSlot {
         first: Option<PathBuf>,
         format: Option<SceneFormat>,
         overrides: SettingsOverrides,
-        view: DebugView,
-        proxy: EventLoopProxy<UserEvent>,
+        debug_view: DebugView,
+        news: NewsSender,
     ) -> SceneSlot {
         SceneSlot {
             state: SceneState::Loading,
             overrides,
-            view,
+            debug_view,
             format: first.clone().zip(format),
             requested: first,
             files_beside: Vec::new(),
@@ -113,7 +125,7 @@ impl SceneSlot {
             loading: false,
             loads: 0,
             written: None,
-            proxy,
+            news,
         }
     }
 
@@ -131,9 +143,9 @@ impl SceneSlot {
         if self.requested != path || (path.is_some() && self.watcher.is_none()) {
             // Only files are watched (not `spd:` names).
             self.watcher = path.as_deref().filter(|p| p.is_file()).and_then(|p| {
-                let proxy = self.proxy.clone();
+                let news = self.news.clone();
                 SceneWatcher::new(p, move |changed| {
-                    let _ = proxy.send_event(UserEvent::SceneFileChanged(changed.to_path_buf()));
+                    news(SceneNews::FileChanged(changed.to_path_buf()));
                 })
                 .map_err(|e| watch_error = Err(e))
                 .ok()
@@ -142,7 +154,7 @@ impl SceneSlot {
         self.requested = path.clone();
         self.written = None;
         self.files_beside = source::scene_files_beside(path.as_deref());
-        let (proxy, generation) = (self.proxy.clone(), self.generation);
+        let (news, generation) = (self.news.clone(), self.generation);
         let format = self
             .format
             .as_ref()
@@ -150,7 +162,7 @@ impl SceneSlot {
             .map(|&(_, format)| format);
         source::spawn_load(path, format, move |result| {
             let result = result.map(Box::new);
-            let _ = proxy.send_event(UserEvent::Loaded { generation, result });
+            news(SceneNews::Loaded { generation, result });
         });
         watch_error
     }
@@ -177,7 +189,8 @@ impl SceneSlot {
         // The scene with the overrides applied (they were checked before the window opened, so
         // only a scene's own bad settings can fail here).
         let with_overrides = result.and_then(|loaded| {
-            let controls = Controls::with_overrides(loaded.scene(), &self.overrides, self.view)?;
+            let controls =
+                Controls::with_overrides(loaded.scene(), &self.overrides, self.debug_view)?;
             Ok((loaded, controls))
         });
         let (loaded, with_overrides) = match with_overrides {
@@ -213,7 +226,7 @@ impl SceneSlot {
         };
         let views = SceneViews::new(loaded.views.clone(), loaded.path.as_deref());
         let scene: Arc<LoadedScene> = Arc::from(loaded);
-        self.state = SceneState::Loaded(Shown {
+        self.state = SceneState::Loaded(ShownScene {
             scene: scene.clone(),
             controls,
             file_controls,
@@ -223,7 +236,7 @@ impl SceneSlot {
     }
 
     /// The scene on screen (the last good one after a failed load), if any.
-    pub fn shown(&self) -> Option<&Shown> {
+    pub fn shown(&self) -> Option<&ShownScene> {
         match &self.state {
             SceneState::Loaded(shown)
             | SceneState::Failed {
@@ -234,7 +247,7 @@ impl SceneSlot {
         }
     }
 
-    pub fn shown_mut(&mut self) -> Option<&mut Shown> {
+    pub fn shown_mut(&mut self) -> Option<&mut ShownScene> {
         match &mut self.state {
             SceneState::Loaded(shown)
             | SceneState::Failed {
@@ -325,7 +338,7 @@ impl SceneSlot {
     }
 
     /// The shown controls are being rendered: a size the user chose (not the one the scene
-    /// started with), and the view, stay for the next scenes.
+    /// started with), and the debug view, stay for the next scenes.
     pub fn keep_choices(&mut self) {
         let Some(shown) = self.shown() else { return };
         let settings = &shown.controls.settings;
@@ -335,11 +348,11 @@ impl SceneSlot {
             self.overrides.height.unwrap_or(file.height),
         );
         let size = (settings.width, settings.height);
-        let view = shown.controls.view;
+        let debug_view = shown.controls.debug_view;
         if size != started {
             (self.overrides.width, self.overrides.height) = (Some(size.0), Some(size.1));
         }
-        self.view = view;
+        self.debug_view = debug_view;
     }
 }
 

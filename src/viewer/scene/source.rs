@@ -16,7 +16,7 @@ use raylab::views::Views;
 
 /// A scene ready to trace, with where it came from.
 pub struct LoadedScene {
-    /// The scene and its BVH; the viewer shoots the caustic photons of each view itself.
+    /// The scene and its BVH; the viewer shoots the caustic photons for each render itself.
     pub assembled: Assembled,
     /// The scene file; `None` for the built-in default scene.
     pub path: Option<PathBuf>,

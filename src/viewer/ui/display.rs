@@ -6,7 +6,7 @@
 use egui::{Color32, Slider, Stroke};
 use raylab::tone::{Tone, ToneCurve};
 
-use crate::viewer::gpu::quad::Display;
+use crate::viewer::display::quad::Display;
 use crate::viewer::input::action::Action;
 
 /// Points either side of the divider where a drag moves it.
@@ -37,7 +37,7 @@ impl Default for DisplayControls {
 
 impl DisplayControls {
     /// How the image is shown: the tone, and the divider while comparing.
-    pub fn shown(&self) -> Display {
+    pub fn settings(&self) -> Display {
         Display {
             tone: self.tone,
             divider: if self.splits() { self.divider } else { 0.0 },
@@ -161,11 +161,11 @@ mod tests {
         let mut d = DisplayControls::default();
         d.apply(Action::Divider(0.3));
         d.apply(Action::Compare(true));
-        assert_eq!(d.shown().divider, 0.0, "no snapshot yet");
+        assert_eq!(d.settings().divider, 0.0, "no snapshot yet");
         d.snapshot = Some((4, 3));
-        assert_eq!(d.shown().divider, 0.3);
+        assert_eq!(d.settings().divider, 0.3);
         d.apply(Action::ToggleCompare);
-        assert_eq!(d.shown().divider, 0.0);
+        assert_eq!(d.settings().divider, 0.0);
         d.apply(Action::Divider(7.0));
         assert_eq!(d.divider, 1.0);
     }
@@ -175,7 +175,10 @@ mod tests {
         let mut d = DisplayControls::default();
         d.apply(Action::Exposure(2.0));
         d.apply(Action::ToneCurve(ToneCurve::Reinhard));
-        assert_eq!(d.shown().tone, Tone::new(2.0, ToneCurve::Reinhard).unwrap());
+        assert_eq!(
+            d.settings().tone,
+            Tone::new(2.0, ToneCurve::Reinhard).unwrap()
+        );
     }
 
     #[test]

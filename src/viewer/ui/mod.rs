@@ -1,26 +1,23 @@
 //! What the user sees besides the image (egui): the side panel (with its materials and lights
 //! panel), the status line, the ray tree panel, the overlay drawn over the image, the display's
 //! controls (exposure, tone curve, snapshot) and the split view's divider, the legend's colour
-//! bar, colour swatches, and where
-//! the image sits in the window.
+//! bar and colour swatches. Its input becomes [`Action`]s for the app to carry out.
 
 pub mod display;
-pub mod layout;
 pub mod legend_bar;
 pub mod materials_panel;
 pub mod overlay;
 pub mod panels;
 pub mod ray_tree_panel;
-pub mod status;
 pub mod swatch;
 
-use self::layout::{PixelRect, Resolution, letterbox, whole_pixels};
 use self::overlay::Overlay;
 use self::panels::PanelState;
 use crate::viewer::input::action::Action;
 use crate::viewer::input::mouse_and_keys::{self, ImageArea};
+use crate::viewer::layout::{PixelRect, Resolution, letterbox, whole_pixels};
 use crate::viewer::scene::SceneSlot;
-use crate::viewer::tracing::Tracing;
+use crate::viewer::workers::Tracing;
 
 /// The egui side of the window: its context, the panel's own state and the overlay's texture.
 pub struct Ui {
@@ -79,7 +76,7 @@ impl Ui {
             .as_ref()
             .map_or((0, 0), |r| (r.film.width(), r.film.height()));
         let far = scene.shown().map_or(1.0, |s| overlay::far(s.scene.bounds));
-        let mut shown = PixelRect::ZERO;
+        let mut image_rect = PixelRect::ZERO;
         egui::CentralPanel::no_frame().show(ui, |ui| {
             let rect = ui.available_rect_before_wrap();
             let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
@@ -89,7 +86,7 @@ impl Ui {
                 width: rect.width() * ppp,
                 height: rect.height() * ppp,
             };
-            shown = if self.panel.resolution == Resolution::Fit {
+            image_rect = if self.panel.resolution == Resolution::Fit {
                 fit_to(whole_pixels(area), scene, self.panel.max_side);
                 // The image fills the area; until the render of its new size comes, the last
                 // image is stretched over it.
@@ -98,8 +95,8 @@ impl Ui {
                 letterbox(area, image_size.0, image_size.1)
             };
             let image = egui::Rect::from_min_size(
-                egui::pos2(shown.x / ppp, shown.y / ppp),
-                egui::vec2(shown.width / ppp, shown.height / ppp),
+                egui::pos2(image_rect.x / ppp, image_rect.y / ppp),
+                egui::vec2(image_rect.width / ppp, image_rect.height / ppp),
             );
             self.overlay.paint(ui, picked, image, image_size, far);
             if self.panel.display.drop_stale_snapshot(image_size) {
@@ -112,13 +109,13 @@ impl Ui {
                 ui.put(rect, egui::Label::new(text));
             }
             let area = ImageArea {
-                shown,
+                image_rect,
                 pixels_per_point: ppp,
                 image_size,
             };
             actions.extend(mouse_and_keys::actions(ui.ctx(), &response, &area, seconds));
         });
-        (actions, shown)
+        (actions, image_rect)
     }
 }
 

@@ -11,8 +11,8 @@ use raylab::camera::Camera;
 use raylab::inspect::RayTree;
 use raylab::whitted::RayKind;
 
-use crate::viewer::tracing::picked_pixel::PickedPixel;
-use crate::viewer::tracing::ray_tree_thread::ObjectIds;
+use crate::viewer::workers::picked_pixel::PickedPixel;
+use crate::viewer::workers::ray_tree_thread::ObjectIds;
 
 /// How a projected ray is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -8,9 +8,9 @@ use raylab::inspect::{DebugView, Legend};
 use raylab::settings::{MAX_BLOCK_SIZE, MAX_CAUSTIC_GATHER, MAX_DEPTH_LIMIT, MAX_SAMPLES};
 
 use super::display::{self, DisplayControls};
-use super::layout::Resolution;
 use super::{legend_bar, materials_panel};
 use crate::viewer::input::action::Action;
+use crate::viewer::layout::Resolution;
 use crate::viewer::scene::SceneInfo;
 use crate::viewer::scene::controls::Controls;
 use crate::viewer::scene::views::{SceneViews, TURNTABLE_FRAMES};
@@ -31,7 +31,7 @@ pub struct PanelState {
     pub display: DisplayControls,
 }
 
-/// Shows the side panel for `scene` (with the colour bar of the view being rendered, if it has
+/// Shows the side panel for `scene` (with the colour bar of the debug view being rendered, if it has
 /// one); returns what its buttons asked for.
 pub fn side_panel(
     ui: &mut egui::Ui,
@@ -215,10 +215,10 @@ fn tracing_section(
         .default_open(true)
         .show(ui, |ui| {
             egui::ComboBox::from_label("view")
-                .selected_text(controls.view.name())
+                .selected_text(controls.debug_view.name())
                 .show_ui(ui, |ui| {
                     for view in DebugView::ALL {
-                        ui.selectable_value(&mut controls.view, view, view.name());
+                        ui.selectable_value(&mut controls.debug_view, view, view.name());
                     }
                 });
             if let Some(legend) = legend {

@@ -11,7 +11,7 @@ use raylab::whitted::{RayKind, StopReason};
 
 use super::swatch::swatch;
 use crate::viewer::input::action::Action;
-use crate::viewer::tracing::picked_pixel::PickedPixel;
+use crate::viewer::workers::picked_pixel::PickedPixel;
 
 /// A ray kind as the panel names it.
 pub fn kind_name(kind: RayKind) -> &'static str {

@@ -4,8 +4,6 @@
 
 use std::time::{Duration, Instant};
 
-use crate::viewer::tracing::caustics::Shot;
-
 /// How often the frame rate is printed.
 const LOG_EVERY: Duration = Duration::from_secs(2);
 
@@ -83,16 +81,10 @@ impl Timing {
         }
     }
 
-    /// Caustic photons were shot for a render.
-    pub fn caustics(&mut self, shot: &Shot) {
+    /// Prints what happened (caustic photons shot, say) with the other measurements.
+    pub fn note(&self, what: impl std::fmt::Display) {
         if self.enabled {
-            let what = if shot.new_map { "new map" } else { "sharpened" };
-            eprintln!(
-                "stats: caustics: {what}, {} photons ({} shot) in {:.1} ms",
-                shot.photons,
-                shot.added,
-                ms(shot.time)
-            );
+            eprintln!("stats: {what}");
         }
     }
 

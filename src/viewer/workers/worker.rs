@@ -15,7 +15,8 @@ use raylab::inspect::Legend;
 use raylab::progressive::{self, PassStats, RenderControl};
 
 use super::caustics::{JobMap, SharedCaustics, Shot};
-use super::working_scene::{TraceSetup, WorkingScene};
+use super::working_scene::WorkingScene;
+use crate::viewer::scene::controls::TraceSetup;
 use crate::viewer::scene::source::LoadedScene;
 
 /// One render: a scene seen with a camera and settings, into a film.
@@ -182,13 +183,17 @@ fn run(pool: &rayon::ThreadPool, inbox: &Receiver<Job>, caustics: &SharedCaustic
         };
         let tracer = working.tracer(&job.scene, &job.setup, map);
         if let Ok(mut legend) = job.report.legend.lock() {
-            *legend = job.setup.view.legend(&tracer);
+            *legend = job.setup.debug_view.legend(&tracer);
         }
         let rendered = std::panic::catch_unwind(AssertUnwindSafe(|| {
             pool.install(|| {
-                progressive::render(&tracer, &job.setup.view, &job.film, &job.control, |pass| {
-                    job.report.push_pass(pass)
-                })
+                progressive::render(
+                    &tracer,
+                    &job.setup.debug_view,
+                    &job.film,
+                    &job.control,
+                    |pass| job.report.push_pass(pass),
+                )
             })
         }));
         job.report.finish(match rendered {
@@ -260,7 +265,7 @@ mod tests {
                 camera: scene.scene().camera,
                 settings,
                 light_scale: 1.0,
-                view: Default::default(),
+                debug_view: Default::default(),
                 materials: scene.scene().materials.clone(),
                 lights: scene.scene().lights.clone(),
                 caustic_round: 0,

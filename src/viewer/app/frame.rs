@@ -5,22 +5,19 @@
 //! [`App::paint`] shows it: egui's shapes over the image (the film uploaded if it changed),
 //! presented, and the screenshot when the script is done. Then the viewer exits if it is done.
 
-pub mod clock;
-pub mod timing;
-
 use std::time::{Duration, Instant};
 
 use winit::event_loop::ActiveEventLoop;
 
-use crate::viewer::app::App;
+use super::App;
 use crate::viewer::input::mouse_and_keys;
-use crate::viewer::ui::layout::PixelRect;
+use crate::viewer::layout::PixelRect;
 
 /// What an update hands to the paint.
 pub struct Frame {
     output: egui::FullOutput,
     /// Where the image goes, in physical pixels.
-    shown: PixelRect,
+    image_rect: PixelRect,
     /// The time since the frame before.
     dt: Duration,
     /// The viewer exits once this frame is on screen.
@@ -55,14 +52,14 @@ impl App {
         let seconds = dt.as_secs_f32().min(0.1);
         let ctx = self.ui.egui.clone();
         let mut actions = Vec::new();
-        let mut shown = PixelRect::ZERO;
+        let mut image_rect = PixelRect::ZERO;
         let output = ctx.run_ui(raw_input, |ui| {
-            (actions, shown) =
+            (actions, image_rect) =
                 self.ui
                     .show(ui, &mut self.scene, &mut self.tracing, &status, seconds);
         });
         for action in actions {
-            self.apply(action, shown);
+            self.apply(action, image_rect);
         }
         self.step_preview();
         self.sync_tracing(now);
@@ -71,7 +68,7 @@ impl App {
         if self.scene.loads() > 0
             && let Some(action) = self.input.next_step(self.idle(), self.scene.loads())
         {
-            self.apply(action, shown);
+            self.apply(action, image_rect);
             self.sync_tracing(now);
         }
         let finishing = self.input.finishing(self.idle());
@@ -89,7 +86,7 @@ impl App {
         self.clock.schedule(now, animating, egui_delay);
         Some(Frame {
             output,
-            shown,
+            image_rect,
             dt,
             finishing,
         })
@@ -101,22 +98,27 @@ impl App {
             return false;
         };
         let screenshot = self.input.screenshot().filter(|_| frame.finishing);
-        gfx.set_display(self.ui.panel.display.shown());
+        gfx.set_display(self.ui.panel.display.settings());
+        // How far the render was before its film is read: the film is at least that far.
+        let progress = self.tracing.progress();
+        let film = self.tracing.rendering.as_ref().map(|r| &r.film);
         let painted = gfx.paint(
             &self.ui.egui,
             frame.output,
-            frame.shown,
-            self.tracing.rendering.as_ref(),
-            &mut self.clock.timing,
+            frame.image_rect,
+            film,
             screenshot,
         );
+        if let Some(time) = painted.upload {
+            self.clock.timing.upload(time);
+        }
         if let Some(e) = painted.screenshot_error {
             self.ended = Some(Err(e));
         }
         if painted.presented {
             self.clock.presented(frame.dt, self.tracing.refining());
-            self.tracing
-                .on_screen(painted.uploaded, &mut self.clock.timing);
+            let on_screen = progress.filter(|_| painted.upload.is_some() || self.tracing.ended());
+            self.tracing.on_screen(on_screen, &mut self.clock.timing);
         }
         painted.presented
     }

@@ -4,9 +4,9 @@
 //! whole image for a new film, a new texture or a new [`Tone`]). Each pixel goes up as the bytes
 //! the display shows: its linear colour through the exposure and tone curve, then sRGB through
 //! the library's table ([`SrgbEncoder`]), which gives exactly [`Tone::map`]'s bytes without a
-//! `powf` per channel, as a saved image does. Doing this here, on the rows that changed, rather
-//! than in the quad's shader for every screen pixel of every frame keeps the frame rate of a
-//! software GPU (lavapipe) where it was, and what is saved is what is shown by construction.
+//! `powf` per channel, as a saved image does. Done here, on the rows that changed, rather than in
+//! the quad's shader for every screen pixel of every frame, it spares a software GPU (lavapipe)
+//! that work on every frame, and what is saved is what is shown by construction.
 
 use std::ops::Range;
 use std::sync::Arc;

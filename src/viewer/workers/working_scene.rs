@@ -6,33 +6,12 @@
 
 use std::sync::Arc;
 
-use raylab::camera::Camera;
-use raylab::inspect::DebugView;
-use raylab::light::Light;
-use raylab::material::Material;
 use raylab::photon::PhotonMap;
 use raylab::render::Assembled;
-use raylab::settings::RenderSettings;
 use raylab::whitted::Tracer;
 
+use crate::viewer::scene::controls::TraceSetup;
 use crate::viewer::scene::source::LoadedScene;
-
-/// What the controls change in a scene before it is traced.
-#[derive(Clone, Debug)]
-pub struct TraceSetup {
-    pub camera: Camera,
-    pub settings: RenderSettings,
-    /// Multiplies the colour of every light of the scene.
-    pub light_scale: f32,
-    /// What the image shows.
-    pub view: DebugView,
-    /// The scene's materials and lights as edited (the lights before `light_scale`).
-    pub materials: Vec<Material>,
-    pub lights: Vec<Light>,
-    /// The rounds of caustic photons the map holds already, of which the render wants one more
-    /// (see `caustics`): 0 for a new view, which takes the map as it is if it has any.
-    pub caustic_round: u32,
-}
 
 /// A thread's copy of the scene it traces.
 #[derive(Default)]

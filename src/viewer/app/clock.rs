@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 
 use winit::event_loop::ControlFlow;
 
-use super::timing::Timing;
+use crate::viewer::timing::Timing;
 
 pub struct FrameClock {
     /// The measurements printed with `--stats`.

@@ -13,7 +13,7 @@ use raylab::material::Material;
 use raylab::photon::{Caustics, PhotonMap};
 use raylab::whitted::Tracer;
 
-use super::working_scene::TraceSetup;
+use crate::viewer::scene::controls::TraceSetup;
 use crate::viewer::scene::source::LoadedScene;
 
 /// The most rounds of photons the viewer shoots for one view: the map grows to this many
@@ -57,6 +57,19 @@ pub struct Shot {
     pub added: u32,
     pub new_map: bool,
     pub time: Duration,
+}
+
+impl std::fmt::Display for Shot {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        let what = if self.new_map { "new map" } else { "sharpened" };
+        write!(
+            f,
+            "caustics: {what}, {} photons ({} shot) in {:.1} ms",
+            self.photons,
+            self.added,
+            self.time.as_secs_f64() * 1e3
+        )
+    }
 }
 
 /// The map a job traces with, and the photons shot for it.

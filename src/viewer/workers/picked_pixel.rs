@@ -9,8 +9,8 @@ use std::time::Duration;
 
 use super::caustics::SharedCaustics;
 use super::ray_tree_thread::{Answer, ObjectIds, RayTreeThread, Request, TracedTree};
-use super::working_scene::TraceSetup;
 use crate::viewer::scene::controls::Controls;
+use crate::viewer::scene::controls::TraceSetup;
 use crate::viewer::scene::source::LoadedScene;
 
 /// The picked pixel and what is known of it.

@@ -6,7 +6,7 @@
 
 use raylab::tone::Tone;
 
-use crate::viewer::ui::layout::PixelRect;
+use crate::viewer::layout::PixelRect;
 
 /// The texture format of the image and the snapshot: sRGB bytes, passed to the (non-sRGB) target
 /// unchanged.
@@ -213,14 +213,19 @@ impl QuadRenderer {
     }
 
     /// Draws the image into `shown` (whole pixels, inside a target of `target_size`).
-    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, shown: PixelRect, target_size: (u32, u32)) {
+    pub fn draw(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        image_rect: PixelRect,
+        target_size: (u32, u32),
+    ) {
         let Some(image) = &self.image else { return };
         // The viewport must lie inside the target.
-        let x = shown.x.max(0.0);
-        let y = shown.y.max(0.0);
-        let width = shown.width.min(target_size.0 as f32 - x);
-        let height = shown.height.min(target_size.1 as f32 - y);
-        if shown.is_empty() || width < 1.0 || height < 1.0 {
+        let x = image_rect.x.max(0.0);
+        let y = image_rect.y.max(0.0);
+        let width = image_rect.width.min(target_size.0 as f32 - x);
+        let height = image_rect.height.min(target_size.1 as f32 - y);
+        if image_rect.is_empty() || width < 1.0 || height < 1.0 {
             return;
         }
         pass.set_viewport(x, y, width, height, 0.0, 1.0);
@@ -256,10 +261,10 @@ mod tests {
     use raylab::tone::ToneCurve;
 
     use super::*;
-    use crate::viewer::gpu::device::Gpu;
-    use crate::viewer::gpu::screenshot::{offscreen_target, read_texture};
-    use crate::viewer::gpu::upload::{TEXEL_BYTES, texel, write_rows};
-    use crate::viewer::ui::layout::letterbox;
+    use crate::viewer::display::device::Gpu;
+    use crate::viewer::display::screenshot::{offscreen_target, read_texture};
+    use crate::viewer::display::upload::{TEXEL_BYTES, texel, write_rows};
+    use crate::viewer::layout::letterbox;
 
     const CLEAR: [u8; 4] = [0, 0, 255, 255];
 
@@ -299,7 +304,7 @@ mod tests {
             height: th as f32,
         };
         let image = quad.image.as_ref().expect("an image").texture.size();
-        let shown = letterbox(area, image.width, image.height);
+        let image_rect = letterbox(area, image.width, image.height);
         let view = target.create_view(&wgpu::TextureViewDescriptor::default());
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         {
@@ -319,11 +324,11 @@ mod tests {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            quad.draw(&mut pass, shown, (tw, th));
+            quad.draw(&mut pass, image_rect, (tw, th));
         }
         gpu.queue.submit([encoder.finish()]);
         let pixels = read_texture(&gpu.device, &gpu.queue, &target).expect("read back");
-        (pixels, shown)
+        (pixels, image_rect)
     }
 
     /// A `iw × ih` image of distinct sRGB bytes, and the linear colours that show as them.
@@ -349,27 +354,27 @@ mod tests {
         let (gpu, mut quad) = quad();
         let (image, linear) = distinct_image(iw, ih);
         upload(&gpu, &mut quad, iw, &linear);
-        let (pixels, shown) = draw(&gpu, &quad, (tw, th));
+        let (pixels, image_rect) = draw(&gpu, &quad, (tw, th));
         assert_eq!(pixels.len(), (tw * th * 4) as usize);
         for y in 0..th {
             for x in 0..tw {
                 let got = &pixels[((y * tw + x) * 4) as usize..][..4];
                 let (fx, fy) = (x as f32, y as f32);
-                let inside = fx >= shown.x
-                    && fx < shown.x + shown.width
-                    && fy >= shown.y
-                    && fy < shown.y + shown.height;
+                let inside = fx >= image_rect.x
+                    && fx < image_rect.x + image_rect.width
+                    && fy >= image_rect.y
+                    && fy < image_rect.y + image_rect.height;
                 let expected = if inside {
                     // Nearest texel, row 0 at the top.
-                    let tx = ((fx + 0.5 - shown.x) / shown.width * iw as f32) as u32;
-                    let ty = ((fy + 0.5 - shown.y) / shown.height * ih as f32) as u32;
+                    let tx = ((fx + 0.5 - image_rect.x) / image_rect.width * iw as f32) as u32;
+                    let ty = ((fy + 0.5 - image_rect.y) / image_rect.height * ih as f32) as u32;
                     &image[((ty * iw + tx) * 4) as usize..][..4]
                 } else {
                     &CLEAR[..]
                 };
                 assert_eq!(
                     got, expected,
-                    "pixel ({x}, {y}) of {tw}×{th}, shown {shown:?}"
+                    "pixel ({x}, {y}) of {tw}×{th}, image_rect {image_rect:?}"
                 );
             }
         }
@@ -403,8 +408,8 @@ mod tests {
         assert_eq!(quad.take_snapshot(&gpu.device, &gpu.queue), Some((8, 4)));
         upload(&gpu, &mut quad, 8, &[Color::new(0.0, 1.0, 0.0); 32]);
         quad.set_divider(&gpu.queue, 0.25);
-        let (shown, _) = draw(&gpu, &quad, (8, 4));
-        for (i, got) in shown.chunks_exact(4).enumerate() {
+        let (pixels, _) = draw(&gpu, &quad, (8, 4));
+        for (i, got) in pixels.chunks_exact(4).enumerate() {
             let expected = if i % 8 < 2 {
                 [255, 255, 255, 255]
             } else {

@@ -2,35 +2,37 @@
 //! state ([`Graphics`] the window and GPU, [`Ui`] egui, [`Input`] the script, [`SceneSlot`] the
 //! scene and its loads, [`Tracing`] the render and the picked pixel, [`FrameClock`] when frames
 //! come); here the window opens and the events (window, loader, watcher) reach them. A frame is
-//! drawn in [`crate::viewer::frame`]; while the tracer works (or a key is held) frames come at a
-//! steady rate, otherwise the loop sleeps until an event arrives.
+//! drawn in [`frame`], and the actions of its input carried out in [`apply`]; while the tracer
+//! works (or a key is held) frames come at a steady rate ([`clock`]), otherwise the loop sleeps
+//! until an event arrives.
+
+use std::sync::Arc;
 
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, EventLoopProxy};
 use winit::window::WindowId;
 
+mod apply;
+mod clock;
+mod frame;
+
+use self::clock::FrameClock;
 use super::Options;
-use crate::viewer::frame::clock::FrameClock;
-use crate::viewer::gpu::Graphics;
+use crate::viewer::display::Graphics;
 use crate::viewer::input::Input;
 use crate::viewer::input::action::Action;
-use crate::viewer::scene::SceneSlot;
+use crate::viewer::layout::{PixelRect, Resolution};
 use crate::viewer::scene::source::LoadedScene;
-use crate::viewer::tracing::Tracing;
+use crate::viewer::scene::{SceneNews, SceneSlot};
 use crate::viewer::ui::Ui;
-use crate::viewer::ui::layout::{PixelRect, Resolution};
 use crate::viewer::ui::panels::PanelState;
+use crate::viewer::workers::Tracing;
 
 /// What other threads tell the event loop.
 pub enum UserEvent {
-    /// A scene finished loading (or failed to); `generation` tells stale loads apart.
-    Loaded {
-        generation: u64,
-        result: Result<Box<LoadedScene>, String>,
-    },
-    /// The watched scene file (or its camera file, the path given) changed on disk.
-    SceneFileChanged(std::path::PathBuf),
+    /// The scene's loader or watcher has news.
+    Scene(SceneNews),
     /// The ray tree thread has traced what it was asked.
     RayTreeTraced,
 }
@@ -54,7 +56,7 @@ impl App {
             scene,
             format,
             overrides,
-            view,
+            debug_view,
             threads,
             window,
             save_path,
@@ -83,7 +85,15 @@ impl App {
             gpu: None,
             ui: Ui::new(panel, window),
             input: Input::new(script, exit_when_done, screenshot),
-            scene: SceneSlot::new(scene, format, overrides, view, proxy),
+            scene: SceneSlot::new(
+                scene,
+                format,
+                overrides,
+                debug_view,
+                Arc::new(move |news| {
+                    let _ = proxy.send_event(UserEvent::Scene(news));
+                }),
+            ),
             tracing,
             clock: FrameClock::new(stats, max_fps),
             ended: None,
@@ -176,11 +186,11 @@ impl ApplicationHandler<UserEvent> for App {
 
     fn user_event(&mut self, event_loop: &ActiveEventLoop, event: UserEvent) {
         match event {
-            UserEvent::Loaded { generation, result } => {
+            UserEvent::Scene(SceneNews::Loaded { generation, result }) => {
                 self.loaded(event_loop, generation, result);
             }
             UserEvent::RayTreeTraced => {}
-            UserEvent::SceneFileChanged(changed) => {
+            UserEvent::Scene(SceneNews::FileChanged(changed)) => {
                 if let Some(path) = self.scene.requested()
                     && !self.scene.wrote_it(&changed)
                 {

@@ -14,7 +14,8 @@ use raylab::inspect::{self, RayTree};
 
 use super::caustics::SharedCaustics;
 use super::worker::{low_priority_pool, panic_message};
-use super::working_scene::{TraceSetup, WorkingScene};
+use super::working_scene::WorkingScene;
+use crate::viewer::scene::controls::TraceSetup;
 use crate::viewer::scene::source::LoadedScene;
 
 /// A traced ray tree and the view it was traced in.

@@ -8,19 +8,18 @@ use std::path::PathBuf;
 
 use raylab::camera::Camera;
 
-use super::action::Action;
-use super::navigation;
-use super::pick;
-use crate::viewer::app::App;
+use super::App;
+use crate::viewer::input::action::Action;
+use crate::viewer::input::{navigation, pick};
+use crate::viewer::layout::{PixelRect, window_point};
 use crate::viewer::save;
-use crate::viewer::scene::Shown;
+use crate::viewer::scene::ShownScene;
 use crate::viewer::scene::edits::{LightEdit, MaterialEdit};
-use crate::viewer::ui::layout::{PixelRect, window_point};
 use crate::viewer::ui::ray_tree_panel;
 
 impl App {
-    /// Carries out `action`; `shown` is where the image is in the window (physical pixels).
-    pub fn apply(&mut self, action: Action, shown: PixelRect) {
+    /// Carries out `action`; `image_rect` is where the image is in the window (physical pixels).
+    pub fn apply(&mut self, action: Action, image_rect: PixelRect) {
         match action {
             Action::Open(path) => {
                 if let Some(p) = &path {
@@ -46,7 +45,7 @@ impl App {
             Action::PickPixel { x, y } => self.tracing.picked.pick((x, y)),
             Action::CloseRayTree => self.tracing.picked.close(),
             Action::PrintTree => self.print_tree(),
-            Action::Click { x, y } => self.click(x, y, shown),
+            Action::Click { x, y } => self.click(x, y, image_rect),
             Action::Skip => {
                 if let Some(shown) = self.scene.shown() {
                     self.tracing.skip(shown, self.ui.panel.max_side);
@@ -60,9 +59,9 @@ impl App {
                 println!("status: {}", status.replace('\n', " · "));
             }
             Action::Snapshot => self.snapshot(),
-            Action::SetView(view) => {
+            Action::SetDebugView(debug_view) => {
                 if let Some(s) = self.scene.shown_mut() {
-                    s.controls.view = view;
+                    s.controls.debug_view = debug_view;
                 }
             }
             display @ (Action::Compare(_)
@@ -86,7 +85,7 @@ impl App {
             | Action::PlayPath(_) => self.views(action),
             other => {
                 if let Some(s) = self.scene.shown_mut() {
-                    navigate(s, other, shown);
+                    navigate(s, other, image_rect);
                 }
             }
         }
@@ -142,7 +141,7 @@ impl App {
     }
 
     fn pick_centre(&mut self, x: f32, y: f32) {
-        let Some(Shown {
+        let Some(ShownScene {
             scene, controls, ..
         }) = self.scene.shown_mut()
         else {
@@ -160,18 +159,18 @@ impl App {
     }
 
     /// A left click at the centre of image pixel (x, y), through egui like a mouse's.
-    fn click(&mut self, x: u32, y: u32, shown: PixelRect) {
+    fn click(&mut self, x: u32, y: u32, image_rect: PixelRect) {
         let Some(r) = &self.tracing.rendering else {
             return;
         };
         let (width, height) = (r.film.width(), r.film.height());
-        if x >= width || y >= height || shown.is_empty() {
+        if x >= width || y >= height || image_rect.is_empty() {
             self.ui.panel.message = Some(format!(
                 "cannot click pixel ({x}, {y}): it is outside the {width}×{height} image"
             ));
             return;
         }
-        let (px, py) = window_point(shown, width, height, (x as f32 + 0.5, y as f32 + 0.5));
+        let (px, py) = window_point(image_rect, width, height, (x as f32 + 0.5, y as f32 + 0.5));
         let ppp = self.ui.egui.pixels_per_point();
         self.input.click(egui::pos2(px / ppp, py / ppp));
     }
@@ -263,18 +262,18 @@ impl App {
     }
 }
 
-/// Moves the camera of `s` as a navigation action asks; `shown` is where the image is in the
+/// Moves the camera of `s` as a navigation action asks; `image_rect` is where the image is in the
 /// window (physical pixels), for panning.
-fn navigate(s: &mut Shown, action: Action, shown: PixelRect) {
+fn navigate(s: &mut ShownScene, action: Action, image_rect: PixelRect) {
     let (spec, bounds) = (&s.controls.camera, s.scene.bounds);
     let size = (s.controls.settings.width, s.controls.settings.height);
     let new = match action {
         Action::Orbit { yaw, pitch } => Some(navigation::orbit(spec, yaw, pitch)),
         Action::Pan { dx, dy } => {
-            let height = if shown.is_empty() {
+            let height = if image_rect.is_empty() {
                 size.1 as f32
             } else {
-                shown.height
+                image_rect.height
             };
             Some(navigation::pan(spec, dx, dy, height))
         }

@@ -8,10 +8,10 @@ use raylab::film::Film;
 use raylab::progressive::{Progress, RenderControl};
 
 use super::worker::JobReport;
-use crate::viewer::frame::timing::Timing;
-use crate::viewer::scene::Shown;
+use crate::viewer::scene::ShownScene;
 use crate::viewer::scene::controls::Controls;
 use crate::viewer::scene::source::LoadedScene;
+use crate::viewer::timing::Timing;
 
 /// The render in progress (or the last one), and what of it has reached the screen.
 pub struct Rendering {
@@ -36,7 +36,7 @@ pub struct Rendering {
 
 impl Rendering {
     /// Whether this renders `shown`'s scene with its controls as they are.
-    pub fn renders(&self, shown: &Shown) -> bool {
+    pub fn renders(&self, shown: &ShownScene) -> bool {
         Arc::ptr_eq(&self.scene, &shown.scene) && self.controls == shown.controls
     }
 

@@ -10,6 +10,7 @@ pub mod picked_pixel;
 pub mod ray_tree_thread;
 pub mod rendering;
 pub mod start_block;
+pub mod status;
 pub mod worker;
 pub mod working_scene;
 
@@ -23,11 +24,11 @@ use self::caustics::{MAX_ROUNDS, SharedCaustics};
 use self::picked_pixel::PickedPixel;
 use self::rendering::Rendering;
 use self::start_block::StartBlock;
+use self::status::{RenderStatus, status_line};
 use self::worker::{Job, JobReport, Outcome, Worker};
-use self::working_scene::TraceSetup;
-use crate::viewer::frame::timing::Timing;
-use crate::viewer::scene::Shown;
-use crate::viewer::ui::status::{RenderStatus, status_line};
+use crate::viewer::scene::ShownScene;
+use crate::viewer::scene::controls::TraceSetup;
+use crate::viewer::timing::Timing;
 
 /// The render and the picked pixel, each on its own threads.
 pub struct Tracing {
@@ -61,7 +62,7 @@ impl Tracing {
     /// Restarts refinement if the scene or the controls differ from what is being rendered
     /// (`max_side`: the largest image side the GPU takes). Returns whether it restarted with
     /// them.
-    pub fn sync_render(&mut self, shown: &Shown, max_side: u32, changed_at: Instant) -> bool {
+    pub fn sync_render(&mut self, shown: &ShownScene, max_side: u32, changed_at: Instant) -> bool {
         if self.rendering.as_ref().is_some_and(|r| r.renders(shown)) {
             self.sharpen_caustics(shown, max_side);
             return false;
@@ -84,7 +85,7 @@ impl Tracing {
 
     /// Skips the coarse passes of the render of `shown`: unless it already runs (or ran) at
     /// block size 1, it starts again there at once. A paused render resumes.
-    pub fn skip(&mut self, shown: &Shown, max_side: u32) {
+    pub fn skip(&mut self, shown: &ShownScene, max_side: u32) {
         let Some(r) = &self.rendering else {
             return;
         };
@@ -128,7 +129,7 @@ impl Tracing {
     /// Once the image of a view with caustics is done and on screen, renders it again with
     /// another round of photons in the map, until the map holds [`MAX_ROUNDS`] rounds, starting
     /// at block size 1 so that the picture only sharpens.
-    fn sharpen_caustics(&mut self, shown: &Shown, max_side: u32) {
+    fn sharpen_caustics(&mut self, shown: &ShownScene, max_side: u32) {
         let Some(r) = &self.rendering else {
             return;
         };
@@ -151,7 +152,7 @@ impl Tracing {
     /// Starts rendering `shown` as `setup` says, on the film of the render before when it has
     /// the same size. With caustics, anti-aliasing waits for their last round: each round paints
     /// every pixel again at block size 1, which would throw the extra samples away.
-    fn submit(&mut self, shown: &Shown, mut setup: TraceSetup, changed_at: Instant) {
+    fn submit(&mut self, shown: &ShownScene, mut setup: TraceSetup, changed_at: Instant) {
         if setup.settings.caustic_photons > 0 && setup.caustic_round + 1 < MAX_ROUNDS {
             setup.settings.samples = 1;
         }
@@ -196,7 +197,7 @@ impl Tracing {
 
     /// Keeps the picked pixel on the shown scene and controls; the error says why the pick was
     /// dropped.
-    pub fn sync_picked_pixel(&mut self, shown: &Shown, max_side: u32) -> Result<(), String> {
+    pub fn sync_picked_pixel(&mut self, shown: &ShownScene, max_side: u32) -> Result<(), String> {
         let setup = shown.controls.setup(max_side).ok();
         self.picked.sync(&shown.scene, &shown.controls, setup)
     }
@@ -208,7 +209,7 @@ impl Tracing {
 
     /// Refinement of `shown` is over and on screen (controls that cannot be rendered leave the
     /// last render as the final one).
-    pub fn settled_on(&self, shown: Option<&Shown>) -> bool {
+    pub fn settled_on(&self, shown: Option<&ShownScene>) -> bool {
         match (&self.rendering, shown) {
             (Some(r), Some(shown)) => {
                 r.settled && (r.renders(shown) || self.control_error.is_some())
@@ -217,11 +218,23 @@ impl Tracing {
         }
     }
 
+    /// How far the render is, once a scene is shown.
+    pub fn progress(&self) -> Option<Progress> {
+        self.rendering.as_ref().map(|r| r.control.progress())
+    }
+
+    /// The render has ended (finished, cancelled or failed): its film changes no more.
+    pub fn ended(&self) -> bool {
+        self.rendering
+            .as_ref()
+            .is_some_and(|r| r.report.outcome().is_some())
+    }
+
     /// Notes what a frame just put on screen: the film as it was at `uploaded`, if it was read,
     /// and the caustic photons shot for it.
     pub fn on_screen(&mut self, uploaded: Option<Progress>, timing: &mut Timing) {
         if let Some(shot) = self.rendering.as_ref().and_then(|r| r.report.take_shot()) {
-            timing.caustics(&shot);
+            timing.note(shot);
         }
         if let Some(r) = &mut self.rendering {
             let passes = r.report.passes();

@@ -1,6 +1,6 @@
 //! Everything that talks to the GPU (wgpu): the device, the window's surface, the image quad and
-//! egui drawn into a frame, the film's upload into the image texture, and screenshots read back
-//! from the GPU.
+//! egui drawn into a frame, the film's changed rows uploaded into the image texture, and
+//! screenshots read back from the GPU. It paints what it is given: a film and egui's shapes.
 
 pub mod device;
 pub mod painter;
@@ -11,9 +11,9 @@ pub mod upload;
 
 use std::path::Path;
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
-use raylab::progressive::Progress;
+use raylab::film::Film;
 use winit::event::WindowEvent;
 use winit::event_loop::ActiveEventLoop;
 use winit::window::Window;
@@ -23,9 +23,7 @@ use self::painter::{FrameContent, Painter};
 use self::quad::Display;
 use self::surface::{Acquired, WindowSurface};
 use self::upload::{Uploader, write_rows};
-use crate::viewer::frame::timing::Timing;
-use crate::viewer::tracing::rendering::Rendering;
-use crate::viewer::ui::layout::PixelRect;
+use crate::viewer::layout::PixelRect;
 
 /// The window and what draws into it.
 pub struct Graphics {
@@ -44,8 +42,8 @@ pub struct Graphics {
 pub struct Painted {
     /// The frame reached the window.
     pub presented: bool,
-    /// How far the render was when its film was read for this frame, if it was.
-    pub uploaded: Option<Progress>,
+    /// The time the film's changed rows took to reach the image texture, if any had changed.
+    pub upload: Option<Duration>,
     /// Why the screenshot could not be saved.
     pub screenshot_error: Option<String>,
 }
@@ -127,16 +125,15 @@ impl Graphics {
         self.display = display;
     }
 
-    /// Paints a frame: egui's `output` over the image (the film of `rendering`, uploaded if it
-    /// changed) shown at `shown`, presented in the window; then, if it was presented and
-    /// `screenshot` is given, saved there as a PNG.
+    /// Paints a frame: egui's `output` over the image (`film`, its changed rows uploaded) shown
+    /// at `shown`, presented in the window; then, if it was presented and `screenshot` is given,
+    /// saved there as a PNG.
     pub fn paint(
         &mut self,
         egui: &egui::Context,
         output: egui::FullOutput,
-        shown: PixelRect,
-        rendering: Option<&Rendering>,
-        timing: &mut Timing,
+        image_rect: PixelRect,
+        film: Option<&Arc<Film>>,
         screenshot: Option<&Path>,
     ) -> Painted {
         let egui::FullOutput {
@@ -150,7 +147,7 @@ impl Graphics {
             .handle_platform_output(&self.window, platform_output);
         let primitives = egui.tessellate(shapes, pixels_per_point);
         self.painter.set_textures(&self.gpu, &mut textures_delta);
-        let uploaded = rendering.and_then(|r| self.upload(r, timing));
+        let upload = film.and_then(|film| self.upload(film));
         let quad = &self.painter.quad;
         let divider = if quad.snapshot_size().is_some() {
             self.display.divider
@@ -161,7 +158,7 @@ impl Graphics {
         let content = FrameContent {
             primitives: &primitives,
             pixels_per_point,
-            shown,
+            image_rect,
         };
         let mut presented = false;
         match self.surface.acquire(&self.gpu) {
@@ -181,7 +178,7 @@ impl Graphics {
         self.painter.free_textures(&mut textures_delta);
         Painted {
             presented,
-            uploaded,
+            upload,
             screenshot_error,
         }
     }
@@ -194,25 +191,20 @@ impl Graphics {
             .take_snapshot(&self.gpu.device, &self.gpu.queue)
     }
 
-    /// Uploads the film if it changed; returns how far the render was when the film was read
-    /// (also once the render has ended and nothing changed since).
-    fn upload(&mut self, r: &Rendering, timing: &mut Timing) -> Option<Progress> {
-        let progress = r.control.progress();
+    /// Uploads the rows of `film` that changed since the last upload; returns the time it took,
+    /// if any had.
+    fn upload(&mut self, film: &Arc<Film>) -> Option<Duration> {
         let (texture, created) =
             self.painter
                 .quad
-                .image_texture(&self.gpu.device, r.film.width(), r.film.height());
+                .image_texture(&self.gpu.device, film.width(), film.height());
         if created {
             self.uploader.invalidate();
         }
         let start = Instant::now();
-        if let Some((texels, rows)) = self.uploader.changed_pixels(&r.film, self.display.tone) {
-            write_rows(&self.gpu.queue, texture, texels, &rows);
-            timing.upload(start.elapsed());
-            Some(progress)
-        } else {
-            r.report.outcome().map(|_| progress)
-        }
+        let (texels, rows) = self.uploader.changed_pixels(film, self.display.tone)?;
+        write_rows(&self.gpu.queue, texture, texels, &rows);
+        Some(start.elapsed())
     }
 
     /// Saves the frame as painted into `path` and says so on the terminal.
@@ -220,7 +212,7 @@ impl Graphics {
         let size = self.surface.size();
         let format = self.surface.format();
         screenshot::save(&self.gpu, &mut self.painter, format, size, content, path)?;
-        let s = content.shown;
+        let s = content.image_rect;
         println!(
             "screenshot {}: {}×{} window, image at x {} y {} size {}×{}",
             path.display(),

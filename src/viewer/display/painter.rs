@@ -3,7 +3,7 @@
 
 use super::device::Gpu;
 use super::quad::QuadRenderer;
-use crate::viewer::ui::layout::PixelRect;
+use crate::viewer::layout::PixelRect;
 
 /// The colour of the bars around the image.
 const BACKGROUND: wgpu::Color = wgpu::Color {
@@ -18,7 +18,7 @@ pub struct FrameContent<'a> {
     pub primitives: &'a [egui::ClippedPrimitive],
     pub pixels_per_point: f32,
     /// Where the image goes, in physical pixels.
-    pub shown: PixelRect,
+    pub image_rect: PixelRect,
 }
 
 pub struct Painter {
@@ -90,7 +90,7 @@ impl Painter {
                     multiview_mask: None,
                 })
                 .forget_lifetime();
-            self.quad.draw(&mut pass, content.shown, size);
+            self.quad.draw(&mut pass, content.image_rect, size);
             // egui sets its own viewport and scissor per primitive.
             self.egui.render(&mut pass, content.primitives, &screen);
         }

@@ -90,17 +90,17 @@ pub fn whole_pixels(area: PixelRect) -> PixelRect {
 /// The image point (continuous, `x` right and `y` down, in image pixels) shown at window
 /// position `(px, py)`, or `None` outside the image.
 pub fn image_point(
-    shown: PixelRect,
+    image_rect: PixelRect,
     image_width: u32,
     image_height: u32,
     px: f32,
     py: f32,
 ) -> Option<(f32, f32)> {
-    if shown.is_empty() {
+    if image_rect.is_empty() {
         return None;
     }
-    let u = (px - shown.x) / shown.width;
-    let v = (py - shown.y) / shown.height;
+    let u = (px - image_rect.x) / image_rect.width;
+    let v = (py - image_rect.y) / image_rect.height;
     ((0.0..1.0).contains(&u) && (0.0..1.0).contains(&v))
         .then_some((u * image_width as f32, v * image_height as f32))
 }
@@ -108,13 +108,13 @@ pub fn image_point(
 /// The image pixel (`x` right and `y` down) shown at window position `(px, py)`, or `None`
 /// outside the image.
 pub fn image_pixel(
-    shown: PixelRect,
+    image_rect: PixelRect,
     image_width: u32,
     image_height: u32,
     px: f32,
     py: f32,
 ) -> Option<(u32, u32)> {
-    let (x, y) = image_point(shown, image_width, image_height, px, py)?;
+    let (x, y) = image_point(image_rect, image_width, image_height, px, py)?;
     Some((
         (x as u32).min(image_width - 1),
         (y as u32).min(image_height - 1),
@@ -123,14 +123,14 @@ pub fn image_pixel(
 
 /// The window position (physical pixels) where image point `(x, y)` is shown.
 pub fn window_point(
-    shown: PixelRect,
+    image_rect: PixelRect,
     image_width: u32,
     image_height: u32,
     (x, y): (f32, f32),
 ) -> (f32, f32) {
     (
-        shown.x + x * shown.width / image_width.max(1) as f32,
-        shown.y + y * shown.height / image_height.max(1) as f32,
+        image_rect.x + x * image_rect.width / image_width.max(1) as f32,
+        image_rect.y + y * image_rect.height / image_height.max(1) as f32,
     )
 }
 
@@ -149,23 +149,28 @@ mod tests {
 
     #[test]
     fn a_wide_area_gets_bars_left_and_right() {
-        let shown = letterbox(rect(0.0, 0.0, 400.0, 200.0), 100, 100);
-        assert_eq!(shown, rect(100.0, 0.0, 200.0, 200.0));
+        let image_rect = letterbox(rect(0.0, 0.0, 400.0, 200.0), 100, 100);
+        assert_eq!(image_rect, rect(100.0, 0.0, 200.0, 200.0));
     }
 
     #[test]
     fn a_tall_area_gets_bars_above_and_below() {
-        let shown = letterbox(rect(10.0, 20.0, 300.0, 500.0), 300, 150);
-        assert_eq!(shown, rect(10.0, 195.0, 300.0, 150.0));
+        let image_rect = letterbox(rect(10.0, 20.0, 300.0, 500.0), 300, 150);
+        assert_eq!(image_rect, rect(10.0, 195.0, 300.0, 150.0));
     }
 
     #[test]
     fn sizes_and_corners_are_whole_pixels() {
-        let shown = letterbox(rect(0.5, 0.0, 333.0, 101.0), 7, 3);
-        for v in [shown.x, shown.y, shown.width, shown.height] {
-            assert_eq!(v, v.round(), "{shown:?}");
+        let image_rect = letterbox(rect(0.5, 0.0, 333.0, 101.0), 7, 3);
+        for v in [
+            image_rect.x,
+            image_rect.y,
+            image_rect.width,
+            image_rect.height,
+        ] {
+            assert_eq!(v, v.round(), "{image_rect:?}");
         }
-        assert!(shown.width <= 333.0 && shown.height <= 101.0);
+        assert!(image_rect.width <= 333.0 && image_rect.height <= 101.0);
     }
 
     #[test]
@@ -187,27 +192,33 @@ mod tests {
 
     #[test]
     fn cursor_positions_map_to_image_pixels() {
-        let shown = rect(100.0, 0.0, 200.0, 200.0);
-        assert_eq!(image_point(shown, 10, 10, 100.0, 0.0), Some((0.0, 0.0)));
-        assert_eq!(image_point(shown, 10, 10, 299.0, 199.0), Some((9.95, 9.95)));
-        assert_eq!(image_point(shown, 10, 10, 99.0, 50.0), None);
-        assert_eq!(image_point(shown, 10, 10, 300.0, 50.0), None);
+        let image_rect = rect(100.0, 0.0, 200.0, 200.0);
+        assert_eq!(
+            image_point(image_rect, 10, 10, 100.0, 0.0),
+            Some((0.0, 0.0))
+        );
+        assert_eq!(
+            image_point(image_rect, 10, 10, 299.0, 199.0),
+            Some((9.95, 9.95))
+        );
+        assert_eq!(image_point(image_rect, 10, 10, 99.0, 50.0), None);
+        assert_eq!(image_point(image_rect, 10, 10, 300.0, 50.0), None);
     }
 
     #[test]
     fn cursor_positions_map_to_whole_pixels_and_back() {
         // A 4×2 image shown 25 times larger, 10 pixels from the window's corner.
-        let shown = rect(10.0, 10.0, 100.0, 50.0);
-        assert_eq!(image_pixel(shown, 4, 2, 10.0, 10.0), Some((0, 0)));
-        assert_eq!(image_pixel(shown, 4, 2, 34.9, 34.9), Some((0, 0)));
-        assert_eq!(image_pixel(shown, 4, 2, 35.0, 35.0), Some((1, 1)));
-        assert_eq!(image_pixel(shown, 4, 2, 109.9, 59.9), Some((3, 1)));
-        assert_eq!(image_pixel(shown, 4, 2, 110.0, 30.0), None);
+        let image_rect = rect(10.0, 10.0, 100.0, 50.0);
+        assert_eq!(image_pixel(image_rect, 4, 2, 10.0, 10.0), Some((0, 0)));
+        assert_eq!(image_pixel(image_rect, 4, 2, 34.9, 34.9), Some((0, 0)));
+        assert_eq!(image_pixel(image_rect, 4, 2, 35.0, 35.0), Some((1, 1)));
+        assert_eq!(image_pixel(image_rect, 4, 2, 109.9, 59.9), Some((3, 1)));
+        assert_eq!(image_pixel(image_rect, 4, 2, 110.0, 30.0), None);
         // The centre of each pixel lands back on that pixel.
         for (x, y) in [(0, 0), (3, 1), (2, 0)] {
-            let (px, py) = window_point(shown, 4, 2, (x as f32 + 0.5, y as f32 + 0.5));
-            assert_eq!(image_pixel(shown, 4, 2, px, py), Some((x, y)));
+            let (px, py) = window_point(image_rect, 4, 2, (x as f32 + 0.5, y as f32 + 0.5));
+            assert_eq!(image_pixel(image_rect, 4, 2, px, py), Some((x, y)));
         }
-        assert_eq!(window_point(shown, 4, 2, (4.0, 2.0)), (110.0, 60.0));
+        assert_eq!(window_point(image_rect, 4, 2, (4.0, 2.0)), (110.0, 60.0));
     }
 }
