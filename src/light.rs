@@ -85,7 +85,7 @@ pub struct LightSample {
 }
 
 impl Light {
-    /// Inlined into the shading, as it was before spot lights came; a spot's own sampling is
+    /// Where the light is seen from `point`. Inlined into the shading; a spot's own sampling is
     /// not, to keep the shading's code small.
     #[inline(always)]
     pub fn sample(&self, point: Vec3) -> LightSample {

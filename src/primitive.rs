@@ -14,9 +14,9 @@ use crate::transform::Transform;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Object {
     pub shape: Shape,
-    /// `None` when the shape is given directly in world coordinates. Boxed: a transform takes
-    /// 176 bytes, more than any shape, and most objects of large scenes have none; unboxed, it
-    /// made every object 368 bytes instead of 184.
+    /// `None` when the shape is given directly in world coordinates. Boxed: a transform is
+    /// larger than any shape and most objects of large scenes have none, so an object without
+    /// one stays small.
     pub transform: Option<Box<Transform>>,
     pub material: u32,
 }
@@ -99,7 +99,7 @@ pub struct Geometry {
     /// The triangles of all meshes, mesh after mesh, as the face of their mesh each one is
     /// (degenerate faces have no triangle). The vertices stay in the mesh: [`Self::triangle`].
     pub triangle_faces: Vec<u32>,
-    /// Where each mesh's triangles start in `triangles`.
+    /// Where each mesh's triangles start in `triangle_faces`.
     pub mesh_starts: Vec<u32>,
 }
 
