@@ -217,9 +217,9 @@ pub(super) fn low_priority_pool(
         .map_err(|e| format!("cannot start the {name} threads: {e}"))
 }
 
-/// How much lower the tracing threads' priority is than the window's (a `nice` value). Measured
-/// at 512² on two cores with software Vulkan: 0 gave 30 fps and block size 1 after 230 ms, 10
-/// gave 42 fps and 480 ms; 4 gives 37 fps and 300 ms.
+/// How much lower the tracing threads' priority is than the window's (a `nice` value): the
+/// window keeps its frame rate while the tracer still gets most of the cores (BENCHMARKS.md,
+/// the viewer's latency, has the trade measured).
 #[cfg(target_os = "linux")]
 const TRACER_NICENESS: libc::c_int = 4;
 
