@@ -6,25 +6,29 @@
 //!                                   └────── inspect ────┘  (ray trees, debug views)
 //! ```
 //!
-//! and the modules depend on each other in that order only, each on those before it:
+//! and the modules depend on each other in that order only, each on those listed before it
+//! (`tests/module_order.rs` checks it):
 //!
 //! - Basics: [`color`] (linear RGB and its 8-bit sRGB encoding), [`ray`], [`aabb`],
 //!   [`tone`] (exposure and tone curves), [`transform`], [`limits`], [`memory`], [`output`]
 //!   (writing files safely), [`camera`] (the one place a pixel becomes an eye ray), [`views`]
-//!   (bookmarked cameras, and the cameras of a turntable or a path through them) and
-//!   [`sampling`] (where a pixel's samples lie), [`tiles`] (an image cut into rectangles rendered
-//!   apart, and checking that parts cover it once).
-//! - The scene: [`shapes`], [`mesh`], [`primitive`], [`material`], [`texture`] (with
-//!   [`noise`]), [`light`], [`medium`] (fog), [`settings`] and [`scene::Scene`], which
+//!   (bookmarked cameras, and the cameras of a turntable or a path through them), [`sampling`]
+//!   (where a pixel's samples lie) and [`tiles`] (an image cut into rectangles rendered apart,
+//!   and checking that parts cover it once).
+//! - The scene: [`shapes`], [`mesh`], [`primitive`], [`light`], [`medium`] (fog), [`material`],
+//!   [`noise`] and the [`texture`]s made of it, [`settings`] and [`scene::Scene`], which
 //!   [`formats`] reads from TOML, OBJ, NFF, SPD and SDL files (or [`large_mesh`] generates, for
 //!   benchmarks).
-//! - Tracing: [`bvh::Bvh`] finds what a ray hits; [`whitted`] builds each eye ray's ray tree,
-//!   counts its rays ([`stats`]) and tells a [`whitted::TreeObserver`] what it does, adding with
-//!   caustics on the light of a [`photon_map::PhotonMap`], which [`photon`] fills beforehand by
-//!   shooting photons from the lights with the same tracer.
-//! - Rendering: [`progressive`] refines the image pass after pass on all cores into a
-//!   [`film::Film`], each pixel sample coloured by a [`progressive::Shader`] (the shaded image
-//!   is [`progressive::Shaded`]); [`formats::image`] saves it.
+//! - Tracing: [`bvh::Bvh`] finds what a ray hits, [`stats`] counts rays and a
+//!   [`photon_map::PhotonMap`] holds the light of caustics; [`whitted`] builds each eye ray's ray
+//!   tree with them, adding the caustics, and tells a [`whitted::TreeObserver`] what it does;
+//!   [`photon`] fills the photon map beforehand by shooting photons from the lights with the
+//!   same tracer.
+//! - Rendering: [`render`] assembles what a render needs from a scene (its BVH, its caustic
+//!   photons, the tracer over them) for every program; a [`film::Film`] holds the image that
+//!   [`progressive`] refines pass after pass (the plan and control of any backend, the CPU
+//!   sweep on all cores), each pixel sample coloured by a [`progressive::Shader`] (the shaded
+//!   image is [`progressive::Shaded`]); [`formats::image`] saves it.
 //! - Looking inside: [`inspect`] records one pixel's ray tree with a tree observer and renders
 //!   debug views as shaders of the same renderer. Nothing above depends on it.
 //!

@@ -4,18 +4,29 @@
 //! default (exposure 0, [`ToneCurve::Clamp`]) is the plain encoding, bit for bit. The viewer
 //! uploads its image through the same [`Tone`], so what it saves is what it shows.
 
-use std::fmt;
-use std::str::FromStr;
-
 use crate::color::{Color, SrgbEncoder, srgb8};
 use rayon::prelude::*;
+use strum::VariantNames;
 
 /// Largest linear value a curve looks at: beyond it every curve is white anyway, and the filmic
 /// curve's squares stay finite.
 const CURVE_INPUT_MAX: f32 = 1e6;
 
-/// How linear values (after exposure) are brought into [0, 1].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// How linear values (after exposure) are brought into [0, 1]. The command line and the viewer
+/// name it in lower case: `clamp`, `reinhard`, `filmic`.
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    strum::Display,
+    strum::EnumString,
+    strum::EnumIter,
+    strum::VariantNames,
+)]
+#[strum(serialize_all = "lowercase", parse_err_ty = String, parse_err_fn = unknown_curve)]
 pub enum ToneCurve {
     /// Values above 1 become white: the image as traced.
     #[default]
@@ -28,16 +39,6 @@ pub enum ToneCurve {
 }
 
 impl ToneCurve {
-    pub const ALL: [ToneCurve; 3] = [ToneCurve::Clamp, ToneCurve::Reinhard, ToneCurve::Filmic];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            ToneCurve::Clamp => "clamp",
-            ToneCurve::Reinhard => "reinhard",
-            ToneCurve::Filmic => "filmic",
-        }
-    }
-
     /// The curve at linear value `x`, in [0, 1] (negative values and NaN give 0).
     pub fn apply(self, x: f32) -> f32 {
         // NaN counts as 0, as in `srgb8`.
@@ -56,27 +57,12 @@ impl ToneCurve {
     }
 }
 
-impl fmt::Display for ToneCurve {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for ToneCurve {
-    type Err = String;
-
-    fn from_str(s: &str) -> Result<ToneCurve, String> {
-        ToneCurve::ALL
-            .into_iter()
-            .find(|c| c.name() == s)
-            .ok_or_else(|| {
-                let names: Vec<_> = ToneCurve::ALL.iter().map(|c| c.name()).collect();
-                format!(
-                    "unknown tone curve `{s}` (use one of: {})",
-                    names.join(", ")
-                )
-            })
-    }
+/// Why `s` is no tone curve's name.
+fn unknown_curve(s: &str) -> String {
+    format!(
+        "unknown tone curve `{s}` (use one of: {})",
+        ToneCurve::VARIANTS.join(", ")
+    )
 }
 
 /// Exposure and tone curve: the whole way from linear colour to display bytes.
@@ -143,6 +129,7 @@ impl Tone {
 mod tests {
     use super::*;
     use crate::color::to_srgb8;
+    use strum::IntoEnumIterator;
 
     /// Linear values from 0 to 64, finely spaced at the dark end.
     fn sweep() -> impl Iterator<Item = f32> {
@@ -166,7 +153,7 @@ mod tests {
             .chain([-1.0, f32::NAN, f32::INFINITY, 250.0])
             .map(|v| Color::new(v, v * 0.5, v * 3.0))
             .collect();
-        for curve in ToneCurve::ALL {
+        for curve in ToneCurve::iter() {
             for exposure in [-2.0, 0.0, 0.5, 1.0, 3.0] {
                 let tone = Tone::new(exposure, curve).unwrap();
                 let one_by_one: Vec<u8> = pixels.iter().flat_map(|&c| tone.map(c)).collect();
@@ -177,7 +164,7 @@ mod tests {
 
     #[test]
     fn one_stop_doubles_the_linear_values_before_the_curve() {
-        for curve in ToneCurve::ALL {
+        for curve in ToneCurve::iter() {
             let one = Tone::new(1.0, curve).unwrap();
             let zero = Tone::new(0.0, curve).unwrap();
             assert_eq!(one.scale(), 2.0);
@@ -191,7 +178,7 @@ mod tests {
 
     #[test]
     fn curves_start_at_zero_rise_and_stay_in_the_unit_range() {
-        for curve in ToneCurve::ALL {
+        for curve in ToneCurve::iter() {
             assert_eq!(curve.apply(0.0), 0.0, "{curve}");
             assert_eq!(curve.apply(-3.0), 0.0, "{curve}");
             let mut last = 0.0;
@@ -212,13 +199,13 @@ mod tests {
 
     #[test]
     fn curves_read_and_print_their_names() {
-        for curve in ToneCurve::ALL {
+        for curve in ToneCurve::iter() {
             assert_eq!(curve.to_string().parse::<ToneCurve>(), Ok(curve));
         }
-        let err = "aces".parse::<ToneCurve>().unwrap_err();
-        assert!(
-            err.contains("`aces`") && err.contains("clamp, reinhard, filmic"),
-            "{err}"
+        assert_eq!(ToneCurve::VARIANTS, ["clamp", "reinhard", "filmic"]);
+        assert_eq!(
+            "aces".parse::<ToneCurve>(),
+            Err("unknown tone curve `aces` (use one of: clamp, reinhard, filmic)".to_string())
         );
     }
 

@@ -1096,6 +1096,7 @@ fn render_small(name: &str, extra: &[&str], dir: &Path) -> Output {
 #[test]
 fn render_exposure_doubles_the_linear_values_before_the_curve() {
     use raylab::tone::{Tone, ToneCurve};
+    use strum::IntoEnumIterator;
     let dir = tempfile::tempdir().unwrap();
     let out = render_small("linear.exr", &[], dir.path());
     assert!(out.status.success(), "{}", stderr(&out));
@@ -1103,11 +1104,11 @@ fn render_exposure_doubles_the_linear_values_before_the_curve() {
         .unwrap()
         .to_rgb32f();
     let mut brightened = 0;
-    for curve in ToneCurve::ALL {
+    for curve in ToneCurve::iter() {
         let name = format!("{curve}.png");
         let out = render_small(
             &name,
-            &["--exposure", "1", "--tonemap", curve.name()],
+            &["--exposure", "1", "--tonemap", &curve.to_string()],
             dir.path(),
         );
         assert!(out.status.success(), "{curve}: {}", stderr(&out));

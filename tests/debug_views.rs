@@ -15,6 +15,7 @@ use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::{Plane, Shape, Sphere};
 use raylab::whitted::Tracer;
+use strum::{IntoEnumIterator, VariantNames};
 
 const WIDTH: u32 = 40;
 const HEIGHT: u32 = 30;
@@ -43,9 +44,21 @@ fn render(scene: &Scene, view: DebugView) -> Vec<Color> {
 
 #[test]
 fn every_view_has_a_name_that_parses_back() {
-    for view in DebugView::ALL {
-        assert_eq!(view.name().parse::<DebugView>(), Ok(view));
+    for view in DebugView::iter() {
+        assert_eq!(view.to_string().parse::<DebugView>(), Ok(view));
     }
+    let names = [
+        "shaded",
+        "normals",
+        "depth",
+        "uv",
+        "object",
+        "material",
+        "tree-depth",
+        "rays",
+        "bvh-cost",
+    ];
+    assert_eq!(DebugView::VARIANTS, names);
     let error = "sparkles".parse::<DebugView>().unwrap_err();
     assert!(
         error.contains("sparkles") && error.contains("bvh-cost"),
@@ -197,7 +210,7 @@ fn the_tree_depth_view_is_deeper_on_the_mirror_than_on_the_matte_ball() {
 #[test]
 fn debug_views_refine_progressively_to_the_same_image() {
     let mut scene = common::spheres_on_a_floor(WIDTH, HEIGHT);
-    for view in DebugView::ALL {
+    for view in DebugView::iter() {
         scene.settings.block_size = 1;
         let direct = render(&scene, view);
         scene.settings.block_size = 16;

@@ -8,6 +8,7 @@ use glam::DVec3;
 use raylab::formats::load_any;
 use raylab::formats::nff::{Item, NffDocument, NffLighting, PrimitiveCounts, parse_nff_document};
 use raylab::formats::spd::{Database, load_spd, parse_scene_name};
+use strum::IntoEnumIterator;
 
 fn counts(spheres: usize, cones: usize, polygons: usize, patches: usize) -> PrimitiveCounts {
     PrimitiveCounts {
@@ -40,7 +41,7 @@ fn published_counts(database: Database, n: u32) -> PrimitiveCounts {
 
 #[test]
 fn every_size_makes_the_published_number_of_primitives() {
-    for database in Database::ALL {
+    for database in Database::iter() {
         let largest_checked = database.standard_size().min(6);
         for size in 1..=largest_checked {
             let document = database.generate(size).unwrap();
@@ -126,7 +127,7 @@ fn view(database: Database) -> raylab::formats::nff::View {
 
 #[test]
 fn cameras_and_lights_are_as_described() {
-    for database in Database::ALL {
+    for database in Database::iter() {
         let document = database.generate(2).unwrap();
         let view = document.view.unwrap();
         assert_eq!(
@@ -259,7 +260,7 @@ fn the_objects_stand_where_the_descriptions_put_them() {
 
 #[test]
 fn sizes_out_of_range_are_errors() {
-    for database in Database::ALL {
+    for database in Database::iter() {
         assert!(database.generate(0).unwrap_err().contains("from 1 to"));
         let too_big = database.max_size() + 1;
         assert!(database.generate(too_big).is_err(), "{database}");
@@ -285,7 +286,7 @@ fn scene_names_give_the_database_and_size() {
 
 #[test]
 fn every_database_loads_by_name() {
-    for database in Database::ALL {
+    for database in Database::iter() {
         let name = format!("spd:{database}:2");
         let scene = load_any(&name).unwrap_or_else(|e| panic!("{e}"));
         let document = database.generate(2).unwrap();
@@ -310,7 +311,7 @@ fn bad_scene_names_are_errors_naming_them() {
 
 #[test]
 fn generated_text_reads_back_as_the_same_document() {
-    for database in Database::ALL {
+    for database in Database::iter() {
         let document = database.generate(2).unwrap();
         let text = document.to_nff_string();
         let back = parse_nff_document(&text, Path::new("gen.nff")).unwrap();

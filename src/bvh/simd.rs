@@ -7,13 +7,27 @@
 //! instruction set has its own lane type with the same arithmetic in the same order, so every
 //! path gives exactly the same answers (the tests run every path the machine has and compare).
 
-use std::fmt;
+use strum::{IntoEnumIterator, VariantNames};
 
 /// Lanes of the box test: one per child of a node.
 pub const LANES: usize = 8;
 
-/// An instruction set the traversal is compiled for.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+/// An instruction set the traversal is compiled for, narrowest first. `RAYLAB_SIMD` and
+/// `raylab bench` name it in lower case (`avx2`).
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    strum::Display,
+    strum::EnumString,
+    strum::EnumIter,
+    strum::VariantNames,
+)]
+#[strum(serialize_all = "lowercase", parse_err_ty = String, parse_err_fn = unknown_simd)]
 pub enum Simd {
     /// Plain scalar code, the same on every architecture: the reference the others must match.
     #[default]
@@ -27,19 +41,6 @@ pub enum Simd {
 }
 
 impl Simd {
-    /// Every path, narrowest first.
-    pub const ALL: [Simd; 4] = [Simd::Portable, Simd::Sse, Simd::Avx2, Simd::Avx512];
-
-    /// The name used by `RAYLAB_SIMD` and printed by `raylab bench`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Simd::Portable => "portable",
-            Simd::Sse => "sse",
-            Simd::Avx2 => "avx2",
-            Simd::Avx512 => "avx512",
-        }
-    }
-
     /// Whether this processor can run the path.
     pub fn is_supported(self) -> bool {
         match self {
@@ -60,7 +61,7 @@ impl Simd {
 
     /// The paths this processor can run, narrowest first.
     pub fn supported() -> impl Iterator<Item = Simd> {
-        Simd::ALL.into_iter().filter(|simd| simd.is_supported())
+        Simd::iter().filter(|simd| simd.is_supported())
     }
 
     /// The path a new BVH uses: the one named by the environment variable `RAYLAB_SIMD`
@@ -75,12 +76,11 @@ impl Simd {
                     _ => {
                         eprintln!(
                             "warning: RAYLAB_SIMD={name} is not a path this processor runs \
-                             (one of: {}); using {}",
+                             (one of: {}); using {widest}",
                             Simd::supported()
-                                .map(Simd::name)
+                                .map(|simd| simd.to_string())
                                 .collect::<Vec<_>>()
                                 .join(", "),
-                            widest.name()
                         );
                         widest
                     }
@@ -91,21 +91,9 @@ impl Simd {
     }
 }
 
-impl fmt::Display for Simd {
-    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl std::str::FromStr for Simd {
-    type Err = String;
-
-    fn from_str(s: &str) -> Result<Simd, String> {
-        Simd::ALL
-            .into_iter()
-            .find(|simd| simd.name() == s)
-            .ok_or_else(|| format!("`{s}` is not one of portable, sse, avx2, avx512"))
-    }
+/// Why `s` is no path's name.
+fn unknown_simd(s: &str) -> String {
+    format!("`{s}` is not one of {}", Simd::VARIANTS.join(", "))
 }
 
 /// A traversal written once for any lane type and compiled once per instruction set:

@@ -5,7 +5,8 @@
 //! format that has no camera (SDL).
 
 use std::path::{Path, PathBuf};
-use std::str::FromStr;
+
+use strum::VariantNames;
 
 use super::SceneError;
 use super::nff::{NffLighting, load_nff};
@@ -41,8 +42,20 @@ pub fn load_any_with(name: &str, lighting: NffLighting) -> Result<Scene, SceneEr
     load_any_as(name, lighting, None)
 }
 
-/// A scene file's format, for reading a file whatever its name ends in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// A scene file's format, for reading a file whatever its name ends in; named in lower case
+/// (`toml`).
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    strum::Display,
+    strum::EnumString,
+    strum::EnumIter,
+    strum::VariantNames,
+)]
+#[strum(serialize_all = "lowercase", parse_err_ty = String, parse_err_fn = unknown_format)]
 pub enum SceneFormat {
     Toml,
     Nff,
@@ -65,19 +78,15 @@ impl SceneFormat {
     }
 }
 
-impl FromStr for SceneFormat {
-    type Err = String;
-
-    fn from_str(text: &str) -> Result<SceneFormat, String> {
-        match text {
-            "toml" => Ok(SceneFormat::Toml),
-            "nff" => Ok(SceneFormat::Nff),
-            "sdl" => Ok(SceneFormat::Sdl),
-            _ => Err(format!(
-                "unknown scene format `{text}` (expected toml, nff or sdl)"
-            )),
-        }
-    }
+/// Why `text` is no format's name.
+fn unknown_format(text: &str) -> String {
+    let (last, others) = SceneFormat::VARIANTS
+        .split_last()
+        .expect("there are formats");
+    format!(
+        "unknown scene format `{text}` (expected {} or {last})",
+        others.join(", ")
+    )
 }
 
 /// [`load_any_with`], reading a file in `format` when given, else in the format its
@@ -132,4 +141,22 @@ pub fn with_framing_camera(mut scene: Scene) -> Scene {
     let aspect = scene.settings.width as f32 / scene.settings.height as f32;
     scene.camera = camera::frame(&scene.geometry.finite_bounds(), aspect);
     scene
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use strum::IntoEnumIterator;
+
+    #[test]
+    fn formats_read_and_print_their_names() {
+        for format in SceneFormat::iter() {
+            assert_eq!(format.to_string().parse::<SceneFormat>(), Ok(format));
+        }
+        assert_eq!(SceneFormat::VARIANTS, ["toml", "nff", "sdl"]);
+        assert_eq!(
+            "obj".parse::<SceneFormat>(),
+            Err("unknown scene format `obj` (expected toml, nff or sdl)".to_string())
+        );
+    }
 }

@@ -2,15 +2,28 @@
 //! progressively like the shaded image ([`super::view_color`] computes a pixel); the heat-map
 //! and depth views come with a [`Legend`] that says what their colours mean.
 
-use std::fmt;
-use std::str::FromStr;
+use strum::VariantNames;
 
 use super::legend::{Legend, depth_range};
 use crate::scene::Scene;
 use crate::whitted::Tracer;
 
-/// What a rendered image shows.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+/// What a rendered image shows. The command line and the viewer name it in kebab case
+/// (`tree-depth`), some by a shorter name (`object`).
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    strum::Display,
+    strum::EnumString,
+    strum::EnumIter,
+    strum::VariantNames,
+)]
+#[strum(serialize_all = "kebab-case", parse_err_ty = String, parse_err_fn = unknown_view)]
 pub enum DebugView {
     /// The Whitted colour.
     #[default]
@@ -24,45 +37,21 @@ pub enum DebugView {
     /// The first hit's texture coordinates as `(fract u, fract v, 0)`.
     Uv,
     /// A distinct colour per object (mesh) seen by the eye ray.
+    #[strum(serialize = "object")]
     ObjectId,
     /// A distinct colour per material seen by the eye ray.
+    #[strum(serialize = "material")]
     MaterialId,
     /// How deep the pixel's ray tree went: heat map over 1 ..= max_depth.
     TreeDepth,
     /// Rays traced for the pixel (eye, shadow, reflected, transmitted): heat map, log scale.
+    #[strum(serialize = "rays")]
     RayCount,
     /// BVH nodes visited plus primitives tested by all the pixel's rays: heat map, log scale.
     BvhCost,
 }
 
 impl DebugView {
-    pub const ALL: [DebugView; 9] = [
-        DebugView::Shaded,
-        DebugView::Normals,
-        DebugView::Depth,
-        DebugView::Uv,
-        DebugView::ObjectId,
-        DebugView::MaterialId,
-        DebugView::TreeDepth,
-        DebugView::RayCount,
-        DebugView::BvhCost,
-    ];
-
-    /// The name the CLI and the viewer use.
-    pub fn name(self) -> &'static str {
-        match self {
-            DebugView::Shaded => "shaded",
-            DebugView::Normals => "normals",
-            DebugView::Depth => "depth",
-            DebugView::Uv => "uv",
-            DebugView::ObjectId => "object",
-            DebugView::MaterialId => "material",
-            DebugView::TreeDepth => "tree-depth",
-            DebugView::RayCount => "rays",
-            DebugView::BvhCost => "bvh-cost",
-        }
-    }
-
     /// The colour bar of a heat-map view (and the grey bar of the depth view), `None` for views
     /// whose colours are not a scale.
     pub fn legend(self, tracer: &Tracer) -> Option<Legend> {
@@ -85,22 +74,10 @@ pub fn max_rays(scene: &Scene) -> u64 {
     rays * (1 + scene.lights.len() as u64)
 }
 
-impl fmt::Display for DebugView {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for DebugView {
-    type Err = String;
-
-    fn from_str(s: &str) -> Result<Self, String> {
-        DebugView::ALL
-            .into_iter()
-            .find(|v| v.name() == s)
-            .ok_or_else(|| {
-                let names: Vec<_> = DebugView::ALL.iter().map(|v| v.name()).collect();
-                format!("unknown view `{s}`; the views are {}", names.join(", "))
-            })
-    }
+/// Why `s` is no view's name.
+fn unknown_view(s: &str) -> String {
+    format!(
+        "unknown view `{s}`; the views are {}",
+        DebugView::VARIANTS.join(", ")
+    )
 }

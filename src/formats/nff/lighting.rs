@@ -3,12 +3,23 @@
 //! follows the SPD readme by default and can follow SPD's POV-Ray exporter instead, which also
 //! gives each material what NFF leaves out (see `povray`).
 
-use std::fmt;
-use std::str::FromStr;
+use strum::VariantNames;
 
 /// A rule for the intensity of `l` lights without a colour and of the ambient light, given the
-/// number `N` of lights.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// number `N` of lights. The command line names it in lower case (`readme`).
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    strum::Display,
+    strum::EnumString,
+    strum::EnumIter,
+    strum::VariantNames,
+)]
+#[strum(serialize_all = "lowercase", parse_err_ty = String, parse_err_fn = unknown_lighting)]
 pub enum NffLighting {
     /// The SPD readme's suggestion: every light and the ambient light have intensity
     /// √N / (2N) (so N lights together give √N / 2).
@@ -20,9 +31,6 @@ pub enum NffLighting {
 }
 
 impl NffLighting {
-    /// The names the command line accepts.
-    pub const NAMES: &'static str = "readme, povray";
-
     /// Intensity of each of `lights` lights without a colour.
     pub fn light_intensity(self, lights: usize) -> f64 {
         let n = lights.max(1) as f64;
@@ -42,33 +50,18 @@ impl NffLighting {
     }
 }
 
-impl FromStr for NffLighting {
-    type Err = String;
-
-    fn from_str(name: &str) -> Result<Self, String> {
-        match name {
-            "readme" => Ok(NffLighting::Readme),
-            "povray" => Ok(NffLighting::Povray),
-            _ => Err(format!(
-                "unknown NFF lighting `{name}`; expected one of {}",
-                NffLighting::NAMES
-            )),
-        }
-    }
-}
-
-impl fmt::Display for NffLighting {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            NffLighting::Readme => "readme",
-            NffLighting::Povray => "povray",
-        })
-    }
+/// Why `name` is no lighting's name.
+fn unknown_lighting(name: &str) -> String {
+    format!(
+        "unknown NFF lighting `{name}`; expected one of {}",
+        NffLighting::VARIANTS.join(", ")
+    )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use strum::IntoEnumIterator;
 
     #[test]
     fn readme_splits_light_as_the_spd_readme_suggests() {
@@ -87,10 +80,13 @@ mod tests {
 
     #[test]
     fn names_round_trip_and_unknown_names_are_errors() {
-        for l in [NffLighting::Readme, NffLighting::Povray] {
+        for l in NffLighting::iter() {
             assert_eq!(l.to_string().parse::<NffLighting>(), Ok(l));
         }
-        let err = "bright".parse::<NffLighting>().unwrap_err();
-        assert!(err.contains("readme, povray"), "{err}");
+        assert_eq!(NffLighting::VARIANTS, ["readme", "povray"]);
+        assert_eq!(
+            "bright".parse::<NffLighting>(),
+            Err("unknown NFF lighting `bright`; expected one of readme, povray".to_string())
+        );
     }
 }

@@ -16,9 +16,9 @@ mod tree;
 
 pub(crate) use teapot::utah_teapot;
 
-use std::fmt;
 use std::path::Path;
-use std::str::FromStr;
+
+use strum::VariantNames;
 
 use crate::formats::SceneError;
 use crate::formats::nff::{NffDocument, NffLighting};
@@ -27,8 +27,20 @@ use crate::scene::Scene;
 /// The prefix of built-in SPD scene names.
 pub const SCENE_PREFIX: &str = "spd:";
 
-/// One of the seven SPD benchmark databases.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+/// One of the seven SPD benchmark databases, named in lower case (`balls`).
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    Hash,
+    strum::Display,
+    strum::EnumString,
+    strum::EnumIter,
+    strum::VariantNames,
+)]
+#[strum(serialize_all = "lowercase", parse_err_ty = String, parse_err_fn = unknown_database)]
 pub enum Database {
     Balls,
     Gears,
@@ -40,28 +52,6 @@ pub enum Database {
 }
 
 impl Database {
-    pub const ALL: [Database; 7] = [
-        Database::Balls,
-        Database::Gears,
-        Database::Mount,
-        Database::Rings,
-        Database::Teapot,
-        Database::Tetra,
-        Database::Tree,
-    ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Database::Balls => "balls",
-            Database::Gears => "gears",
-            Database::Mount => "mount",
-            Database::Rings => "rings",
-            Database::Teapot => "teapot",
-            Database::Tetra => "tetra",
-            Database::Tree => "tree",
-        }
-    }
-
     /// The size factor whose ray statistics the SPD readme publishes (under 10,000 primitives).
     pub fn standard_size(self) -> u32 {
         match self {
@@ -90,8 +80,7 @@ impl Database {
     pub fn generate(self, size: u32) -> Result<NffDocument, String> {
         if !(1..=self.max_size()).contains(&size) {
             return Err(format!(
-                "the size of {} must be from 1 to {}, got {size}",
-                self.name(),
+                "the size of {self} must be from 1 to {}, got {size}",
                 self.max_size()
             ));
         }
@@ -107,27 +96,12 @@ impl Database {
     }
 }
 
-impl fmt::Display for Database {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Database {
-    type Err = String;
-
-    fn from_str(name: &str) -> Result<Self, String> {
-        Database::ALL
-            .into_iter()
-            .find(|d| d.name() == name)
-            .ok_or_else(|| {
-                let names: Vec<&str> = Database::ALL.iter().map(|d| d.name()).collect();
-                format!(
-                    "unknown SPD database `{name}`; expected one of {}",
-                    names.join(", ")
-                )
-            })
-    }
+/// Why `name` is no database's name.
+fn unknown_database(name: &str) -> String {
+    format!(
+        "unknown SPD database `{name}`; expected one of {}",
+        Database::VARIANTS.join(", ")
+    )
 }
 
 /// The database and size a built-in scene name asks for: `spd:NAME` (the standard size) or

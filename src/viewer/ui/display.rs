@@ -5,6 +5,7 @@
 
 use egui::{Color32, Slider, Stroke};
 use raylab::tone::{Tone, ToneCurve};
+use strum::IntoEnumIterator;
 
 use crate::viewer::display::quad::Display;
 use crate::viewer::input::action::Action;
@@ -87,10 +88,10 @@ pub fn section(ui: &mut egui::Ui, display: &mut DisplayControls, actions: &mut V
                     .text("exposure (stops)"),
             );
             egui::ComboBox::from_label("tone curve")
-                .selected_text(tone.curve.name())
+                .selected_text(tone.curve.to_string())
                 .show_ui(ui, |ui| {
-                    for curve in ToneCurve::ALL {
-                        ui.selectable_value(&mut tone.curve, curve, curve.name());
+                    for curve in ToneCurve::iter() {
+                        ui.selectable_value(&mut tone.curve, curve, curve.to_string());
                     }
                 });
             ui.horizontal(|ui| {

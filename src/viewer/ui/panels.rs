@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use egui::{Color32, DragValue, Slider};
 use raylab::inspect::{DebugView, Legend};
 use raylab::settings::{MAX_BLOCK_SIZE, MAX_CAUSTIC_GATHER, MAX_DEPTH_LIMIT, MAX_SAMPLES};
+use strum::IntoEnumIterator;
 
 use super::display::{self, DisplayControls};
 use super::{legend_bar, materials_panel};
@@ -215,10 +216,10 @@ fn tracing_section(
         .default_open(true)
         .show(ui, |ui| {
             egui::ComboBox::from_label("view")
-                .selected_text(controls.debug_view.name())
+                .selected_text(controls.debug_view.to_string())
                 .show_ui(ui, |ui| {
-                    for view in DebugView::ALL {
-                        ui.selectable_value(&mut controls.debug_view, view, view.name());
+                    for view in DebugView::iter() {
+                        ui.selectable_value(&mut controls.debug_view, view, view.to_string());
                     }
                 });
             if let Some(legend) = legend {
