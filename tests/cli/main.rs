@@ -1,0 +1,14 @@
+//! The `raylab` command as a user runs it: exit codes, messages, files written.
+
+#[path = "../common/mod.rs"]
+mod common;
+mod harness;
+
+mod camera;
+mod gen_and_bench;
+mod inspect;
+mod outputs;
+mod overrides;
+mod render;
+mod sequences;
+mod tone;

@@ -1,0 +1,270 @@
+//! The viewer's tools, each checked against the CPU: a clicked pixel's ray tree in the panel and
+//! over the image, debug views, exposure and tone curves (shown and saved alike), and a snapshot
+//! beside the live image.
+
+use std::path::Path;
+
+use raylab::bvh::Bvh;
+use raylab::color::to_srgb8;
+use raylab::formats::toml::default_scene;
+use raylab::inspect::{DebugView, RayTree, trace_ray_tree};
+use raylab::progressive;
+use raylab::scene::Scene;
+use raylab::whitted::{RayKind, Tracer};
+
+use crate::harness::{
+    cpu_render, cpu_render_view, image_rect, mismatches, run_to_screenshot, sized,
+};
+
+/// The screenshot's pixels inside the image area that differ (by more than 2 levels) from the
+/// CPU's image shown there at the same scale (nearest pixel), in window coordinates.
+fn differing_window_pixels(
+    screenshot: &Path,
+    rect: (f32, f32, f32, f32),
+    size: u32,
+    expected: &[u8],
+) -> Vec<(u32, u32)> {
+    let shot = image::open(screenshot).unwrap().to_rgb8();
+    let (x0, y0, w, h) = rect;
+    let mut differing = Vec::new();
+    for sy in y0 as u32..(y0 + h) as u32 {
+        for sx in x0 as u32..(x0 + w) as u32 {
+            let i = (((sx as f32 + 0.5 - x0) / w * size as f32) as u32).min(size - 1);
+            let j = (((sy as f32 + 0.5 - y0) / h * size as f32) as u32).min(size - 1);
+            let k = ((j * size + i) * 3) as usize;
+            let got = shot.get_pixel(sx, sy).0;
+            if (0..3).any(|c| got[c].abs_diff(expected[k + c]) > 2) {
+                differing.push((sx, sy));
+            }
+        }
+    }
+    differing
+}
+
+/// The pixel of the default scene at `size × size` with the largest ray tree (the first of
+/// them, row by row), and that tree.
+fn busiest_pixel(scene: &Scene, bvh: &Bvh, size: u32) -> RayTree {
+    let tracer = Tracer::new(scene, bvh);
+    let mut best: Option<RayTree> = None;
+    for y in 0..size {
+        for x in 0..size {
+            let tree = trace_ray_tree(&tracer, x, y);
+            if best
+                .as_ref()
+                .is_none_or(|b| tree.nodes.len() > b.nodes.len())
+            {
+                best = Some(tree);
+            }
+        }
+    }
+    best.unwrap()
+}
+
+/// The default scene rendered on the CPU at `size × size`, as linear colours.
+fn cpu_render_linear(size: u32) -> Vec<raylab::color::Color> {
+    let scene = default_scene().unwrap();
+    let (scene, bvh) = sized(&scene, size, scene.camera.spec);
+    progressive::render_image_with(&Tracer::new(&scene, &bvh), &DebugView::Shaded).0
+}
+
+#[test]
+fn a_click_on_a_pixel_shows_its_ray_tree_and_draws_it_over_the_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = 64;
+    let scene = default_scene().unwrap();
+    let (sized_scene, bvh) = sized(&scene, size, scene.camera.spec);
+    let tree = busiest_pixel(&sized_scene, &bvh, size);
+    assert!(tree.nodes.len() >= 3, "a pixel with secondary rays");
+    let (x, y) = tree.pixel;
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            &size.to_string(),
+            "--window",
+            "1000x600",
+            "--samples",
+            "1",
+            "--script",
+            &format!("wait; click {x} {y}; wait; print-tree"),
+        ],
+    ) else {
+        return;
+    };
+    // The panel's headings, in the tree's order, each indented by its depth.
+    let printed: Vec<&str> = run
+        .stdout
+        .lines()
+        .filter_map(|l| l.strip_prefix("tree: "))
+        .collect();
+    assert_eq!(
+        printed.len(),
+        tree.nodes.len(),
+        "stdout: {}\nstderr: {}",
+        run.stdout,
+        run.stderr
+    );
+    let mut order = vec![0];
+    let mut preorder = Vec::new();
+    while let Some(i) = order.pop() {
+        preorder.push(i);
+        order.extend(tree.nodes[i].children.iter().rev());
+    }
+    for (line, &i) in printed.iter().zip(&preorder) {
+        let node = &tree.nodes[i];
+        let indent = line.len() - line.trim_start().len();
+        assert_eq!(indent, 2 * (node.depth as usize - 1), "{line}");
+        let kind = match node.kind {
+            RayKind::Eye => "eye",
+            RayKind::Reflected => "reflected",
+            RayKind::Transmitted => "transmitted",
+        };
+        assert!(line.trim_start().starts_with(kind), "{line}: {kind}");
+        assert!(line.contains(&format!("depth {}", node.depth)), "{line}");
+        match &node.hit {
+            Some(hit) => assert!(line.contains(&hit.label), "{line}: {}", hit.label),
+            None => assert!(line.contains("miss"), "{line}"),
+        }
+    }
+    // The overlay: the image differs from the CPU's where the rays and the pixel's frame are
+    // drawn, and around the picked pixel.
+    let rect = image_rect(&run.stdout);
+    let expected = cpu_render(&scene, size, scene.camera.spec);
+    let differing = differing_window_pixels(&shot, rect, size, &expected);
+    assert!(!differing.is_empty(), "the overlay is drawn");
+    let scale = rect.2 / size as f32;
+    let centre = (
+        rect.0 + (x as f32 + 0.5) * scale,
+        rect.1 + (y as f32 + 0.5) * scale,
+    );
+    let near_pixel = |&(sx, sy): &(u32, u32)| {
+        (sx as f32 - centre.0).abs() <= scale + 2.0 && (sy as f32 - centre.1).abs() <= scale + 2.0
+    };
+    assert!(
+        differing.iter().any(near_pixel),
+        "the picked pixel is framed"
+    );
+    assert!(
+        differing.len() < (rect.2 * rect.3 / 4.0) as usize,
+        "the rest of the image is as rendered: {} pixels differ",
+        differing.len()
+    );
+}
+
+#[test]
+fn a_debug_view_chosen_in_the_viewer_renders_as_on_the_cpu() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = 64;
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            &size.to_string(),
+            "--samples",
+            "1",
+            "--view",
+            "depth",
+            "--stats",
+            "--script",
+            "wait; view normals; wait",
+        ],
+    ) else {
+        return;
+    };
+    // Refined to block size 1 in the depth view, then again in the normals view.
+    assert!(
+        run.stderr.matches("block size 1 at").count() >= 2,
+        "{}",
+        run.stderr
+    );
+    let scene = default_scene().unwrap();
+    let rect = image_rect(&run.stdout);
+    let normals = cpu_render_view(&scene, size, scene.camera.spec, DebugView::Normals);
+    assert_eq!(mismatches(&shot, rect, size, &normals), 0);
+    let shaded = cpu_render(&scene, size, scene.camera.spec);
+    assert!(mismatches(&shot, rect, size, &shaded) > (size * size / 4) as usize);
+}
+
+#[test]
+fn exposure_and_tone_curve_show_in_the_window_and_save_as_shown() {
+    use raylab::tone::{Tone, ToneCurve};
+    let dir = tempfile::tempdir().unwrap();
+    let saved = dir.path().join("saved.png");
+    let size = 64;
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            &size.to_string(),
+            "--save",
+            saved.to_str().unwrap(),
+            "--samples",
+            "1",
+            "--script",
+            "exposure 1.5; tonemap filmic; wait; save",
+        ],
+    ) else {
+        return;
+    };
+    let rect = image_rect(&run.stdout);
+    let saved_bytes = image::open(&saved).unwrap().to_rgb8().into_raw();
+    assert_eq!(saved_bytes.len(), (size * size * 3) as usize);
+    // What is saved is what the window shows.
+    assert_eq!(mismatches(&shot, rect, size, &saved_bytes), 0);
+    // And it is the library's tone mapping of the traced image.
+    let linear = cpu_render_linear(size);
+    let tone = Tone::new(1.5, ToneCurve::Filmic).unwrap();
+    assert_eq!(mismatches(&shot, rect, size, &tone.to_srgb8(&linear)), 0);
+    let plain = to_srgb8(&linear);
+    assert!(mismatches(&shot, rect, size, &plain) > (size * size / 4) as usize);
+}
+
+#[test]
+fn a_snapshot_shows_left_of_the_divider_and_the_live_image_right_of_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = 64;
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            &size.to_string(),
+            "--samples",
+            "1",
+            "--script",
+            "wait; snapshot; view normals; divider 0.5; wait",
+        ],
+    ) else {
+        return;
+    };
+    let scene = default_scene().unwrap();
+    let shaded = cpu_render(&scene, size, scene.camera.spec);
+    let normals = cpu_render_view(&scene, size, scene.camera.spec, DebugView::Normals);
+    // Left half the snapshot (shaded), right half the live normals; the top rows hold the
+    // labels, the divider runs between the halves' pixel centres.
+    let half = (size / 2) as usize;
+    let split: Vec<u8> = shaded
+        .chunks_exact(3)
+        .zip(normals.chunks_exact(3))
+        .enumerate()
+        .flat_map(|(i, (s, n))| if i % size as usize >= half { n } else { s }.to_vec())
+        .collect();
+    let shot_image = image::open(&shot).unwrap().to_rgb8();
+    let (x0, y0, w, h) = image_rect(&run.stdout);
+    let mut bad = 0;
+    for j in 4..size {
+        for i in 0..size {
+            let sx = (x0 + (i as f32 + 0.5) * w / size as f32) as u32;
+            let sy = (y0 + (j as f32 + 0.5) * h / size as f32) as u32;
+            let got = shot_image.get_pixel(sx, sy).0;
+            let k = ((j * size + i) * 3) as usize;
+            if (0..3).any(|c| got[c].abs_diff(split[k + c]) > 2) {
+                bad += 1;
+            }
+        }
+    }
+    assert_eq!(bad, 0, "the split view shows snapshot | live");
+    // Both halves are really there: the picture is neither all shaded nor all normals.
+    let rect = (x0, y0, w, h);
+    assert!(mismatches(&shot, rect, size, &shaded) > (size * size / 8) as usize);
+    assert!(mismatches(&shot, rect, size, &normals) > (size * size / 8) as usize);
+}

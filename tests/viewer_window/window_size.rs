@@ -1,0 +1,204 @@
+//! The image and the window's size: letterboxed in a resized window, fitted to the view area
+//! whatever the scene's size and rendered again when the window changes, and drawn in physical
+//! pixels on a HiDPI display.
+
+use std::path::Path;
+
+use raylab::bvh::Bvh;
+use raylab::color::to_srgb8;
+use raylab::formats::toml::default_scene;
+use raylab::progressive;
+use raylab::whitted::Tracer;
+
+use crate::harness::{
+    Run, cpu_render, differing, image_rect, mismatches, run_to_screenshot, run_viewer_watching,
+    shown_pixels,
+};
+
+/// The default scene rendered on the CPU at `width × height` with its own camera, as sRGB bytes.
+fn cpu_render_sized(width: u32, height: u32) -> Vec<u8> {
+    let mut scene = default_scene().unwrap();
+    scene.settings.width = width;
+    scene.settings.height = height;
+    let bvh = Bvh::build(&scene.geometry);
+    let (pixels, _) = progressive::render_image(&Tracer::new(&scene, &bvh));
+    to_srgb8(&pixels)
+}
+
+/// The pixels of the image shown 1:1 at `rect` in the screenshot that differ (by more than 2
+/// levels) from `expected`, an image of the rectangle's size.
+fn mismatches_one_to_one(screenshot: &Path, rect: (f32, f32, f32, f32), expected: &[u8]) -> usize {
+    differing(
+        &shown_pixels(screenshot, rect, (rect.2 as u32, rect.3 as u32)),
+        expected,
+    )
+}
+
+/// Where the fitted image sits in a window `window_width` wide: it must fill the view area (from
+/// the side panel to the right edge, from the top to the status line) at its own size.
+fn assert_fills_the_view_area(run: &Run, window_width: f32) -> (f32, f32, f32, f32) {
+    let (x, y, w, h) = image_rect(&run.stdout);
+    assert!(x > 0.0, "the side panel is on the left: {x}");
+    assert_eq!(
+        (y, x + w),
+        (0.0, window_width),
+        "no bars: {:?}",
+        (x, y, w, h)
+    );
+    let rendered = format!("block size 1 at {w}×{h}");
+    assert!(run.stderr.contains(&rendered), "{rendered}: {}", run.stderr);
+    (x, y, w, h)
+}
+
+#[test]
+fn a_resized_window_letterboxes_the_same_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = 64;
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--size",
+            &size.to_string(),
+            "--window",
+            "700x500",
+            "--samples",
+            "1",
+            "--script",
+            "wait; resize 480 640; wait",
+        ],
+    ) else {
+        return;
+    };
+    let image = image::open(&shot).unwrap();
+    assert_eq!(
+        (image.width(), image.height()),
+        (480, 640),
+        "the screenshot has the new size"
+    );
+    // Narrower than tall beside the panel: bars above and below, the image square.
+    let (x, y, w, h) = image_rect(&run.stdout);
+    assert_eq!(w, h);
+    assert!(y > 0.0 && x + w <= 480.0, "{:?}", (x, y, w, h));
+    let scene = default_scene().unwrap();
+    let expected = cpu_render(&scene, size, scene.camera.spec);
+    assert_eq!(mismatches(&shot, (x, y, w, h), size, &expected), 0);
+}
+
+#[test]
+fn a_hidpi_window_draws_in_physical_pixels() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("hidpi.png");
+    let size = 64;
+    let Some(run) = run_viewer_watching(
+        &[
+            "--size",
+            &size.to_string(),
+            "--window",
+            "560x360",
+            "--samples",
+            "1",
+            "--exit-when-done",
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ],
+        &[("WINIT_X11_SCALE_FACTOR", "2")],
+        |_, _| {},
+    ) else {
+        return;
+    };
+    run.assert_success();
+    let image = image::open(&shot).unwrap();
+    assert_eq!(
+        (image.width(), image.height()),
+        (1120, 720),
+        "twice the logical size"
+    );
+    let scene = default_scene().unwrap();
+    let expected = cpu_render(&scene, size, scene.camera.spec);
+    let rect = image_rect(&run.stdout);
+    assert!(
+        rect.2 > 2.0 * size as f32,
+        "the image fills the physical pixels: {rect:?}"
+    );
+    assert_eq!(mismatches(&shot, rect, size, &expected), 0);
+}
+
+#[test]
+fn the_viewer_starts_fitted_to_the_window_whatever_the_scenes_size() {
+    let dir = tempfile::tempdir().unwrap();
+    // The default scene says 640×480; the window's view area is another shape.
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &["--window", "700x500", "--samples", "1", "--stats"],
+    ) else {
+        return;
+    };
+    let rect = assert_fills_the_view_area(&run, 700.0);
+    assert!(
+        rect.3 > 400.0,
+        "all the height but the status line: {rect:?}"
+    );
+    // Shown 1:1, every pixel of the area the image's.
+    let expected = cpu_render_sized(rect.2 as u32, rect.3 as u32);
+    assert_eq!(mismatches_one_to_one(&shot, rect, &expected), 0);
+}
+
+#[test]
+fn a_scripted_resize_renders_again_at_the_new_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--window",
+            "700x500",
+            "--samples",
+            "1",
+            "--stats",
+            "--script",
+            "wait; resize 560 400; wait",
+        ],
+    ) else {
+        return;
+    };
+    let image = image::open(&shot).unwrap();
+    assert_eq!((image.width(), image.height()), (560, 400));
+    let rect = assert_fills_the_view_area(&run, 560.0);
+    // Refined to block size 1 at the first size, then again at the new one.
+    let sizes: Vec<&str> = run
+        .stderr
+        .lines()
+        .filter_map(|l| l.split("block size 1 at ").nth(1))
+        .map(|rest| rest.split_whitespace().next().unwrap())
+        .collect();
+    assert!(sizes.len() >= 2, "{}", run.stderr);
+    assert_ne!(sizes[0], sizes[sizes.len() - 1], "{sizes:?}");
+    let expected = cpu_render_sized(rect.2 as u32, rect.3 as u32);
+    assert_eq!(mismatches_one_to_one(&shot, rect, &expected), 0);
+}
+
+#[test]
+fn a_fitted_image_on_a_hidpi_window_has_its_physical_pixels() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("hidpi_fit.png");
+    let Some(run) = run_viewer_watching(
+        &[
+            "--window",
+            "560x360",
+            "--samples",
+            "1",
+            "--stats",
+            "--exit-when-done",
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ],
+        &[("WINIT_X11_SCALE_FACTOR", "2")],
+        |_, _| {},
+    ) else {
+        return;
+    };
+    run.assert_success();
+    // Rendered at the view area's physical size (twice its logical one), shown 1:1.
+    let rect = assert_fills_the_view_area(&run, 1120.0);
+    let expected = cpu_render_sized(rect.2 as u32, rect.3 as u32);
+    assert_eq!(mismatches_one_to_one(&shot, rect, &expected), 0);
+}
