@@ -6,11 +6,10 @@
 use std::time::{Duration, Instant};
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use raylab::bvh::Bvh;
 use raylab::film::Film;
 use raylab::formats::toml::default_scene;
 use raylab::progressive::{self, RenderControl, Shaded};
-use raylab::whitted::Tracer;
+use raylab::render::assemble;
 
 fn cancel(c: &mut Criterion) {
     let (width, height) = (1200, 1200);
@@ -19,8 +18,8 @@ fn cancel(c: &mut Criterion) {
     scene.settings.height = height;
     scene.settings.block_size = 1;
     scene.settings.samples = 64;
-    let bvh = Bvh::build(&scene.geometry);
-    let tracer = Tracer::new(&scene, &bvh);
+    let assembled = assemble(scene).expect("the built-in scene has no caustics to shoot");
+    let tracer = assembled.tracer();
     let mut group = c.benchmark_group("progressive");
     // Only the stopping is timed, yet each iteration also starts a render and waits for its
     // first band: keep the measured time short.

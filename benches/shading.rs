@@ -4,26 +4,31 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use raylab::bvh::Bvh;
 use raylab::camera::PIXEL_CENTRE;
 use raylab::formats::toml::default_scene;
 use raylab::progressive;
+use raylab::render::assemble;
 use raylab::stats::RayCounts;
-use raylab::whitted::Tracer;
 
 fn shading(c: &mut Criterion) {
     let mut scene = default_scene().expect("the built-in scene loads");
     scene.settings.width = 128;
     scene.settings.height = 128;
-    let bvh = Bvh::build(&scene.geometry);
-    let tracer = Tracer::new(&scene, &bvh);
+    let assembled = assemble(scene).expect("the built-in scene has no caustics to shoot");
+    let tracer = assembled.tracer();
     // A pixel on the glass sphere: reflected, refracted and shadow rays several levels deep.
-    let glass = scene.camera.eye_ray((66, 87), PIXEL_CENTRE, (128, 128));
+    let glass = tracer
+        .scene
+        .camera
+        .eye_ray((66, 87), PIXEL_CENTRE, (128, 128));
     c.bench_function("shade one pixel (glass sphere, default scene)", |b| {
         b.iter(|| tracer.trace_eye(black_box(&glass), &mut RayCounts::default()))
     });
     // A pixel on the floor: one eye ray, two shadow rays, one reflected ray.
-    let floor = scene.camera.eye_ray((20, 121), PIXEL_CENTRE, (128, 128));
+    let floor = tracer
+        .scene
+        .camera
+        .eye_ray((20, 121), PIXEL_CENTRE, (128, 128));
     c.bench_function("shade one pixel (floor, default scene)", |b| {
         b.iter(|| tracer.trace_eye(black_box(&floor), &mut RayCounts::default()))
     });

@@ -4,11 +4,10 @@
 
 use std::path::Path;
 
-use raylab::bvh::Bvh;
 use raylab::formats::load_any_with;
 use raylab::formats::nff::NffLighting;
 use raylab::progressive::render_image;
-use raylab::whitted::Tracer;
+use raylab::render::assemble;
 
 /// Each SPD generator, at the size of the reference.
 const SCENES: [&str; 7] = [
@@ -27,8 +26,7 @@ fn difference_from_povray(name: &str, lighting: NffLighting) -> f64 {
     let mut scene = load_any_with(&spd, lighting).unwrap_or_else(|e| panic!("{e}"));
     scene.settings.width = reference.width();
     scene.settings.height = reference.height();
-    let bvh = Bvh::build(&scene.geometry);
-    let (pixels, _) = render_image(&Tracer::new(&scene, &bvh));
+    let (pixels, _) = render_image(&assemble(scene).unwrap().tracer());
     let sum: f64 = pixels
         .iter()
         .zip(reference.pixels())

@@ -141,10 +141,9 @@ fn render_view_writes_the_debug_view_and_its_legend() {
 fn render_writes_the_image_a_pass_by_pass_render_ends_with() {
     // `raylab render` traces every pixel in one sweep, not block size by block size as the
     // viewer does: the same pixels to the bit, with uniform or adaptive anti-aliasing.
-    use raylab::bvh::Bvh;
     use raylab::formats::toml::default_scene;
     use raylab::progressive::render_image;
-    use raylab::whitted::Tracer;
+    use raylab::render::assemble;
     let dir = tempfile::tempdir().unwrap();
     for (samples, threshold) in [(4, 0.0), (8, 0.02)] {
         let flags = [
@@ -172,8 +171,7 @@ fn render_writes_the_image_a_pass_by_pass_render_ends_with() {
         let mut scene = default_scene().unwrap();
         let s = &mut scene.settings;
         (s.width, s.height, s.samples, s.aa_threshold) = (40, 30, samples, threshold);
-        let bvh = Bvh::build(&scene.geometry);
-        let (pixels, stats) = render_image(&Tracer::new(&scene, &bvh));
+        let (pixels, stats) = render_image(&assemble(scene).unwrap().tracer());
         assert!(stats.passes.len() > 5, "block passes and more samples");
         let expected: Vec<f32> = pixels.iter().flat_map(|c| c.to_array()).collect();
         assert!(

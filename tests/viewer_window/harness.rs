@@ -10,13 +10,12 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use glam::Vec3;
-use raylab::bvh::Bvh;
 use raylab::camera::{Camera, CameraSpec};
 use raylab::color::to_srgb8;
 use raylab::inspect::DebugView;
 use raylab::progressive;
+use raylab::render::{Assembled, assemble};
 use raylab::scene::Scene;
-use raylab::whitted::Tracer;
 
 /// One viewer at a time: they share two cores, and parallel `xvfb-run -a` can race for a display.
 static DISPLAY_LOCK: Mutex<()> = Mutex::new(());
@@ -214,20 +213,18 @@ pub fn printed_camera(stdout: &str) -> CameraSpec {
     }
 }
 
-/// The scene at `size × size` seen with `camera`, and its BVH.
-pub fn sized(scene: &Scene, size: u32, camera: CameraSpec) -> (Scene, Bvh) {
+/// The scene at `size × size` seen with `camera`, assembled for rendering.
+pub fn sized(scene: &Scene, size: u32, camera: CameraSpec) -> Assembled {
     let mut scene = scene.clone();
     scene.settings.width = size;
     scene.settings.height = size;
     scene.camera = Camera::new(camera).unwrap();
-    let bvh = Bvh::build(&scene.geometry);
-    (scene, bvh)
+    assemble(scene).unwrap()
 }
 
 /// `view` of the scene rendered on the CPU at `size × size` with `camera`, as sRGB bytes.
 pub fn cpu_render_view(scene: &Scene, size: u32, camera: CameraSpec, view: DebugView) -> Vec<u8> {
-    let (scene, bvh) = sized(scene, size, camera);
-    let (pixels, _) = progressive::render_image_with(&Tracer::new(&scene, &bvh), &view);
+    let (pixels, _) = progressive::render_image_with(&sized(scene, size, camera).tracer(), &view);
     to_srgb8(&pixels)
 }
 

@@ -7,7 +7,6 @@ use std::process::Command;
 use raylab::color::to_srgb8;
 use raylab::formats::toml::default_scene;
 use raylab::progressive;
-use raylab::whitted::Tracer;
 
 use crate::harness::{
     cpu_render, image_rect, mismatches, printed_camera, run_to_screenshot, shown_pixels, sized,
@@ -17,9 +16,10 @@ use crate::harness::{
 /// `aa_threshold`, as sRGB bytes.
 fn cpu_render_sampled(size: u32, samples: u32, aa_threshold: f32) -> Vec<u8> {
     let scene = default_scene().unwrap();
-    let (mut scene, bvh) = sized(&scene, size, scene.camera.spec);
-    (scene.settings.samples, scene.settings.aa_threshold) = (samples, aa_threshold);
-    to_srgb8(&progressive::render_image(&Tracer::new(&scene, &bvh)).0)
+    let mut assembled = sized(&scene, size, scene.camera.spec);
+    let settings = &mut assembled.scene.settings;
+    (settings.samples, settings.aa_threshold) = (samples, aa_threshold);
+    to_srgb8(&progressive::render_image(&assembled.tracer()).0)
 }
 
 /// Root mean square difference of two sRGB images, on a 0–1 scale.

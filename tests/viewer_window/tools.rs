@@ -4,13 +4,12 @@
 
 use std::path::Path;
 
-use raylab::bvh::Bvh;
 use raylab::color::to_srgb8;
 use raylab::formats::toml::default_scene;
 use raylab::inspect::{DebugView, RayTree, trace_ray_tree};
 use raylab::progressive;
-use raylab::scene::Scene;
-use raylab::whitted::{RayKind, Tracer};
+use raylab::render::Assembled;
+use raylab::whitted::RayKind;
 
 use crate::harness::{
     cpu_render, cpu_render_view, image_rect, mismatches, run_to_screenshot, sized,
@@ -43,8 +42,8 @@ fn differing_window_pixels(
 
 /// The pixel of the default scene at `size × size` with the largest ray tree (the first of
 /// them, row by row), and that tree.
-fn busiest_pixel(scene: &Scene, bvh: &Bvh, size: u32) -> RayTree {
-    let tracer = Tracer::new(scene, bvh);
+fn busiest_pixel(assembled: &Assembled, size: u32) -> RayTree {
+    let tracer = assembled.tracer();
     let mut best: Option<RayTree> = None;
     for y in 0..size {
         for x in 0..size {
@@ -63,8 +62,8 @@ fn busiest_pixel(scene: &Scene, bvh: &Bvh, size: u32) -> RayTree {
 /// The default scene rendered on the CPU at `size × size`, as linear colours.
 fn cpu_render_linear(size: u32) -> Vec<raylab::color::Color> {
     let scene = default_scene().unwrap();
-    let (scene, bvh) = sized(&scene, size, scene.camera.spec);
-    progressive::render_image_with(&Tracer::new(&scene, &bvh), &DebugView::Shaded).0
+    let assembled = sized(&scene, size, scene.camera.spec);
+    progressive::render_image_with(&assembled.tracer(), &DebugView::Shaded).0
 }
 
 #[test]
@@ -72,8 +71,8 @@ fn a_click_on_a_pixel_shows_its_ray_tree_and_draws_it_over_the_image() {
     let dir = tempfile::tempdir().unwrap();
     let size = 64;
     let scene = default_scene().unwrap();
-    let (sized_scene, bvh) = sized(&scene, size, scene.camera.spec);
-    let tree = busiest_pixel(&sized_scene, &bvh, size);
+    let sized_scene = sized(&scene, size, scene.camera.spec);
+    let tree = busiest_pixel(&sized_scene, size);
     assert!(tree.nodes.len() >= 3, "a pixel with secondary rays");
     let (x, y) = tree.pixel;
     let Some((run, shot)) = run_to_screenshot(

@@ -4,11 +4,10 @@
 
 use std::path::Path;
 
-use raylab::bvh::Bvh;
 use raylab::color::to_srgb8;
 use raylab::formats::toml::default_scene;
 use raylab::progressive;
-use raylab::whitted::Tracer;
+use raylab::render::assemble;
 
 use crate::harness::{
     Run, cpu_render, differing, image_rect, mismatches, run_to_screenshot, run_viewer_watching,
@@ -20,8 +19,7 @@ fn cpu_render_sized(width: u32, height: u32) -> Vec<u8> {
     let mut scene = default_scene().unwrap();
     scene.settings.width = width;
     scene.settings.height = height;
-    let bvh = Bvh::build(&scene.geometry);
-    let (pixels, _) = progressive::render_image(&Tracer::new(&scene, &bvh));
+    let (pixels, _) = progressive::render_image(&assemble(scene).unwrap().tracer());
     to_srgb8(&pixels)
 }
 
