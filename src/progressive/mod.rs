@@ -15,16 +15,17 @@
 //!   can join in any round (its neighbour changed), and flat regions keep their one sample.
 //!
 //! Either way the image depends only on the settings: samples are numbered and placed by the
-//! pixel ([`jitter`]), and a round decides from a snapshot of the film taken between passes, so
-//! the threads' order does not matter. A pixel given all `samples` samples by the adaptive rounds
-//! is exactly the uniform render's pixel.
+//! pixel ([`jitter`](crate::sampling::jitter)), and a round decides from a snapshot of the film
+//! taken between passes, so the threads' order does not matter. A pixel given all `samples`
+//! samples by the adaptive rounds is exactly the uniform render's pixel.
 //!
-//! A film can be a window of the image ([`Film::window`]): its pixels are traced as the image's
-//! pixels at their place. A tile of an image renders the same as in the whole image if its film
-//! reaches [`decision_reach`] pixels further on every side (where the image has them): each
-//! adaptive round decides from the four neighbours as they were after the round before, so
-//! after `r` rounds a pixel depends on the first sweep's colours up to `r` pixels away, and a
-//! window's edge, which has no neighbours beyond it, disturbs only the pixels within `r` of it.
+//! A film can be a window of the image ([`Film::window`](crate::film::Film::window)): its pixels
+//! are traced as the image's pixels at their place. A tile of an image renders the same as in
+//! the whole image if its film reaches [`decision_reach`] pixels further on every side (where the
+//! image has them): each adaptive round decides from the four neighbours as they were after the
+//! round before, so after `r` rounds a pixel depends on the first sweep's colours up to `r`
+//! pixels away, and a window's edge, which has no neighbours beyond it, disturbs only the pixels
+//! within `r` of it.
 //!
 //! A render nobody watches before it ends (to a file) needs none of the coarse passes: it traces
 //! every pixel, with all its samples under uniform sampling, in one sweep ([`unwatched_passes`],
