@@ -48,9 +48,9 @@ pub struct Controls {
     /// The scene's lights, index for index, as the Lights panel edits them (before
     /// `light_scale`).
     pub lights: Vec<Light>,
-    /// The viewer picks the starting block size from the tracing speed
-    /// ([`crate::viewer::workers::start_block`]); otherwise refinement starts at the settings'
-    /// `block_size` (given on the command line or chosen in the panel).
+    /// The viewer picks the starting block size from the tracing speed it measures; otherwise
+    /// refinement starts at the settings' `block_size` (given on the command line or chosen in
+    /// the panel).
     pub auto_block: bool,
 }
 
