@@ -29,10 +29,12 @@
 //!   [`progressive`] refines pass after pass (the plan and control of any backend, the CPU
 //!   sweep on all cores), each pixel sample coloured by a [`progressive::Shader`] (the shaded
 //!   image is [`progressive::Shaded`]); [`formats::image`] saves it.
+//! - The GPU ([`gpu`], under the `gpu` feature): the GPU tracer's parts, each the twin of a CPU
+//!   part above and tested against it.
 //! - Looking inside: [`inspect`] records one pixel's ray tree with a tree observer and renders
 //!   debug views as shaders of the same renderer. Nothing above depends on it.
 //!
-//! Nothing here knows about windows or GPUs.
+//! Nothing here knows about windows, and only [`gpu`] about GPUs.
 
 pub mod aabb;
 pub mod bvh;
@@ -40,6 +42,8 @@ pub mod camera;
 pub mod color;
 pub mod film;
 pub mod formats;
+#[cfg(feature = "gpu")]
+pub mod gpu;
 pub mod inspect;
 pub mod large_mesh;
 pub mod light;

@@ -1,0 +1,62 @@
+//! A GPU for computing, without any window: the adapter `WGPU_BACKEND` and `WGPU_ADAPTER_NAME`
+//! choose (as wgpu reads them), or the best one there is, and its device opened with every limit
+//! the adapter offers.
+
+/// An adapter, its device and queue.
+pub struct GpuDevice {
+    pub adapter: wgpu::Adapter,
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+}
+
+/// What to install where no adapter is found.
+pub const INSTALL_HINT: &str = "without a GPU, install Mesa's software Vulkan (Debian: \
+                                apt-get install mesa-vulkan-drivers libvulkan1)";
+
+impl GpuDevice {
+    /// Opens the GPU; the error says what was looked for and what to install.
+    pub fn new() -> Result<GpuDevice, String> {
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        pollster::block_on(async {
+            let adapter = wgpu::util::initialize_adapter_from_env_or_default(&instance, None)
+                .await
+                .map_err(|e| format!("no GPU adapter found ({e}); {INSTALL_HINT}"))?;
+            let (device, queue) = adapter
+                .request_device(&wgpu::DeviceDescriptor {
+                    label: Some("raylab compute"),
+                    required_limits: adapter.limits(),
+                    ..Default::default()
+                })
+                .await
+                .map_err(|e| format!("cannot open the GPU device: {e}"))?;
+            Ok(GpuDevice {
+                adapter,
+                device,
+                queue,
+            })
+        })
+    }
+
+    /// The adapter's name and backend, as `raylab` names the device it traces on.
+    pub fn name(&self) -> String {
+        let info = self.adapter.get_info();
+        format!("{} ({})", info.name, info.backend)
+    }
+
+    /// Checks that a storage buffer of `bytes` for `what` fits the device's limits; the error
+    /// says how much it needs and how much the GPU allows.
+    pub fn check_storage(&self, what: &str, bytes: u64) -> Result<(), String> {
+        let limits = self.device.limits();
+        let allowed = limits
+            .max_storage_buffer_binding_size
+            .min(limits.max_buffer_size);
+        if bytes <= allowed {
+            Ok(())
+        } else {
+            Err(format!(
+                "{what} need {bytes} bytes on the GPU, which allows {allowed} bytes in one buffer"
+            ))
+        }
+    }
+}
