@@ -84,9 +84,10 @@ pub fn first_hits(
         return Ok(rays.iter().map(miss).collect());
     }
     let spheres: Vec<GpuSphere> = spheres.iter().map(GpuSphere::from).collect();
-    let hits_bytes = std::mem::size_of_val(rays) as u64 / 4;
+    let hits_bytes = (rays.len() * std::mem::size_of::<GpuHit>()) as u64;
     gpu.check_storage("the spheres", std::mem::size_of_val(&spheres[..]) as u64)?;
     gpu.check_storage("the rays", std::mem::size_of_val(rays) as u64)?;
+    gpu.check_storage("their hits", hits_bytes)?;
     let groups = (rays.len() as u64).div_ceil(u64::from(WORKGROUP));
     let max_groups = u64::from(gpu.device.limits().max_compute_workgroups_per_dimension);
     if groups > max_groups {
