@@ -1,6 +1,6 @@
 //! A GPU for computing, without any window: the adapter `WGPU_BACKEND` and `WGPU_ADAPTER_NAME`
 //! choose (as wgpu reads them), or the best one there is, and its device opened with every limit
-//! the adapter offers.
+//! the adapter offers; and reading back what the GPU wrote.
 
 /// An adapter, its device and queue.
 pub struct GpuDevice {
@@ -59,4 +59,28 @@ impl GpuDevice {
             ))
         }
     }
+}
+
+/// The bytes of a buffer made with `MAP_READ`, once the GPU has finished writing it (waits for
+/// the work submitted so far).
+pub fn read_buffer(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>, String> {
+    let slice = buffer.slice(..);
+    let (sender, receiver) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |result| {
+        let _ = sender.send(result);
+    });
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| format!("the GPU did not finish: {e}"))?;
+    receiver
+        .recv()
+        .map_err(|e| format!("the read-back never finished: {e}"))?
+        .map_err(|e| format!("cannot map the read-back buffer: {e}"))?;
+    let mapped = slice
+        .get_mapped_range()
+        .map_err(|e| format!("cannot read the read-back buffer: {e}"))?;
+    let bytes = mapped.to_vec();
+    drop(mapped);
+    buffer.unmap();
+    Ok(bytes)
 }

@@ -6,7 +6,7 @@
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
-use super::device::GpuDevice;
+use super::device::{GpuDevice, read_buffer};
 use crate::ray::Ray;
 use crate::shapes::Sphere;
 
@@ -157,28 +157,6 @@ pub fn first_hits(
     }
     encoder.copy_buffer_to_buffer(&hit_buffer, 0, &read_back, 0, hits_bytes);
     gpu.queue.submit([encoder.finish()]);
-    read_buffer(gpu, &read_back)
-}
-
-/// The contents of a mappable buffer, once the GPU has written it.
-fn read_buffer<T: Pod>(gpu: &GpuDevice, buffer: &wgpu::Buffer) -> Result<Vec<T>, String> {
-    let slice = buffer.slice(..);
-    let (sender, receiver) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |result| {
-        let _ = sender.send(result);
-    });
-    gpu.device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| format!("the GPU did not finish: {e}"))?;
-    receiver
-        .recv()
-        .map_err(|e| format!("the read-back never finished: {e}"))?
-        .map_err(|e| format!("cannot map the read-back buffer: {e}"))?;
-    let mapped = slice
-        .get_mapped_range()
-        .map_err(|e| format!("cannot read the read-back buffer: {e}"))?;
-    let values = bytemuck::cast_slice(&mapped).to_vec();
-    drop(mapped);
-    buffer.unmap();
-    Ok(values)
+    let bytes = read_buffer(&gpu.device, &read_back)?;
+    Ok(bytemuck::pod_collect_to_vec(&bytes))
 }

@@ -4,6 +4,8 @@
 
 use std::path::Path;
 
+use raylab::gpu::device::read_buffer;
+
 use super::device::Gpu;
 use super::painter::{FrameContent, Painter};
 
@@ -87,27 +89,11 @@ pub fn read_texture(
         texture.size(),
     );
     queue.submit([encoder.finish()]);
-    let slice = buffer.slice(..);
-    let (sender, receiver) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |result| {
-        let _ = sender.send(result);
-    });
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| format!("the GPU did not finish: {e}"))?;
-    receiver
-        .recv()
-        .map_err(|e| format!("the read-back never finished: {e}"))?
-        .map_err(|e| format!("cannot map the read-back buffer: {e}"))?;
-    let mapped = slice
-        .get_mapped_range()
-        .map_err(|e| format!("cannot read the read-back buffer: {e}"))?;
+    let bytes = read_buffer(device, &buffer)?;
     let mut rgba = Vec::with_capacity((row_bytes * height) as usize);
-    for row in mapped.chunks(padded_row as usize) {
+    for row in bytes.chunks(padded_row as usize) {
         rgba.extend_from_slice(&row[..row_bytes as usize]);
     }
-    drop(mapped);
-    buffer.unmap();
     if swap_red_blue {
         for pixel in rgba.chunks_exact_mut(4) {
             pixel.swap(0, 2);
