@@ -316,6 +316,11 @@ impl Geometry {
         }
     }
 
+    /// The mesh that triangle `t` belongs to (its index in [`Self::meshes`]) and its face there.
+    pub fn triangle_face(&self, t: usize) -> (usize, u32) {
+        (self.mesh_index(t), self.triangle_faces[t])
+    }
+
     /// The index of the mesh that triangle `t` belongs to.
     fn mesh_index(&self, t: usize) -> usize {
         let later = self

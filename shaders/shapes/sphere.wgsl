@@ -1,27 +1,28 @@
-// Spheres: the twin of `Sphere::intersect` in src/shapes/sphere.rs, step for step, so that the
-// GPU finds the same crossings as the CPU.
+// Spheres: the twin of src/shapes/sphere.rs, step for step, so that the GPU finds the same
+// crossings as the CPU.
+
+const PI: f32 = 3.14159265358979;
 
 struct Sphere {
     center: vec3<f32>,
     radius: f32,
 }
 
-// A crossing of a ray with a shape: `found` is false where there is none in the range asked.
-struct ShapeHit {
-    t: f32,
-    found: bool,
+fn load_sphere(first: u32) -> Sphere {
+    let w = shape_words[first];
+    return Sphere(w.xyz, w.w);
 }
 
 // The first of the sorted roots (t0, t1) in (t_min, t_max): `first_root_in` in
 // src/shapes/quadratic.rs.
 fn first_root_in(t0: f32, t1: f32, t_min: f32, t_max: f32) -> ShapeHit {
     if t0 > t_min && t0 < t_max {
-        return ShapeHit(t0, true);
+        return ShapeHit(t0, 0u, true);
     }
     if t1 > t_min && t1 < t_max {
-        return ShapeHit(t1, true);
+        return ShapeHit(t1, 0u, true);
     }
-    return ShapeHit(0.0, false);
+    return no_hit();
 }
 
 // `x` with the sign bit of `s`, as Rust's `f32::copysign` (which tells −0 from +0).
@@ -29,8 +30,8 @@ fn copysign(x: f32, s: f32) -> f32 {
     return bitcast<f32>((bitcast<u32>(x) & 0x7fffffffu) | (bitcast<u32>(s) & 0x80000000u));
 }
 
-// Solves |o + d·t − c|² = r² with the discriminant computed as r² − |f|², f = oc − (oc·d / d·d)·d,
-// which stays accurate for spheres far from the ray's origin.
+// `Sphere::intersect`: solves |o + d·t − c|² = r² with the discriminant computed as r² − |f|²,
+// f = oc − (oc·d / d·d)·d, which stays accurate for spheres far from the ray's origin.
 fn intersect_sphere(s: Sphere, origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max: f32) -> ShapeHit {
     let oc = origin - s.center;
     let a = dot(dir, dir);
@@ -39,7 +40,7 @@ fn intersect_sphere(s: Sphere, origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_
     let f = oc - (half_b / a) * dir;
     let disc = a * (s.radius * s.radius - dot(f, f));
     if disc < 0.0 {
-        return ShapeHit(0.0, false);
+        return no_hit();
     }
     let q = -(half_b + copysign(sqrt(disc), half_b));
     var t0 = 0.0;
@@ -54,4 +55,17 @@ fn intersect_sphere(s: Sphere, origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_
         }
     }
     return first_root_in(t0, t1, t_min, t_max);
+}
+
+// `Sphere::surface`: the normal, and the spherical mapping (`sphere_uv`): u around the vertical
+// axis, v from the south pole (0) to the north pole (1).
+fn sphere_surface(s: Sphere, p: vec3<f32>) -> LocalSurface {
+    let n = (p - s.center) / s.radius;
+    var d = vec3<f32>(0.0, 1.0, 0.0);
+    if dot(n, n) > 0.0 {
+        d = normalize(n);
+    }
+    let u = 0.5 + atan2(d.x, d.z) / (2.0 * PI);
+    let v = 0.5 + asin(clamp(d.y, -1.0, 1.0)) / PI;
+    return LocalSurface(n, vec2<f32>(u, v));
 }

@@ -37,10 +37,13 @@
 //!
 //! The plan ([`plan`]: the passes and the samples each takes) and the control ([`control`]:
 //! cancel, pause, progress, statistics) belong to no device; [`cpu`] sweeps the passes on all
-//! of rayon's threads, the eye rays of each 8 × 8 tile traced together.
+//! of rayon's threads, the eye rays of each 8 × 8 tile traced together; [`gpu`] (with the `gpu`
+//! feature) traces the same passes' samples on the GPU.
 
 pub mod control;
 pub mod cpu;
+#[cfg(feature = "gpu")]
+pub mod gpu;
 pub mod plan;
 
 pub use control::{Cancelled, PassStats, Progress, RenderControl, RenderStats, run_plan};

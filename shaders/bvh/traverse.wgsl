@@ -1,0 +1,208 @@
+// The BVH's walk: the twin of `Bvh::walk` in src/bvh/traverse.rs over the CPU's eight-wide
+// nodes (src/gpu/bvh.rs copies them), the leaves' tests of src/bvh/leaf.rs, and the closest-hit
+// and shadow searches built on them (`Bvh::closest_hit`, `Bvh::any_hit`). The unbounded objects
+// (planes) are tested first, against every ray.
+
+const WIDTH: u32 = 8u;
+const INTERIOR: u32 = 0xffffffffu;
+const TRIANGLE_LEAF: u32 = 0x40000000u;
+// Entries of the walk's stack: a visited node leaves at most seven siblings waiting, so a tree
+// up to STACK_SIZE / 7 levels deep fits (src/gpu/scene.rs refuses deeper ones).
+const STACK_SIZE: u32 = 128u;
+// The far end of a ray that runs on for ever: the largest float, as the CPU clamps its limit.
+const T_FAR: f32 = 3.40282347e38;
+
+// `WideNode`: eight children's boxes, axis by axis, and where each child is.
+struct WideNode {
+    lo: array<array<f32, 8>, 3>,
+    hi: array<array<f32, 8>, 3>,
+    first: array<u32, 8>,
+    count: array<u32, 8>,
+}
+
+// `PrimId`: an object's index with the top bit set, or a triangle's index.
+const OBJECT_BIT: u32 = 0x80000000u;
+
+// The closest hit found so far along a ray: `Hit` in src/primitive.rs.
+struct Hit {
+    t: f32,
+    prim: u32,
+    part: u32,
+    // For a triangle: where it lies in `triangles` and `triangle_shading`.
+    slot: u32,
+    bary: vec2<f32>,
+    found: bool,
+}
+
+// A ray with what its box and triangle tests need, prepared once.
+struct WalkRay {
+    origin: vec3<f32>,
+    dir: vec3<f32>,
+    // `RayBoxTest::inv_dir`: ±0 components give the largest float of their sign.
+    inv_dir: vec3<f32>,
+    sheared: ShearedRay,
+}
+
+fn walk_ray(origin: vec3<f32>, dir: vec3<f32>) -> WalkRay {
+    var inv_dir = vec3<f32>(0.0);
+    for (var axis = 0u; axis < 3u; axis++) {
+        if dir[axis] == 0.0 {
+            inv_dir[axis] = copysign(T_FAR, dir[axis]);
+        } else {
+            inv_dir[axis] = 1.0 / dir[axis];
+        }
+    }
+    return WalkRay(origin, dir, inv_dir, shear_ray(origin, dir));
+}
+
+// The slab test of child `k` of `node` (`Aabb::entry`): the entry distance, or -1 for a miss.
+fn enter_child(node: WideNode, k: u32, ray: WalkRay, t_min: f32, t_max: f32) -> f32 {
+    let lo = vec3<f32>(node.lo[0][k], node.lo[1][k], node.lo[2][k]);
+    let hi = vec3<f32>(node.hi[0][k], node.hi[1][k], node.hi[2][k]);
+    let t0 = (lo - ray.origin) * ray.inv_dir;
+    let t1 = (hi - ray.origin) * ray.inv_dir;
+    let near_axes = min(t0, t1);
+    let far_axes = max(t0, t1);
+    let near = max(max(max(near_axes.x, near_axes.y), near_axes.z), t_min);
+    let far = min(min(min(far_axes.x, far_axes.y), far_axes.z), t_max);
+    if near <= far {
+        return near;
+    }
+    return -1.0;
+}
+
+// What a walk looks for: the closest hit, or what a shadow ray lets through.
+const FIND_CLOSEST: u32 = 0u;
+const FIND_SHADOW: u32 = 1u;
+
+// What a walk found: the closest hit, or the product of the tints of what the shadow ray met.
+struct WalkResult {
+    hit: Hit,
+    passed: vec3<f32>,
+}
+
+// Meets the primitive of `hit`: the closest search keeps it and shrinks the ray's range, the
+// shadow search takes its tint. Returns whether the walk can stop (nothing gets through).
+fn meet(hit: Hit, find: u32, result: ptr<function, WalkResult>, t_max: ptr<function, f32>) -> bool {
+    if find == FIND_CLOSEST {
+        (*result).hit = hit;
+        *t_max = hit.t;
+        return false;
+    }
+    (*result).passed *= tint(hit);
+    return all((*result).passed == vec3<f32>(0.0));
+}
+
+// Tests the `count` objects listed in `refs` from `first`; returns whether the walk can stop.
+fn visit_objects(first: u32, count: u32, ray: WalkRay, t_min: f32, find: u32, result: ptr<function, WalkResult>, t_max: ptr<function, f32>) -> bool {
+    for (var i = first; i < first + count; i++) {
+        let index = refs[i];
+        let h = intersect_object(objects[index], ray.origin, ray.dir, t_min, *t_max);
+        if h.found && meet(Hit(h.t, index | OBJECT_BIT, h.part, 0u, vec2<f32>(0.0), true), find, result, t_max) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// Tests the `count` triangles from `first`; returns whether the walk can stop.
+fn visit_triangles(first: u32, count: u32, ray: WalkRay, t_min: f32, find: u32, result: ptr<function, WalkResult>, t_max: ptr<function, f32>) -> bool {
+    for (var i = first; i < first + count; i++) {
+        let tri = triangles[i];
+        let h = intersect_triangle(tri, ray.sheared, t_min, *t_max);
+        if h.found && meet(Hit(h.t, tri.index, 0u, i, h.bary, true), find, result, t_max) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// The walk: the unbounded objects, then the tree, nearest child first for the closest hit (a
+// hit prunes what lies beyond it), in slot order for a shadow ray (which must meet everything
+// in its range unless something opaque stops it).
+fn walk(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max_in: f32, find: u32) -> WalkResult {
+    var result = WalkResult(Hit(t_max_in, 0u, 0u, 0u, vec2<f32>(0.0), false), vec3<f32>(1.0));
+    let ray = walk_ray(origin, dir);
+    var t_max = min(t_max_in, T_FAR);
+    if visit_objects(frame.unbounded_first, frame.unbounded, ray, t_min, find, &result, &t_max) {
+        return result;
+    }
+    if frame.node_count == 0u {
+        return result;
+    }
+    var stack_first: array<u32, STACK_SIZE>;
+    var stack_count: array<u32, STACK_SIZE>;
+    var stack_t: array<f32, STACK_SIZE>;
+    var size = 0u;
+    var next_first = 0u;
+    var next_count = INTERIOR;
+    loop {
+        if next_count != INTERIOR {
+            var stop = false;
+            if (next_count & TRIANGLE_LEAF) != 0u {
+                stop = visit_triangles(next_first, next_count & ~TRIANGLE_LEAF, ray, t_min, find, &result, &t_max);
+            } else {
+                stop = visit_objects(next_first, next_count, ray, t_min, find, &result, &t_max);
+            }
+            if stop {
+                return result;
+            }
+        } else {
+            let node = nodes[next_first];
+            let base = size;
+            var entered = 0u;
+            for (var k = 0u; k < WIDTH; k++) {
+                if node.count[k] == 0u {
+                    continue;
+                }
+                let t = enter_child(node, k, ray, t_min, t_max);
+                if t < 0.0 {
+                    continue;
+                }
+                entered++;
+                // Pushed farthest first (an insertion sort of at most eight) for the closest
+                // hit, so the nearest comes off first; in slot order for shadows.
+                var i = size;
+                size++;
+                if find == FIND_CLOSEST {
+                    while i > base && stack_t[i - 1u] < t {
+                        stack_first[i] = stack_first[i - 1u];
+                        stack_count[i] = stack_count[i - 1u];
+                        stack_t[i] = stack_t[i - 1u];
+                        i--;
+                    }
+                }
+                stack_first[i] = node.first[k];
+                stack_count[i] = node.count[k];
+                stack_t[i] = t;
+            }
+            if entered > 0u {
+                // The nearest (or, for shadows, the last slot entered) is visited next.
+                size--;
+                next_first = stack_first[size];
+                next_count = stack_count[size];
+                continue;
+            }
+        }
+        // Pop the next child still nearer than the best hit so far.
+        var found_next = false;
+        while size > 0u {
+            size--;
+            if stack_t[size] < t_max {
+                next_first = stack_first[size];
+                next_count = stack_count[size];
+                found_next = true;
+                break;
+            }
+        }
+        if !found_next {
+            return result;
+        }
+    }
+    return result;
+}
+
+// `Bvh::closest_hit`: the closest hit along the ray with `t` in (t_min, t_max).
+fn closest_hit(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max: f32) -> Hit {
+    return walk(origin, dir, t_min, t_max, FIND_CLOSEST).hit;
+}

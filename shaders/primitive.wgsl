@@ -1,0 +1,59 @@
+// What a hit met, in the world: the twin of `Geometry::surface_with` and `Geometry::material`
+// in src/primitive.rs, for objects and mesh triangles alike.
+
+// `SurfacePoint`: everything the shading needs to know about the surface at a hit.
+struct SurfacePoint {
+    point: vec3<f32>,
+    object_point: vec3<f32>,
+    // Unit shading normal, out of the surface's front.
+    normal: vec3<f32>,
+    // Unit geometric normal, on the same side as `normal`.
+    geometric_normal: vec3<f32>,
+    uv: vec2<f32>,
+    material: u32,
+}
+
+const MATERIAL_BITS: u32 = 0x3fffffffu;
+
+// The material at `hit`.
+fn material_of(hit: Hit) -> u32 {
+    if (hit.prim & OBJECT_BIT) != 0u {
+        return objects[hit.prim & ~OBJECT_BIT].material;
+    }
+    return triangle_shading[hit.slot].material & MATERIAL_BITS;
+}
+
+// The surface at `hit` along the ray.
+fn surface_at(origin: vec3<f32>, dir: vec3<f32>, hit: Hit) -> SurfacePoint {
+    let point = origin + dir * hit.t;
+    if (hit.prim & OBJECT_BIT) != 0u {
+        let o = objects[hit.prim & ~OBJECT_BIT];
+        let s = object_surface(o, origin, dir, hit.t, hit.part);
+        return SurfacePoint(point, s.object_point, s.normal, s.normal, s.uv, material_of(hit));
+    }
+    // A mesh triangle: its corners are in the leaf copy, its shading record beside it says which
+    // mesh vertices they are (`Mesh::shading`).
+    let shading = triangle_shading[hit.slot];
+    let geometric = triangle_normal(triangles[hit.slot]);
+    let b0 = 1.0 - hit.bary.x - hit.bary.y;
+    var normal = geometric;
+    var uv = hit.bary;
+    let a0 = vertex_attributes[shading.corners.x];
+    let a1 = vertex_attributes[shading.corners.y];
+    let a2 = vertex_attributes[shading.corners.z];
+    if (shading.material & HAS_NORMALS) != 0u {
+        let n = a0.normal * b0 + a1.normal * hit.bary.x + a2.normal * hit.bary.y;
+        if dot(n, n) > 0.0 {
+            normal = normalize(n);
+        }
+    }
+    if (shading.material & HAS_UVS) != 0u {
+        uv = vec2<f32>(a0.u, a0.v) * b0 + vec2<f32>(a1.u, a1.v) * hit.bary.x + vec2<f32>(a2.u, a2.v) * hit.bary.y;
+    }
+    // Vertex normals say which side is out; the winding may disagree.
+    var geometric_normal = geometric;
+    if dot(geometric, normal) < 0.0 {
+        geometric_normal = -geometric;
+    }
+    return SurfacePoint(point, point, normal, geometric_normal, uv, shading.material & MATERIAL_BITS);
+}

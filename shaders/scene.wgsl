@@ -1,0 +1,102 @@
+// The scene as the GPU holds it (src/gpu/scene.rs uploads it): bind group 0, shared by every
+// entry point. Buffers hold plain records; the `Frame` holds the camera and the settings.
+
+@group(0) @binding(0) var<storage, read> objects: array<Object>;
+@group(0) @binding(1) var<storage, read> shape_words: array<vec4<f32>>;
+@group(0) @binding(2) var<storage, read> nodes: array<WideNode>;
+@group(0) @binding(3) var<storage, read> triangles: array<Triangle>;
+@group(0) @binding(4) var<storage, read> refs: array<u32>;
+@group(0) @binding(5) var<storage, read> triangle_shading: array<TriangleShading>;
+@group(0) @binding(6) var<storage, read> vertex_attributes: array<VertexAttributes>;
+@group(0) @binding(7) var<storage, read> materials: array<Material>;
+@group(0) @binding(8) var<storage, read> lights: array<Light>;
+@group(0) @binding(9) var<uniform> frame: Frame;
+
+// Switches of `Frame::flags`.
+const SHADOWS: u32 = 1u;
+const REFLECTIONS: u32 = 2u;
+const TRANSMISSION: u32 = 4u;
+// Every material is opaque: a shadow ray stops at its first hit.
+const OPAQUE: u32 = 8u;
+
+// The camera (`Camera`), the image, and the settings the tracer reads (`RenderSettings`).
+struct Frame {
+    eye: vec3<f32>,
+    near: f32,
+    u: vec3<f32>,
+    half_height: f32,
+    v: vec3<f32>,
+    width: u32,
+    n: vec3<f32>,
+    height: u32,
+    background: vec3<f32>,
+    max_depth: u32,
+    ambient: vec3<f32>,
+    min_weight: f32,
+    flags: u32,
+    // The unbounded objects (planes): `unbounded` entries of `refs` from `unbounded_first`.
+    unbounded_first: u32,
+    unbounded: u32,
+    // How many entries `nodes`, `lights` and `objects` hold (a buffer is never empty: an
+    // unused one holds one record of zeros).
+    node_count: u32,
+    light_count: u32,
+    object_count: u32,
+    // Where the film lies in the image (a window of it for tiles).
+    film_left: u32,
+    film_top: u32,
+}
+
+// A material: the twin of `Material` in src/material.rs.
+struct Material {
+    color: vec3<f32>,
+    ambient: f32,
+    emission: vec3<f32>,
+    diffuse: f32,
+    specular_color: vec3<f32>,
+    specular: f32,
+    shininess: f32,
+    reflectivity: f32,
+    transparency: f32,
+    ior: f32,
+    fresnel: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
+}
+
+const POINT_LIGHT: u32 = 0u;
+const DIRECTIONAL_LIGHT: u32 = 1u;
+const SPOT_LIGHT: u32 = 2u;
+
+// A light: the twin of `Light` in src/light.rs. A directional light's `direction` points
+// towards it; a spot's away from it, along its cone's axis.
+struct Light {
+    position: vec3<f32>,
+    kind: u32,
+    direction: vec3<f32>,
+    cos_angle: f32,
+    color: vec3<f32>,
+    cos_full: f32,
+}
+
+// How a mesh triangle is shaded: the indices of its corners in `vertex_attributes` (when its
+// mesh has vertex normals or texture coordinates), its material, and which it has.
+struct TriangleShading {
+    corners: vec3<u32>,
+    // The material, with `HAS_NORMALS` and `HAS_UVS` set as the mesh has them.
+    material: u32,
+}
+
+const HAS_NORMALS: u32 = 0x40000000u;
+const HAS_UVS: u32 = 0x80000000u;
+
+// A mesh vertex's normal and texture coordinates.
+struct VertexAttributes {
+    normal: vec3<f32>,
+    u: f32,
+    v: f32,
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
+}

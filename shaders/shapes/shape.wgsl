@@ -1,0 +1,118 @@
+// Objects: an analytic shape, picked by its kind, placed in the world by its transform. The twin
+// of `Geometry::intersect_prepared` and `Geometry::surface_with` for objects in
+// src/primitive.rs and of `Shape::intersect` and `Shape::surface` in src/shapes/mod.rs. Every
+// shape's numbers and every transform are read from `shape_words` (src/gpu/shapes.rs writes
+// them).
+
+const SHAPE_SPHERE: u32 = 0u;
+
+// WGSL's twin of `GpuObject`.
+struct Object {
+    kind: u32,
+    first: u32,
+    transform: u32,
+    material: u32,
+}
+
+const NO_TRANSFORM: u32 = 0xffffffffu;
+
+// A crossing of a ray with a shape: `found` is false where there is none in the range asked;
+// `part` says which part of the shape was hit (a face of a box, a cap of a cylinder).
+struct ShapeHit {
+    t: f32,
+    part: u32,
+    found: bool,
+}
+
+fn no_hit() -> ShapeHit {
+    return ShapeHit(0.0, 0u, false);
+}
+
+// The surface at a hit point, in object space: the outward normal (any length) and the texture
+// coordinates.
+struct LocalSurface {
+    normal: vec3<f32>,
+    uv: vec2<f32>,
+}
+
+// The nearest hit of the shape `kind` whose numbers start at `first`, with `t` in (t_min, t_max).
+fn intersect_shape(kind: u32, first: u32, origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max: f32) -> ShapeHit {
+    switch kind {
+        case SHAPE_SPHERE: {
+            return intersect_sphere(load_sphere(first), origin, dir, t_min, t_max);
+        }
+        default: {
+            return no_hit();
+        }
+    }
+}
+
+// Normal and texture coordinates at the object-space point `p` of part `part`.
+fn shape_surface(kind: u32, first: u32, p: vec3<f32>, part: u32) -> LocalSurface {
+    switch kind {
+        case SHAPE_SPHERE: {
+            return sphere_surface(load_sphere(first), p);
+        }
+        default: {
+            return LocalSurface(vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(0.0));
+        }
+    }
+}
+
+// An affine transform: `object_from_world` by its columns (three axes, the translation) and
+// the matrix that takes normals to the world.
+struct Transform {
+    object_from_world: mat3x3<f32>,
+    translation: vec3<f32>,
+    normal_to_world: mat3x3<f32>,
+}
+
+fn load_transform(first: u32) -> Transform {
+    let w = first;
+    return Transform(
+        mat3x3<f32>(shape_words[w].xyz, shape_words[w + 1u].xyz, shape_words[w + 2u].xyz),
+        shape_words[w + 3u].xyz,
+        mat3x3<f32>(shape_words[w + 4u].xyz, shape_words[w + 5u].xyz, shape_words[w + 6u].xyz),
+    );
+}
+
+// A ray in an object's space; the direction is not renormalised, so `t` means the same point.
+struct ObjectRay {
+    origin: vec3<f32>,
+    dir: vec3<f32>,
+}
+
+// `Transform::ray_to_object`, or the ray itself for an object without a transform.
+fn ray_to_object(o: Object, origin: vec3<f32>, dir: vec3<f32>) -> ObjectRay {
+    if o.transform == NO_TRANSFORM {
+        return ObjectRay(origin, dir);
+    }
+    let tr = load_transform(o.transform);
+    return ObjectRay(tr.object_from_world * origin + tr.translation, tr.object_from_world * dir);
+}
+
+// The nearest hit of the object `o` along the world ray, with `t` in (t_min, t_max).
+fn intersect_object(o: Object, origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max: f32) -> ShapeHit {
+    let ray = ray_to_object(o, origin, dir);
+    return intersect_shape(o.kind, o.first, ray.origin, ray.dir, t_min, t_max);
+}
+
+// The surface of an object at a hit, for the shading: the hit point in the object's own space,
+// the unit world normal and the texture coordinates.
+struct ObjectSurface {
+    object_point: vec3<f32>,
+    normal: vec3<f32>,
+    uv: vec2<f32>,
+}
+
+// The surface of object `o` where the world ray meets it at `t`, on part `part`.
+fn object_surface(o: Object, origin: vec3<f32>, dir: vec3<f32>, t: f32, part: u32) -> ObjectSurface {
+    let ray = ray_to_object(o, origin, dir);
+    let object_point = ray.origin + ray.dir * t;
+    let local = shape_surface(o.kind, o.first, object_point, part);
+    var normal = normalize(local.normal);
+    if o.transform != NO_TRANSFORM {
+        normal = normalize(load_transform(o.transform).normal_to_world * local.normal);
+    }
+    return ObjectSurface(object_point, normal, local.uv);
+}

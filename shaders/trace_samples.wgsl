@@ -1,0 +1,44 @@
+// The GPU tracer's entry point: the colour of each pixel sample of a list, the twin of the
+// CPU sweep's `trace_tile` (src/progressive/cpu.rs): the eye ray through the sample's point of
+// its pixel (sample 0 at the centre, sample k ≥ 1 at its jittered point), traced by the ray
+// tree. Bind group 1 holds the list and the colours.
+
+// Sample `k` of film pixel (x, y).
+struct PixelSample {
+    x: u32,
+    y: u32,
+    k: u32,
+    pad: u32,
+}
+
+// What a sample's tree gave: its colour and the rays it traced.
+struct SampleColor {
+    color: vec3<f32>,
+    primary_hits: u32,
+    shadow: u32,
+    reflected: u32,
+    transmitted: u32,
+    over_budget: u32,
+}
+
+@group(1) @binding(0) var<storage, read> samples: array<PixelSample>;
+@group(1) @binding(1) var<storage, read_write> colors: array<SampleColor>;
+
+@compute @workgroup_size(64)
+fn trace_samples(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if i >= arrayLength(&samples) {
+        return;
+    }
+    let s = samples[i];
+    // Rays and jitter go by the pixel's place in the whole image.
+    let x = frame.film_left + s.x;
+    let y = frame.film_top + s.y;
+    var offset = vec2<f32>(0.5, 0.5);
+    if s.k != 0u {
+        offset = jitter(x, y, s.k);
+    }
+    let traced = trace_eye(eye_ray_dir(x, y, offset));
+    let c = traced.counts;
+    colors[i] = SampleColor(traced.color, c.primary_hits, c.shadow, c.reflected, c.transmitted, c.over_budget);
+}

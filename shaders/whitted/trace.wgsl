@@ -1,0 +1,111 @@
+// The ray tree of one eye ray: the twin of src/whitted/mod.rs (`trace_eye`, `shade`, `trace`,
+// `traces_branch`) without recursion. A ray's colour is its local colour plus the weighted
+// colours of its reflected and transmitted rays; the same sum is built front to back, each
+// ray's local colour added with `throughput`, the product of the scales on the way from the
+// eye. The children wait on an explicit stack, reflected first, as the CPU's recursion takes
+// them depth first; the ray budget is checked when a child is taken, as the CPU checks it when
+// it starts a child.
+
+// `EYE_RAY_T_MIN`: eye rays see only what lies beyond the image plane.
+const EYE_RAY_T_MIN: f32 = 1.0;
+// `RAY_BUDGET`: most reflected and transmitted rays one eye ray's tree may trace.
+const RAY_BUDGET: u32 = 1024u;
+// `MAX_DEPTH_LIMIT`: the deepest tree the settings allow; one child at most waits per level.
+const TREE_STACK: u32 = 64u;
+
+// A ray of the tree still to trace.
+struct Branch {
+    origin: vec3<f32>,
+    depth: u32,
+    dir: vec3<f32>,
+    weight: f32,
+    throughput: vec3<f32>,
+    // REFLECTIONS or TRANSMISSION: which child it is.
+    kind: u32,
+}
+
+// The colour seen along an eye ray, and the rays its tree traced.
+struct Traced {
+    color: vec3<f32>,
+    counts: Counts,
+}
+
+// `Tracer::miss`: what a ray that leaves the scene sees.
+fn miss_color() -> vec3<f32> {
+    return frame.background;
+}
+
+// Whether a child ray carrying `weight` goes on: its kind is on and its weight reaches
+// `min_weight` (adaptive depth control). The budget is checked when it is taken.
+fn wanted(kind_on: u32, weight: f32) -> bool {
+    return (frame.flags & kind_on) != 0u && weight >= frame.min_weight;
+}
+
+// `Tracer::trace_eye`: the colour seen by the eye ray from the eye along `dir`.
+fn trace_eye(dir: vec3<f32>) -> Traced {
+    var counts = Counts(0u, 0u, 0u, 0u, 0u);
+    var color = vec3<f32>(0.0);
+    var stack: array<Branch, TREE_STACK>;
+    var size = 0u;
+    var ray = Branch(frame.eye, 1u, dir, 1.0, vec3<f32>(1.0), 0u);
+    var t_min = EYE_RAY_T_MIN;
+    loop {
+        let hit = closest_hit(ray.origin, ray.dir, t_min, T_FAR);
+        if !hit.found {
+            color += ray.throughput * miss_color();
+        } else {
+            if ray.depth == 1u {
+                counts.primary_hits++;
+            }
+            // `Tracer::shade`.
+            let surface = surface_at(ray.origin, ray.dir, hit);
+            let m = materials[surface.material];
+            let base = m.color;
+            let dir = normalize(ray.dir);
+            // Face the normals towards the side the ray came from.
+            let entering = dot(dir, surface.geometric_normal) < 0.0;
+            var side = -1.0;
+            if entering {
+                side = 1.0;
+            }
+            let normal = surface.normal * side;
+            let geometric_normal = surface.geometric_normal * side;
+            color += ray.throughput * local_color(m, base, surface, normal, geometric_normal, dir, &counts);
+            if ray.depth < frame.max_depth {
+                let s = scattering(m, dir, normal, entering);
+                // The transmitted child waits below the reflected one, which goes first.
+                let transmit_weight = ray.weight * s.transmit;
+                if s.refracted.found && s.transmit > 0.0 && wanted(TRANSMISSION, transmit_weight) {
+                    stack[size] = Branch(offset_origin(surface.point, -geometric_normal), ray.depth + 1u, s.refracted.dir, transmit_weight, ray.throughput * (s.transmit * base), TRANSMISSION);
+                    size++;
+                }
+                let reflect_weight = ray.weight * s.reflect;
+                if s.reflect > 0.0 && wanted(REFLECTIONS, reflect_weight) {
+                    stack[size] = Branch(offset_origin(surface.point, geometric_normal), ray.depth + 1u, mirror(dir, normal), reflect_weight, ray.throughput * s.reflect, REFLECTIONS);
+                    size++;
+                }
+            }
+        }
+        // The next child whose tree still has budget.
+        var next = false;
+        while size > 0u && !next {
+            size--;
+            if counts.reflected + counts.transmitted >= RAY_BUDGET {
+                counts.over_budget++;
+                continue;
+            }
+            ray = stack[size];
+            next = true;
+        }
+        if !next {
+            break;
+        }
+        if ray.kind == TRANSMISSION {
+            counts.transmitted++;
+        } else {
+            counts.reflected++;
+        }
+        t_min = 0.0;
+    }
+    return Traced(color, counts);
+}

@@ -1,0 +1,72 @@
+//! Test entry points (`shaders/probe.wgsl`) that check the GPU's parts against the CPU's on the
+//! same rays: each ray's closest hit among all objects tried one by one, which checks the
+//! shapes' WGSL, and through the BVH, which checks the walk and the triangles too; with the
+//! surface there.
+
+use bytemuck::{Pod, Zeroable};
+
+use super::device::GpuDevice;
+use super::scene::GpuScene;
+use super::tracer::{pipeline, run_list, tracer_module};
+use crate::ray::Ray;
+
+/// WGSL's `ProbeRay`: a ray and the range of `t` it looks in.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct ProbeRay {
+    pub origin: [f32; 3],
+    pub t_min: f32,
+    pub dir: [f32; 3],
+    pub t_max: f32,
+}
+
+impl ProbeRay {
+    pub fn new(ray: &Ray, t_min: f32, t_max: f32) -> ProbeRay {
+        ProbeRay {
+            origin: ray.origin.to_array(),
+            t_min,
+            dir: ray.dir.to_array(),
+            t_max,
+        }
+    }
+}
+
+/// WGSL's `ProbeHit`: the closest hit's `t` (the ray's `t_max` for none), its primitive's
+/// [`crate::primitive::PrimId`] ([`NO_PRIM`] for none) and part, and the unit world normal and
+/// texture coordinates there.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct ProbeHit {
+    pub normal: [f32; 3],
+    pub t: f32,
+    pub uv: [f32; 2],
+    pub prim: u32,
+    pub part: u32,
+}
+
+/// [`ProbeHit::prim`] of a ray that hits nothing.
+pub const NO_PRIM: u32 = u32::MAX;
+
+/// Which of the probe's searches to run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Search {
+    /// Every object tried one by one (meshes left out).
+    Objects,
+    /// The walk through the BVH.
+    Bvh,
+}
+
+/// Each ray's closest hit in `scene` by `search`, found on the GPU.
+pub fn closest_hits(
+    gpu: &GpuDevice,
+    scene: &GpuScene,
+    search: Search,
+    rays: &[ProbeRay],
+) -> Result<Vec<ProbeHit>, String> {
+    let entry = match search {
+        Search::Objects => "probe_objects",
+        Search::Bvh => "probe_bvh",
+    };
+    let module = tracer_module(gpu);
+    run_list(gpu, scene, &pipeline(gpu, scene, &module, entry), rays)
+}

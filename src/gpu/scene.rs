@@ -1,0 +1,471 @@
+//! The scene on the GPU: the records the WGSL reads (`shaders/scene.wgsl`), made from the same
+//! [`Scene`] and [`Bvh`] the CPU traces, each buffer checked against the device's limits
+//! before it is made, and bound as bind group 0 of every entry point.
+
+use bytemuck::{Pod, Zeroable};
+use wgpu::util::DeviceExt;
+
+use super::bvh::{GpuBvh, GpuTriangle, GpuWideNode};
+use super::device::GpuDevice;
+use super::shapes::{GpuObject, ObjectTable, Word};
+use crate::bvh::Bvh;
+use crate::camera::Camera;
+use crate::color::Color;
+use crate::light::Light;
+use crate::material::Material;
+use crate::render::Assembled;
+use crate::scene::Scene;
+
+/// The deepest tree the GPU's walk takes: its stack (`STACK_SIZE` in
+/// `shaders/bvh/traverse.wgsl`) holds seven waiting children per level.
+pub const MAX_TREE_DEPTH: usize = 128 / 7;
+
+/// WGSL's `Frame`: the camera, the image and the settings.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuFrame {
+    pub eye: [f32; 3],
+    pub near: f32,
+    pub u: [f32; 3],
+    pub half_height: f32,
+    pub v: [f32; 3],
+    pub width: u32,
+    pub n: [f32; 3],
+    pub height: u32,
+    pub background: [f32; 3],
+    pub max_depth: u32,
+    pub ambient: [f32; 3],
+    pub min_weight: f32,
+    pub flags: u32,
+    pub unbounded_first: u32,
+    pub unbounded: u32,
+    pub node_count: u32,
+    pub light_count: u32,
+    pub object_count: u32,
+    pub film_left: u32,
+    pub film_top: u32,
+}
+
+/// Switches of [`GpuFrame::flags`], as `shaders/scene.wgsl` names them.
+pub const SHADOWS: u32 = 1;
+pub const REFLECTIONS: u32 = 2;
+pub const TRANSMISSION: u32 = 4;
+pub const OPAQUE: u32 = 8;
+
+/// WGSL's `Material`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuMaterial {
+    pub color: [f32; 3],
+    pub ambient: f32,
+    pub emission: [f32; 3],
+    pub diffuse: f32,
+    pub specular_color: [f32; 3],
+    pub specular: f32,
+    pub shininess: f32,
+    pub reflectivity: f32,
+    pub transparency: f32,
+    pub ior: f32,
+    pub fresnel: u32,
+    pub pad: [u32; 3],
+}
+
+impl From<&Material> for GpuMaterial {
+    fn from(m: &Material) -> GpuMaterial {
+        GpuMaterial {
+            color: m.color.to_array(),
+            ambient: m.ambient,
+            emission: m.emission.to_array(),
+            diffuse: m.diffuse,
+            specular_color: m.specular_color.to_array(),
+            specular: m.specular,
+            shininess: m.shininess,
+            reflectivity: m.reflectivity,
+            transparency: m.transparency,
+            ior: m.ior,
+            fresnel: u32::from(m.fresnel),
+            pad: [0; 3],
+        }
+    }
+}
+
+/// WGSL's `Light`; `kind` as its `*_LIGHT` constants.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuLight {
+    pub position: [f32; 3],
+    pub kind: u32,
+    pub direction: [f32; 3],
+    pub cos_angle: f32,
+    pub color: [f32; 3],
+    pub cos_full: f32,
+}
+
+impl From<&Light> for GpuLight {
+    fn from(light: &Light) -> GpuLight {
+        let zero = [0.0; 3];
+        match *light {
+            Light::Point { position, color } => GpuLight {
+                position: position.to_array(),
+                kind: 0,
+                direction: zero,
+                cos_angle: 0.0,
+                color: color.to_array(),
+                cos_full: 0.0,
+            },
+            Light::Directional { direction, color } => GpuLight {
+                position: zero,
+                kind: 1,
+                direction: direction.to_array(),
+                cos_angle: 0.0,
+                color: color.to_array(),
+                cos_full: 0.0,
+            },
+            Light::Spot(spot) => GpuLight {
+                position: spot.position.to_array(),
+                kind: 2,
+                direction: spot.direction.to_array(),
+                cos_angle: spot.cos_angle,
+                color: spot.color.to_array(),
+                cos_full: spot.cos_full,
+            },
+        }
+    }
+}
+
+/// WGSL's `TriangleShading`: which vertices of [`GpuScene`]'s vertex attributes a triangle's
+/// corners are, and its material with [`HAS_NORMALS`] and [`HAS_UVS`].
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuTriangleShading {
+    pub corners: [u32; 3],
+    pub material: u32,
+}
+
+pub const HAS_NORMALS: u32 = 1 << 30;
+pub const HAS_UVS: u32 = 1 << 31;
+
+/// WGSL's `VertexAttributes`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuVertexAttributes {
+    pub normal: [f32; 3],
+    pub u: f32,
+    pub v: f32,
+    pub pad: [f32; 3],
+}
+
+/// The records of a scene, before they go to the GPU.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SceneRecords {
+    pub table: ObjectTable,
+    pub bvh: GpuBvh,
+    /// Beside [`GpuBvh::triangles`], in the same order.
+    pub triangle_shading: Vec<GpuTriangleShading>,
+    pub vertex_attributes: Vec<GpuVertexAttributes>,
+    pub materials: Vec<GpuMaterial>,
+    pub lights: Vec<GpuLight>,
+}
+
+impl SceneRecords {
+    /// The records of `scene` and its BVH `bvh`; the error says what of the scene the GPU
+    /// tracer does not trace.
+    pub fn new(scene: &Scene, bvh: &Bvh) -> Result<SceneRecords, String> {
+        unsupported(scene)?;
+        let depth = bvh.depth();
+        if depth > MAX_TREE_DEPTH {
+            return Err(format!(
+                "the BVH is {depth} levels deep; the GPU's walk takes at most {MAX_TREE_DEPTH}"
+            ));
+        }
+        let table = ObjectTable::new(&scene.geometry.objects)?;
+        let gpu_bvh = GpuBvh::new(bvh, &scene.geometry);
+        let geometry = &scene.geometry;
+        // Each mesh's vertex attributes, where it has any, one after another.
+        let mut vertex_attributes = Vec::new();
+        let mut attribute_starts = Vec::with_capacity(geometry.meshes.len());
+        for mesh in &geometry.meshes {
+            attribute_starts.push(vertex_attributes.len() as u32);
+            if mesh.normals.is_empty() && mesh.uvs.is_empty() {
+                continue;
+            }
+            vertex_attributes.extend((0..mesh.positions.len()).map(|v| {
+                let normal = mesh.normals.get(v).map_or([0.0; 3], |n| n.to_array());
+                let uv = mesh.uvs.get(v).copied().unwrap_or_default();
+                GpuVertexAttributes {
+                    normal,
+                    u: uv.x,
+                    v: uv.y,
+                    pad: [0.0; 3],
+                }
+            }));
+        }
+        let triangle_shading = gpu_bvh
+            .triangles
+            .iter()
+            .map(|t| {
+                let index = t.index as usize;
+                let (mesh_index, face) = geometry.triangle_face(index);
+                let mesh = &geometry.meshes[mesh_index];
+                let start = attribute_starts[mesh_index];
+                let flags = if mesh.normals.is_empty() {
+                    0
+                } else {
+                    HAS_NORMALS
+                } | if mesh.uvs.is_empty() { 0 } else { HAS_UVS };
+                GpuTriangleShading {
+                    corners: mesh.faces[face as usize].map(|v| start + v),
+                    material: mesh.material | flags,
+                }
+            })
+            .collect();
+        Ok(SceneRecords {
+            table,
+            bvh: gpu_bvh,
+            triangle_shading,
+            vertex_attributes,
+            materials: scene.materials.iter().map(GpuMaterial::from).collect(),
+            lights: scene.lights.iter().map(GpuLight::from).collect(),
+        })
+    }
+}
+
+/// What the GPU tracer does not trace yet, named so that the user can render on the CPU.
+fn unsupported(scene: &Scene) -> Result<(), String> {
+    let settings = &scene.settings;
+    let missing = if settings.textures && scene.materials.iter().any(|m| m.texture.is_some()) {
+        Some("textures")
+    } else if scene.background_image.is_some() {
+        Some("a background image")
+    } else if !scene.atmosphere.is_clear() {
+        Some("fog")
+    } else if scene.materials.iter().any(|m| m.medium.is_some()) {
+        Some("media inside objects")
+    } else if settings.caustic_photons > 0 {
+        Some("caustics")
+    } else {
+        None
+    };
+    match missing {
+        Some(what) => Err(format!(
+            "the GPU tracer does not trace {what} yet (render this scene with --device cpu)"
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The scene's buffers on the GPU and the bind group that binds them.
+pub struct GpuScene {
+    pub layout: wgpu::BindGroupLayout,
+    pub bind_group: wgpu::BindGroup,
+    /// The frame record's buffer, rewritten when the camera or the film moves.
+    pub frame: wgpu::Buffer,
+    /// Bytes the scene takes on the GPU.
+    pub bytes: u64,
+    /// How many records some buffers hold, as the frame record tells the WGSL.
+    counts: RecordCounts,
+}
+
+/// How many records the buffers the WGSL loops over hold.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct RecordCounts {
+    refs: u32,
+    unbounded: u32,
+    nodes: u32,
+    lights: u32,
+    objects: u32,
+}
+
+/// Storage buffers in bind group 0, and the frame's uniform buffer after them.
+const STORAGE_BUFFERS: u32 = 9;
+
+impl GpuScene {
+    /// Uploads `assembled`'s scene and BVH; the error says what the GPU tracer does not trace,
+    /// or what does not fit the GPU: how much it needs, and how much the GPU allows.
+    pub fn upload(gpu: &GpuDevice, assembled: &Assembled) -> Result<GpuScene, String> {
+        let scene = &assembled.scene;
+        let records = SceneRecords::new(scene, &assembled.bvh)?;
+        let limits = gpu.device.limits();
+        // Bind group 1 holds two more: the work's input and output.
+        let needed = STORAGE_BUFFERS + 2;
+        if limits.max_storage_buffers_per_shader_stage < needed {
+            return Err(format!(
+                "the GPU tracer needs {needed} storage buffers per shader stage; this GPU allows {}",
+                limits.max_storage_buffers_per_shader_stage
+            ));
+        }
+        let device = &gpu.device;
+        let mut bytes = 0;
+        let mut storage = |what: &str, contents: &[u8]| -> Result<wgpu::Buffer, String> {
+            gpu.check_storage(what, contents.len() as u64)?;
+            bytes += contents.len().max(16) as u64;
+            // A buffer is never empty: an unused one holds zeros (the frame's counts say so).
+            let zeros = [0u8; 256];
+            let contents = if contents.is_empty() {
+                &zeros[..]
+            } else {
+                contents
+            };
+            Ok(
+                device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(what),
+                    contents,
+                    usage: wgpu::BufferUsages::STORAGE,
+                }),
+            )
+        };
+        let buffers = [
+            storage(
+                "the objects",
+                bytemuck::cast_slice::<GpuObject, u8>(&records.table.objects),
+            )?,
+            storage(
+                "the shapes",
+                bytemuck::cast_slice::<Word, u8>(&records.table.words),
+            )?,
+            storage(
+                "the BVH nodes",
+                bytemuck::cast_slice::<GpuWideNode, u8>(&records.bvh.nodes),
+            )?,
+            storage(
+                "the triangles",
+                bytemuck::cast_slice::<GpuTriangle, u8>(&records.bvh.triangles),
+            )?,
+            storage("the BVH leaves", bytemuck::cast_slice(&records.bvh.refs))?,
+            storage(
+                "the triangles' shading",
+                bytemuck::cast_slice(&records.triangle_shading),
+            )?,
+            storage(
+                "the mesh vertices",
+                bytemuck::cast_slice(&records.vertex_attributes),
+            )?,
+            storage("the materials", bytemuck::cast_slice(&records.materials))?,
+            storage("the lights", bytemuck::cast_slice(&records.lights))?,
+        ];
+        let counts = RecordCounts {
+            refs: records.bvh.refs.len() as u32,
+            unbounded: records.bvh.unbounded,
+            nodes: records.bvh.nodes.len() as u32,
+            lights: records.lights.len() as u32,
+            objects: records.table.objects.len() as u32,
+        };
+        let frame_record = frame_record(scene, &scene.camera, counts, (0, 0));
+        let frame = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("the frame"),
+            contents: bytemuck::bytes_of(&frame_record),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let layout = scene_layout(device);
+        let mut entries: Vec<wgpu::BindGroupEntry> = buffers
+            .iter()
+            .enumerate()
+            .map(|(binding, buffer)| wgpu::BindGroupEntry {
+                binding: binding as u32,
+                resource: buffer.as_entire_binding(),
+            })
+            .collect();
+        entries.push(wgpu::BindGroupEntry {
+            binding: STORAGE_BUFFERS,
+            resource: frame.as_entire_binding(),
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("the scene"),
+            layout: &layout,
+            entries: &entries,
+        });
+        Ok(GpuScene {
+            layout,
+            bind_group,
+            frame,
+            bytes,
+            counts,
+        })
+    }
+
+    /// Makes the next dispatches see `scene` (its settings) through `camera`, on a film at
+    /// `film_origin` of the image.
+    pub fn set_view(
+        &self,
+        gpu: &GpuDevice,
+        scene: &Scene,
+        camera: &Camera,
+        film_origin: (u32, u32),
+    ) {
+        let record = frame_record(scene, camera, self.counts, film_origin);
+        gpu.queue
+            .write_buffer(&self.frame, 0, bytemuck::bytes_of(&record));
+    }
+}
+
+/// The frame record of `scene` seen by `camera`, for a film at `film_origin` of the image.
+fn frame_record(
+    scene: &Scene,
+    camera: &Camera,
+    counts: RecordCounts,
+    film_origin: (u32, u32),
+) -> GpuFrame {
+    let settings = &scene.settings;
+    let flag = |on: bool, bit: u32| if on { bit } else { 0 };
+    let opaque = scene.materials.iter().all(|m| m.filter() == Color::ZERO);
+    GpuFrame {
+        eye: camera.eye.to_array(),
+        near: camera.near,
+        u: camera.u.to_array(),
+        half_height: camera.half_height,
+        v: camera.v.to_array(),
+        width: settings.width,
+        n: camera.n.to_array(),
+        height: settings.height,
+        background: settings.background.to_array(),
+        max_depth: settings.max_depth,
+        ambient: settings.ambient.to_array(),
+        min_weight: settings.min_weight,
+        flags: flag(settings.shadows, SHADOWS)
+            | flag(settings.reflections, REFLECTIONS)
+            | flag(settings.transmission, TRANSMISSION)
+            | flag(opaque, OPAQUE),
+        unbounded_first: counts.refs - counts.unbounded,
+        unbounded: counts.unbounded,
+        node_count: counts.nodes,
+        light_count: counts.lights,
+        object_count: counts.objects,
+        film_left: film_origin.0,
+        film_top: film_origin.1,
+    }
+}
+
+/// Bind group 0's layout: the scene's storage buffers, read only, then the frame.
+fn scene_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let mut entries: Vec<wgpu::BindGroupLayoutEntry> = (0..STORAGE_BUFFERS)
+        .map(|binding| storage_entry(binding, true))
+        .collect();
+    entries.push(wgpu::BindGroupLayoutEntry {
+        binding: STORAGE_BUFFERS,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    });
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("the scene"),
+        entries: &entries,
+    })
+}
+
+/// A storage buffer at `binding` of a compute shader's bind group.
+pub fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}

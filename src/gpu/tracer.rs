@@ -1,0 +1,157 @@
+//! The GPU tracer: the WGSL of every part as one module, its pipelines, and the colours of a
+//! list of pixel samples, traced by the ray tree on the GPU in dispatches small enough for an
+//! operating system's GPU watchdog.
+
+use bytemuck::{Pod, Zeroable};
+use wgpu::util::DeviceExt;
+
+use super::device::{GpuDevice, read_buffer};
+use super::scene::{GpuScene, storage_entry};
+use super::shapes::SHAPES_WGSL;
+
+/// All the GPU tracer's WGSL, as one module: the scene's records, the camera and the jitter,
+/// the shapes, the BVH's walk, the shading and the ray tree, and the entry points.
+pub const TRACER_WGSL: &str = concat!(
+    include_str!("../../shaders/scene.wgsl"),
+    include_str!("../../shaders/sampling.wgsl"),
+    include_str!("../../shaders/camera.wgsl"),
+    include_str!("../../shaders/shapes/triangle.wgsl"),
+    include_str!("../../shaders/bvh/traverse.wgsl"),
+    include_str!("../../shaders/primitive.wgsl"),
+    include_str!("../../shaders/whitted/scattering.wgsl"),
+    include_str!("../../shaders/whitted/lighting.wgsl"),
+    include_str!("../../shaders/whitted/trace.wgsl"),
+    include_str!("../../shaders/trace_samples.wgsl"),
+    include_str!("../../shaders/probe.wgsl"),
+);
+
+/// Invocations per workgroup of every entry point (`@workgroup_size`).
+pub const WORKGROUP: u32 = 64;
+
+/// WGSL's `PixelSample`: sample `k` of film pixel (x, y).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Pod, Zeroable)]
+pub struct PixelSample {
+    pub x: u32,
+    pub y: u32,
+    pub k: u32,
+    pub pad: u32,
+}
+
+/// WGSL's `SampleColor`: a sample's colour and the rays its tree traced.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct SampleColor {
+    pub color: [f32; 3],
+    pub primary_hits: u32,
+    pub shadow: u32,
+    pub reflected: u32,
+    pub transmitted: u32,
+    pub over_budget: u32,
+}
+
+/// The WGSL module with every part, compiled for `gpu`.
+pub fn tracer_module(gpu: &GpuDevice) -> wgpu::ShaderModule {
+    let source = [SHAPES_WGSL, TRACER_WGSL].concat();
+    gpu.device
+        .create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("the GPU tracer"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        })
+}
+
+/// A compute pipeline for `entry` of `module`: bind group 0 the scene, bind group 1 a list
+/// read and a list written.
+pub fn pipeline(
+    gpu: &GpuDevice,
+    scene: &GpuScene,
+    module: &wgpu::ShaderModule,
+    entry: &str,
+) -> (wgpu::ComputePipeline, wgpu::BindGroupLayout) {
+    let device = &gpu.device;
+    let work = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(entry),
+        entries: &[storage_entry(0, true), storage_entry(1, false)],
+    });
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(entry),
+        bind_group_layouts: &[Some(&scene.layout), Some(&work)],
+        immediate_size: 0,
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(entry),
+        layout: Some(&layout),
+        module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    (pipeline, work)
+}
+
+/// Runs `pipeline` over `input` (one invocation per entry) and reads back one `Out` per entry.
+pub fn run_list<In: Pod, Out: Pod>(
+    gpu: &GpuDevice,
+    scene: &GpuScene,
+    (pipeline, work): &(wgpu::ComputePipeline, wgpu::BindGroupLayout),
+    input: &[In],
+) -> Result<Vec<Out>, String> {
+    if input.is_empty() {
+        return Ok(Vec::new());
+    }
+    let device = &gpu.device;
+    let out_bytes = (input.len() * std::mem::size_of::<Out>()) as u64;
+    gpu.check_storage("the work list", std::mem::size_of_val(input) as u64)?;
+    gpu.check_storage("its results", out_bytes)?;
+    let groups = (input.len() as u64).div_ceil(u64::from(WORKGROUP));
+    let max_groups = u64::from(device.limits().max_compute_workgroups_per_dimension);
+    if groups > max_groups {
+        return Err(format!(
+            "{} entries need {groups} workgroups of {WORKGROUP}; the GPU runs at most {max_groups}",
+            input.len()
+        ));
+    }
+    let input_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("work list"),
+        contents: bytemuck::cast_slice(input),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let output = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("work results"),
+        size: out_bytes,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let read_back = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("work results read back"),
+        size: out_bytes,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("work"),
+        layout: work,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: input_buffer.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: output.as_entire_binding(),
+            },
+        ],
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &scene.bind_group, &[]);
+        pass.set_bind_group(1, &bind_group, &[]);
+        pass.dispatch_workgroups(groups as u32, 1, 1);
+    }
+    encoder.copy_buffer_to_buffer(&output, 0, &read_back, 0, out_bytes);
+    gpu.queue.submit([encoder.finish()]);
+    let bytes = read_buffer(device, &read_back)?;
+    Ok(bytemuck::pod_collect_to_vec(&bytes))
+}

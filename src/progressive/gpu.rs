@@ -1,0 +1,190 @@
+//! The GPU sweep of a progressive render: the same passes as the CPU's ([`super::plan`]), each
+//! pass's pixel samples listed band by band of 8 rows of its grid, as the CPU sweeps them, and
+//! traced on the GPU ([`crate::gpu::tracer`]) a few bands per dispatch, so that no dispatch
+//! runs long enough for an operating system's GPU watchdog; the colours come back and go into
+//! the film as the CPU's do (a block painted for a pixel's first sample, otherwise a sample
+//! added to its mean). Between dispatches the render waits while paused and stops when
+//! cancelled.
+
+use std::time::{Duration, Instant};
+
+use super::control::{Cancelled, PassStats, RenderControl, RenderStats, run_plan};
+use super::plan::{Pass, PassGrid, passes, take_snapshot, unwatched_passes};
+use crate::color::Color;
+use crate::film::Film;
+use crate::gpu::device::GpuDevice;
+use crate::gpu::scene::GpuScene;
+use crate::gpu::tracer::{PixelSample, SampleColor, pipeline, run_list, tracer_module};
+use crate::render::Assembled;
+use crate::stats::RayCounts;
+
+/// Rows of a pass's grid in a band, as the CPU's sweep takes them.
+const BAND: u32 = 8;
+
+/// How long one dispatch should take at most: well under the two seconds after which operating
+/// systems reset a GPU that does not answer, and short enough to stop soon after a cancel.
+const DISPATCH_TIME: Duration = Duration::from_millis(100);
+
+/// A scene on the GPU, ready to render.
+pub struct GpuRenderer<'a> {
+    gpu: &'a GpuDevice,
+    assembled: &'a Assembled,
+    scene: GpuScene,
+    trace: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
+}
+
+impl<'a> GpuRenderer<'a> {
+    /// Uploads `assembled` to `gpu`; the error says what the GPU does not trace or hold.
+    pub fn new(gpu: &'a GpuDevice, assembled: &'a Assembled) -> Result<GpuRenderer<'a>, String> {
+        let scene = GpuScene::upload(gpu, assembled)?;
+        let module = tracer_module(gpu);
+        let trace = pipeline(gpu, &scene, &module, "trace_samples");
+        Ok(GpuRenderer {
+            gpu,
+            assembled,
+            scene,
+            trace,
+        })
+    }
+
+    /// Renders the scene into `film` pass after pass as [`super::render`] does on the CPU,
+    /// calling `on_pass` after each. The error says why the GPU failed.
+    pub fn render(
+        &self,
+        film: &Film,
+        control: &RenderControl,
+        on_pass: impl FnMut(&PassStats),
+    ) -> Result<Result<RenderStats, Cancelled>, String> {
+        let settings = &self.assembled.scene.settings;
+        let plan = passes(
+            settings.block_size,
+            settings.samples,
+            settings.aa_threshold > 0.0,
+        );
+        self.run(&plan, film, control, on_pass)
+    }
+
+    /// [`Self::render`] for a film nobody looks at before it is finished, as
+    /// [`super::render_unwatched`].
+    pub fn render_unwatched(
+        &self,
+        film: &Film,
+        control: &RenderControl,
+    ) -> Result<Result<RenderStats, Cancelled>, String> {
+        let settings = &self.assembled.scene.settings;
+        let plan = unwatched_passes(settings.samples, settings.aa_threshold > 0.0);
+        self.run(&plan, film, control, |_| {})
+    }
+
+    /// Runs `plan`; a GPU failure ends the render with its message.
+    fn run(
+        &self,
+        plan: &[Pass],
+        film: &Film,
+        control: &RenderControl,
+        on_pass: impl FnMut(&PassStats),
+    ) -> Result<Result<RenderStats, Cancelled>, String> {
+        let scene = &self.assembled.scene;
+        self.scene
+            .set_view(self.gpu, scene, &scene.camera, film.origin());
+        let start_block = scene.settings.block_size;
+        let mut shown = Vec::new();
+        let mut failure = None;
+        let mut batch_bands = 1;
+        let stats = run_plan(plan, control, on_pass, |pass| {
+            let result = self.run_pass(
+                film,
+                control,
+                pass,
+                start_block,
+                &mut shown,
+                &mut batch_bands,
+            );
+            result.map_err(|e| {
+                if let Some(message) = e {
+                    failure = Some(message);
+                    control.cancel();
+                }
+                Cancelled
+            })
+        });
+        match failure {
+            Some(message) => Err(message),
+            None => Ok(stats),
+        }
+    }
+
+    /// One pass over the film, `batch_bands` bands per dispatch (adjusted to the time each
+    /// takes). `Err(None)` when cancelled, `Err(Some(message))` when the GPU failed.
+    fn run_pass(
+        &self,
+        film: &Film,
+        control: &RenderControl,
+        pass: Pass,
+        start_block: u32,
+        shown: &mut Vec<[u8; 3]>,
+        batch_bands: &mut u32,
+    ) -> Result<PassStats, Option<String>> {
+        let started = Instant::now();
+        if let Pass::Refine(_) = pass {
+            take_snapshot(film, shown);
+        }
+        let threshold = self.assembled.scene.settings.aa_threshold;
+        let grid = PassGrid::new(pass, start_block, film, shown, threshold);
+        let step = pass.step();
+        let (rows, columns) = (film.height().div_ceil(step), film.width().div_ceil(step));
+        control.start_pass(step, pass.samples(), rows);
+        let rays_before = control.rays();
+        let mut pixels = 0;
+        let mut band_start = 0;
+        while band_start < rows {
+            control.wait_for_band().map_err(|Cancelled| None)?;
+            let band_end = (band_start + *batch_bands * BAND).min(rows);
+            let mut samples = Vec::new();
+            for row in band_start..band_end {
+                for column in 0..columns {
+                    let (x, y) = (column * step, row * step);
+                    let taken = grid.samples_at(x, y);
+                    pixels += u64::from(!taken.is_empty());
+                    samples.extend(taken.map(|k| PixelSample { x, y, k, pad: 0 }));
+                }
+            }
+            let dispatched = Instant::now();
+            let colors: Vec<SampleColor> =
+                run_list(self.gpu, &self.scene, &self.trace, &samples).map_err(Some)?;
+            *batch_bands = next_batch(*batch_bands, dispatched.elapsed());
+            let mut counts = RayCounts::default();
+            for (s, c) in samples.iter().zip(&colors) {
+                let color = Color::from_array(c.color);
+                if s.k == 0 {
+                    film.fill_block(s.x, s.y, step, color);
+                } else {
+                    film.add_sample(s.x, s.y, color);
+                }
+                counts.primary += 1;
+                counts.primary_hits += u64::from(c.primary_hits);
+                counts.shadow += u64::from(c.shadow);
+                counts.reflected += u64::from(c.reflected);
+                counts.transmitted += u64::from(c.transmitted);
+                counts.over_budget += u64::from(c.over_budget);
+            }
+            control.band_done(band_end - band_start, samples.len() as u64, &counts);
+            film.touch_rows(band_start * step..band_end * step);
+            band_start = band_end;
+        }
+        Ok(PassStats {
+            pass,
+            pixels,
+            rays: control.rays() - rays_before,
+            time: started.elapsed(),
+        })
+    }
+}
+
+/// The bands the next dispatch takes, after one of `bands` took `took`: as many as fit in
+/// [`DISPATCH_TIME`], at most twice as many as before.
+fn next_batch(bands: u32, took: Duration) -> u32 {
+    let per_band = took.as_secs_f64() / f64::from(bands);
+    let fit = (DISPATCH_TIME.as_secs_f64() / per_band.max(1e-9)) as u32;
+    fit.clamp(1, bands.saturating_mul(2).max(1))
+}
