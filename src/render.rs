@@ -27,6 +27,35 @@ use crate::photon::{PhotonMap, caustic_map};
 use crate::scene::Scene;
 use crate::whitted::Tracer;
 
+/// Which tracer renders: the CPU's, on all cores, or the GPU's (`gpu`, with the `gpu` feature).
+/// The command line and the viewer name them `cpu` and `gpu`.
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    strum::Display,
+    strum::EnumString,
+    strum::EnumIter,
+    strum::VariantNames,
+)]
+#[strum(serialize_all = "lowercase", parse_err_ty = String, parse_err_fn = unknown_device)]
+pub enum Device {
+    #[default]
+    Cpu,
+    Gpu,
+}
+
+fn unknown_device(s: &str) -> String {
+    use strum::VariantNames;
+    format!(
+        "unknown device `{s}` (use one of: {})",
+        Device::VARIANTS.join(", ")
+    )
+}
+
 /// What a render needs: the scene, its BVH and its caustic photon map. The BVH and the map are
 /// shared, so that copies of the scene (the viewer's, with the user's camera and edits) trace
 /// without building them again.

@@ -4,6 +4,7 @@
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::sync::mpsc::{self, RecvTimeoutError};
 use std::time::Duration;
 
@@ -17,7 +18,9 @@ use raylab::formats::part::{PartInfo, scene_hash, write_part};
 use raylab::inspect::DebugView;
 use raylab::memory;
 use raylab::progressive::{self, RenderControl, RenderStats};
-use raylab::render::assemble;
+use raylab::gpu::device::GpuDevice;
+use raylab::progressive::gpu::GpuRenderer;
+use raylab::render::{Device, assemble};
 use raylab::settings::{RenderSettings, SettingsOverrides};
 use raylab::tiles::Rect;
 use raylab::tone::{Tone, ToneCurve};
@@ -49,6 +52,11 @@ pub struct RenderArgs {
     /// Worker threads (default: one per core).
     #[arg(long)]
     threads: Option<usize>,
+    /// Which tracer renders: cpu (all cores) or gpu (wgpu compute, the adapter WGPU_BACKEND and
+    /// WGPU_ADAPTER_NAME choose). The GPU renders the shaded image; the debug views trace on
+    /// the CPU.
+    #[arg(long, default_value_t = Device::Cpu)]
+    device: Device,
     /// Brightness of NFF and SPD scenes' lights: `readme` (each light and the ambient light
     /// √N/2N for N lights, the SPD readme's suggestion) or `povray` (each light 1/√N, no
     /// ambient light, as SPD's POV-Ray exporter writes them).
@@ -155,6 +163,20 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     )?;
 
     let mut assembled = pool.install(|| assemble(scene))?;
+    let gpu = match args.device {
+        Device::Cpu => None,
+        Device::Gpu if args.view != DebugView::Shaded => {
+            return Err(format!(
+                "--view {} traces on the CPU only: leave out --device gpu",
+                args.view
+            ));
+        }
+        Device::Gpu => Some(GpuRenderer::new(Arc::new(GpuDevice::new()?), &assembled)?),
+    };
+    let backend = match &gpu {
+        Some(renderer) => Backend::Gpu(renderer),
+        None => Backend::Cpu(&pool),
+    };
     let legend = args.view.legend(&assembled.tracer());
     let legend_path = outputs[0].with_extension("legend.png");
     if legend.is_some() {
@@ -169,7 +191,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         let tracer = assembled.tracer();
         let scene = tracer.scene;
         let done = per_frame * k as u64;
-        let frame = render_frame(&tracer, &args.view, traced, &pool, |traced| {
+        let frame = render_frame(&tracer, &args.view, traced, &backend, |traced| {
             bar.set_position(done + traced)
         })
         .and_then(|(film, frame_stats)| {
@@ -240,6 +262,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
                 &assembled.scene.settings,
                 &stats,
                 assembled.bvh_time,
+                &backend.name(),
                 &args.output
             )
         )?;
@@ -259,13 +282,29 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     })
 }
 
-/// Renders the pixels `window` of an image with `tracer`, telling `progress` the pixels traced
-/// so far now and then.
+/// What traces the frames: the CPU's threads or the GPU.
+enum Backend<'a> {
+    Cpu(&'a rayon::ThreadPool),
+    Gpu(&'a GpuRenderer),
+}
+
+impl Backend<'_> {
+    /// The device as the summary names it: `cpu: N threads` or `gpu: ADAPTER (BACKEND)`.
+    fn name(&self) -> String {
+        match self {
+            Backend::Cpu(pool) => format!("cpu: {} threads", pool.current_num_threads()),
+            Backend::Gpu(renderer) => format!("gpu: {}", renderer.gpu().name()),
+        }
+    }
+}
+
+/// Renders the pixels `window` of an image with `tracer` (its scene, on the GPU), telling
+/// `progress` the pixels traced so far now and then.
 fn render_frame(
     tracer: &Tracer,
     view: &DebugView,
     window: Rect,
-    pool: &rayon::ThreadPool,
+    backend: &Backend,
     progress: impl Fn(u64),
 ) -> Result<(Film, RenderStats), String> {
     let settings = &tracer.scene.settings;
@@ -277,7 +316,12 @@ fn render_frame(
         let (done, finished) = mpsc::channel();
         let (film, control) = (&film, &control);
         let render = s.spawn(move || {
-            let stats = pool.install(|| progressive::render_unwatched(tracer, view, film, control));
+            let stats = match backend {
+                Backend::Cpu(pool) => {
+                    Ok(pool.install(|| progressive::render_unwatched(tracer, view, film, control)))
+                }
+                Backend::Gpu(renderer) => renderer.render_unwatched(tracer.scene, film, control),
+            };
             // Should this thread panic instead, dropping `done` ends the wait too.
             let _ = done.send(());
             stats
@@ -287,7 +331,7 @@ fn render_frame(
         }
         render.join()
     })
-    .map_err(|_| "the renderer crashed".to_string())?
+    .map_err(|_| "the renderer crashed".to_string())??
     .map_err(|_| "the render was cancelled".to_string())?;
     Ok((film, stats))
 }
@@ -305,16 +349,17 @@ fn progress_bar(total: u64) -> ProgressBar {
     bar
 }
 
-/// One line: resolution, time, rays by kind, speed, output.
+/// One line: resolution, time, rays by kind, speed, the device, output.
 fn summary(
     settings: &RenderSettings,
     stats: &RenderStats,
     build_time: Duration,
+    device: &str,
     output: &Path,
 ) -> String {
     let r = &stats.rays;
     format!(
-        "{}×{}: {:.3} s (BVH {:.1} ms), rays: {} eye ({} hit), {} shadow, {} reflected, {} transmitted; {:.2} Mrays/s → {}",
+        "{}×{}: {:.3} s (BVH {:.1} ms), rays: {} eye ({} hit), {} shadow, {} reflected, {} transmitted; {:.2} Mrays/s ({device}) → {}",
         settings.width,
         settings.height,
         stats.time.as_secs_f64(),

@@ -6,6 +6,7 @@
 //! added to its mean). Between dispatches the render waits while paused and stops when
 //! cancelled.
 
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use super::control::{Cancelled, PassStats, RenderControl, RenderStats, run_plan};
@@ -16,6 +17,8 @@ use crate::gpu::device::GpuDevice;
 use crate::gpu::scene::GpuScene;
 use crate::gpu::tracer::{PixelSample, SampleColor, pipeline, run_list, tracer_module};
 use crate::render::Assembled;
+use crate::scene::Scene;
+use crate::settings::RenderSettings;
 use crate::stats::RayCounts;
 
 /// Rows of a pass's grid in a band, as the CPU's sweep takes them.
@@ -25,81 +28,78 @@ const BAND: u32 = 8;
 /// systems reset a GPU that does not answer, and short enough to stop soon after a cancel.
 const DISPATCH_TIME: Duration = Duration::from_millis(100);
 
-/// A scene on the GPU, ready to render.
-pub struct GpuRenderer<'a> {
-    gpu: &'a GpuDevice,
-    assembled: &'a Assembled,
+/// A scene's objects, BVH, materials and lights on the GPU, ready to render it from any camera
+/// with any of the settings the frame record carries (the switches, depth, weights, sizes).
+pub struct GpuRenderer {
+    gpu: Arc<GpuDevice>,
     scene: GpuScene,
     trace: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
 }
 
-impl<'a> GpuRenderer<'a> {
+impl GpuRenderer {
     /// Uploads `assembled` to `gpu`; the error says what the GPU does not trace or hold.
-    pub fn new(gpu: &'a GpuDevice, assembled: &'a Assembled) -> Result<GpuRenderer<'a>, String> {
-        let scene = GpuScene::upload(gpu, assembled)?;
-        let module = tracer_module(gpu);
-        let trace = pipeline(gpu, &scene, &module, "trace_samples");
-        Ok(GpuRenderer {
-            gpu,
-            assembled,
-            scene,
-            trace,
-        })
+    pub fn new(gpu: Arc<GpuDevice>, assembled: &Assembled) -> Result<GpuRenderer, String> {
+        let scene = GpuScene::upload(&gpu, assembled)?;
+        let module = tracer_module(&gpu);
+        let trace = pipeline(&gpu, &scene, &module, "trace_samples");
+        Ok(GpuRenderer { gpu, scene, trace })
     }
 
-    /// Renders the scene into `film` pass after pass as [`super::render`] does on the CPU,
-    /// calling `on_pass` after each. The error says why the GPU failed.
+    /// The device it renders on.
+    pub fn gpu(&self) -> &GpuDevice {
+        &self.gpu
+    }
+
+    /// Renders `scene` (the one uploaded, with its camera and settings now) into `film` pass
+    /// after pass as [`super::render`] does on the CPU, calling `on_pass` after each. The error
+    /// says why the GPU failed.
     pub fn render(
         &self,
+        scene: &Scene,
         film: &Film,
         control: &RenderControl,
         on_pass: impl FnMut(&PassStats),
     ) -> Result<Result<RenderStats, Cancelled>, String> {
-        let settings = &self.assembled.scene.settings;
+        let settings = &scene.settings;
         let plan = passes(
             settings.block_size,
             settings.samples,
             settings.aa_threshold > 0.0,
         );
-        self.run(&plan, film, control, on_pass)
+        self.run(scene, &plan, film, control, on_pass)
     }
 
     /// [`Self::render`] for a film nobody looks at before it is finished, as
     /// [`super::render_unwatched`].
     pub fn render_unwatched(
         &self,
+        scene: &Scene,
         film: &Film,
         control: &RenderControl,
     ) -> Result<Result<RenderStats, Cancelled>, String> {
-        let settings = &self.assembled.scene.settings;
+        let settings = &scene.settings;
         let plan = unwatched_passes(settings.samples, settings.aa_threshold > 0.0);
-        self.run(&plan, film, control, |_| {})
+        self.run(scene, &plan, film, control, |_| {})
     }
 
     /// Runs `plan`; a GPU failure ends the render with its message.
     fn run(
         &self,
+        scene: &Scene,
         plan: &[Pass],
         film: &Film,
         control: &RenderControl,
         on_pass: impl FnMut(&PassStats),
     ) -> Result<Result<RenderStats, Cancelled>, String> {
-        let scene = &self.assembled.scene;
         self.scene
-            .set_view(self.gpu, scene, &scene.camera, film.origin());
-        let start_block = scene.settings.block_size;
+            .set_view(&self.gpu, scene, &scene.camera, film.origin());
+        let settings = &scene.settings;
         let mut shown = Vec::new();
         let mut failure = None;
         let mut batch_bands = 1;
         let stats = run_plan(plan, control, on_pass, |pass| {
-            let result = self.run_pass(
-                film,
-                control,
-                pass,
-                start_block,
-                &mut shown,
-                &mut batch_bands,
-            );
+            let result =
+                self.run_pass(settings, film, control, pass, &mut shown, &mut batch_bands);
             result.map_err(|e| {
                 if let Some(message) = e {
                     failure = Some(message);
@@ -118,10 +118,10 @@ impl<'a> GpuRenderer<'a> {
     /// takes). `Err(None)` when cancelled, `Err(Some(message))` when the GPU failed.
     fn run_pass(
         &self,
+        settings: &RenderSettings,
         film: &Film,
         control: &RenderControl,
         pass: Pass,
-        start_block: u32,
         shown: &mut Vec<[u8; 3]>,
         batch_bands: &mut u32,
     ) -> Result<PassStats, Option<String>> {
@@ -129,7 +129,7 @@ impl<'a> GpuRenderer<'a> {
         if let Pass::Refine(_) = pass {
             take_snapshot(film, shown);
         }
-        let threshold = self.assembled.scene.settings.aa_threshold;
+        let (start_block, threshold) = (settings.block_size, settings.aa_threshold);
         let grid = PassGrid::new(pass, start_block, film, shown, threshold);
         let step = pass.step();
         let (rows, columns) = (film.height().div_ceil(step), film.width().div_ceil(step));
@@ -151,7 +151,7 @@ impl<'a> GpuRenderer<'a> {
             }
             let dispatched = Instant::now();
             let colors: Vec<SampleColor> =
-                run_list(self.gpu, &self.scene, &self.trace, &samples).map_err(Some)?;
+                run_list(&self.gpu, &self.scene, &self.trace, &samples).map_err(Some)?;
             *batch_bands = next_batch(*batch_bands, dispatched.elapsed());
             let mut counts = RayCounts::default();
             for (s, c) in samples.iter().zip(&colors) {
