@@ -16,13 +16,16 @@ use std::time::{Duration, Instant};
 use clap::Args;
 use raylab::bvh::Bvh;
 use raylab::color::Color;
+use raylab::film::Film;
 use raylab::formats::load_any;
 use raylab::formats::toml::default_scene;
+use raylab::gpu::device::GpuDevice;
 use raylab::large_mesh::{bumpy_sphere_scene, check_bumpy_triangles};
 use raylab::output::{check_writable, write_atomically};
 use raylab::photon::{Caustics, PhotonMap};
-use raylab::progressive;
-use raylab::render::Assembled;
+use raylab::progressive::gpu::GpuRenderer;
+use raylab::progressive::{self, RenderControl, RenderStats};
+use raylab::render::{Assembled, Device};
 use raylab::scene::Scene;
 use raylab::whitted::Tracer;
 
@@ -49,6 +52,10 @@ pub struct BenchArgs {
     /// Also write the results as JSON to this file.
     #[arg(long)]
     json: Option<PathBuf>,
+    /// Which tracer renders: cpu (all cores) or gpu (wgpu compute, the adapter WGPU_BACKEND and
+    /// WGPU_ADAPTER_NAME choose).
+    #[arg(long, default_value_t = Device::Cpu)]
+    device: Device,
 }
 
 /// The standard set: the default scene, the seven SPD databases at their standard sizes, and a
@@ -73,6 +80,13 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
         check_writable(path).map_err(|e| format!("{}: {e}", path.display()))?;
     }
     let pool = super::thread_pool(args.threads)?;
+    let gpu = match args.device {
+        Device::Cpu => None,
+        Device::Gpu if args.scaling => {
+            return Err("--scaling measures the CPU's threads: leave out --device gpu".into());
+        }
+        Device::Gpu => Some(Arc::new(GpuDevice::new()?)),
+    };
     let single = if args.scaling {
         Some(super::thread_pool(Some(1))?)
     } else {
@@ -84,13 +98,17 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
         args.scenes.clone()
     };
     let threads = pool.current_num_threads();
+    let device = match &gpu {
+        Some(gpu) => format!("gpu: {}", gpu.name()),
+        None => format!("{threads} threads"),
+    };
     super::print_out(|out| {
-        writeln!(out, "{}×{} pixels, {threads} threads", args.size, args.size)?;
+        writeln!(out, "{}×{} pixels, {device}", args.size, args.size)?;
         bench_report::write_header(out, args.scaling)
     })?;
     let mut results = Vec::new();
     for name in &names {
-        let result = bench_scene(name, &args, &pool, single.as_ref())?;
+        let result = bench_scene(name, &args, &pool, single.as_ref(), gpu.as_ref())?;
         super::print_out(|out| bench_report::write_row(out, &result))?;
         results.push(result);
     }
@@ -125,6 +143,7 @@ fn bench_scene(
     args: &BenchArgs,
     pool: &rayon::ThreadPool,
     single: Option<&rayon::ThreadPool>,
+    gpu: Option<&Arc<GpuDevice>>,
 ) -> Result<BenchResult, String> {
     reset_peak_rss();
     let start = Instant::now();
@@ -146,6 +165,12 @@ fn bench_scene(
             Some(bench)
         }
     };
+    let gpu_renderer = match gpu {
+        Some(gpu) => Some(
+            GpuRenderer::new(Arc::clone(gpu), &assembled).map_err(|e| format!("{name}: {e}"))?,
+        ),
+        None => None,
+    };
     let tracer = assembled.tracer();
     let plain = assembled.tracer().with_caustics(None);
     let (mut renders, mut first_passes, mut single_renders) = (Vec::new(), Vec::new(), Vec::new());
@@ -155,7 +180,10 @@ fn bench_scene(
         if caustics.is_some() {
             renders_off.push(pool.install(|| progressive::render_image(&plain)).1.time);
         }
-        let (_, stats) = pool.install(|| progressive::render_image(&tracer));
+        let stats = match &gpu_renderer {
+            Some(renderer) => render_on_gpu(renderer, &assembled.scene)?,
+            None => pool.install(|| progressive::render_image(&tracer)).1,
+        };
         renders.push(stats.time);
         first_passes.push(stats.passes.first().map_or(Duration::ZERO, |p| p.time));
         rays = stats.rays;
@@ -179,6 +207,15 @@ fn bench_scene(
             ..c
         }),
     })
+}
+
+/// Renders `scene` on the GPU pass after pass, as [`progressive::render_image`] does on the CPU.
+fn render_on_gpu(renderer: &GpuRenderer, scene: &Scene) -> Result<RenderStats, String> {
+    let film = Film::new(scene.settings.width, scene.settings.height);
+    let control = RenderControl::default();
+    renderer
+        .render(scene, &film, &control, |_| {})?
+        .map_err(|_| "the render was cancelled".to_string())
 }
 
 /// How many estimates the gather cost is the mean of.

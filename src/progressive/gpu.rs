@@ -98,8 +98,7 @@ impl GpuRenderer {
         let mut failure = None;
         let mut batch_bands = 1;
         let stats = run_plan(plan, control, on_pass, |pass| {
-            let result =
-                self.run_pass(settings, film, control, pass, &mut shown, &mut batch_bands);
+            let result = self.run_pass(settings, film, control, pass, &mut shown, &mut batch_bands);
             result.map_err(|e| {
                 if let Some(message) = e {
                     failure = Some(message);
