@@ -6,6 +6,7 @@ use clap::Args;
 use raylab::formats::SceneFormat;
 use raylab::inspect::DebugView;
 use raylab::output::check_writable;
+use raylab::render::Device;
 use raylab::settings::{RenderSettings, SettingsOverrides};
 
 use super::overrides::{OverrideArgs, parse_size};
@@ -29,6 +30,11 @@ pub struct ViewArgs {
     /// Tracing threads (default: one per core).
     #[arg(long)]
     threads: Option<usize>,
+    /// Which tracer renders the shaded image: cpu or gpu (the debug views trace on the CPU).
+    /// Default: the GPU when its adapter is real hardware, the CPU when it is a software
+    /// rasterizer such as llvmpipe.
+    #[arg(long)]
+    device: Option<Device>,
     /// Window size in logical pixels.
     #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "1100x720")]
     window: Option<(u32, u32)>,
@@ -73,6 +79,7 @@ pub fn run(args: ViewArgs) -> Result<(), String> {
         overrides,
         debug_view: args.view,
         threads,
+        device: args.device,
         window: args.window.unwrap_or((1100, 720)),
         save_path: args.save,
         screenshot: args.screenshot,

@@ -260,6 +260,9 @@ pub struct GpuScene {
     pub bind_group: wgpu::BindGroup,
     /// The frame record's buffer, rewritten when the camera or the film moves.
     pub frame: wgpu::Buffer,
+    /// The materials' and the lights' buffers, rewritten as they are edited.
+    materials: wgpu::Buffer,
+    lights: wgpu::Buffer,
     /// Bytes the scene takes on the GPU.
     pub bytes: u64,
     /// How many records some buffers hold, as the frame record tells the WGSL.
@@ -274,6 +277,7 @@ struct RecordCounts {
     nodes: u32,
     lights: u32,
     objects: u32,
+    materials: u32,
 }
 
 /// Storage buffers in bind group 0, and the frame's uniform buffer after them.
@@ -310,7 +314,7 @@ impl GpuScene {
                 device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some(what),
                     contents,
-                    usage: wgpu::BufferUsages::STORAGE,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
                 }),
             )
         };
@@ -349,6 +353,7 @@ impl GpuScene {
             nodes: records.bvh.nodes.len() as u32,
             lights: records.lights.len() as u32,
             objects: records.table.objects.len() as u32,
+            materials: records.materials.len() as u32,
         };
         let frame_record = frame_record(scene, &scene.camera, counts, (0, 0));
         let frame = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -374,27 +379,51 @@ impl GpuScene {
             layout: &layout,
             entries: &entries,
         });
+        let [.., materials, lights] = buffers;
         Ok(GpuScene {
             layout,
             bind_group,
             frame,
+            materials,
+            lights,
             bytes,
             counts,
         })
     }
 
-    /// Makes the next dispatches see `scene` (its settings) through `camera`, on a film at
-    /// `film_origin` of the image.
-    pub fn set_view(
+    /// Makes the next dispatches see `scene` as it is now (its settings, materials and lights:
+    /// the scene uploaded, edited) through `camera`, on a film at `film_origin` of the image.
+    /// The error says if the scene's lights or materials changed in number.
+    pub fn update(
         &self,
         gpu: &GpuDevice,
         scene: &Scene,
         camera: &Camera,
         film_origin: (u32, u32),
-    ) {
+    ) -> Result<(), String> {
+        let materials: Vec<GpuMaterial> = scene.materials.iter().map(GpuMaterial::from).collect();
+        let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::from).collect();
+        if (materials.len(), lights.len())
+            != (self.counts.materials as usize, self.counts.lights as usize)
+        {
+            return Err(format!(
+                "the scene on the GPU has {} materials and {} lights, this one {} and {}: upload it again",
+                self.counts.materials,
+                self.counts.lights,
+                materials.len(),
+                lights.len()
+            ));
+        }
+        let queue = &gpu.queue;
         let record = frame_record(scene, camera, self.counts, film_origin);
-        gpu.queue
-            .write_buffer(&self.frame, 0, bytemuck::bytes_of(&record));
+        queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(&record));
+        if !materials.is_empty() {
+            queue.write_buffer(&self.materials, 0, bytemuck::cast_slice(&materials));
+        }
+        if !lights.is_empty() {
+            queue.write_buffer(&self.lights, 0, bytemuck::cast_slice(&lights));
+        }
+        Ok(())
     }
 }
 

@@ -92,7 +92,7 @@ impl GpuRenderer {
         on_pass: impl FnMut(&PassStats),
     ) -> Result<Result<RenderStats, Cancelled>, String> {
         self.scene
-            .set_view(&self.gpu, scene, &scene.camera, film.origin());
+            .update(&self.gpu, scene, &scene.camera, film.origin())?;
         let settings = &scene.settings;
         let mut shown = Vec::new();
         let mut failure = None;

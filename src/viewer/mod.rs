@@ -33,6 +33,7 @@ use std::path::PathBuf;
 
 use raylab::formats::SceneFormat;
 use raylab::inspect::DebugView;
+use raylab::render::Device;
 use raylab::settings::SettingsOverrides;
 use winit::event_loop::EventLoop;
 
@@ -51,6 +52,9 @@ pub struct Options {
     pub debug_view: DebugView,
     /// Tracing threads (0: one per core).
     pub threads: usize,
+    /// Which tracer renders the shaded image; `None`: the GPU when it is real hardware, the CPU
+    /// when the only adapter is a software rasterizer (llvmpipe) or there is none.
+    pub device: Option<Device>,
     /// Window size in logical pixels.
     pub window: (u32, u32),
     /// Where Save writes the image.

@@ -8,6 +8,8 @@
 
 use std::sync::Arc;
 
+use raylab::gpu::device::GpuDevice;
+use raylab::render::Device;
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, EventLoopProxy};
@@ -58,6 +60,7 @@ impl App {
             overrides,
             debug_view,
             threads,
+            device,
             window,
             save_path,
             screenshot,
@@ -66,8 +69,9 @@ impl App {
             script,
             max_fps,
         } = options;
+        let (device, gpu) = pick_device(device)?;
         let wake = proxy.clone();
-        let tracing = Tracing::start(threads, move || {
+        let tracing = Tracing::start(threads, gpu, move || {
             let _ = wake.send_event(UserEvent::RayTreeTraced);
         })?;
         let panel = PanelState {
@@ -90,6 +94,7 @@ impl App {
                 format,
                 overrides,
                 debug_view,
+                device,
                 Arc::new(move |news| {
                     let _ = proxy.send_event(UserEvent::Scene(news));
                 }),
@@ -231,5 +236,25 @@ impl ApplicationHandler<UserEvent> for App {
 
     fn exiting(&mut self, _event_loop: &ActiveEventLoop) {
         self.tracing.cancel();
+    }
+}
+
+/// The tracer the viewer starts with, and the GPU if it opened one: the one asked for, else the
+/// GPU when its adapter is real hardware and the CPU when it is a software rasterizer or there
+/// is none. The error says why the GPU asked for cannot be opened.
+fn pick_device(asked: Option<Device>) -> Result<(Device, Option<Arc<GpuDevice>>), String> {
+    match asked {
+        Some(Device::Cpu) => Ok((Device::Cpu, None)),
+        Some(Device::Gpu) => {
+            let gpu = GpuDevice::new().map_err(|e| format!("--device gpu: {e}"))?;
+            Ok((Device::Gpu, Some(Arc::new(gpu))))
+        }
+        None => match GpuDevice::new() {
+            Ok(gpu) if gpu.adapter.get_info().device_type != wgpu::DeviceType::Cpu => {
+                Ok((Device::Gpu, Some(Arc::new(gpu))))
+            }
+            Ok(gpu) => Ok((Device::Cpu, Some(Arc::new(gpu)))),
+            Err(_) => Ok((Device::Cpu, None)),
+        },
     }
 }

@@ -7,6 +7,7 @@ use raylab::camera::{Camera, CameraSpec};
 use raylab::inspect::DebugView;
 use raylab::light::Light;
 use raylab::material::Material;
+use raylab::render::Device;
 use raylab::scene::Scene;
 use raylab::settings::{RenderSettings, SettingsOverrides};
 
@@ -33,6 +34,8 @@ pub struct TraceSetup {
     /// The rounds of caustic photons the map holds already, of which the render wants one more
     /// (see `caustics`): 0 for a new render, which takes the map as it is if it has any.
     pub caustic_round: u32,
+    /// Which tracer renders the shaded image (the debug views trace on the CPU).
+    pub device: Device,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -52,6 +55,8 @@ pub struct Controls {
     /// refinement starts at the settings' `block_size` (given on the command line or chosen in
     /// the panel).
     pub auto_block: bool,
+    /// Which tracer renders the shaded image.
+    pub device: Device,
 }
 
 impl Controls {
@@ -65,6 +70,7 @@ impl Controls {
             materials: scene.materials.clone(),
             lights: scene.lights.clone(),
             auto_block: true,
+            device: Device::Cpu,
         }
     }
 
@@ -130,6 +136,7 @@ impl Controls {
             materials: self.materials.clone(),
             lights: self.lights.iter().map(edits::normalized).collect(),
             caustic_round: 0,
+            device: self.device,
         })
     }
 }

@@ -15,6 +15,7 @@ use std::sync::Arc;
 use raylab::formats::SceneFormat;
 use raylab::formats::toml::{Looks, save_edits};
 use raylab::inspect::DebugView;
+use raylab::render::Device;
 use raylab::settings::SettingsOverrides;
 
 use self::controls::Controls;
@@ -81,6 +82,8 @@ pub struct SceneSlot {
     /// for the next scenes.
     overrides: SettingsOverrides,
     debug_view: DebugView,
+    /// The tracer the shaded image is rendered with, kept for the next scenes as the debug view.
+    device: Device,
     /// The scene file asked for last (watched even while it fails to load); `None` for the
     /// built-in default scene.
     requested: Option<PathBuf>,
@@ -111,12 +114,14 @@ impl SceneSlot {
         format: Option<SceneFormat>,
         overrides: SettingsOverrides,
         debug_view: DebugView,
+        device: Device,
         news: NewsSender,
     ) -> SceneSlot {
         SceneSlot {
             state: SceneState::Loading,
             overrides,
             debug_view,
+            device,
             format: first.clone().zip(format),
             requested: first,
             files_beside: Vec::new(),
@@ -189,8 +194,9 @@ impl SceneSlot {
         // The scene with the overrides applied (they were checked before the window opened, so
         // only a scene's own bad settings can fail here).
         let with_overrides = result.and_then(|loaded| {
-            let controls =
+            let mut controls =
                 Controls::with_overrides(loaded.scene(), &self.overrides, self.debug_view)?;
+            controls.device = self.device;
             Ok((loaded, controls))
         });
         let (loaded, with_overrides) = match with_overrides {
@@ -338,7 +344,7 @@ impl SceneSlot {
     }
 
     /// The shown controls are being rendered: a size the user chose (not the one the scene
-    /// started with), and the debug view, stay for the next scenes.
+    /// started with), the debug view and the device, stay for the next scenes.
     pub fn keep_choices(&mut self) {
         let Some(shown) = self.shown() else { return };
         let settings = &shown.controls.settings;
@@ -348,11 +354,12 @@ impl SceneSlot {
             self.overrides.height.unwrap_or(file.height),
         );
         let size = (settings.width, settings.height);
-        let debug_view = shown.controls.debug_view;
+        let (debug_view, device) = (shown.controls.debug_view, shown.controls.device);
         if size != started {
             (self.overrides.width, self.overrides.height) = (Some(size.0), Some(size.1));
         }
         self.debug_view = debug_view;
+        self.device = device;
     }
 }
 

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use egui::{Color32, DragValue, Slider};
 use raylab::inspect::{DebugView, Legend};
+use raylab::render::Device;
 use raylab::settings::{MAX_BLOCK_SIZE, MAX_CAUSTIC_GATHER, MAX_DEPTH_LIMIT, MAX_SAMPLES};
 use strum::IntoEnumIterator;
 
@@ -225,6 +226,13 @@ fn tracing_section(
             if let Some(legend) = legend {
                 legend_bar::show(ui, legend);
             }
+            ui.horizontal(|ui| {
+                ui.label("device");
+                for device in Device::iter() {
+                    ui.selectable_value(&mut controls.device, device, device.to_string())
+                        .on_hover_text("the tracer of the shaded image (debug views: the CPU)");
+                }
+            });
             let auto_block = &mut controls.auto_block;
             let s = &mut controls.settings;
             ui.add(Slider::new(&mut s.max_depth, 1..=MAX_DEPTH_LIMIT).text("max depth"));

@@ -18,6 +18,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use raylab::film::Film;
+use raylab::gpu::device::GpuDevice;
 use raylab::progressive::{Progress, RenderControl};
 
 use self::caustics::{MAX_ROUNDS, SharedCaustics};
@@ -45,10 +46,15 @@ pub struct Tracing {
 
 impl Tracing {
     /// Starts the render worker and the ray tree thread (each with `threads` tracing threads,
-    /// 0: one per core); `wake` tells the window a ray tree has come.
-    pub fn start(threads: usize, wake: impl Fn() + Send + 'static) -> Result<Tracing, String> {
+    /// 0: one per core; the worker renders on `gpu` what asks for the GPU, opening one then if
+    /// `None`); `wake` tells the window a ray tree has come.
+    pub fn start(
+        threads: usize,
+        gpu: Option<Arc<GpuDevice>>,
+        wake: impl Fn() + Send + 'static,
+    ) -> Result<Tracing, String> {
         let caustics = SharedCaustics::default();
-        let worker = Worker::start(threads, caustics.clone())?;
+        let worker = Worker::start(threads, caustics.clone(), gpu)?;
         let picked = PickedPixel::start(threads, caustics, wake)?;
         Ok(Tracing {
             worker,
@@ -282,6 +288,7 @@ impl Tracing {
             start_block: r.start_block,
             auto_block: r.controls.auto_block && r.caustic_round == 0,
             paused: self.paused(),
+            device: r.report.device(),
         })
     }
 }

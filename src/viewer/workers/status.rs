@@ -1,6 +1,7 @@
 //! The status lines: the current pass and block size, progress within the pass, the block size
 //! the render started at (and whether the viewer picked it), whether it is paused, milliseconds
-//! per pass; then rays traced by kind, the tracing speed and the window's frame rate.
+//! per pass; then rays traced by kind, the tracing speed, what traces (the CPU's threads or the
+//! GPU) and the window's frame rate.
 
 use std::time::Duration;
 
@@ -25,6 +26,8 @@ pub struct RenderStatus {
     pub auto_block: bool,
     /// Refinement is paused.
     pub paused: bool,
+    /// What traces: `cpu: N threads` or `gpu: ADAPTER (BACKEND)` (empty: not said yet).
+    pub device: String,
 }
 
 /// Two lines of text.
@@ -72,6 +75,11 @@ pub fn status_line(s: &RenderStatus) -> String {
     } else {
         String::new()
     };
+    let device = if s.device.is_empty() {
+        String::new()
+    } else {
+        format!(" on {}", s.device)
+    };
     let caustics = if s.photons > 0 {
         format!(" · caustics: {} photons", s.photons)
     } else {
@@ -79,7 +87,7 @@ pub fn status_line(s: &RenderStatus) -> String {
     };
     format!(
         "{paused}{state}{start} · ms per pass: {pass_times}{caustics}\nrays: {} eye ({} hit), {} shadow, {} \
-         reflected, {} transmitted{over_budget} · {mrays:.2} Mrays/s · {:.0} fps",
+         reflected, {} transmitted{over_budget} · {mrays:.2} Mrays/s{device} · {:.0} fps",
         r.primary, r.primary_hits, r.shadow, r.reflected, r.transmitted, s.fps
     )
 }
@@ -115,6 +123,7 @@ mod tests {
             start_block: 0,
             auto_block: false,
             paused: false,
+            device: String::new(),
         };
         let line = status_line(&s);
         assert!(line.starts_with("pass 2/5 · block 8 · 25%"), "{line}");
@@ -128,6 +137,15 @@ mod tests {
             "{line}"
         );
         assert!(line.contains("2.00 Mrays/s · 60 fps"), "{line}");
+        let on_gpu = RenderStatus {
+            device: "gpu: llvmpipe (vulkan)".into(),
+            ..s
+        };
+        let line = status_line(&on_gpu);
+        assert!(
+            line.contains("2.00 Mrays/s on gpu: llvmpipe (vulkan) · 60 fps"),
+            "{line}"
+        );
         assert!(!line.contains("caustics"), "{line}");
     }
 

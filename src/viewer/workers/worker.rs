@@ -1,7 +1,7 @@
 //! The render worker: one background thread that runs the library's progressive renderer on its
-//! own pool of tracing threads. The window sends it jobs; a new job cancels the one running
-//! (through its [`RenderControl`]) and starts from the coarse block size. Between jobs the thread
-//! sleeps on its channel, so an idle viewer uses no CPU.
+//! own pool of tracing threads, or on the GPU when a job asks for it. The window sends it jobs; a
+//! new job cancels the one running (through its [`RenderControl`]) and starts from the coarse
+//! block size. Between jobs the thread sleeps on its channel, so an idle viewer uses no CPU.
 
 use std::panic::AssertUnwindSafe;
 use std::sync::atomic::{AtomicU32, Ordering};
@@ -11,8 +11,10 @@ use std::thread::JoinHandle;
 use std::time::Instant;
 
 use raylab::film::Film;
-use raylab::inspect::Legend;
+use raylab::gpu::device::GpuDevice;
+use raylab::inspect::{DebugView, Legend};
 use raylab::progressive::{self, PassStats, RenderControl};
+use raylab::render::Device;
 
 use super::caustics::{JobMap, SharedCaustics, Shot};
 use super::working_scene::WorkingScene;
@@ -49,6 +51,9 @@ pub struct JobReport {
     caustics: Mutex<Option<Shot>>,
     /// Photons in the caustic map the job traces with (0: caustics off).
     photons: AtomicU32,
+    /// What traces the job: `cpu: N threads` or `gpu: ADAPTER (BACKEND)`, and why not the GPU
+    /// where it was asked for and cannot.
+    device: Mutex<String>,
 }
 
 impl JobReport {
@@ -60,6 +65,18 @@ impl JobReport {
             legend: Mutex::new(None),
             caustics: Mutex::new(None),
             photons: AtomicU32::new(0),
+            device: Mutex::new(String::new()),
+        }
+    }
+
+    /// What traces the job (empty until it starts).
+    pub fn device(&self) -> String {
+        self.device.lock().map(|d| d.clone()).unwrap_or_default()
+    }
+
+    fn set_device(&self, device: String) {
+        if let Ok(mut d) = self.device.lock() {
+            *d = device;
         }
     }
 
@@ -110,13 +127,18 @@ pub struct Worker {
 
 impl Worker {
     /// Starts the worker with `threads` tracing threads (0: one per core), keeping its caustic
-    /// map in `caustics`.
-    pub fn start(threads: usize, caustics: SharedCaustics) -> Result<Worker, String> {
+    /// map in `caustics`, rendering on `gpu` the jobs that ask for the GPU (opened at the first
+    /// such job when `None`).
+    pub fn start(
+        threads: usize,
+        caustics: SharedCaustics,
+        gpu: Option<Arc<GpuDevice>>,
+    ) -> Result<Worker, String> {
         let pool = low_priority_pool(threads, "tracer")?;
         let (jobs, inbox) = mpsc::channel();
         let thread = std::thread::Builder::new()
             .name("render worker".into())
-            .spawn(move || run(&pool, &inbox, &caustics))
+            .spawn(move || run(&pool, &inbox, &caustics, gpu.map(Ok)))
             .map_err(|e| format!("cannot start the render worker: {e}"))?;
         Ok(Worker {
             jobs: Some(jobs),
@@ -144,8 +166,14 @@ impl Drop for Worker {
 }
 
 /// The worker's loop: take the newest job, make or grow its caustic map, render it, repeat; end
-/// when the channel closes.
-fn run(pool: &rayon::ThreadPool, inbox: &Receiver<Job>, caustics: &SharedCaustics) {
+/// when the channel closes. `gpu` is the GPU, or why it cannot be opened, once a job asked for
+/// it.
+fn run(
+    pool: &rayon::ThreadPool,
+    inbox: &Receiver<Job>,
+    caustics: &SharedCaustics,
+    mut gpu: Option<Result<Arc<GpuDevice>, String>>,
+) {
     let mut working = WorkingScene::default();
     while let Ok(mut job) = inbox.recv() {
         // Jobs queued behind this one supersede it.
@@ -181,10 +209,45 @@ fn run(pool: &rayon::ThreadPool, inbox: &Receiver<Job>, caustics: &SharedCaustic
                 continue;
             }
         };
-        let tracer = working.tracer(&job.scene, &job.setup, map);
+        let tracer = working.tracer(&job.scene, &job.setup, map.clone());
         if let Ok(mut legend) = job.report.legend.lock() {
             *legend = job.setup.debug_view.legend(&tracer);
         }
+        let cpu = format!("cpu: {} threads", pool.current_num_threads());
+        if job.setup.device == Device::Gpu {
+            let shaded = job.setup.debug_view == DebugView::Shaded;
+            let gpu = gpu.get_or_insert_with(|| GpuDevice::new().map(Arc::new));
+            let on_gpu = match gpu {
+                Ok(_) if !shaded => Err(format!(
+                    "the {} view traces on the CPU",
+                    job.setup.debug_view
+                )),
+                Ok(gpu) => working.on_gpu(gpu),
+                Err(e) => Err(e.clone()),
+            };
+            match on_gpu {
+                Ok((copy, renderer)) => {
+                    job.report
+                        .set_device(format!("gpu: {}", renderer.gpu().name()));
+                    let rendered = std::panic::catch_unwind(AssertUnwindSafe(|| {
+                        renderer.render(&copy.scene, &job.film, &job.control, |pass| {
+                            job.report.push_pass(pass)
+                        })
+                    }));
+                    job.report.finish(match rendered {
+                        Ok(Ok(Ok(_))) => Outcome::Finished,
+                        Ok(Ok(Err(_))) => Outcome::Cancelled,
+                        Ok(Err(e)) => Outcome::Failed(format!("the GPU failed: {e}")),
+                        Err(panic) => Outcome::Failed(panic_message(panic.as_ref())),
+                    });
+                    continue;
+                }
+                Err(why) => job.report.set_device(format!("{cpu} (not the GPU: {why})")),
+            }
+        } else {
+            job.report.set_device(cpu);
+        }
+        let tracer = working.tracer(&job.scene, &job.setup, map);
         let rendered = std::panic::catch_unwind(AssertUnwindSafe(|| {
             pool.install(|| {
                 progressive::render(
@@ -269,6 +332,7 @@ mod tests {
                 materials: scene.scene().materials.clone(),
                 lights: scene.scene().lights.clone(),
                 caustic_round: 0,
+                device: Default::default(),
             },
             film: Arc::new(Film::new(size, size)),
             control: Arc::new(RenderControl::default()),
@@ -293,7 +357,7 @@ mod tests {
     #[test]
     fn a_job_renders_every_pass_into_its_film() {
         let scene = Arc::new(source::load(None, None).unwrap());
-        let worker = Worker::start(2, SharedCaustics::default()).unwrap();
+        let worker = Worker::start(2, SharedCaustics::default(), None).unwrap();
         let j = job(&scene, 32);
         let (film, report, control) = (j.film.clone(), j.report.clone(), j.control.clone());
         worker.submit(j).unwrap();
@@ -310,7 +374,7 @@ mod tests {
     #[test]
     fn a_cancelled_job_stops_and_the_next_one_runs() {
         let scene = Arc::new(source::load(None, None).unwrap());
-        let worker = Worker::start(1, SharedCaustics::default()).unwrap();
+        let worker = Worker::start(1, SharedCaustics::default(), None).unwrap();
         let first = job(&scene, 1024);
         let (first_control, first_report) = (first.control.clone(), first.report.clone());
         worker.submit(first).unwrap();
@@ -331,7 +395,7 @@ mod tests {
             object.material = 9999;
         }
         let broken = Arc::new(broken);
-        let worker = Worker::start(1, SharedCaustics::default()).unwrap();
+        let worker = Worker::start(1, SharedCaustics::default(), None).unwrap();
         let failing = job(&broken, 16);
         let report = failing.report.clone();
         worker.submit(failing).unwrap();

@@ -1,12 +1,15 @@
 //! The scene as the controls show it: a copy of a loaded scene given the controls' camera,
-//! settings, light intensity, debug view and edited materials and lights, and the caustic photon map it is traced with. The
-//! threads that trace (the render worker, the ray tree thread) each keep one, copied once per
-//! loaded scene and updated in place for each job, so that moving the camera or editing a
-//! material copies no geometry (and keeps the BVH).
+//! settings, light intensity, debug view and edited materials and lights, and the caustic photon
+//! map it is traced with. The threads that trace (the render worker, the ray tree thread) each
+//! keep one, copied once per loaded scene and updated in place for each job, so that moving the
+//! camera or editing a material copies no geometry (and keeps the BVH). The render worker's
+//! copy also keeps the scene uploaded to the GPU, once the GPU is asked to render it.
 
 use std::sync::Arc;
 
+use raylab::gpu::device::GpuDevice;
 use raylab::photon::PhotonMap;
+use raylab::progressive::gpu::GpuRenderer;
 use raylab::render::Assembled;
 use raylab::whitted::Tracer;
 
@@ -17,6 +20,8 @@ use crate::viewer::scene::source::LoadedScene;
 #[derive(Default)]
 pub struct WorkingScene {
     copy: Option<(Arc<LoadedScene>, Assembled)>,
+    /// The copy's scene on the GPU, or why the GPU does not render it.
+    on_gpu: Option<Result<GpuRenderer, String>>,
 }
 
 impl WorkingScene {
@@ -34,6 +39,7 @@ impl WorkingScene {
             .is_some_and(|(copied, _)| Arc::ptr_eq(copied, loaded))
         {
             self.copy = None;
+            self.on_gpu = None;
         }
         let (_, copy) = self
             .copy
@@ -49,5 +55,17 @@ impl WorkingScene {
             .map(|l| l.scaled(setup.light_scale))
             .collect();
         copy.tracer()
+    }
+
+    /// The copy (as the last [`Self::tracer`] made it) and the renderer of its scene on `gpu`,
+    /// uploaded the first time it is asked for; the error says why the GPU does not render it.
+    pub fn on_gpu(&mut self, gpu: &Arc<GpuDevice>) -> Result<(&Assembled, &GpuRenderer), String> {
+        let (_, copy) = self.copy.as_ref().ok_or("no scene to upload to the GPU")?;
+        let renderer = self
+            .on_gpu
+            .get_or_insert_with(|| GpuRenderer::new(Arc::clone(gpu), copy))
+            .as_ref()
+            .map_err(|e| e.clone())?;
+        Ok((copy, renderer))
     }
 }
