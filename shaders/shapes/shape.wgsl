@@ -4,6 +4,8 @@
 // shape's numbers and every transform are read from `shape_words` (src/gpu/shapes.rs writes
 // them).
 
+const PI: f32 = 3.14159265358979;
+
 const SHAPE_SPHERE: u32 = 0u;
 const SHAPE_PLANE: u32 = 1u;
 const SHAPE_POLYGON: u32 = 2u;

@@ -1,8 +1,6 @@
 // Spheres: the twin of src/shapes/sphere.rs, step for step, so that the GPU finds the same
 // crossings as the CPU.
 
-const PI: f32 = 3.14159265358979;
-
 struct Sphere {
     center: vec3<f32>,
     radius: f32,
