@@ -7,7 +7,7 @@
 mod common;
 
 use common::random::{Rng, direction, in_cube, in_range};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use raylab::camera::Camera;
 use raylab::gpu::device::GpuDevice;
 use raylab::gpu::probe::{NO_PRIM, ProbeHit, ProbeRay, Search, closest_hits};
@@ -21,18 +21,22 @@ use raylab::ray::Ray;
 use raylab::render::{Assembled, assemble};
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
-use raylab::shapes::{Shape, Sphere};
+use raylab::shapes::{
+    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder,
+};
+use raylab::transform::{Transform, TransformStep};
 
 fn gpu() -> GpuDevice {
     GpuDevice::new().unwrap_or_else(|e| panic!("these tests run on a GPU: {e}"))
 }
 
-/// A scene of `shapes` (no transform) and `meshes`, one material, ready on the CPU.
-fn scene_of(shapes: Vec<Shape>, meshes: Vec<Mesh>) -> Assembled {
+/// A scene of `objects` (each shape with its transform, if any) and `meshes`, one material,
+/// ready on the CPU.
+fn scene_of(objects: Vec<(Shape, Option<Transform>)>, meshes: Vec<Mesh>) -> Assembled {
     let mut scene = Scene::new(RenderSettings::default(), Camera::default());
     let material = scene.add_material(Material::default());
-    for shape in shapes {
-        scene.add_object(shape, None, material);
+    for (shape, transform) in objects {
+        scene.add_object(shape, transform, material);
     }
     for mesh in meshes {
         scene.geometry.add_mesh(mesh);
@@ -82,12 +86,21 @@ fn cpu_hit(assembled: &Assembled, search: Search, ray: &ProbeRay) -> ProbeHit {
     }
 }
 
+/// Shapes without a transform, for [`scene_of`].
+fn untransformed(shapes: Vec<Shape>) -> Vec<(Shape, Option<Transform>)> {
+    shapes.into_iter().map(|shape| (shape, None)).collect()
+}
+
 /// Compares the GPU's hits with the CPU's: the same primitive and part, `t` within 10⁻⁴
-/// relative and the normal within 10⁻³, away from grazing hits and near ties (where rounding
-/// may pick the other primitive), which are counted. Returns how many hits were compared.
+/// relative (absolute below 1, where the rounding of the ray's coordinates, which are about 1
+/// or larger, outweighs that of `t`: a ray starting 0.003 from a plane), the normal within 10⁻³ and the texture coordinates within 10⁻³ (relative where
+/// they are larger than 1, as a plane's are), away from grazing hits and near ties (where
+/// rounding may pick the other primitive), which are counted. Returns how many hits were
+/// compared, and prints it with the largest error of `t`.
 fn compare(assembled: &Assembled, search: Search, rays: &[ProbeRay], on_gpu: &[ProbeHit]) -> usize {
     assert_eq!(on_gpu.len(), rays.len());
     let (mut compared, mut left_out) = (0, 0);
+    let mut max_t_error = 0.0f32;
     for (i, (ray, gpu_hit)) in rays.iter().zip(on_gpu).enumerate() {
         let cpu = cpu_hit(assembled, search, ray);
         let dir = Vec3::from(ray.dir).normalize();
@@ -111,7 +124,7 @@ fn compare(assembled: &Assembled, search: Search, rays: &[ProbeRay], on_gpu: &[P
             "ray {i} {ray:?}: GPU {gpu_hit:?}, CPU {cpu:?}"
         );
         if cpu.prim != NO_PRIM {
-            let error = (gpu_hit.t - cpu.t).abs() / cpu.t;
+            let error = (gpu_hit.t - cpu.t).abs() / cpu.t.max(1.0);
             assert!(
                 error < 1e-4,
                 "ray {i} {ray:?}: GPU {gpu_hit:?}, CPU {cpu:?} (t off by {error:e})"
@@ -121,9 +134,24 @@ fn compare(assembled: &Assembled, search: Search, rays: &[ProbeRay], on_gpu: &[P
                 normal_error < 1e-3,
                 "ray {i} {ray:?}: GPU {gpu_hit:?}, CPU {cpu:?}"
             );
+            let tolerance = 1e-3 * Vec2::from(cpu.uv).abs().max_element().max(1.0);
+            let mut uv_error = (Vec2::from(gpu_hit.uv) - Vec2::from(cpu.uv)).abs();
+            // The round shapes' u jumps from 1 to 0 at their seam (where `atan2` goes from π to
+            // −π), so a point on the seam may get either: a difference of 1 there is none.
+            if (uv_error.x - 1.0).abs() < tolerance {
+                uv_error.x = (uv_error.x - 1.0).abs();
+            }
+            assert!(
+                uv_error.max_element() < tolerance,
+                "ray {i} {ray:?}: GPU {gpu_hit:?}, CPU {cpu:?} (uv off by {uv_error})"
+            );
+            max_t_error = max_t_error.max(error);
             compared += 1;
         }
     }
+    println!(
+        "{search:?}: {compared} hits compared, {left_out} left out, t off by {max_t_error:e} at most"
+    );
     assert!(
         left_out * 20 < rays.len(),
         "{left_out} of {} rays grazing or tied",
@@ -161,7 +189,7 @@ fn spheres_give_the_cpus_closest_hits_on_random_rays() {
         .map(|_| Sphere::new(in_cube(&mut rng, -10.0, 10.0), in_range(&mut rng, 0.2, 3.0)).unwrap())
         .collect();
     let assembled = scene_of(
-        spheres.iter().map(|s| Shape::Sphere(*s)).collect(),
+        untransformed(spheres.iter().map(|s| Shape::Sphere(*s)).collect()),
         Vec::new(),
     );
     let rays = rays_towards(&mut rng, 40_000, 20.0, |rng| {
@@ -180,7 +208,7 @@ fn spheres_give_the_cpus_closest_hits_on_random_rays() {
 fn rays_past_every_sphere_miss_on_the_gpu_too() {
     let gpu = gpu();
     let assembled = scene_of(
-        vec![Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0).unwrap())],
+        untransformed(vec![Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0).unwrap())]),
         Vec::new(),
     );
     let scene = GpuScene::upload(&gpu, &assembled).unwrap();
@@ -202,6 +230,187 @@ fn rays_past_every_sphere_miss_on_the_gpu_too() {
         );
         assert_eq!(hits[2].normal, [1.0, 0.0, 0.0], "{search:?}");
     }
+}
+
+/// A random placement: a non-uniform scale, a turn about a random axis, then a move to `to`.
+fn random_transform(rng: &mut Rng, to: Vec3) -> Transform {
+    let scale = Vec3::new(
+        in_range(rng, 0.5, 2.0),
+        in_range(rng, 0.5, 2.0),
+        in_range(rng, 0.5, 2.0),
+    );
+    Transform::from_steps(&[
+        TransformStep::Scale(scale),
+        TransformStep::Rotate {
+            axis: direction(rng),
+            degrees: in_range(rng, 0.0, 360.0),
+        },
+        TransformStep::Translate(to),
+    ])
+    .unwrap()
+}
+
+/// `count` shapes from `make`, each about a random point of the box `-extent..extent`: every
+/// other one made about the origin and moved there by a [`random_transform`].
+fn random_objects(
+    rng: &mut Rng,
+    count: usize,
+    extent: f32,
+    mut make: impl FnMut(&mut Rng, Vec3) -> Shape,
+) -> Vec<(Shape, Option<Transform>)> {
+    (0..count)
+        .map(|i| {
+            let at = in_cube(rng, -extent, extent);
+            if i % 2 == 0 {
+                (make(rng, at), None)
+            } else {
+                (make(rng, Vec3::ZERO), Some(random_transform(rng, at)))
+            }
+        })
+        .collect()
+}
+
+/// A random point in the world bounds of a random bounded object of `assembled`.
+fn in_some_bounds(rng: &mut Rng, assembled: &Assembled) -> Vec3 {
+    let geometry = &assembled.scene.geometry;
+    loop {
+        let id = PrimId::object(rng.usize(..geometry.objects.len()));
+        if let Some(b) = geometry.bounds(id) {
+            let f = in_cube(rng, 0.0, 1.0);
+            return b.min + (b.max - b.min) * f;
+        }
+    }
+}
+
+/// `count` random rays at `objects`, on the GPU and on the CPU, by both searches: at least
+/// 10,000 hits compared by each. Returns the GPU's hits by the BVH.
+fn check_random_objects(
+    rng: &mut Rng,
+    objects: Vec<(Shape, Option<Transform>)>,
+    count: usize,
+) -> Vec<ProbeHit> {
+    let gpu = gpu();
+    let assembled = scene_of(objects, Vec::new());
+    let rays = rays_towards(rng, count, 20.0, |rng| in_some_bounds(rng, &assembled));
+    let scene = GpuScene::upload(&gpu, &assembled).unwrap();
+    let mut on_gpu = Vec::new();
+    for search in [Search::Objects, Search::Bvh] {
+        on_gpu = closest_hits(&gpu, &scene, search, &rays).unwrap();
+        let compared = compare(&assembled, search, &rays, &on_gpu);
+        assert!(compared >= 10_000, "{search:?}: {compared} hits compared");
+    }
+    on_gpu
+}
+
+/// How many of `hits` are on the first `count` objects.
+fn hits_on_first(hits: &[ProbeHit], count: usize) -> usize {
+    let first: Vec<u32> = (0..count).map(|i| PrimId::object(i).0).collect();
+    hits.iter().filter(|h| first.contains(&h.prim)).count()
+}
+
+#[test]
+fn cuboids_give_the_cpus_closest_hits_on_random_rays() {
+    let mut rng = Rng::with_seed(41);
+    let objects = random_objects(&mut rng, 24, 10.0, |rng, at| {
+        let half = in_cube(rng, 0.2, 2.0);
+        Shape::Cuboid(Cuboid::new(at - half, at + half).unwrap())
+    });
+    check_random_objects(&mut rng, objects, 40_000);
+}
+
+#[test]
+fn ellipsoids_give_the_cpus_closest_hits_on_random_rays() {
+    let mut rng = Rng::with_seed(42);
+    let objects = random_objects(&mut rng, 24, 10.0, |rng, at| {
+        Shape::Ellipsoid(Ellipsoid::new(at, in_cube(rng, 0.2, 2.0)).unwrap())
+    });
+    check_random_objects(&mut rng, objects, 40_000);
+}
+
+#[test]
+fn tapered_cylinders_give_the_cpus_closest_hits_on_random_rays() {
+    let mut rng = Rng::with_seed(43);
+    // Cylinders, cones pointing up and down, and truncated cones, capped or open.
+    let objects = random_objects(&mut rng, 24, 10.0, |rng, at| {
+        let half_axis = direction(rng) * in_range(rng, 0.3, 2.0);
+        let radius = in_range(rng, 0.2, 1.5);
+        let (base_radius, top_radius) = match rng.u32(..4) {
+            0 => (radius, radius),
+            1 => (radius, 0.0),
+            2 => (0.0, radius),
+            _ => (radius, in_range(rng, 0.2, 1.5)),
+        };
+        let cylinder = TaperedCylinder::new(
+            at - half_axis,
+            at + half_axis,
+            base_radius,
+            top_radius,
+            rng.bool(),
+        );
+        Shape::TaperedCylinder(cylinder.unwrap())
+    });
+    check_random_objects(&mut rng, objects, 40_000);
+}
+
+#[test]
+fn paraboloids_give_the_cpus_closest_hits_on_random_rays() {
+    let mut rng = Rng::with_seed(44);
+    let objects = random_objects(&mut rng, 24, 10.0, |rng, at| {
+        let radius = in_range(rng, 0.3, 2.0);
+        let height = in_range(rng, 0.3, 2.0);
+        Shape::Paraboloid(Paraboloid::new(at, radius, height, rng.bool()).unwrap())
+    });
+    check_random_objects(&mut rng, objects, 40_000);
+}
+
+/// A polygon about `at` in a random plane: 3 to 40 vertices around it at random distances, so
+/// that many are concave and those of more than 8 edges are split into several bands.
+fn random_polygon(rng: &mut Rng, at: Vec3) -> Polygon {
+    let (s, t) = direction(rng).any_orthonormal_pair();
+    let count = rng.usize(3..=40);
+    let vertices = (0..count)
+        .map(|i| {
+            let angle = (i as f32 + in_range(rng, 0.0, 0.8)) * std::f32::consts::TAU / count as f32;
+            let radius = in_range(rng, 0.5, 2.5);
+            at + (s * angle.cos() + t * angle.sin()) * radius
+        })
+        .collect();
+    Polygon::new(vertices).unwrap()
+}
+
+#[test]
+fn polygons_give_the_cpus_closest_hits_on_random_rays() {
+    let mut rng = Rng::with_seed(45);
+    let objects = random_objects(&mut rng, 24, 10.0, |rng, at| {
+        Shape::Polygon(random_polygon(rng, at))
+    });
+    // Rays aimed into a flat polygon's bounds miss it more often than not.
+    check_random_objects(&mut rng, objects, 80_000);
+}
+
+/// Planes, which the BVH keeps in a list that every ray tests, among boxes and ellipsoids in
+/// its tree.
+#[test]
+fn planes_among_bounded_shapes_give_the_cpus_closest_hits_on_random_rays() {
+    let mut rng = Rng::with_seed(46);
+    let planes = 4;
+    let mut objects = random_objects(&mut rng, planes, 10.0, |rng, at| {
+        Shape::Plane(Plane {
+            point: at,
+            normal: direction(rng),
+        })
+    });
+    objects.extend(random_objects(&mut rng, 16, 10.0, |rng, at| {
+        if rng.bool() {
+            let half = in_cube(rng, 0.2, 2.0);
+            Shape::Cuboid(Cuboid::new(at - half, at + half).unwrap())
+        } else {
+            Shape::Ellipsoid(Ellipsoid::new(at, in_cube(rng, 0.2, 2.0)).unwrap())
+        }
+    }));
+    let on_gpu = check_random_objects(&mut rng, objects, 40_000);
+    let on_planes = hits_on_first(&on_gpu, planes);
+    assert!(on_planes >= 10_000, "{on_planes} hits on planes");
 }
 
 /// A mesh of `count` random triangles in the box `-extent..extent`, some with vertex normals.
@@ -235,7 +444,7 @@ fn the_bvh_walk_finds_the_cpus_closest_hits_among_triangles_and_spheres() {
         random_mesh(&mut rng, 3000, 12.0, false),
         random_mesh(&mut rng, 1000, 12.0, true),
     ];
-    let assembled = scene_of(spheres, meshes);
+    let assembled = scene_of(untransformed(spheres), meshes);
     assert!(assembled.bvh.depth() >= 3, "a tree deep enough to walk");
     let rays = rays_towards(&mut rng, 30_000, 20.0, |rng| in_cube(rng, -12.0, 12.0));
     let scene = GpuScene::upload(&gpu, &assembled).unwrap();
@@ -389,7 +598,7 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
 fn more_rays_than_the_gpu_dispatches_are_refused_with_the_limit() {
     let gpu = gpu();
     let assembled = scene_of(
-        vec![Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0).unwrap())],
+        untransformed(vec![Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0).unwrap())]),
         Vec::new(),
     );
     let scene = GpuScene::upload(&gpu, &assembled).unwrap();

@@ -4,7 +4,15 @@
 // shape's numbers and every transform are read from `shape_words` (src/gpu/shapes.rs writes
 // them).
 
+const PI: f32 = 3.14159265358979;
+
 const SHAPE_SPHERE: u32 = 0u;
+const SHAPE_PLANE: u32 = 1u;
+const SHAPE_POLYGON: u32 = 2u;
+const SHAPE_CUBOID: u32 = 3u;
+const SHAPE_TAPERED_CYLINDER: u32 = 4u;
+const SHAPE_ELLIPSOID: u32 = 5u;
+const SHAPE_PARABOLOID: u32 = 6u;
 
 // WGSL's twin of `GpuObject`.
 struct Object {
@@ -41,6 +49,24 @@ fn intersect_shape(kind: u32, first: u32, origin: vec3<f32>, dir: vec3<f32>, t_m
         case SHAPE_SPHERE: {
             return intersect_sphere(load_sphere(first), origin, dir, t_min, t_max);
         }
+        case SHAPE_PLANE: {
+            return intersect_plane(load_plane(first), origin, dir, t_min, t_max);
+        }
+        case SHAPE_POLYGON: {
+            return intersect_polygon(load_polygon(first), origin, dir, t_min, t_max);
+        }
+        case SHAPE_CUBOID: {
+            return intersect_cuboid(load_cuboid(first), origin, dir, t_min, t_max);
+        }
+        case SHAPE_TAPERED_CYLINDER: {
+            return intersect_tapered_cylinder(load_tapered_cylinder(first), origin, dir, t_min, t_max);
+        }
+        case SHAPE_ELLIPSOID: {
+            return intersect_ellipsoid(load_ellipsoid(first), origin, dir, t_min, t_max);
+        }
+        case SHAPE_PARABOLOID: {
+            return intersect_paraboloid(load_paraboloid(first), origin, dir, t_min, t_max);
+        }
         default: {
             return no_hit();
         }
@@ -52,6 +78,24 @@ fn shape_surface(kind: u32, first: u32, p: vec3<f32>, part: u32) -> LocalSurface
     switch kind {
         case SHAPE_SPHERE: {
             return sphere_surface(load_sphere(first), p);
+        }
+        case SHAPE_PLANE: {
+            return plane_surface(load_plane(first), p);
+        }
+        case SHAPE_POLYGON: {
+            return polygon_surface(load_polygon(first), p);
+        }
+        case SHAPE_CUBOID: {
+            return cuboid_surface(load_cuboid(first), p, part);
+        }
+        case SHAPE_TAPERED_CYLINDER: {
+            return tapered_cylinder_surface(load_tapered_cylinder(first), p, part);
+        }
+        case SHAPE_ELLIPSOID: {
+            return ellipsoid_surface(load_ellipsoid(first), p);
+        }
+        case SHAPE_PARABOLOID: {
+            return paraboloid_surface(load_paraboloid(first), p, part);
         }
         default: {
             return LocalSurface(vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(0.0));

@@ -1,8 +1,6 @@
 // Spheres: the twin of src/shapes/sphere.rs, step for step, so that the GPU finds the same
 // crossings as the CPU.
 
-const PI: f32 = 3.14159265358979;
-
 struct Sphere {
     center: vec3<f32>,
     radius: f32,
@@ -11,23 +9,6 @@ struct Sphere {
 fn load_sphere(first: u32) -> Sphere {
     let w = shape_words[first];
     return Sphere(w.xyz, w.w);
-}
-
-// The first of the sorted roots (t0, t1) in (t_min, t_max): `first_root_in` in
-// src/shapes/quadratic.rs.
-fn first_root_in(t0: f32, t1: f32, t_min: f32, t_max: f32) -> ShapeHit {
-    if t0 > t_min && t0 < t_max {
-        return ShapeHit(t0, 0u, true);
-    }
-    if t1 > t_min && t1 < t_max {
-        return ShapeHit(t1, 0u, true);
-    }
-    return no_hit();
-}
-
-// `x` with the sign bit of `s`, as Rust's `f32::copysign` (which tells −0 from +0).
-fn copysign(x: f32, s: f32) -> f32 {
-    return bitcast<f32>((bitcast<u32>(x) & 0x7fffffffu) | (bitcast<u32>(s) & 0x80000000u));
 }
 
 // `Sphere::intersect`: solves |o + d·t − c|² = r² with the discriminant computed as r² − |f|²,
@@ -65,7 +46,12 @@ fn sphere_surface(s: Sphere, p: vec3<f32>) -> LocalSurface {
     if dot(n, n) > 0.0 {
         d = normalize(n);
     }
+    return LocalSurface(n, sphere_uv(d));
+}
+
+// `sphere_uv`: the texture coordinates of the unit direction `d` from a sphere's centre.
+fn sphere_uv(d: vec3<f32>) -> vec2<f32> {
     let u = 0.5 + atan2(d.x, d.z) / (2.0 * PI);
     let v = 0.5 + asin(clamp(d.y, -1.0, 1.0)) / PI;
-    return LocalSurface(n, vec2<f32>(u, v));
+    return vec2<f32>(u, v);
 }

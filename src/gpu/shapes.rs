@@ -7,13 +7,22 @@
 use bytemuck::{Pod, Zeroable};
 
 use crate::primitive::Object;
-use crate::shapes::{Shape, Sphere};
+use crate::shapes::{
+    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder,
+};
 use crate::transform::Transform;
 
 /// The shapes' WGSL: the dispatch by kind and each shape's intersection and surface.
 pub const SHAPES_WGSL: &str = concat!(
     include_str!("../../shaders/shapes/shape.wgsl"),
+    include_str!("../../shaders/shapes/quadratic.wgsl"),
     include_str!("../../shaders/shapes/sphere.wgsl"),
+    include_str!("../../shaders/shapes/plane.wgsl"),
+    include_str!("../../shaders/shapes/polygon.wgsl"),
+    include_str!("../../shaders/shapes/cuboid.wgsl"),
+    include_str!("../../shaders/shapes/tapered_cylinder.wgsl"),
+    include_str!("../../shaders/shapes/ellipsoid.wgsl"),
+    include_str!("../../shaders/shapes/paraboloid.wgsl"),
 );
 
 /// WGSL's `Object`: an analytic shape placed in the world.
@@ -37,6 +46,12 @@ pub const NO_TRANSFORM: u32 = u32::MAX;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ShapeKind {
     Sphere = 0,
+    Plane = 1,
+    Polygon = 2,
+    Cuboid = 3,
+    TaperedCylinder = 4,
+    Ellipsoid = 5,
+    Paraboloid = 6,
 }
 
 /// Four floats of the shape words.
@@ -80,6 +95,30 @@ fn push_shape(shape: &Shape, words: &mut Vec<Word>) -> Result<ShapeKind, String>
             push_sphere(s, words);
             Ok(ShapeKind::Sphere)
         }
+        Shape::Plane(p) => {
+            push_plane(p, words);
+            Ok(ShapeKind::Plane)
+        }
+        Shape::Polygon(p) => {
+            push_polygon(p, words);
+            Ok(ShapeKind::Polygon)
+        }
+        Shape::Cuboid(c) => {
+            push_cuboid(c, words);
+            Ok(ShapeKind::Cuboid)
+        }
+        Shape::TaperedCylinder(c) => {
+            push_tapered_cylinder(c, words);
+            Ok(ShapeKind::TaperedCylinder)
+        }
+        Shape::Ellipsoid(e) => {
+            push_ellipsoid(e, words);
+            Ok(ShapeKind::Ellipsoid)
+        }
+        Shape::Paraboloid(p) => {
+            push_paraboloid(p, words);
+            Ok(ShapeKind::Paraboloid)
+        }
         other => Err(format!(
             "the GPU tracer has no {} yet (render it with --device cpu)",
             other.name()
@@ -90,6 +129,94 @@ fn push_shape(shape: &Shape, words: &mut Vec<Word>) -> Result<ShapeKind, String>
 /// `load_sphere`: the centre and the radius.
 fn push_sphere(s: &Sphere, words: &mut Vec<Word>) {
     words.push([s.center.x, s.center.y, s.center.z, s.radius]);
+}
+
+/// A flag of the shape words: 1 for true, 0 for false.
+fn flag(b: bool) -> f32 {
+    if b { 1.0 } else { 0.0 }
+}
+
+/// A whole number stored in a float of the shape words bit for bit, as WGSL's `bitcast<u32>`
+/// reads it back.
+fn bits(n: usize) -> f32 {
+    f32::from_bits(n as u32)
+}
+
+/// `load_plane`: the point, then the normal.
+fn push_plane(p: &Plane, words: &mut Vec<Word>) {
+    words.push(p.point.extend(0.0).to_array());
+    words.push(p.normal.extend(0.0).to_array());
+}
+
+/// `load_polygon`: a header of five words (the normal and the plane's offset; the projected
+/// bounds; each texture axis with its end of `texture_min`; `texture_inv_extent` and the two
+/// kept axes), then the edge bands: a word with `min_y`, `bands_per_y` and the numbers of bands
+/// and of listed edges, the `starts` of the bands four to a word, and the listed edges one to a
+/// word (`start`, `end_y`, `dx_dy`). Whole numbers are stored by [`bits`].
+fn push_polygon(p: &Polygon, words: &mut Vec<Word>) {
+    let (s, t) = p.texture_axes;
+    words.push(p.normal.extend(p.plane_offset).to_array());
+    words.push([
+        p.projected_min.x,
+        p.projected_min.y,
+        p.projected_max.x,
+        p.projected_max.y,
+    ]);
+    words.push(s.extend(p.texture_min.x).to_array());
+    words.push(t.extend(p.texture_min.y).to_array());
+    words.push([
+        p.texture_inv_extent.x,
+        p.texture_inv_extent.y,
+        bits(p.kept_axes[0]),
+        bits(p.kept_axes[1]),
+    ]);
+    let bands = &p.edges;
+    words.push([
+        bands.min_y,
+        bands.bands_per_y,
+        bits(bands.starts.len() - 1),
+        bits(bands.edges.len()),
+    ]);
+    for chunk in bands.starts.chunks(4) {
+        let mut word = [0.0; 4];
+        for (w, &start) in word.iter_mut().zip(chunk) {
+            *w = bits(start as usize);
+        }
+        words.push(word);
+    }
+    for edge in &bands.edges {
+        words.push([edge.start.x, edge.start.y, edge.end_y, edge.dx_dy]);
+    }
+}
+
+/// `load_cuboid`: the corners `min` and `max`.
+fn push_cuboid(c: &Cuboid, words: &mut Vec<Word>) {
+    let b = c.bounds();
+    words.push(b.min.extend(0.0).to_array());
+    words.push(b.max.extend(0.0).to_array());
+}
+
+/// `load_tapered_cylinder`: the base and the height, the frame's `x` and the base radius, its
+/// `y` and the top radius, the axis and the slope, then whether it is capped.
+fn push_tapered_cylinder(c: &TaperedCylinder, words: &mut Vec<Word>) {
+    words.push(c.base.extend(c.height).to_array());
+    words.push(c.frame_x.extend(c.base_radius).to_array());
+    words.push(c.frame_y.extend(c.top_radius).to_array());
+    words.push(c.axis.extend(c.slope).to_array());
+    words.push([flag(c.is_capped()), 0.0, 0.0, 0.0]);
+}
+
+/// `load_ellipsoid`: the centre, then the reciprocals of the radii.
+fn push_ellipsoid(e: &Ellipsoid, words: &mut Vec<Word>) {
+    words.push(e.center.extend(0.0).to_array());
+    words.push(e.inv_radii.extend(0.0).to_array());
+}
+
+/// `load_paraboloid`: the vertex and the radius, then the height, the curvature and whether it
+/// is capped.
+fn push_paraboloid(p: &Paraboloid, words: &mut Vec<Word>) {
+    words.push(p.vertex.extend(p.radius).to_array());
+    words.push([p.height, p.curvature, flag(p.is_capped()), 0.0]);
 }
 
 /// Appends a transform as `load_transform` reads it: the columns of `object_from_world` (three

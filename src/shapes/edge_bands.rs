@@ -61,12 +61,12 @@ impl ProjectedEdge {
 #[derive(Clone, Debug, PartialEq)]
 pub struct EdgeBands {
     /// The lowest height of the polygon.
-    min_y: f32,
+    pub(crate) min_y: f32,
     /// Bands per unit of height.
-    bands_per_y: f32,
+    pub(crate) bands_per_y: f32,
     /// Band `k`'s edges are `edges[starts[k]..starts[k + 1]]`.
-    starts: Vec<u32>,
-    edges: Vec<ProjectedEdge>,
+    pub(crate) starts: Vec<u32>,
+    pub(crate) edges: Vec<ProjectedEdge>,
 }
 
 impl EdgeBands {

@@ -11,9 +11,9 @@ use crate::ray::Ray;
 /// The ellipsoid `Σ ((p − center) / radii)² = 1`, its axes along x, y and z.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ellipsoid {
-    center: Vec3,
+    pub(crate) center: Vec3,
     radii: Vec3,
-    inv_radii: Vec3,
+    pub(crate) inv_radii: Vec3,
 }
 
 impl Ellipsoid {

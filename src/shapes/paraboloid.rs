@@ -19,11 +19,11 @@ const CAP: u32 = 1;
 /// it is `radius` wide at the top.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Paraboloid {
-    vertex: Vec3,
-    radius: f32,
-    height: f32,
+    pub(crate) vertex: Vec3,
+    pub(crate) radius: f32,
+    pub(crate) height: f32,
     /// `height / radius²`: how fast the surface rises with the squared distance from the axis.
-    curvature: f32,
+    pub(crate) curvature: f32,
     capped: bool,
 }
 

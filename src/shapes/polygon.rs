@@ -21,22 +21,22 @@ const MIN_RELATIVE_DOUBLE_AREA: f32 = 1e-6;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Polygon {
     /// Unit normal (Newell's method), pointing to the front.
-    pub(super) normal: Vec3,
+    pub(crate) normal: Vec3,
     /// `normal · p` for every point `p` of the polygon's plane.
-    pub(super) plane_offset: f32,
+    pub(crate) plane_offset: f32,
     /// The two coordinate axes kept by the projection (the normal's largest axis is dropped, so
     /// the projection squashes the polygon the least).
-    pub(super) kept_axes: [usize; 2],
+    pub(crate) kept_axes: [usize; 2],
     /// The polygon's edges in the projection, by band of height.
-    edges: EdgeBands,
+    pub(crate) edges: EdgeBands,
     /// Bounds of the projected polygon, to reject most misses before walking the edges.
-    pub(super) projected_min: Vec2,
-    pub(super) projected_max: Vec2,
+    pub(crate) projected_min: Vec2,
+    pub(crate) projected_max: Vec2,
     /// Two unit axes in the plane along which texture coordinates are measured.
-    texture_axes: (Vec3, Vec3),
+    pub(crate) texture_axes: (Vec3, Vec3),
     /// Maps the planar coordinates of a point to `[0, 1]²` over the polygon's extent.
-    texture_min: Vec2,
-    texture_inv_extent: Vec2,
+    pub(crate) texture_min: Vec2,
+    pub(crate) texture_inv_extent: Vec2,
     bounds: Aabb,
 }
 

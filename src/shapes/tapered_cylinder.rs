@@ -20,16 +20,16 @@ const TOP_CAP: u32 = 2;
 /// the base, `height` at the top), `x` and `y` across it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TaperedCylinder {
-    pub(super) base: Vec3,
+    pub(crate) base: Vec3,
     /// Unit vectors of the local frame (right-handed: `frame_x × frame_y = axis`).
-    pub(super) frame_x: Vec3,
-    pub(super) frame_y: Vec3,
-    pub(super) axis: Vec3,
-    pub(super) height: f32,
-    pub(super) base_radius: f32,
-    top_radius: f32,
+    pub(crate) frame_x: Vec3,
+    pub(crate) frame_y: Vec3,
+    pub(crate) axis: Vec3,
+    pub(crate) height: f32,
+    pub(crate) base_radius: f32,
+    pub(crate) top_radius: f32,
     /// Change of radius per unit of height.
-    pub(super) slope: f32,
+    pub(crate) slope: f32,
     capped: bool,
 }
 
