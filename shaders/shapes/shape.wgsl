@@ -4,7 +4,9 @@
 // shape's numbers and every transform are read from `shape_words` (src/gpu/shapes.rs writes
 // them).
 
+// The kinds are just distinct numbers (`ShapeKind` in src/gpu/shapes.rs).
 const SHAPE_SPHERE: u32 = 0u;
+const SHAPE_TORUS: u32 = 100u;
 
 // WGSL's twin of `GpuObject`.
 struct Object {
@@ -41,6 +43,9 @@ fn intersect_shape(kind: u32, first: u32, origin: vec3<f32>, dir: vec3<f32>, t_m
         case SHAPE_SPHERE: {
             return intersect_sphere(load_sphere(first), origin, dir, t_min, t_max);
         }
+        case SHAPE_TORUS: {
+            return intersect_torus(load_torus(first), origin, dir, t_min, t_max);
+        }
         default: {
             return no_hit();
         }
@@ -52,6 +57,9 @@ fn shape_surface(kind: u32, first: u32, p: vec3<f32>, part: u32) -> LocalSurface
     switch kind {
         case SHAPE_SPHERE: {
             return sphere_surface(load_sphere(first), p);
+        }
+        case SHAPE_TORUS: {
+            return torus_surface(load_torus(first), p);
         }
         default: {
             return LocalSurface(vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(0.0));
@@ -88,7 +96,10 @@ fn ray_to_object(o: Object, origin: vec3<f32>, dir: vec3<f32>) -> ObjectRay {
         return ObjectRay(origin, dir);
     }
     let tr = load_transform(o.transform);
-    return ObjectRay(tr.object_from_world * origin + tr.translation, tr.object_from_world * dir);
+    let m = tr.object_from_world;
+    // Summed in glam's order (`Affine3A::transform_point3`), so that both find the same ray.
+    let object_origin = m[0] * origin.x + m[1] * origin.y + m[2] * origin.z + tr.translation;
+    return ObjectRay(object_origin, m[0] * dir.x + m[1] * dir.y + m[2] * dir.z);
 }
 
 // The nearest hit of the object `o` along the world ray, with `t` in (t_min, t_max).

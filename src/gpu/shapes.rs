@@ -7,13 +7,14 @@
 use bytemuck::{Pod, Zeroable};
 
 use crate::primitive::Object;
-use crate::shapes::{Shape, Sphere};
+use crate::shapes::{Shape, Sphere, Torus};
 use crate::transform::Transform;
 
 /// The shapes' WGSL: the dispatch by kind and each shape's intersection and surface.
 pub const SHAPES_WGSL: &str = concat!(
     include_str!("../../shaders/shapes/shape.wgsl"),
     include_str!("../../shaders/shapes/sphere.wgsl"),
+    include_str!("../../shaders/shapes/torus.wgsl"),
 );
 
 /// WGSL's `Object`: an analytic shape placed in the world.
@@ -32,11 +33,13 @@ pub struct GpuObject {
 /// [`GpuObject::transform`] of an object given in world coordinates.
 pub const NO_TRANSFORM: u32 = u32::MAX;
 
-/// The shape kinds, numbered as the `SHAPE_*` constants of `shaders/shapes/shape.wgsl`.
+/// The shape kinds, numbered as the `SHAPE_*` constants of `shaders/shapes/shape.wgsl`. The
+/// numbers only need to be distinct; they are not counts or indices.
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ShapeKind {
     Sphere = 0,
+    Torus = 100,
 }
 
 /// Four floats of the shape words.
@@ -80,6 +83,10 @@ fn push_shape(shape: &Shape, words: &mut Vec<Word>) -> Result<ShapeKind, String>
             push_sphere(s, words);
             Ok(ShapeKind::Sphere)
         }
+        Shape::Torus(t) => {
+            push_torus(t, words);
+            Ok(ShapeKind::Torus)
+        }
         other => Err(format!(
             "the GPU tracer has no {} yet (render it with --device cpu)",
             other.name()
@@ -90,6 +97,12 @@ fn push_shape(shape: &Shape, words: &mut Vec<Word>) -> Result<ShapeKind, String>
 /// `load_sphere`: the centre and the radius.
 fn push_sphere(s: &Sphere, words: &mut Vec<Word>) {
     words.push([s.center.x, s.center.y, s.center.z, s.radius]);
+}
+
+/// `load_torus`: the centre and the major radius, then the minor radius.
+fn push_torus(t: &Torus, words: &mut Vec<Word>) {
+    words.push([t.center.x, t.center.y, t.center.z, t.major_radius]);
+    words.push([t.minor_radius, 0.0, 0.0, 0.0]);
 }
 
 /// Appends a transform as `load_transform` reads it: the columns of `object_from_world` (three
