@@ -316,9 +316,10 @@ fn tori_give_the_cpus_closest_hits_on_random_rays() {
 #[test]
 fn tori_seen_from_far_away_give_the_cpus_closest_hits() {
     // Rays from about 1000 units off, where a quartic in t solved in f32 has coefficients of
-    // order 10¹² that cancel to nothing. There the hit point origin + dir·t itself is only good
-    // to about 10⁻⁴ in f32, on the CPU as on the GPU, so the tubes are thick enough (0.25 and
-    // more) for their normals to be compared to 10⁻³.
+    // order 10¹² that cancel to nothing. There an ulp of t, by which the GPU's t and the CPU's
+    // may differ where the exact one lies halfway, moves the hit point by 10⁻⁴: the tubes are
+    // thick enough (0.25 of the ring and more) for that to turn their normals by less than
+    // compare's 10⁻³.
     let gpu = gpu();
     let mut rng = Rng::with_seed(34);
     let (assembled, inside) = random_tori(&mut rng, 6, 12.0, (0.5, 1.5), (0.25, 0.9));
