@@ -22,7 +22,7 @@ use raylab::render::{Assembled, assemble};
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::{
-    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder,
+    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder, Torus,
 };
 use raylab::transform::{Transform, TransformStep};
 
@@ -413,6 +413,116 @@ fn planes_among_bounded_shapes_give_the_cpus_closest_hits_on_random_rays() {
     assert!(on_planes >= 10_000, "{on_planes} hits on planes");
 }
 
+/// The largest relative difference in `t` between the GPU's hits and the CPU's where both hit
+/// the same primitive, away from grazing hits (as [`compare`] counts them).
+fn max_t_error(
+    assembled: &Assembled,
+    search: Search,
+    rays: &[ProbeRay],
+    on_gpu: &[ProbeHit],
+) -> f32 {
+    rays.iter()
+        .zip(on_gpu)
+        .map(|(ray, gpu_hit)| {
+            let cpu = cpu_hit(assembled, search, ray);
+            let dir = Vec3::from(ray.dir).normalize();
+            if cpu.prim == NO_PRIM
+                || cpu.prim != gpu_hit.prim
+                || Vec3::from(cpu.normal).dot(dir).abs() < 0.05
+            {
+                return 0.0;
+            }
+            (gpu_hit.t - cpu.t).abs() / cpu.t
+        })
+        .fold(0.0, f32::max)
+}
+
+/// A torus around a point of the cube `-extent..extent`, of major radius in `major` and minor
+/// radius in `ratio` times that, and a point inside its tube.
+fn random_torus(rng: &mut Rng, extent: f32, major: (f32, f32), ratio: (f32, f32)) -> (Torus, Vec3) {
+    let center = in_cube(rng, -extent, extent);
+    let major = in_range(rng, major.0, major.1);
+    let minor = major * in_range(rng, ratio.0, ratio.1);
+    let torus = Torus::new(center, major, minor).unwrap();
+    let angle = in_range(rng, 0.0, std::f32::consts::TAU);
+    let ring = center + Vec3::new(angle.cos(), 0.0, angle.sin()) * major;
+    (torus, ring + direction(rng) * minor * 0.9)
+}
+
+/// `count` tori made by [`random_torus`], every other one placed by a random transform, and a
+/// point inside the tube of each, in the world.
+fn random_tori(
+    rng: &mut Rng,
+    count: usize,
+    extent: f32,
+    major: (f32, f32),
+    ratio: (f32, f32),
+) -> (Assembled, Vec<Vec3>) {
+    let mut objects = Vec::new();
+    let mut inside = Vec::new();
+    for k in 0..count {
+        let (torus, point) = random_torus(rng, extent, major, ratio);
+        let transform = (k % 2 == 1).then(|| {
+            let to = in_cube(rng, -extent / 4.0, extent / 4.0);
+            random_transform(rng, to)
+        });
+        inside.push(transform.map_or(point, |t| t.point_to_world(point)));
+        objects.push((Shape::Torus(torus), transform));
+    }
+    (scene_of(objects, Vec::new()), inside)
+}
+
+/// The GPU's closest hits of `rays` against the CPU's, by [`compare`], with both searches.
+fn compare_both_searches(gpu: &GpuDevice, assembled: &Assembled, rays: &[ProbeRay]) {
+    let scene = GpuScene::upload(gpu, assembled).unwrap();
+    for search in [Search::Objects, Search::Bvh] {
+        let on_gpu = closest_hits(gpu, &scene, search, rays).unwrap();
+        let compared = compare(assembled, search, rays, &on_gpu);
+        assert!(compared >= 10_000, "{search:?}: {compared} hits compared");
+        let error = max_t_error(assembled, search, rays, &on_gpu);
+        println!("{search:?}: {compared} hits compared, t off by at most {error:e}");
+    }
+}
+
+#[test]
+fn tori_give_the_cpus_closest_hits_on_random_rays() {
+    let gpu = gpu();
+    let mut rng = Rng::with_seed(33);
+    let (assembled, inside) = random_tori(&mut rng, 24, 10.0, (0.3, 3.0), (0.05, 0.9));
+    let mut rays = rays_towards(&mut rng, 40_000, 20.0, |rng| {
+        inside[rng.usize(..inside.len())]
+    });
+    // A hit just past the origin has its t to about 10⁻⁷ in f32, shifted to the ray's point
+    // closest to the centre and back, too little for a relative 10⁻⁴ where t is 10⁻³.
+    for ray in &mut rays {
+        ray.t_min = 0.05;
+    }
+    compare_both_searches(&gpu, &assembled, &rays);
+}
+
+#[test]
+fn tori_seen_from_far_away_give_the_cpus_closest_hits() {
+    // Rays from about 1000 units off, where a quartic in t solved in f32 has coefficients of
+    // order 10¹² that cancel to nothing. There an ulp of t, by which the GPU's t and the CPU's
+    // may differ where the exact one lies halfway, moves the hit point by 10⁻⁴: the tubes are
+    // thick enough (0.25 of the ring and more) for that to turn their normals by less than
+    // compare's 10⁻³.
+    let gpu = gpu();
+    let mut rng = Rng::with_seed(34);
+    let (assembled, inside) = random_tori(&mut rng, 6, 12.0, (0.5, 1.5), (0.25, 0.9));
+    let rays: Vec<ProbeRay> = (0..20_000)
+        .map(|_| {
+            let origin = direction(&mut rng) * in_range(&mut rng, 900.0, 1100.0);
+            let target = inside[rng.usize(..inside.len())];
+            ProbeRay::new(
+                &Ray::new(origin, (target - origin).normalize()),
+                1e-3,
+                f32::MAX,
+            )
+        })
+        .collect();
+    compare_both_searches(&gpu, &assembled, &rays);
+}
 /// A mesh of `count` random triangles in the box `-extent..extent`, some with vertex normals.
 fn random_mesh(rng: &mut Rng, count: usize, extent: f32, normals: bool) -> Mesh {
     let mut mesh = Mesh::default();

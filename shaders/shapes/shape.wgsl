@@ -13,6 +13,7 @@ const SHAPE_CUBOID: u32 = 3u;
 const SHAPE_TAPERED_CYLINDER: u32 = 4u;
 const SHAPE_ELLIPSOID: u32 = 5u;
 const SHAPE_PARABOLOID: u32 = 6u;
+const SHAPE_TORUS: u32 = 7u;
 
 // WGSL's twin of `GpuObject`.
 struct Object {
@@ -67,6 +68,9 @@ fn intersect_shape(kind: u32, first: u32, origin: vec3<f32>, dir: vec3<f32>, t_m
         case SHAPE_PARABOLOID: {
             return intersect_paraboloid(load_paraboloid(first), origin, dir, t_min, t_max);
         }
+        case SHAPE_TORUS: {
+            return intersect_torus(load_torus(first), origin, dir, t_min, t_max);
+        }
         default: {
             return no_hit();
         }
@@ -96,6 +100,9 @@ fn shape_surface(kind: u32, first: u32, p: vec3<f32>, part: u32) -> LocalSurface
         }
         case SHAPE_PARABOLOID: {
             return paraboloid_surface(load_paraboloid(first), p, part);
+        }
+        case SHAPE_TORUS: {
+            return torus_surface(load_torus(first), p);
         }
         default: {
             return LocalSurface(vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(0.0));
@@ -132,7 +139,10 @@ fn ray_to_object(o: Object, origin: vec3<f32>, dir: vec3<f32>) -> ObjectRay {
         return ObjectRay(origin, dir);
     }
     let tr = load_transform(o.transform);
-    return ObjectRay(tr.object_from_world * origin + tr.translation, tr.object_from_world * dir);
+    let m = tr.object_from_world;
+    // Summed in glam's order (`Affine3A::transform_point3`), so that both find the same ray.
+    let object_origin = m[0] * origin.x + m[1] * origin.y + m[2] * origin.z + tr.translation;
+    return ObjectRay(object_origin, m[0] * dir.x + m[1] * dir.y + m[2] * dir.z);
 }
 
 // The nearest hit of the object `o` along the world ray, with `t` in (t_min, t_max).

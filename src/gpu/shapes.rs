@@ -8,7 +8,7 @@ use bytemuck::{Pod, Zeroable};
 
 use crate::primitive::Object;
 use crate::shapes::{
-    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder,
+    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder, Torus,
 };
 use crate::transform::Transform;
 
@@ -23,6 +23,7 @@ pub const SHAPES_WGSL: &str = concat!(
     include_str!("../../shaders/shapes/tapered_cylinder.wgsl"),
     include_str!("../../shaders/shapes/ellipsoid.wgsl"),
     include_str!("../../shaders/shapes/paraboloid.wgsl"),
+    include_str!("../../shaders/shapes/torus.wgsl"),
 );
 
 /// WGSL's `Object`: an analytic shape placed in the world.
@@ -41,7 +42,8 @@ pub struct GpuObject {
 /// [`GpuObject::transform`] of an object given in world coordinates.
 pub const NO_TRANSFORM: u32 = u32::MAX;
 
-/// The shape kinds, numbered as the `SHAPE_*` constants of `shaders/shapes/shape.wgsl`.
+/// The shape kinds, numbered as the `SHAPE_*` constants of `shaders/shapes/shape.wgsl`. The
+/// numbers only need to be distinct; they are not counts or indices.
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ShapeKind {
@@ -52,6 +54,7 @@ pub enum ShapeKind {
     TaperedCylinder = 4,
     Ellipsoid = 5,
     Paraboloid = 6,
+    Torus = 7,
 }
 
 /// Four floats of the shape words.
@@ -118,6 +121,10 @@ fn push_shape(shape: &Shape, words: &mut Vec<Word>) -> Result<ShapeKind, String>
         Shape::Paraboloid(p) => {
             push_paraboloid(p, words);
             Ok(ShapeKind::Paraboloid)
+        }
+        Shape::Torus(t) => {
+            push_torus(t, words);
+            Ok(ShapeKind::Torus)
         }
         other => Err(format!(
             "the GPU tracer has no {} yet (render it with --device cpu)",
@@ -217,6 +224,12 @@ fn push_ellipsoid(e: &Ellipsoid, words: &mut Vec<Word>) {
 fn push_paraboloid(p: &Paraboloid, words: &mut Vec<Word>) {
     words.push(p.vertex.extend(p.radius).to_array());
     words.push([p.height, p.curvature, flag(p.is_capped()), 0.0]);
+}
+
+/// `load_torus`: the centre and the major radius, then the minor radius.
+fn push_torus(t: &Torus, words: &mut Vec<Word>) {
+    words.push([t.center.x, t.center.y, t.center.z, t.major_radius]);
+    words.push([t.minor_radius, 0.0, 0.0, 0.0]);
 }
 
 /// Appends a transform as `load_transform` reads it: the columns of `object_from_world` (three
