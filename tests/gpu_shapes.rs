@@ -450,12 +450,9 @@ fn every_kind_of_texture_gives_the_cpus_colours_at_random_points() {
     let mut scene = Scene::new(RenderSettings::default(), Camera::default());
     scene.textures = textures.clone();
     scene.background_image = Some(Arc::clone(&background));
-    scene.add_object(
-        Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0).unwrap()),
-        None,
-        0,
-    );
-    scene.add_material(Material::default());
+    let material = scene.add_material(Material::default());
+    let sphere = Sphere::new(Vec3::ZERO, 1.0).unwrap();
+    scene.add_object(Shape::Sphere(sphere), None, material);
     let assembled = assemble(scene).unwrap();
     let gpu_scene = GpuScene::upload(&gpu, &assembled).unwrap();
     // The CPU's colour of each texture record: the scene's textures, then the background image.

@@ -235,7 +235,7 @@ impl SceneRecords {
             vertex_attributes,
             materials: scene.materials.iter().map(GpuMaterial::from).collect(),
             lights: scene.lights.iter().map(GpuLight::from).collect(),
-            textures: TextureRecords::new(scene),
+            textures: TextureRecords::new(scene)?,
         })
     }
 }

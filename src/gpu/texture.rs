@@ -58,8 +58,9 @@ pub struct TextureRecords {
 }
 
 impl TextureRecords {
-    /// The records of `scene`'s textures and background image.
-    pub fn new(scene: &Scene) -> TextureRecords {
+    /// The records of `scene`'s textures and background image; the error says that the texels
+    /// are too many for the WGSL's u32 indices.
+    pub fn new(scene: &Scene) -> Result<TextureRecords, String> {
         let mut records = TextureRecords {
             textures: Vec::with_capacity(scene.textures.len() + 1),
             texels: SRGB8_TO_LINEAR.iter().map(|c| c.to_bits()).collect(),
@@ -72,7 +73,14 @@ impl TextureRecords {
             let record = records.image(image, Wrap::Clamp, Vec2::ONE, Vec2::ZERO);
             records.textures.push(record);
         }
-        records
+        let count = records.texels.len();
+        if u32::try_from(count).is_err() {
+            return Err(format!(
+                "the images have {count} texels; the GPU tracer indexes at most {}",
+                u32::MAX
+            ));
+        }
+        Ok(records)
     }
 
     /// The record of `texture`, its texels appended if it is an image.
