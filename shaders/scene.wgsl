@@ -22,6 +22,7 @@ const REFLECTIONS: u32 = 2u;
 const TRANSMISSION: u32 = 4u;
 // Every material is opaque: a shadow ray stops at its first hit.
 const OPAQUE: u32 = 8u;
+// Textures are on: a textured material takes its colour from its texture.
 const TEXTURES: u32 = 16u;
 
 // The camera (`Camera`), the image, and the settings the tracer reads (`RenderSettings`).

@@ -1,7 +1,7 @@
 //! The GPU's images against the CPU's: every shipped scene and the SPD scenes rendered by both
 //! tracers at 160 × 120, compared as they are saved (8-bit sRGB): mean absolute difference at
-//! most 0.5 levels and at least 99 % of pixels within 3 levels, with one sample per pixel and
-//! with adaptive anti-aliasing (16 samples, threshold 0.03). A scene that needs what the GPU
+//! most 0.5 levels and at least 99 % of pixels within 3 levels, with one sample per pixel, with
+//! adaptive anti-aliasing (16 samples, threshold 0.03), and with textures switched off. A scene that needs what the GPU
 //! tracer does not trace yet is listed with the reason it gives, and the test checks that it
 //! still refuses it with that reason (so the list cannot go stale). These tests need a GPU
 //! adapter: without one they fail, saying what to install (Mesa's lavapipe will do).
@@ -350,4 +350,9 @@ fn every_scene_renders_on_the_gpu_as_on_the_cpu_with_adaptive_anti_aliasing() {
         scene.settings.samples = 16;
         scene.settings.aa_threshold = 0.03;
     });
+}
+
+#[test]
+fn every_scene_renders_on_the_gpu_as_on_the_cpu_with_textures_off() {
+    compare_all(|scene| scene.settings.textures = false);
 }
