@@ -1,4 +1,5 @@
-// The lecture's camera: the twin of `Camera::eye_ray` and `Camera::dir_rc` in src/camera.rs.
+// The lecture's camera: the twin of `Camera::eye_ray`, `Camera::dir_rc` and
+// `Camera::backdrop_uv` in src/camera.rs.
 // `dir_rc = −N·n + W(2c/nCols − 1)·u + H(2r/nRows − 1)·v`, rows counted from the bottom.
 
 // The direction of the eye ray through the point `offset` of pixel (x, y) of the image, x from
@@ -12,4 +13,29 @@ fn eye_ray_dir(x: u32, y: u32, offset: vec2<f32>) -> vec3<f32> {
     let w = h * n_cols / n_rows;
     return -frame.near * frame.n + w * (2.0 * c / n_cols - 1.0) * frame.u
         + h * (2.0 * r / n_rows - 1.0) * frame.v;
+}
+
+// `f32::EPSILON`.
+const F32_EPSILON: f32 = 1.1920929e-7;
+
+// Where a ray crosses the backdrop, if it does.
+struct BackdropUv {
+    uv: vec2<f32>,
+    found: bool,
+}
+
+// `Camera::backdrop_uv`: where a ray in direction `dir` crosses an image of aspect ratio
+// `aspect` (width over height) standing on the image plane, as tall as the view and centred:
+// texture coordinates in [0, 1]² (v up); not found if the ray passes beside the image or points
+// away from the plane.
+fn backdrop_uv(dir: vec3<f32>, aspect: f32) -> BackdropUv {
+    let depth = dot(dir, -frame.n);
+    if depth <= F32_EPSILON * length(dir) {
+        return BackdropUv(vec2<f32>(0.0), false);
+    }
+    // On the image plane at distance N, in units of the half height H.
+    let y = frame.near * dot(dir, frame.v) / depth / frame.half_height;
+    let x = frame.near * dot(dir, frame.u) / depth / (frame.half_height * aspect);
+    let uv = (vec2<f32>(x, y) + 1.0) * 0.5;
+    return BackdropUv(uv, all(uv >= vec2<f32>(0.0)) && all(uv <= vec2<f32>(1.0)));
 }

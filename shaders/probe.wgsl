@@ -1,7 +1,8 @@
-// Test entry points that check the GPU's parts against the CPU's on the same rays
+// Test entry points that check the GPU's parts against the CPU's on the same input
 // (src/gpu/probe.rs): each ray's closest hit among all objects tried one by one (the shapes'
 // WGSL against `Geometry::intersect`), and through the BVH (against `Bvh::closest_hit`), with
-// the surface there. Bind group 1 holds the rays and what they found.
+// the surface there; and the colours of textures at given points (against `Texture::color`).
+// Bind group 1 holds the input and the results.
 
 struct ProbeRay {
     origin: vec3<f32>,
@@ -56,4 +57,27 @@ fn probe_bvh(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let ray = probe_rays[i];
     probe_hits[i] = probe_result(ray, closest_hit(ray.origin, ray.dir, ray.t_min, ray.t_max));
+}
+
+// A point of a texture to colour: texture coordinates `uv` and the object point, for
+// `texture_color` (against `Texture::color`).
+struct TextureProbe {
+    point: vec3<f32>,
+    texture: u32,
+    uv: vec2<f32>,
+    pad0: u32,
+    pad1: u32,
+}
+
+@group(1) @binding(0) var<storage, read> texture_probes: array<TextureProbe>;
+@group(1) @binding(1) var<storage, read_write> texture_colors: array<vec4<f32>>;
+
+@compute @workgroup_size(64)
+fn probe_textures(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if i >= arrayLength(&texture_probes) {
+        return;
+    }
+    let probe = texture_probes[i];
+    texture_colors[i] = vec4<f32>(texture_color(probe.texture, probe.uv, probe.point), 0.0);
 }

@@ -10,7 +10,11 @@
 @group(0) @binding(6) var<storage, read> vertex_attributes: array<VertexAttributes>;
 @group(0) @binding(7) var<storage, read> materials: array<Material>;
 @group(0) @binding(8) var<storage, read> lights: array<Light>;
-@group(0) @binding(9) var<uniform> frame: Frame;
+// The scene's textures, then the background image (texture.wgsl).
+@group(0) @binding(9) var<storage, read> textures: array<Texture>;
+// The sRGB decode table (the bits of 256 floats), then every image's texels.
+@group(0) @binding(10) var<storage, read> texels: array<u32>;
+@group(0) @binding(11) var<uniform> frame: Frame;
 
 // Switches of `Frame::flags`.
 const SHADOWS: u32 = 1u;
@@ -18,6 +22,8 @@ const REFLECTIONS: u32 = 2u;
 const TRANSMISSION: u32 = 4u;
 // Every material is opaque: a shadow ray stops at its first hit.
 const OPAQUE: u32 = 8u;
+// Textures are on: a textured material takes its colour from its texture.
+const TEXTURES: u32 = 16u;
 
 // The camera (`Camera`), the image, and the settings the tracer reads (`RenderSettings`).
 struct Frame {
@@ -45,6 +51,11 @@ struct Frame {
     // Where the film lies in the image (a window of it for tiles).
     film_left: u32,
     film_top: u32,
+    // The background image's texture record (NO_TEXTURE: none).
+    background_image: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
 }
 
 // A material: the twin of `Material` in src/material.rs.
@@ -60,9 +71,10 @@ struct Material {
     transparency: f32,
     ior: f32,
     fresnel: u32,
+    // Its texture record (NO_TEXTURE: none).
+    texture: u32,
     pad0: u32,
     pad1: u32,
-    pad2: u32,
 }
 
 const POINT_LIGHT: u32 = 0u;

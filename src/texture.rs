@@ -177,8 +177,8 @@ impl TextureImage {
     }
 }
 
-/// [`srgb_to_linear`] of each 8-bit value `c / 255`.
-static SRGB8_TO_LINEAR: LazyLock<[f32; 256]> =
+/// [`srgb_to_linear`] of each 8-bit value `c / 255`: how texels decode.
+pub static SRGB8_TO_LINEAR: LazyLock<[f32; 256]> =
     LazyLock::new(|| std::array::from_fn(|c| srgb_to_linear(c as f32 / 255.0)));
 
 #[cfg(test)]

@@ -1,16 +1,21 @@
 //! The GPU's parts against the CPU's on the same rays: each shape's WGSL against its Rust twin
 //! (every object tried one by one, `shaders/probe.wgsl`), the BVH's walk against
-//! `Bvh::closest_hit`, the structs Rust and WGSL share laid out alike, and the WGSL valid as a
-//! whole. These tests need a GPU adapter: without one they fail, saying what to install
+//! `Bvh::closest_hit`, every kind of texture against `Texture::color`, the structs Rust and WGSL
+//! share laid out alike, and the WGSL valid as a whole. These tests need a GPU adapter: without one they fail, saying what to install
 //! (Mesa's lavapipe will do).
 
 mod common;
 
+use std::sync::Arc;
+
 use common::random::{Rng, direction, in_cube, in_range};
 use glam::{Vec2, Vec3};
 use raylab::camera::Camera;
+use raylab::color::Color;
 use raylab::gpu::device::GpuDevice;
-use raylab::gpu::probe::{NO_PRIM, ProbeHit, ProbeRay, Search, closest_hits};
+use raylab::gpu::probe::{
+    NO_PRIM, ProbeHit, ProbeRay, Search, TextureProbe, closest_hits, texture_colors,
+};
 use raylab::gpu::scene::GpuScene;
 use raylab::gpu::shapes::SHAPES_WGSL;
 use raylab::gpu::tracer::TRACER_WGSL;
@@ -24,6 +29,7 @@ use raylab::settings::RenderSettings;
 use raylab::shapes::{
     Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder, Torus,
 };
+use raylab::texture::{Texture, TextureImage, WOOD_COLORS, Wrap};
 use raylab::transform::{Transform, TransformStep};
 
 fn gpu() -> GpuDevice {
@@ -618,6 +624,7 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
         GpuFrame, GpuLight, GpuMaterial, GpuTriangleShading, GpuVertexAttributes,
     };
     use raylab::gpu::shapes::GpuObject;
+    use raylab::gpu::texture::GpuTexture;
     use raylab::gpu::tracer::{PixelSample, SampleColor};
     let module = tracer_module();
     let cases = [
@@ -641,6 +648,7 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
                 transparency,
                 ior,
                 fresnel,
+                texture,
                 pad
             ]
         ),
@@ -672,7 +680,9 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
                 light_count,
                 object_count,
                 film_left,
-                film_top
+                film_top,
+                background_image,
+                pad
             ]
         ),
         rust_layout!("PixelSample", PixelSample, [x, y, k, pad]),
@@ -690,6 +700,12 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
         ),
         rust_layout!("ProbeRay", ProbeRay, [origin, t_min, dir, t_max]),
         rust_layout!("ProbeHit", ProbeHit, [normal, t, uv, prim, part]),
+        rust_layout!(
+            "Texture",
+            GpuTexture,
+            [a, kind, b, size, scale, offset, first, width, height, wrap]
+        ),
+        rust_layout!("TextureProbe", TextureProbe, [point, texture, uv, pad]),
     ];
     for (name, rust_size, rust_fields) in cases {
         let (wgsl_size, wgsl_fields) = wgsl_layout(&module, name);
@@ -700,6 +716,121 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
         assert!(
             wgsl_offsets.starts_with(&rust_offsets) || rust_offsets.starts_with(&wgsl_offsets),
             "fields of {name}: WGSL {wgsl_fields:?}, Rust {rust_fields:?}"
+        );
+    }
+}
+
+/// A `width × height` image of random texels.
+fn random_image(rng: &mut Rng, width: u32, height: u32) -> Arc<TextureImage> {
+    let texels = (0..width * height)
+        .map(|_| [rng.u8(..), rng.u8(..), rng.u8(..)])
+        .collect();
+    Arc::new(TextureImage {
+        width,
+        height,
+        texels,
+    })
+}
+
+#[test]
+fn every_kind_of_texture_gives_the_cpus_colours_at_random_points() {
+    let gpu = gpu();
+    let mut rng = Rng::with_seed(33);
+    let (a, b) = (Color::new(0.9, 0.8, 0.2), Color::new(0.1, 0.3, 0.7));
+    let textures = vec![
+        Texture::Checker3d { a, b, size: 0.7 },
+        Texture::CheckerUv {
+            a,
+            b,
+            u_count: 5.0,
+            v_count: 3.0,
+        },
+        Texture::Wood {
+            a: WOOD_COLORS.0,
+            b: WOOD_COLORS.1,
+        },
+        Texture::Marble {
+            color: Color::new(0.9, 0.85, 0.8),
+        },
+        Texture::Image {
+            image: random_image(&mut rng, 7, 5),
+            wrap: Wrap::Repeat,
+            scale: Vec2::new(2.5, 1.5),
+            offset: Vec2::new(0.3, -0.2),
+        },
+        Texture::Image {
+            image: random_image(&mut rng, 4, 6),
+            wrap: Wrap::Clamp,
+            scale: Vec2::new(0.8, 1.2),
+            offset: Vec2::new(0.1, 0.05),
+        },
+    ];
+    let background = random_image(&mut rng, 9, 4);
+    let mut scene = Scene::new(RenderSettings::default(), Camera::default());
+    scene.textures = textures.clone();
+    scene.background_image = Some(Arc::clone(&background));
+    let material = scene.add_material(Material::default());
+    let sphere = Sphere::new(Vec3::ZERO, 1.0).unwrap();
+    scene.add_object(Shape::Sphere(sphere), None, material);
+    let assembled = assemble(scene).unwrap();
+    let gpu_scene = GpuScene::upload(&gpu, &assembled).unwrap();
+    // The CPU's colour of each texture record: the scene's textures, then the background image.
+    let cpu_color = |texture: usize, uv: Vec2, point: Vec3| match textures.get(texture) {
+        Some(t) => t.color(uv, point),
+        None => background.sample(uv, Wrap::Clamp),
+    };
+    let per_texture = 10_000;
+    let probes: Vec<TextureProbe> = (0..=textures.len())
+        .flat_map(|texture| std::iter::repeat_n(texture, per_texture))
+        .map(|texture| TextureProbe {
+            point: in_cube(&mut rng, -4.0, 4.0).to_array(),
+            texture: texture as u32,
+            uv: [in_range(&mut rng, -2.0, 3.0), in_range(&mut rng, -2.0, 3.0)],
+            pad: [0; 2],
+        })
+        .collect();
+    let on_gpu = texture_colors(&gpu, &gpu_scene, &probes).unwrap();
+    assert_eq!(on_gpu.len(), probes.len());
+    let mut compared = vec![0; textures.len() + 1];
+    let mut largest_error = vec![0.0f32; textures.len() + 1];
+    for (probe, gpu_color) in probes.iter().zip(&on_gpu) {
+        let texture = probe.texture as usize;
+        let (uv, point) = (Vec2::from(probe.uv), Vec3::from(probe.point));
+        let cpu = cpu_color(texture, uv, point);
+        let gpu = Vec3::from_slice(gpu_color);
+        let piecewise = matches!(
+            textures.get(texture),
+            Some(Texture::Checker3d { .. } | Texture::CheckerUv { .. } | Texture::Wood { .. })
+        );
+        if piecewise {
+            // Away from the boundaries between cells (or rings), where rounding may pick
+            // either side: the CPU's colour is the same 10⁻³ away along every axis.
+            let step = 1e-3;
+            let near_boundary = [Vec3::X, Vec3::Y, Vec3::Z, -Vec3::X, -Vec3::Y, -Vec3::Z]
+                .into_iter()
+                .any(|d| cpu_color(texture, uv + d.truncate() * step, point + d * step) != cpu);
+            if near_boundary {
+                continue;
+            }
+            assert_eq!(gpu, cpu, "texture {texture} at uv {uv}, point {point}");
+        } else {
+            let error = (gpu - cpu).abs().max_element();
+            largest_error[texture] = largest_error[texture].max(error);
+            assert!(
+                error < 1e-4,
+                "texture {texture} at uv {uv}, point {point}: GPU {gpu}, CPU {cpu}"
+            );
+        }
+        compared[texture] += 1;
+    }
+    for (texture, count) in compared.iter().enumerate() {
+        eprintln!(
+            "texture {texture}: {count} points compared, largest difference {:e}",
+            largest_error[texture]
+        );
+        assert!(
+            *count >= per_texture * 9 / 10,
+            "texture {texture}: {count} of {per_texture} points compared"
         );
     }
 }

@@ -30,9 +30,25 @@ struct Traced {
     counts: Counts,
 }
 
-// `Tracer::miss`: what a ray that leaves the scene sees.
-fn miss_color() -> vec3<f32> {
+// `Tracer::miss`: what a ray in direction `dir` that leaves the scene sees: the background
+// image where it crosses it, else the background colour.
+fn miss_color(dir: vec3<f32>) -> vec3<f32> {
+    if frame.background_image != NO_TEXTURE {
+        let image = textures[frame.background_image];
+        let on_image = backdrop_uv(dir, f32(image.width) / f32(image.height));
+        if on_image.found {
+            return image_sample(image, on_image.uv);
+        }
+    }
     return frame.background;
+}
+
+// `Tracer::base_color`: the surface's colour, its texture's if it has one and textures are on.
+fn base_color(m: Material, surface: SurfacePoint) -> vec3<f32> {
+    if m.texture != NO_TEXTURE && (frame.flags & TEXTURES) != 0u {
+        return texture_color(m.texture, surface.uv, surface.object_point);
+    }
+    return m.color;
 }
 
 // Whether a child ray carrying `weight` goes on: its kind is on and its weight reaches
@@ -52,7 +68,7 @@ fn trace_eye(dir: vec3<f32>) -> Traced {
     loop {
         let hit = closest_hit(ray.origin, ray.dir, t_min, T_FAR);
         if !hit.found {
-            color += ray.throughput * miss_color();
+            color += ray.throughput * miss_color(ray.dir);
         } else {
             if ray.depth == 1u {
                 counts.primary_hits++;
@@ -60,7 +76,7 @@ fn trace_eye(dir: vec3<f32>) -> Traced {
             // `Tracer::shade`.
             let surface = surface_at(ray.origin, ray.dir, hit);
             let m = materials[surface.material];
-            let base = m.color;
+            let base = base_color(m, surface);
             let dir = normalize(ray.dir);
             // Face the normals towards the side the ray came from.
             let entering = dot(dir, surface.geometric_normal) < 0.0;

@@ -1,7 +1,7 @@
 //! Test entry points (`shaders/probe.wgsl`) that check the GPU's parts against the CPU's on the
-//! same rays: each ray's closest hit among all objects tried one by one, which checks the
+//! same input: each ray's closest hit among all objects tried one by one, which checks the
 //! shapes' WGSL, and through the BVH, which checks the walk and the triangles too; with the
-//! surface there.
+//! surface there; and the colours of the scene's textures at given points.
 
 use bytemuck::{Pod, Zeroable};
 
@@ -69,4 +69,30 @@ pub fn closest_hits(
     };
     let module = tracer_module(gpu);
     run_list(gpu, scene, &pipeline(gpu, scene, &module, entry), rays)
+}
+
+/// WGSL's `TextureProbe`: where to colour texture `texture` of the scene.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct TextureProbe {
+    pub point: [f32; 3],
+    pub texture: u32,
+    pub uv: [f32; 2],
+    pub pad: [u32; 2],
+}
+
+/// The colour of each probe's texture at its texture coordinates and object point, found on the
+/// GPU (the fourth component is 0).
+pub fn texture_colors(
+    gpu: &GpuDevice,
+    scene: &GpuScene,
+    probes: &[TextureProbe],
+) -> Result<Vec<[f32; 4]>, String> {
+    let module = tracer_module(gpu);
+    run_list(
+        gpu,
+        scene,
+        &pipeline(gpu, scene, &module, "probe_textures"),
+        probes,
+    )
 }

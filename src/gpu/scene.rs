@@ -8,6 +8,7 @@ use wgpu::util::DeviceExt;
 use super::bvh::{GpuBvh, GpuTriangle, GpuWideNode};
 use super::device::GpuDevice;
 use super::shapes::{GpuObject, ObjectTable, Word};
+use super::texture::{GpuTexture, NO_TEXTURE, TextureRecords, background_record};
 use crate::bvh::Bvh;
 use crate::camera::Camera;
 use crate::color::Color;
@@ -44,6 +45,9 @@ pub struct GpuFrame {
     pub object_count: u32,
     pub film_left: u32,
     pub film_top: u32,
+    /// The background image's texture record ([`NO_TEXTURE`]: none).
+    pub background_image: u32,
+    pub pad: [u32; 3],
 }
 
 /// Switches of [`GpuFrame::flags`], as `shaders/scene.wgsl` names them.
@@ -51,6 +55,7 @@ pub const SHADOWS: u32 = 1;
 pub const REFLECTIONS: u32 = 2;
 pub const TRANSMISSION: u32 = 4;
 pub const OPAQUE: u32 = 8;
+pub const TEXTURES: u32 = 16;
 
 /// WGSL's `Material`.
 #[repr(C)]
@@ -67,7 +72,9 @@ pub struct GpuMaterial {
     pub transparency: f32,
     pub ior: f32,
     pub fresnel: u32,
-    pub pad: [u32; 3],
+    /// Its texture record ([`NO_TEXTURE`]: none).
+    pub texture: u32,
+    pub pad: [u32; 2],
 }
 
 impl From<&Material> for GpuMaterial {
@@ -84,7 +91,8 @@ impl From<&Material> for GpuMaterial {
             transparency: m.transparency,
             ior: m.ior,
             fresnel: u32::from(m.fresnel),
-            pad: [0; 3],
+            texture: m.texture.unwrap_or(NO_TEXTURE),
+            pad: [0; 2],
         }
     }
 }
@@ -165,6 +173,7 @@ pub struct SceneRecords {
     pub vertex_attributes: Vec<GpuVertexAttributes>,
     pub materials: Vec<GpuMaterial>,
     pub lights: Vec<GpuLight>,
+    pub textures: TextureRecords,
 }
 
 impl SceneRecords {
@@ -226,6 +235,7 @@ impl SceneRecords {
             vertex_attributes,
             materials: scene.materials.iter().map(GpuMaterial::from).collect(),
             lights: scene.lights.iter().map(GpuLight::from).collect(),
+            textures: TextureRecords::new(scene)?,
         })
     }
 }
@@ -233,11 +243,7 @@ impl SceneRecords {
 /// What the GPU tracer does not trace yet, named so that the user can render on the CPU.
 fn unsupported(scene: &Scene) -> Result<(), String> {
     let settings = &scene.settings;
-    let missing = if settings.textures && scene.materials.iter().any(|m| m.texture.is_some()) {
-        Some("textures")
-    } else if scene.background_image.is_some() {
-        Some("a background image")
-    } else if !scene.atmosphere.is_clear() {
+    let missing = if !scene.atmosphere.is_clear() {
         Some("fog")
     } else if scene.materials.iter().any(|m| m.medium.is_some()) {
         Some("media inside objects")
@@ -281,7 +287,7 @@ struct RecordCounts {
 }
 
 /// Storage buffers in bind group 0, and the frame's uniform buffer after them.
-const STORAGE_BUFFERS: u32 = 9;
+const STORAGE_BUFFERS: u32 = 11;
 
 impl GpuScene {
     /// Uploads `assembled`'s scene and BVH; the error says what the GPU tracer does not trace,
@@ -318,6 +324,9 @@ impl GpuScene {
                 }),
             )
         };
+        // Kept apart as well: edits rewrite them.
+        let materials = storage("the materials", bytemuck::cast_slice(&records.materials))?;
+        let lights = storage("the lights", bytemuck::cast_slice(&records.lights))?;
         let buffers = [
             storage(
                 "the objects",
@@ -344,8 +353,13 @@ impl GpuScene {
                 "the mesh vertices",
                 bytemuck::cast_slice(&records.vertex_attributes),
             )?,
-            storage("the materials", bytemuck::cast_slice(&records.materials))?,
-            storage("the lights", bytemuck::cast_slice(&records.lights))?,
+            materials.clone(),
+            lights.clone(),
+            storage(
+                "the textures",
+                bytemuck::cast_slice::<GpuTexture, u8>(&records.textures.textures),
+            )?,
+            storage("the texels", bytemuck::cast_slice(&records.textures.texels))?,
         ];
         let counts = RecordCounts {
             refs: records.bvh.refs.len() as u32,
@@ -379,7 +393,6 @@ impl GpuScene {
             layout: &layout,
             entries: &entries,
         });
-        let [.., materials, lights] = buffers;
         Ok(GpuScene {
             layout,
             bind_group,
@@ -453,7 +466,8 @@ fn frame_record(
         flags: flag(settings.shadows, SHADOWS)
             | flag(settings.reflections, REFLECTIONS)
             | flag(settings.transmission, TRANSMISSION)
-            | flag(opaque, OPAQUE),
+            | flag(opaque, OPAQUE)
+            | flag(settings.textures, TEXTURES),
         unbounded_first: counts.refs - counts.unbounded,
         unbounded: counts.unbounded,
         node_count: counts.nodes,
@@ -461,6 +475,8 @@ fn frame_record(
         object_count: counts.objects,
         film_left: film_origin.0,
         film_top: film_origin.1,
+        background_image: background_record(scene),
+        pad: [0; 3],
     }
 }
 

@@ -10,7 +10,7 @@ use super::scene::{GpuScene, storage_entry};
 use super::shapes::SHAPES_WGSL;
 
 /// All the GPU tracer's WGSL, as one module: the scene's records, the camera and the jitter,
-/// the shapes, the BVH's walk, the shading and the ray tree, and the entry points.
+/// the shapes, the BVH's walk, the textures, the shading and the ray tree, and the entry points.
 pub const TRACER_WGSL: &str = concat!(
     include_str!("../../shaders/scene.wgsl"),
     include_str!("../../shaders/sampling.wgsl"),
@@ -18,6 +18,8 @@ pub const TRACER_WGSL: &str = concat!(
     include_str!("../../shaders/shapes/triangle.wgsl"),
     include_str!("../../shaders/bvh/traverse.wgsl"),
     include_str!("../../shaders/primitive.wgsl"),
+    include_str!("../../shaders/noise.wgsl"),
+    include_str!("../../shaders/texture.wgsl"),
     include_str!("../../shaders/whitted/scattering.wgsl"),
     include_str!("../../shaders/whitted/lighting.wgsl"),
     include_str!("../../shaders/whitted/trace.wgsl"),

@@ -1,0 +1,141 @@
+// Textures: the twin of `Texture::color`, `marble_spline` and `TextureImage::sample` in
+// src/texture.rs. The records are made by src/gpu/texture.rs; an image's texels lie in `texels`
+// one u32 each (r | g << 8 | b << 16), after the sRGB decode table.
+
+const CHECKER_3D_TEXTURE: u32 = 0u;
+const CHECKER_UV_TEXTURE: u32 = 1u;
+const WOOD_TEXTURE: u32 = 2u;
+const MARBLE_TEXTURE: u32 = 3u;
+const IMAGE_TEXTURE: u32 = 4u;
+
+// A material's texture or the frame's background image when there is none.
+const NO_TEXTURE: u32 = 0xffffffffu;
+
+// `Wrap`.
+const WRAP_REPEAT: u32 = 0u;
+const WRAP_CLAMP: u32 = 1u;
+
+// `WOOD_RING_WIDTH`; `WOOD_WOBBLE`: how far the rings wobble, in rings, how many wobbles go round
+// the axis, how fast they turn with z; `MARBLE_TURBULENCE`: the turbulence's frequency and
+// strength.
+const WOOD_RING_WIDTH: f32 = 0.12;
+const WOOD_WOBBLE: vec3<f32> = vec3<f32>(0.6, 5.0, 1.8);
+const MARBLE_TURBULENCE: vec2<f32> = vec2<f32>(1.5, 5.0);
+// `std::f32::consts::TAU`.
+const TAU: f32 = 6.283185307179586;
+
+// A texture: its kind and the numbers that kind reads (`GpuTexture`).
+struct Texture {
+    // The first colour; Marble's colour.
+    a: vec3<f32>,
+    kind: u32,
+    b: vec3<f32>,
+    // Checker3d's cube side.
+    size: f32,
+    // An image's scale; CheckerUv's squares across and up.
+    scale: vec2<f32>,
+    offset: vec2<f32>,
+    // Where an image's texels start in `texels`.
+    first: u32,
+    width: u32,
+    height: u32,
+    wrap: u32,
+}
+
+// `rem_euclid(2)` of `x as i64` for a whole number x, as 0 or 1: worked out in f32, where
+// halving, flooring and doubling a whole number are exact, so it agrees with the CPU's i64 for
+// every x the i64 holds (any f32 of 2²⁴ or more is even), and for NaN, which `as i64` makes 0.
+fn parity(x: f32) -> f32 {
+    return select(0.0, 1.0, x - 2.0 * floor(0.5 * x) == 1.0);
+}
+
+// `a` where the parity is even, else `b`.
+fn alternate(a: vec3<f32>, b: vec3<f32>, parity: f32) -> vec3<f32> {
+    return select(a, b, parity == 1.0);
+}
+
+// `marble_spline`: how bright the stone is at x = sin(…) in [−1, 1].
+fn marble_spline(x: f32) -> f32 {
+    if x < -0.4 {
+        let d = x + 0.75;
+        return 0.15 + 2.857 * (d * d);
+    }
+    if x < 0.4 {
+        return 0.95 - 2.8125 * x * x;
+    }
+    let d = x - 0.7;
+    return 0.26 + 2.666 * (d * d);
+}
+
+// `Color::lerp`: a · (1 − s) + b · s.
+fn lerp(a: vec3<f32>, b: vec3<f32>, s: f32) -> vec3<f32> {
+    return a * (1.0 - s) + b * s;
+}
+
+// `TextureImage::texel`: the linear colour of texel (x, y) of image `t`, wrapped into it. The
+// CPU wraps in i64, this in i32: the same for texel coordinates within ±2³¹ (|uv| below 2³¹
+// over the image's size).
+fn texel(t: Texture, x: i32, y: i32) -> vec3<f32> {
+    let w = i32(t.width);
+    let h = i32(t.height);
+    var at: vec2<i32>;
+    if t.wrap == WRAP_REPEAT {
+        // rem_euclid: `%` keeps the sign of x, as Rust's does.
+        at = vec2<i32>(((x % w) + w) % w, ((y % h) + h) % h);
+    } else {
+        at = vec2<i32>(clamp(x, 0, w - 1), clamp(y, 0, h - 1));
+    }
+    let packed = texels[t.first + u32(at.y) * t.width + u32(at.x)];
+    // The decode table's entries are the first 256 of `texels`.
+    let r = bitcast<f32>(texels[packed & 0xffu]);
+    let g = bitcast<f32>(texels[(packed >> 8u) & 0xffu]);
+    let b = bitcast<f32>(texels[(packed >> 16u) & 0xffu]);
+    return vec3<f32>(r, g, b);
+}
+
+// `TextureImage::sample`: the bilinear sample of image `t` at `uv`; v = 0 is the bottom.
+fn image_sample(t: Texture, uv: vec2<f32>) -> vec3<f32> {
+    let x = uv.x * f32(t.width) - 0.5;
+    let y = (1.0 - uv.y) * f32(t.height) - 0.5;
+    let x0 = floor(x);
+    let y0 = floor(y);
+    let fx = x - x0;
+    let fy = y - y0;
+    let i = i32(x0);
+    let j = i32(y0);
+    let top = lerp(texel(t, i, j), texel(t, i + 1, j), fx);
+    let bottom = lerp(texel(t, i, j + 1), texel(t, i + 1, j + 1), fx);
+    return lerp(top, bottom, fy);
+}
+
+// `Texture::color`: the colour of texture `index` at texture coordinates `uv`, or at
+// `object_point` for solid textures.
+fn texture_color(index: u32, uv: vec2<f32>, object_point: vec3<f32>) -> vec3<f32> {
+    let t = textures[index];
+    switch t.kind {
+        case CHECKER_3D_TEXTURE: {
+            // The small bias keeps a surface on a cell boundary in one cell.
+            let cell = floor(object_point / t.size + 1e-4);
+            return alternate(t.a, t.b, parity(cell.x + cell.y + cell.z));
+        }
+        case CHECKER_UV_TEXTURE: {
+            // The parity of a sum of whole numbers is that of their parities' sum.
+            let squares = floor(uv * t.scale);
+            return alternate(t.a, t.b, parity(parity(squares.x) + parity(squares.y)));
+        }
+        case WOOD_TEXTURE: {
+            let angle = atan2(object_point.y, object_point.x);
+            let radius = length(object_point.xy) / WOOD_RING_WIDTH;
+            let ring = radius + WOOD_WOBBLE.x * sin(angle * WOOD_WOBBLE.y + WOOD_WOBBLE.z * object_point.z);
+            return alternate(t.a, t.b, parity(floor(ring)));
+        }
+        case MARBLE_TEXTURE: {
+            let stir = MARBLE_TURBULENCE.y * turbulence(MARBLE_TURBULENCE.x, object_point);
+            let vein = sin(TAU * object_point.z + stir);
+            return t.a * marble_spline(vein);
+        }
+        default: {
+            return image_sample(t, uv * t.scale + t.offset);
+        }
+    }
+}
