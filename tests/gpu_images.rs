@@ -9,14 +9,16 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use raylab::color::to_srgb8;
+use glam::Vec3;
+use raylab::camera::Camera;
+use raylab::color::{Color, to_srgb8};
 use raylab::film::Film;
 use raylab::formats::load_any;
 use raylab::formats::spd::{Database, load_spd};
 use raylab::formats::toml::parse_scene;
 use raylab::gpu::device::GpuDevice;
 use raylab::progressive::gpu::GpuRenderer;
-use raylab::progressive::{RenderControl, render_image};
+use raylab::progressive::{RenderControl, RenderStats, render_image};
 use raylab::render::assemble;
 use raylab::scene::Scene;
 use strum::IntoEnumIterator;
@@ -292,14 +294,9 @@ fn compare_all(adjust: impl Fn(&mut Scene)) {
                 panic!("{name} renders on the GPU now: take it off the list ({why})")
             }
         };
-        let settings = &assembled.scene.settings;
-        let film = Film::new(settings.width, settings.height);
-        let stats = renderer
-            .render(&assembled.scene, &film, &RenderControl::default(), |_| {})
-            .unwrap()
-            .unwrap();
+        let (on_gpu, stats) = gpu_render(&renderer, &assembled.scene);
         let (cpu_pixels, cpu_stats) = render_image(&assembled.tracer());
-        let (on_gpu, on_cpu) = (to_srgb8(&film.pixels()), to_srgb8(&cpu_pixels));
+        let on_cpu = to_srgb8(&cpu_pixels);
         let (mean, close) = difference(&on_gpu, &on_cpu);
         eprintln!(
             "{name}: mean {mean:.4} levels, {:.3} % within 3; eye rays {} / {}, secondary {} / {}",
@@ -337,4 +334,47 @@ fn every_scene_renders_on_the_gpu_as_on_the_cpu_with_adaptive_anti_aliasing() {
 #[test]
 fn every_scene_renders_on_the_gpu_as_on_the_cpu_with_textures_off() {
     compare_all(|scene| scene.settings.textures = false);
+}
+
+/// `scene` rendered by `renderer` (which holds it on the GPU), as 8-bit sRGB, and what it
+/// traced.
+fn gpu_render(renderer: &GpuRenderer, scene: &Scene) -> (Vec<u8>, RenderStats) {
+    let film = Film::new(scene.settings.width, scene.settings.height);
+    let stats = renderer
+        .render(scene, &film, &RenderControl::default(), |_| {})
+        .unwrap()
+        .unwrap();
+    (to_srgb8(&film.pixels()), stats)
+}
+
+#[test]
+fn edited_materials_lights_camera_and_settings_reach_the_scene_on_the_gpu() {
+    let gpu = gpu();
+    let mut scene = balls_and_meshes();
+    (scene.settings.width, scene.settings.height) = SIZE;
+    let mut assembled = assemble(scene).unwrap();
+    let renderer = GpuRenderer::new(Arc::clone(&gpu), &assembled).unwrap();
+    let (before, _) = gpu_render(&renderer, &assembled.scene);
+    // Edited as the viewer edits its copy of the scene: the same renderer, no new upload.
+    let scene = &mut assembled.scene;
+    scene.materials[0].color = Color::new(0.1, 0.7, 0.2);
+    scene.materials[1].ior = 1.33;
+    scene.lights[0] = scene.lights[0].scaled(0.5);
+    scene.settings.max_depth = 3;
+    scene.settings.shadows = false;
+    let mut camera = scene.camera.spec;
+    camera.eye += Vec3::new(0.5, 0.3, 0.0);
+    scene.camera = Camera::new(camera).unwrap();
+    let (after, _) = gpu_render(&renderer, &assembled.scene);
+    let (cpu_pixels, _) = render_image(&assembled.tracer());
+    let (mean, close) = difference(&after, &to_srgb8(&cpu_pixels));
+    assert!(
+        mean <= 0.5 && close >= 0.99,
+        "mean {mean}, {close} within 3"
+    );
+    let (changed, _) = difference(&after, &before);
+    assert!(
+        changed > 5.0,
+        "the edits changed the image: {changed} levels"
+    );
 }

@@ -12,6 +12,7 @@ use std::time::{Duration, Instant};
 use glam::Vec3;
 use raylab::camera::{Camera, CameraSpec};
 use raylab::color::to_srgb8;
+use raylab::formats::toml::default_scene;
 use raylab::inspect::DebugView;
 use raylab::progressive;
 use raylab::render::{Assembled, assemble};
@@ -231,6 +232,16 @@ pub fn cpu_render_view(scene: &Scene, size: u32, camera: CameraSpec, view: Debug
 /// The scene rendered on the CPU at `size × size` with `camera`, as sRGB bytes.
 pub fn cpu_render(scene: &Scene, size: u32, camera: CameraSpec) -> Vec<u8> {
     cpu_render_view(scene, size, camera, DebugView::Shaded)
+}
+
+/// The default scene rendered on the CPU at `size × size` with `samples` per pixel and
+/// `aa_threshold`, as sRGB bytes.
+pub fn cpu_render_sampled(size: u32, samples: u32, aa_threshold: f32) -> Vec<u8> {
+    let scene = default_scene().unwrap();
+    let mut assembled = sized(&scene, size, scene.camera.spec);
+    let settings = &mut assembled.scene.settings;
+    (settings.samples, settings.aa_threshold) = (samples, aa_threshold);
+    to_srgb8(&progressive::render_image(&assembled.tracer()).0)
 }
 
 /// The screenshot's image area at `rect` sampled at the centre of each of the `width × height`

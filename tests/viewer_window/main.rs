@@ -8,6 +8,7 @@
 mod harness;
 
 mod command_line;
+mod gpu;
 mod process;
 mod refinement;
 mod scene_files;

@@ -4,23 +4,12 @@
 
 use std::process::Command;
 
-use raylab::color::to_srgb8;
 use raylab::formats::toml::default_scene;
-use raylab::progressive;
 
 use crate::harness::{
-    cpu_render, image_rect, mismatches, printed_camera, run_to_screenshot, shown_pixels, sized,
+    cpu_render, cpu_render_sampled, image_rect, mismatches, printed_camera, run_to_screenshot,
+    shown_pixels,
 };
-
-/// The default scene rendered on the CPU at `size × size` with `samples` per pixel and
-/// `aa_threshold`, as sRGB bytes.
-fn cpu_render_sampled(size: u32, samples: u32, aa_threshold: f32) -> Vec<u8> {
-    let scene = default_scene().unwrap();
-    let mut assembled = sized(&scene, size, scene.camera.spec);
-    let settings = &mut assembled.scene.settings;
-    (settings.samples, settings.aa_threshold) = (samples, aa_threshold);
-    to_srgb8(&progressive::render_image(&assembled.tracer()).0)
-}
 
 /// Root mean square difference of two sRGB images, on a 0–1 scale.
 fn rmse(a: &[u8], b: &[u8]) -> f64 {

@@ -64,6 +64,11 @@ impl App {
                     s.controls.debug_view = debug_view;
                 }
             }
+            Action::SetDevice(device) => {
+                if let Some(s) = self.scene.shown_mut() {
+                    s.controls.device = device;
+                }
+            }
             display @ (Action::Compare(_)
             | Action::ToggleCompare
             | Action::Divider(_)

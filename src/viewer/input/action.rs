@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 use raylab::inspect::DebugView;
+use raylab::render::Device;
 use raylab::tone::ToneCurve;
 
 use crate::viewer::scene::edits::{LightEdit, MaterialEdit};
@@ -37,6 +38,8 @@ pub enum Action {
     Click { x: u32, y: u32 },
     /// Show this debug view of the scene (restarts refinement).
     SetDebugView(DebugView),
+    /// Render the shaded image with this tracer (restarts refinement).
+    SetDevice(Device),
     /// Open a scene file (`None`: the built-in default scene).
     Open(Option<PathBuf>),
     /// Save the image and the camera snippet.

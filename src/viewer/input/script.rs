@@ -8,6 +8,7 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 use raylab::inspect::DebugView;
+use raylab::render::Device;
 use raylab::tone::{Tone, ToneCurve};
 
 use super::action::Action;
@@ -167,6 +168,8 @@ fn parse_step(step: &str) -> Result<Step, String> {
         }
         "view" if args.len() == 1 => once(Action::SetDebugView(args[0].parse::<DebugView>()?)),
         "view" => return Err("takes one view name".into()),
+        "device" if args.len() == 1 => once(Action::SetDevice(args[0].parse::<Device>()?)),
+        "device" => return Err("takes `cpu` or `gpu`".into()),
         "snapshot" if args.is_empty() => once(Action::Snapshot),
         "compare" => match args[..] {
             ["on"] => once(Action::Compare(true)),
@@ -380,6 +383,8 @@ mod tests {
             ("print-tree now", "takes no arguments"),
             ("view", "takes one view name"),
             ("view glossy", "unknown view"),
+            ("device", "takes `cpu` or `gpu`"),
+            ("device tpu", "unknown device"),
         ] {
             let err = Script::parse(text).unwrap_err();
             assert!(err.contains(expected), "{text}: {err}");

@@ -87,6 +87,10 @@ pub const STEPS: &[StepHelp] = &[
         does: "shows a debug view: `shaded`, `normals`, `depth`, `uv`, `object`, `material`, `tree-depth`, `rays` or `bvh-cost`",
     },
     StepHelp {
+        syntax: "device NAME",
+        does: "renders the shaded image with `cpu` or `gpu`, as the Tracing panel's device switch",
+    },
+    StepHelp {
         syntax: "exposure STOPS",
         does: "sets the exposure, −16 to 16 stops",
     },

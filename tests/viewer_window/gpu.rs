@@ -1,0 +1,44 @@
+//! The viewer on the GPU tracer: the default scene rendered by the GPU shows what the CPU
+//! renders, the status line says which traced it, and the device switch (script step `device`)
+//! hands the render to the CPU.
+
+use crate::harness::{cpu_render_sampled, image_rect, mismatches, run_to_screenshot};
+
+#[test]
+fn the_gpu_renders_in_the_window_what_the_cpu_renders_and_the_switch_hands_over() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = 64;
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--device",
+            "gpu",
+            "--size",
+            "64",
+            "--samples",
+            "4",
+            "--aa-threshold",
+            "0",
+            "--window",
+            "600x400",
+            "--script",
+            "wait; print-status; device cpu; wait; print-status; device gpu; wait; print-status",
+        ],
+    ) else {
+        return;
+    };
+    let statuses: Vec<&str> = run
+        .stdout
+        .lines()
+        .filter(|l| l.starts_with("status: done"))
+        .collect();
+    assert_eq!(statuses.len(), 3, "{}", run.stdout);
+    for (status, device) in statuses.iter().zip(["on gpu: ", "on cpu: ", "on gpu: "]) {
+        assert!(status.contains(device), "{status}");
+    }
+    // The GPU's colours may differ from the CPU's by rounding: a pixel in a hundred may be off
+    // by more than 2 levels.
+    let expected = cpu_render_sampled(size, 4, 0.0);
+    let off = mismatches(&shot, image_rect(&run.stdout), size, &expected);
+    assert!(off <= (size * size / 100) as usize, "{off} pixels differ");
+}
