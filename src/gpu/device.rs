@@ -19,9 +19,7 @@ impl GpuDevice {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
         pollster::block_on(async {
-            let adapter = wgpu::util::initialize_adapter_from_env_or_default(&instance, None)
-                .await
-                .map_err(|e| format!("no GPU adapter found ({e}); {INSTALL_HINT}"))?;
+            let adapter = pick_adapter(&instance).await?;
             let (device, queue) = adapter
                 .request_device(&wgpu::DeviceDescriptor {
                     label: Some("raylab compute"),
@@ -59,6 +57,41 @@ impl GpuDevice {
             ))
         }
     }
+}
+
+/// The adapter whose name contains `WGPU_ADAPTER_NAME` (in any case), if that is set; otherwise
+/// the one wgpu prefers (`WGPU_POWER_PREF` may say which). The error names what was looked for
+/// and what there is, or what to install.
+async fn pick_adapter(instance: &wgpu::Instance) -> Result<wgpu::Adapter, String> {
+    let Ok(wanted) = std::env::var("WGPU_ADAPTER_NAME") else {
+        return instance
+            .request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::from_env().unwrap_or_default(),
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| format!("no GPU adapter found ({e}); {INSTALL_HINT}"));
+    };
+    let adapters = instance.enumerate_adapters(wgpu::Backends::all()).await;
+    let names: Vec<String> = adapters.iter().map(|a| a.get_info().name).collect();
+    adapters
+        .into_iter()
+        .find(|a| {
+            a.get_info()
+                .name
+                .to_lowercase()
+                .contains(&wanted.to_lowercase())
+        })
+        .ok_or_else(|| {
+            format!(
+                "no GPU adapter named like WGPU_ADAPTER_NAME={wanted:?}; there are: {}",
+                if names.is_empty() {
+                    format!("none ({INSTALL_HINT})")
+                } else {
+                    names.join(", ")
+                }
+            )
+        })
 }
 
 /// The bytes of a buffer made with `MAP_READ`, once the GPU has finished writing it (waits for

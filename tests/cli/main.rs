@@ -6,6 +6,7 @@ mod harness;
 
 mod camera;
 mod gen_and_bench;
+mod gpu;
 mod inspect;
 mod outputs;
 mod overrides;

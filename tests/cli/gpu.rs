@@ -1,0 +1,107 @@
+//! `--device gpu` as a user meets it: `render` writes the CPU's image and names the adapter,
+//! `bench` names it too, and what the GPU cannot do (no such adapter, a debug view, a scene it
+//! does not trace yet) is a clear error with exit code 1, never a panic. These need a GPU
+//! adapter (Mesa's lavapipe will do): without one they fail, saying what to install.
+
+use std::process::Command;
+
+use crate::common::run::{raylab, stderr};
+
+/// `raylab render` of the default scene at 64 × 48 on `device`, as 8-bit sRGB pixels, and its
+/// summary line.
+fn render_on(device: &str, dir: &std::path::Path) -> (Vec<u8>, String) {
+    let out = raylab(
+        &[
+            "render", "--device", device, "--size", "64x48", "-o", "out.png",
+        ],
+        dir,
+    );
+    assert!(out.status.success(), "{device}: {}", stderr(&out));
+    let pixels = image::open(dir.join("out.png"))
+        .unwrap()
+        .to_rgb8()
+        .into_raw();
+    (pixels, String::from_utf8_lossy(&out.stdout).into_owned())
+}
+
+#[test]
+fn render_on_the_gpu_writes_the_cpus_image_and_names_the_adapter() {
+    let dir = tempfile::tempdir().unwrap();
+    let (on_gpu, gpu_summary) = render_on("gpu", dir.path());
+    let (on_cpu, cpu_summary) = render_on("cpu", dir.path());
+    assert!(gpu_summary.contains("(gpu: "), "{gpu_summary}");
+    assert!(
+        cpu_summary.contains("(cpu: ") && cpu_summary.contains(" threads)"),
+        "{cpu_summary}"
+    );
+    let mean = on_gpu
+        .iter()
+        .zip(&on_cpu)
+        .map(|(a, b)| f64::from(a.abs_diff(*b)))
+        .sum::<f64>()
+        / on_cpu.len() as f64;
+    assert!(mean <= 0.5, "mean difference {mean} levels");
+}
+
+#[test]
+fn bench_on_the_gpu_names_the_adapter() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = [
+        "bench", "--device", "gpu", "--scenes", "default", "--size", "32", "--repeat", "1",
+    ];
+    let out = raylab(&args, dir.path());
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report = String::from_utf8_lossy(&out.stdout);
+    assert!(report.starts_with("32×32 pixels, gpu: "), "{report}");
+    let scaling = raylab(&[&args[..], &["--scaling"]].concat(), dir.path());
+    assert_eq!(scaling.status.code(), Some(1), "{}", stderr(&scaling));
+    assert!(stderr(&scaling).contains("--scaling measures the CPU's threads"));
+}
+
+#[test]
+fn what_the_gpu_cannot_do_is_an_error_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenes = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/scenes");
+    let no_adapter = Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .args(["render", "--device", "gpu", "--size", "16", "-o", "out.png"])
+        .current_dir(dir.path())
+        .env("WGPU_ADAPTER_NAME", "no-such-gpu")
+        .output()
+        .unwrap();
+    let caustics = format!("{scenes}/caustic_ring.toml");
+    for (out, expected) in [
+        (no_adapter, "WGPU_ADAPTER_NAME=\"no-such-gpu\""),
+        (
+            raylab(
+                &[
+                    "render", "--device", "gpu", "--view", "normals", "--size", "16", "-o",
+                    "out.png",
+                ],
+                dir.path(),
+            ),
+            "--view normals traces on the CPU only",
+        ),
+        (
+            raylab(
+                &[
+                    "render", &csg, "--device", "gpu", "--size", "16", "-o", "out.png",
+                ],
+                dir.path(),
+            ),
+            "render it with --device cpu",
+        ),
+        (
+            raylab(&["render", "--device", "tpu", "-o", "out.png"], dir.path()),
+            "unknown device `tpu`",
+        ),
+    ] {
+        let message = stderr(&out);
+        assert!(message.contains(expected), "{message}");
+        assert!(!message.contains("panicked"), "{message}");
+        assert!(matches!(out.status.code(), Some(1 | 2)), "{message}");
+    }
+    assert!(
+        !dir.path().join("out.png").exists(),
+        "no image for a refused render"
+    );
+}
