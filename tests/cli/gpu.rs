@@ -84,7 +84,7 @@ fn what_the_gpu_cannot_do_is_an_error_not_a_panic() {
         (
             raylab(
                 &[
-                    "render", &csg, "--device", "gpu", "--size", "16", "-o", "out.png",
+                    "render", &caustics, "--device", "gpu", "--size", "16", "-o", "out.png",
                 ],
                 dir.path(),
             ),
