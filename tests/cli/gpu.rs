@@ -88,7 +88,7 @@ fn what_the_gpu_cannot_do_is_an_error_not_a_panic() {
                 ],
                 dir.path(),
             ),
-            "render it with --device cpu",
+            "does not trace caustics yet (render this scene with --device cpu)",
         ),
         (
             raylab(&["render", "--device", "tpu", "-o", "out.png"], dir.path()),
