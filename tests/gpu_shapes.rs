@@ -854,3 +854,24 @@ fn more_rays_than_the_gpu_dispatches_are_refused_with_the_limit() {
         Ok(_) => panic!("{too_many} rays were dispatched"),
     }
 }
+
+#[test]
+fn a_scene_larger_than_the_gpu_holds_is_refused_with_both_sizes() {
+    let small = 64 * 1024;
+    let gpu = GpuDevice::with_limits(|offered| wgpu::Limits {
+        max_storage_buffer_binding_size: small,
+        ..offered
+    })
+    .unwrap_or_else(|e| panic!("these tests run on a GPU: {e}"));
+    let mut rng = Rng::with_seed(35);
+    // 48 bytes a triangle: 2000 of them need 96,000 bytes.
+    let assembled = scene_of(Vec::new(), vec![random_mesh(&mut rng, 2000, 10.0, false)]);
+    let error = GpuScene::upload(&gpu, &assembled)
+        .err()
+        .expect("the scene is refused");
+    assert!(
+        error.contains("the triangles need 96000 bytes")
+            && error.contains(&format!("allows {small} bytes")),
+        "{error}"
+    );
+}

@@ -14,8 +14,17 @@ pub const INSTALL_HINT: &str = "without a GPU, install Mesa's software Vulkan (D
                                 apt-get install mesa-vulkan-drivers libvulkan1)";
 
 impl GpuDevice {
-    /// Opens the GPU; the error says what was looked for and what to install.
+    /// Opens the GPU with every limit its adapter offers; the error says what was looked for and
+    /// what to install.
     pub fn new() -> Result<GpuDevice, String> {
+        GpuDevice::with_limits(|offered| offered)
+    }
+
+    /// [`Self::new`], with the limits `choose` makes of those the adapter offers (lower ones,
+    /// to see what a smaller GPU refuses).
+    pub fn with_limits(
+        choose: impl FnOnce(wgpu::Limits) -> wgpu::Limits,
+    ) -> Result<GpuDevice, String> {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
         pollster::block_on(async {
@@ -23,7 +32,7 @@ impl GpuDevice {
             let (device, queue) = adapter
                 .request_device(&wgpu::DeviceDescriptor {
                     label: Some("raylab compute"),
-                    required_limits: adapter.limits(),
+                    required_limits: choose(adapter.limits()),
                     ..Default::default()
                 })
                 .await
