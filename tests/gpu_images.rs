@@ -18,7 +18,7 @@ use raylab::formats::spd::{Database, load_spd};
 use raylab::formats::toml::parse_scene;
 use raylab::gpu::device::GpuDevice;
 use raylab::progressive::gpu::GpuRenderer;
-use raylab::progressive::{RenderControl, RenderStats, render_image};
+use raylab::progressive::{RenderControl, RenderStats, Shaded, render_image};
 use raylab::render::assemble;
 use raylab::scene::Scene;
 use strum::IntoEnumIterator;
@@ -376,5 +376,55 @@ fn edited_materials_lights_camera_and_settings_reach_the_scene_on_the_gpu() {
     assert!(
         changed > 5.0,
         "the edits changed the image: {changed} levels"
+    );
+}
+
+#[test]
+fn the_first_block_pass_paints_each_block_with_its_top_left_pixel_as_the_cpu_does() {
+    let gpu = gpu();
+    let mut scene = balls_and_meshes();
+    (scene.settings.width, scene.settings.height) = SIZE;
+    scene.settings.block_size = 16;
+    let assembled = assemble(scene).unwrap();
+    let renderer = GpuRenderer::new(Arc::clone(&gpu), &assembled).unwrap();
+    let (width, height) = SIZE;
+    // The film as each backend leaves it after its first pass.
+    let first_pass = |render: &dyn Fn(&Film, &mut dyn FnMut())| {
+        let film = Film::new(width, height);
+        let mut shown = None;
+        render(&film, &mut || {
+            shown.get_or_insert_with(|| film.pixels());
+        });
+        shown.unwrap()
+    };
+    let on_gpu = first_pass(&|film, after_pass| {
+        let control = RenderControl::default();
+        renderer
+            .render(&assembled.scene, film, &control, |_| after_pass())
+            .unwrap()
+            .unwrap();
+    });
+    let on_cpu = first_pass(&|film, after_pass| {
+        let control = RenderControl::default();
+        raylab::progressive::render(&assembled.tracer(), &Shaded, film, &control, |_| {
+            after_pass()
+        })
+        .unwrap();
+    });
+    for y in 0..height {
+        for x in 0..width {
+            let at = |p: &[Color], x: u32, y: u32| p[(y * width + x) as usize];
+            let corner = (x / 16 * 16, y / 16 * 16);
+            assert_eq!(
+                at(&on_gpu, x, y),
+                at(&on_gpu, corner.0, corner.1),
+                "block of ({x}, {y})"
+            );
+        }
+    }
+    let (mean, close) = difference(&to_srgb8(&on_gpu), &to_srgb8(&on_cpu));
+    assert!(
+        mean <= 0.5 && close >= 0.99,
+        "mean {mean}, {close} within 3"
     );
 }
