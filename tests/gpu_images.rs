@@ -15,7 +15,6 @@ use raylab::color::{Color, to_srgb8};
 use raylab::film::Film;
 use raylab::formats::load_any;
 use raylab::formats::spd::{Database, load_spd};
-use raylab::formats::toml::parse_scene;
 use raylab::gpu::device::GpuDevice;
 use raylab::progressive::gpu::GpuRenderer;
 use raylab::progressive::{RenderControl, RenderStats, Shaded, render_image};
@@ -42,192 +41,9 @@ fn gpu() -> Arc<GpuDevice> {
     Arc::new(GpuDevice::new().unwrap_or_else(|e| panic!("these tests run on a GPU: {e}")))
 }
 
-/// A scene made here: a glass ball, a mirror ball and a matte one on a great ball for a floor,
-/// a smooth-shaded mesh and a flat one, lit by a directional, a point and a spot light.
-fn balls_and_meshes() -> Scene {
-    let text = r#"
-        [render]
-        max_depth = 6
-        background = [0.6, 0.7, 0.9]
-        [camera]
-        eye = [0, 2.5, 7]
-        look_at = [0, 1, 0]
-        view_angle = 40
-        [[lights]]
-        type = "directional"
-        direction = [-1, 3, 2]
-        color = [0.8, 0.8, 0.8]
-        [[lights]]
-        type = "point"
-        position = [3, 5, 3]
-        color = [0.5, 0.4, 0.3]
-        [[lights]]
-        type = "spot"
-        position = [-3, 6, 4]
-        direction = [0.4, -1, -0.5]
-        angle = 30
-        falloff = 10
-        color = [30, 30, 30]
-        [materials.floor]
-        color = [0.8, 0.3, 0.2]
-        specular = 0.3
-        [materials.mirror]
-        color = [0.9, 0.9, 0.9]
-        reflectivity = 0.7
-        specular = 0.5
-        shininess = 50
-        [materials.glass]
-        color = [1, 1, 1]
-        ambient = 0
-        diffuse = 0.05
-        specular = 0.8
-        shininess = 200
-        reflectivity = 0.1
-        transparency = 0.9
-        ior = 1.5
-        fresnel = true
-        [[objects]]
-        type = "sphere"
-        center = [0, -1000, 0]
-        radius = 1000
-        material = "floor"
-        [[objects]]
-        type = "sphere"
-        center = [0, 1.2, 0]
-        radius = 1.2
-        material = "glass"
-        [[objects]]
-        type = "sphere"
-        center = [-2.5, 1, -1]
-        radius = 1
-        material = "mirror"
-        [[objects]]
-        type = "obj"
-        file = "torus.obj"
-        material = "floor"
-        transform = [{ translate = [2.5, 0.6, -1] }]
-        [[objects]]
-        type = "obj"
-        file = "tetra.obj"
-        transform = [{ scale = [0.8, 0.8, 0.8] }, { translate = [1.5, 0.5, 1.5] }]
-    "#;
-    let models = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/models");
-    parse_scene(text, Path::new("balls_and_meshes"), &models).unwrap()
-}
-
-/// A scene made here: a ball of every kind of texture on a checkered great ball for a floor, a
-/// marble glass ball (its texture tints the light through it), an image wrapped around a mesh by
-/// its texture coordinates, and a background image behind them.
-fn textured_balls() -> Scene {
-    let text = r#"
-        [render]
-        max_depth = 5
-        background = [0.1, 0.1, 0.15]
-        background_image = "../textures/sky.bmp"
-        [camera]
-        eye = [0, 2.2, 7]
-        look_at = [0, 0.8, 0]
-        view_angle = 45
-        [[lights]]
-        type = "point"
-        position = [4, 6, 5]
-        [[lights]]
-        type = "directional"
-        direction = [-1, 2, 1]
-        color = [0.3, 0.3, 0.3]
-        [textures.floor]
-        type = "checker3d"
-        a = [0.82, 0.8, 0.74]
-        b = [0.12, 0.14, 0.18]
-        size = 0.7
-        [textures.squares]
-        type = "checker_uv"
-        a = [0.9, 0.8, 0.2]
-        b = [0.2, 0.3, 0.7]
-        u_count = 16
-        v_count = 8
-        [textures.oak]
-        type = "wood"
-        [textures.verde]
-        type = "marble"
-        color = [0.3, 0.7, 0.45]
-        [textures.grid]
-        type = "image"
-        file = "../textures/grid.png"
-        wrap = "repeat"
-        scale = [2, 1]
-        [textures.bricks]
-        type = "image"
-        file = "../textures/bricks.png"
-        wrap = "clamp"
-        scale = [1.5, 1.5]
-        [materials.floor]
-        texture = "floor"
-        [materials.squares]
-        texture = "squares"
-        [materials.oak]
-        texture = "oak"
-        specular = 0.3
-        [materials.verde]
-        texture = "verde"
-        specular = 0.5
-        reflectivity = 0.2
-        [materials.grid]
-        texture = "grid"
-        [materials.bricks]
-        texture = "bricks"
-        [materials.marble_glass]
-        texture = "verde"
-        ambient = 0
-        diffuse = 0.1
-        specular = 0.8
-        transparency = 0.8
-        ior = 1.3
-        [[objects]]
-        type = "sphere"
-        center = [0, -1000, 0]
-        radius = 1000
-        material = "floor"
-        [[objects]]
-        type = "sphere"
-        center = [-2.4, 0.8, 0]
-        radius = 0.8
-        material = "squares"
-        [[objects]]
-        type = "sphere"
-        center = [0, 0, 0]
-        radius = 0.8
-        material = "oak"
-        transform = [{ rotate = { axis = [1, 0, 0], degrees = 60 } }, { translate = [-0.8, 0.8, -1.5] }]
-        [[objects]]
-        type = "sphere"
-        center = [0.9, 0.8, -1.5]
-        radius = 0.8
-        material = "verde"
-        [[objects]]
-        type = "sphere"
-        center = [2.4, 0.8, 0]
-        radius = 0.8
-        material = "grid"
-        [[objects]]
-        type = "sphere"
-        center = [0, 0.6, 1.2]
-        radius = 0.6
-        material = "marble_glass"
-        [[objects]]
-        type = "obj"
-        file = "torus.obj"
-        material = "bricks"
-        transform = [{ scale = [0.7, 0.7, 0.7] }, { translate = [1.4, 0.4, 1.6] }]
-    "#;
-    let models = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/models");
-    parse_scene(text, Path::new("textured_balls"), &models).unwrap()
-}
-
-/// Every shipped scene and every SPD scene at its standard size, and the scenes made here
-/// ([`balls_and_meshes`], [`textured_balls`]), by name.
-fn all_scenes() -> Vec<(String, Scene)> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
+/// The scene files of `folder` (of the repository), by file name, in order.
+fn scene_files(folder: &str) -> Vec<(String, Scene)> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(folder);
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|entry| entry.unwrap().path())
@@ -237,20 +53,35 @@ fn all_scenes() -> Vec<(String, Scene)> {
         })
         .collect();
     files.sort();
-    let shipped = files.into_iter().map(|path| {
-        let name = path.file_name().unwrap().to_string_lossy().into_owned();
-        (name, load_any(path.to_str().unwrap()).unwrap())
-    });
+    files
+        .into_iter()
+        .map(|path| {
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            (name, load_any(path.to_str().unwrap()).unwrap())
+        })
+        .collect()
+}
+
+/// A scene of `tests/gpu_scenes/`, made for these tests: each puts together what the GPU must
+/// trace as the CPU does, whatever the shipped scenes need besides.
+fn made_here(name: &str) -> Scene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/gpu_scenes")
+        .join(name);
+    load_any(path.to_str().unwrap()).unwrap()
+}
+
+/// Every shipped scene, every SPD scene at its standard size, and the scenes of
+/// `tests/gpu_scenes/`, by name.
+fn all_scenes() -> Vec<(String, Scene)> {
     let spd = Database::iter().map(|database| {
         let name = format!("spd:{database}");
         let scene = load_spd(&name, Default::default()).unwrap();
         (name, scene)
     });
-    let made_here = [
-        ("balls_and_meshes".to_string(), balls_and_meshes()),
-        ("textured_balls".to_string(), textured_balls()),
-    ];
-    shipped.chain(spd).chain(made_here).collect()
+    let shipped = scene_files("assets/scenes");
+    let made_here = scene_files("tests/gpu_scenes");
+    shipped.into_iter().chain(spd).chain(made_here).collect()
 }
 
 /// The mean absolute difference of two 8-bit images, in levels, and the share of pixels where
@@ -350,7 +181,7 @@ fn gpu_render(renderer: &GpuRenderer, scene: &Scene) -> (Vec<u8>, RenderStats) {
 #[test]
 fn edited_materials_lights_camera_and_settings_reach_the_scene_on_the_gpu() {
     let gpu = gpu();
-    let mut scene = balls_and_meshes();
+    let mut scene = made_here("balls_and_meshes.toml");
     (scene.settings.width, scene.settings.height) = SIZE;
     let mut assembled = assemble(scene).unwrap();
     let renderer = GpuRenderer::new(Arc::clone(&gpu), &assembled).unwrap();
@@ -382,7 +213,7 @@ fn edited_materials_lights_camera_and_settings_reach_the_scene_on_the_gpu() {
 #[test]
 fn the_first_block_pass_paints_each_block_with_its_top_left_pixel_as_the_cpu_does() {
     let gpu = gpu();
-    let mut scene = balls_and_meshes();
+    let mut scene = made_here("balls_and_meshes.toml");
     (scene.settings.width, scene.settings.height) = SIZE;
     scene.settings.block_size = 16;
     let assembled = assemble(scene).unwrap();
