@@ -5,11 +5,11 @@
 
 use bytemuck::{Pod, Zeroable};
 
-use crate::bvh::{Bvh, WIDTH, WideNode};
+use crate::bvh::{Bvh, WIDTH};
 use crate::primitive::Geometry;
 
-/// WGSL's `WideNode`: [`WideNode`] with the leaves pointing into [`GpuBvh::triangles`] or
-/// [`GpuBvh::refs`]. 256 bytes.
+/// WGSL's `WideNode`: [`crate::bvh::WideNode`] with the leaves pointing into
+/// [`GpuBvh::triangles`] or [`GpuBvh::refs`]. 256 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuWideNode {
@@ -18,13 +18,10 @@ pub struct GpuWideNode {
     pub max: [[f32; WIDTH]; 3],
     /// An interior child's node index, or where a leaf's entries start.
     pub first: [u32; WIDTH],
-    /// [`INTERIOR`], 0 for an unused slot, or a leaf's entry count with [`TRIANGLE_LEAF`] set
-    /// for a leaf of triangles.
+    /// `WideNode::INTERIOR` for an interior child, 0 for an unused slot, or a leaf's entry
+    /// count with [`TRIANGLE_LEAF`] set for a leaf of triangles.
     pub count: [u32; WIDTH],
 }
-
-/// [`GpuWideNode::count`] of an interior child.
-pub const INTERIOR: u32 = WideNode::INTERIOR;
 
 /// The bit of a leaf's count that says its entries are triangles (else object indices).
 pub const TRIANGLE_LEAF: u32 = 1 << 30;

@@ -269,8 +269,6 @@ pub struct GpuScene {
     /// The materials' and the lights' buffers, rewritten as they are edited.
     materials: wgpu::Buffer,
     lights: wgpu::Buffer,
-    /// Bytes the scene takes on the GPU.
-    pub bytes: u64,
     /// How many records some buffers hold, as the frame record tells the WGSL.
     counts: RecordCounts,
 }
@@ -305,10 +303,8 @@ impl GpuScene {
             ));
         }
         let device = &gpu.device;
-        let mut bytes = 0;
-        let mut storage = |what: &str, contents: &[u8]| -> Result<wgpu::Buffer, String> {
+        let storage = |what: &str, contents: &[u8]| -> Result<wgpu::Buffer, String> {
             gpu.check_storage(what, contents.len() as u64)?;
-            bytes += contents.len().max(16) as u64;
             // A buffer is never empty: an unused one holds zeros (the frame's counts say so).
             let zeros = [0u8; 256];
             let contents = if contents.is_empty() {
@@ -399,7 +395,6 @@ impl GpuScene {
             frame,
             materials,
             lights,
-            bytes,
             counts,
         })
     }
