@@ -119,23 +119,24 @@ fn visit_triangles(first: u32, count: u32, ray: WalkRay, t_min: f32, find: u32, 
 
 // The walk: the unbounded objects, then the tree, nearest child first for the closest hit (a
 // hit prunes what lies beyond it), in slot order for a shadow ray (which must meet everything
-// in its range unless something opaque stops it).
+// in its range unless something opaque stops it). The unbounded objects are visited as a leaf
+// of their own before the root, so that each kind of leaf is tested at one place only.
 fn walk(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max_in: f32, find: u32) -> WalkResult {
     var result = WalkResult(Hit(t_max_in, 0u, 0u, 0u, vec2<f32>(0.0), false), vec3<f32>(1.0));
     let ray = walk_ray(origin, dir);
     var t_max = min(t_max_in, T_FAR);
-    if visit_objects(frame.unbounded_first, frame.unbounded, ray, t_min, find, &result, &t_max) {
-        return result;
-    }
-    if frame.node_count == 0u {
-        return result;
-    }
     var stack_first: array<u32, STACK_SIZE>;
     var stack_count: array<u32, STACK_SIZE>;
     var stack_t: array<f32, STACK_SIZE>;
     var size = 0u;
-    var next_first = 0u;
-    var next_count = INTERIOR;
+    if frame.node_count != 0u {
+        stack_first[0] = 0u;
+        stack_count[0] = INTERIOR;
+        stack_t[0] = t_min;
+        size = 1u;
+    }
+    var next_first = frame.unbounded_first;
+    var next_count = frame.unbounded;
     loop {
         if next_count != INTERIOR {
             var stop = false;

@@ -1,16 +1,8 @@
 // The local colour at a hit, the lecture's shading model: the twin of src/whitted/lighting.rs
 // and of `Light::sample` in src/light.rs. Emission and ambient light, plus the diffuse
 // (Lambert) and specular (Phong) light of every light a shadow ray reaches; transparent
-// blockers tint the light that passes them.
-
-// Rays counted as the CPU counts them (`RayCounts`).
-struct Counts {
-    primary_hits: u32,
-    shadow: u32,
-    reflected: u32,
-    transmitted: u32,
-    over_budget: u32,
-}
+// blockers tint the light that passes them. The shadow rays are cast by the ray tree's loop
+// (trace.wgsl), where every ray of a tree is cast.
 
 // `LightSample`: the unit direction towards the light, the distance a shadow ray covers, and
 // the colour that arrives before any blocker.
@@ -66,34 +58,61 @@ fn offset_origin(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
     return point + normal * (2e-4 * scale);
 }
 
-// `Tracer::local_color`.
-fn local_color(m: Material, base: vec3<f32>, surface: SurfacePoint, normal: vec3<f32>, geometric_normal: vec3<f32>, dir: vec3<f32>, counts: ptr<function, Counts>) -> vec3<f32> {
-    var color = m.emission + m.ambient * base * frame.ambient;
-    let shadow_origin = offset_origin(surface.point, geometric_normal);
-    for (var i = 0u; i < frame.light_count; i++) {
-        let sample = light_sample(lights[i], surface.point);
+// A shadow ray still to cast (`found`): from `origin` towards a light along `dir`, up to
+// `distance`, and `light`, what it adds to the eye ray's colour where nothing blocks it.
+struct ShadowRay {
+    origin: vec3<f32>,
+    distance: f32,
+    dir: vec3<f32>,
+    found: bool,
+    light: vec3<f32>,
+}
+
+// A hit whose local colour is being gathered (`Tracer::local_color`): its material and base
+// colour, the surface with normals facing the ray, the ray's unit direction and throughput,
+// and the next light to look at.
+struct Shading {
+    m: Material,
+    base: vec3<f32>,
+    surface: SurfacePoint,
+    normal: vec3<f32>,
+    geometric_normal: vec3<f32>,
+    dir: vec3<f32>,
+    throughput: vec3<f32>,
+    next_light: u32,
+}
+
+// `Tracer::local_color`'s light that needs no shadow ray: emission and ambient light.
+fn unlit_color(s: Shading) -> vec3<f32> {
+    return s.m.emission + s.m.ambient * s.base * frame.ambient;
+}
+
+// `Tracer::local_color`'s loop over the lights, a light at a time: the shadow ray towards the
+// next light that adds to the hit's colour, carrying its diffuse (Lambert) and specular (Phong)
+// light; not `found` once every light has been seen.
+fn next_shadow_ray(s: ptr<function, Shading>) -> ShadowRay {
+    let point = (*s).surface.point;
+    let normal = (*s).normal;
+    while (*s).next_light < frame.light_count {
+        let sample = light_sample(lights[(*s).next_light], point);
+        (*s).next_light++;
         // A light behind the surface (as seen from the ray's side), or a spot turned away
         // from it, adds nothing and needs no shadow ray.
         let cos_l = dot(normal, sample.dir);
-        if cos_l <= 0.0 || dot(geometric_normal, sample.dir) <= 0.0 || all(sample.color == vec3<f32>(0.0)) {
+        if cos_l <= 0.0 || dot((*s).geometric_normal, sample.dir) <= 0.0 || all(sample.color == vec3<f32>(0.0)) {
             continue;
         }
-        var light_color = sample.color;
-        if (frame.flags & SHADOWS) != 0u {
-            (*counts).shadow++;
-            light_color *= walk(shadow_origin, sample.dir, 0.0, sample.distance, FIND_SHADOW).passed;
-        }
-        if all(light_color == vec3<f32>(0.0)) {
-            continue;
-        }
-        let diffuse = m.diffuse * cos_l * base;
+        let m = (*s).m;
+        let diffuse = m.diffuse * cos_l * (*s).base;
         let reflected = mirror(-sample.dir, normal);
-        let cos_r = max(dot(reflected, -dir), 0.0);
+        let cos_r = max(dot(reflected, -(*s).dir), 0.0);
         var specular = vec3<f32>(0.0);
         if m.specular > 0.0 && cos_r > 0.0 {
             specular = m.specular * pow(cos_r, m.shininess) * m.specular_color;
         }
-        color += light_color * (diffuse + specular);
+        let light = (*s).throughput * sample.color * (diffuse + specular);
+        let origin = offset_origin(point, (*s).geometric_normal);
+        return ShadowRay(origin, sample.distance, sample.dir, true, light);
     }
-    return color;
+    return ShadowRay(vec3<f32>(0.0), 0.0, vec3<f32>(0.0), false, vec3<f32>(0.0));
 }

@@ -4,7 +4,8 @@
 // ray's local colour added with `throughput`, the product of the scales on the way from the
 // eye. The children wait on an explicit stack, reflected first, as the CPU's recursion takes
 // them depth first; the ray budget is checked when a child is taken, as the CPU checks it when
-// it starts a child.
+// it starts a child. A hit's shadow rays are cast before the next child, each adding its
+// light's share of the local colour where it gets through.
 
 // `EYE_RAY_T_MIN`: eye rays see only what lies beyond the image plane.
 const EYE_RAY_T_MIN: f32 = 1.0;
@@ -22,6 +23,15 @@ struct Branch {
     throughput: vec3<f32>,
     // REFLECTIONS or TRANSMISSION: which child it is.
     kind: u32,
+}
+
+// Rays counted as the CPU counts them (`RayCounts`).
+struct Counts {
+    primary_hits: u32,
+    shadow: u32,
+    reflected: u32,
+    transmitted: u32,
+    over_budget: u32,
 }
 
 // The colour seen along an eye ray, and the rays its tree traced.
@@ -57,71 +67,112 @@ fn wanted(kind_on: u32, weight: f32) -> bool {
     return (frame.flags & kind_on) != 0u && weight >= frame.min_weight;
 }
 
+// Takes the next waiting child whose tree still has budget into `ray`; false when none waits.
+fn next_branch(stack: ptr<function, array<Branch, TREE_STACK>>, size: ptr<function, u32>, ray: ptr<function, Branch>, counts: ptr<function, Counts>) -> bool {
+    while *size > 0u {
+        *size -= 1u;
+        if (*counts).reflected + (*counts).transmitted >= RAY_BUDGET {
+            (*counts).over_budget++;
+            continue;
+        }
+        *ray = (*stack)[*size];
+        if (*ray).kind == TRANSMISSION {
+            (*counts).transmitted++;
+        } else {
+            (*counts).reflected++;
+        }
+        return true;
+    }
+    return false;
+}
+
 // `Tracer::trace_eye`: the colour seen by the eye ray from the eye along `dir`.
+//
+// Every ray of the tree, shadow rays included, is cast by the one `walk` of the loop below: a
+// GPU compiler copies a function at each place it is called, and the walk holds every shape.
+// Each turn casts the next shadow ray of the hit being shaded, or, once its lights are done,
+// the next ray of the tree.
 fn trace_eye(dir: vec3<f32>) -> Traced {
     var counts = Counts(0u, 0u, 0u, 0u, 0u);
     var color = vec3<f32>(0.0);
     var stack: array<Branch, TREE_STACK>;
     var size = 0u;
     var ray = Branch(frame.eye, 1u, dir, 1.0, vec3<f32>(1.0), 0u);
-    var t_min = EYE_RAY_T_MIN;
+    // Whether `ray` is still to cast (the eye ray is), and the hit being shaded (none yet).
+    var ray_waits = true;
+    var shading: Shading;
+    shading.next_light = frame.light_count;
     loop {
-        let hit = closest_hit(ray.origin, ray.dir, t_min, T_FAR);
-        if !hit.found {
-            color += ray.throughput * miss_color(ray.dir);
-        } else {
-            if ray.depth == 1u {
-                counts.primary_hits++;
-            }
-            // `Tracer::shade`.
-            let surface = surface_at(ray.origin, ray.dir, hit);
-            let m = materials[surface.material];
-            let base = base_color(m, surface);
-            let dir = normalize(ray.dir);
-            // Face the normals towards the side the ray came from.
-            let entering = dot(dir, surface.geometric_normal) < 0.0;
-            var side = -1.0;
-            if entering {
-                side = 1.0;
-            }
-            let normal = surface.normal * side;
-            let geometric_normal = surface.geometric_normal * side;
-            color += ray.throughput * local_color(m, base, surface, normal, geometric_normal, dir, &counts);
-            if ray.depth < frame.max_depth {
-                let s = scattering(m, dir, normal, entering);
-                // The transmitted child waits below the reflected one, which goes first.
-                let transmit_weight = ray.weight * s.transmit;
-                if s.refracted.found && s.transmit > 0.0 && wanted(TRANSMISSION, transmit_weight) {
-                    stack[size] = Branch(offset_origin(surface.point, -geometric_normal), ray.depth + 1u, s.refracted.dir, transmit_weight, ray.throughput * (s.transmit * base), TRANSMISSION);
-                    size++;
-                }
-                let reflect_weight = ray.weight * s.reflect;
-                if s.reflect > 0.0 && wanted(REFLECTIONS, reflect_weight) {
-                    stack[size] = Branch(offset_origin(surface.point, geometric_normal), ray.depth + 1u, mirror(dir, normal), reflect_weight, ray.throughput * s.reflect, REFLECTIONS);
-                    size++;
-                }
-            }
-        }
-        // The next child whose tree still has budget.
-        var next = false;
-        while size > 0u && !next {
-            size--;
-            if counts.reflected + counts.transmitted >= RAY_BUDGET {
-                counts.over_budget++;
+        // The ray to cast: a shadow ray, or the tree's next ray, which the eye ray alone
+        // starts at the image plane.
+        let shadow = next_shadow_ray(&shading);
+        var origin = shadow.origin;
+        var ray_dir = shadow.dir;
+        var t_min = 0.0;
+        var t_max = shadow.distance;
+        var find = FIND_SHADOW;
+        if shadow.found {
+            if (frame.flags & SHADOWS) == 0u {
+                color += shadow.light;
                 continue;
             }
-            ray = stack[size];
-            next = true;
-        }
-        if !next {
-            break;
-        }
-        if ray.kind == TRANSMISSION {
-            counts.transmitted++;
+            counts.shadow++;
         } else {
-            counts.reflected++;
+            if !ray_waits && !next_branch(&stack, &size, &ray, &counts) {
+                break;
+            }
+            ray_waits = false;
+            origin = ray.origin;
+            ray_dir = ray.dir;
+            if ray.depth == 1u {
+                t_min = EYE_RAY_T_MIN;
+            }
+            t_max = T_FAR;
+            find = FIND_CLOSEST;
         }
-        t_min = 0.0;
+        let found = walk(origin, ray_dir, t_min, t_max, find);
+        if find == FIND_SHADOW {
+            color += shadow.light * found.passed;
+            continue;
+        }
+        let hit = found.hit;
+        if !hit.found {
+            color += ray.throughput * miss_color(ray.dir);
+            continue;
+        }
+        if ray.depth == 1u {
+            counts.primary_hits++;
+        }
+        // `Tracer::shade`: the local colour's unlit part now, its lights by the turns to come,
+        // and the children onto the stack.
+        let surface = surface_at(ray.origin, ray.dir, hit);
+        let m = materials[surface.material];
+        let unit_dir = normalize(ray.dir);
+        // Face the normals towards the side the ray came from.
+        let entering = dot(unit_dir, surface.geometric_normal) < 0.0;
+        var side = -1.0;
+        if entering {
+            side = 1.0;
+        }
+        let normal = surface.normal * side;
+        let geometric_normal = surface.geometric_normal * side;
+        shading = Shading(m, base_color(m, surface), surface, normal, geometric_normal, unit_dir, ray.throughput, 0u);
+        color += ray.throughput * unlit_color(shading);
+        if ray.depth < frame.max_depth {
+            let s = scattering(m, unit_dir, normal, entering);
+            let base = shading.base;
+            // The transmitted child waits below the reflected one, which goes first.
+            let transmit_weight = ray.weight * s.transmit;
+            if s.refracted.found && s.transmit > 0.0 && wanted(TRANSMISSION, transmit_weight) {
+                stack[size] = Branch(offset_origin(surface.point, -geometric_normal), ray.depth + 1u, s.refracted.dir, transmit_weight, ray.throughput * (s.transmit * base), TRANSMISSION);
+                size++;
+            }
+            let reflect_weight = ray.weight * s.reflect;
+            if s.reflect > 0.0 && wanted(REFLECTIONS, reflect_weight) {
+                stack[size] = Branch(offset_origin(surface.point, geometric_normal), ray.depth + 1u, mirror(unit_dir, normal), reflect_weight, ray.throughput * s.reflect, REFLECTIONS);
+                size++;
+            }
+        }
     }
     return Traced(color, counts);
 }
