@@ -31,8 +31,7 @@ const NOT_YET_ON_GPU: &[(&str, &str)] = &[
     ("csg_hollow_glass.toml", "csg"),
     ("csg_lens.toml", "csg"),
     ("csg_nested.toml", "csg"),
-    ("fog_spot.toml", "fog"),
-    ("smoky_glass.toml", "media inside objects"),
+    ("smoky_glass.toml", "csg"),
     ("sdl_textures.dat", "csg"),
 ];
 
@@ -222,8 +221,87 @@ fn textured_balls() -> Scene {
     parse_scene(text, Path::new("textured_balls"), &models).unwrap()
 }
 
+/// A scene made here: fog lit by a spot, a point and a directional light, with a smoky glass
+/// ball, a box and a mesh torus of ink (media inside objects) on a great ball for a floor, the fog's
+/// backdrop the ball around them.
+fn fog_and_media() -> Scene {
+    let text = r#"
+        [render]
+        max_depth = 6
+        background = [0.2, 0.25, 0.35]
+        fog_steps = 12
+        [camera]
+        eye = [0, 2.5, 7]
+        look_at = [0, 1, 0]
+        view_angle = 40
+        [atmosphere]
+        density = 0.08
+        albedo = 0.8
+        color = [1, 0.95, 0.9]
+        [[lights]]
+        type = "spot"
+        position = [-3, 6, 2]
+        direction = [0.5, -1, -0.3]
+        angle = 30
+        falloff = 8
+        color = [40, 38, 35]
+        [[lights]]
+        type = "point"
+        position = [3, 5, 3]
+        color = [0.4, 0.4, 0.45]
+        [[lights]]
+        type = "directional"
+        direction = [-1, 3, 2]
+        color = [0.3, 0.3, 0.3]
+        [materials.floor]
+        color = [0.7, 0.7, 0.65]
+        specular = 0.2
+        [materials.smoke]
+        color = [1, 1, 1]
+        ambient = 0
+        diffuse = 0
+        specular = 0.8
+        shininess = 300
+        reflectivity = 0.04
+        transparency = 0.96
+        ior = 1.5
+        medium = { density = 1.2, albedo = 0.9, color = [0.9, 0.95, 1] }
+        [materials.ink]
+        color = [0.9, 0.95, 1]
+        ambient = 0
+        diffuse = 0.05
+        specular = 0.5
+        shininess = 100
+        transparency = 0.9
+        ior = 1.2
+        medium = { density = 2, albedo = 0.3, color = [0.3, 0.5, 1] }
+        [[objects]]
+        type = "sphere"
+        center = [0, -1000, 0]
+        radius = 1000
+        material = "floor"
+        [[objects]]
+        type = "sphere"
+        center = [-0.8, 1.1, 0]
+        radius = 1.1
+        material = "smoke"
+        [[objects]]
+        type = "box"
+        min = [-3, 0, -2]
+        max = [-2, 1.5, -1]
+        material = "ink"
+        [[objects]]
+        type = "obj"
+        file = "torus.obj"
+        material = "ink"
+        transform = [{ translate = [1.8, 0.6, 0.5] }]
+    "#;
+    let models = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/models");
+    parse_scene(text, Path::new("fog_and_media"), &models).unwrap()
+}
+
 /// Every shipped scene and every SPD scene at its standard size, and the scenes made here
-/// ([`balls_and_meshes`], [`textured_balls`]), by name.
+/// ([`balls_and_meshes`], [`textured_balls`], [`fog_and_media`]), by name.
 fn all_scenes() -> Vec<(String, Scene)> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
     let mut files: Vec<_> = std::fs::read_dir(&dir)
@@ -247,6 +325,7 @@ fn all_scenes() -> Vec<(String, Scene)> {
     let made_here = [
         ("balls_and_meshes".to_string(), balls_and_meshes()),
         ("textured_balls".to_string(), textured_balls()),
+        ("fog_and_media".to_string(), fog_and_media()),
     ];
     shipped.chain(spd).chain(made_here).collect()
 }

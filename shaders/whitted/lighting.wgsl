@@ -1,7 +1,8 @@
 // The local colour at a hit, the lecture's shading model: the twin of src/whitted/lighting.rs
 // and of `Light::sample` in src/light.rs. Emission and ambient light, plus the diffuse
-// (Lambert) and specular (Phong) light of every light a shadow ray reaches; transparent
-// blockers tint the light that passes them.
+// (Lambert) and specular (Phong) light of every light a shadow ray reaches, dimmed by the fog
+// on its way; transparent blockers tint the light that passes them, and those filled with a
+// medium dim it by the length the shadow ray runs inside them (Beer–Lambert).
 
 // Rays counted as the CPU counts them (`RayCounts`).
 struct Counts {
@@ -58,6 +59,81 @@ fn tint(hit: Hit) -> vec3<f32> {
     return m.transparency * m.color;
 }
 
+// `Tracer::transmittance_and_blocker`: what passes along the shadow ray from `origin` along
+// `dir` up to `distance`: the product of the blockers' tints, times the transmittance of the
+// media inside them by the sum of their optical depths, which the walk adds up.
+fn shadow_transmittance(origin: vec3<f32>, dir: vec3<f32>, distance: f32) -> vec3<f32> {
+    let found = walk(origin, dir, 0.0, distance, FIND_SHADOW);
+    return found.passed * exp(-max(found.depth, 0.0));
+}
+
+// The density of the medium behind the crossing of a ray's surface, and whether the ray passes
+// out of the object there.
+struct Crossing {
+    density: f32,
+    leaving: bool,
+}
+
+fn crossing_at(origin: vec3<f32>, dir: vec3<f32>, at: Hit) -> Crossing {
+    let surface = surface_at(origin, dir, at);
+    return Crossing(materials[surface.material].medium_density, dot(dir, surface.geometric_normal) > 0.0);
+}
+
+// The most times a line crosses the surface of an object the GPU traces (a torus's four).
+const MAX_CROSSINGS: u32 = 4u;
+
+// `Tracer::optical_depth`: the optical depth `σ·length` the shadow ray from `origin` along `dir`
+// (up to `distance`) adds by running through the medium inside the primitive of `hit`, the
+// first hit the walk met on it. The length inside is the sum of `+t` at each crossing out and
+// `−t` at each crossing in (a ray that starts inside has only the crossing out): a mesh
+// triangle adds its own term, an object is intersected again past each crossing for its later
+// ones. Inside, the medium is that of the surface the ray entered by (left by, if it starts
+// inside).
+fn optical_depth(origin: vec3<f32>, dir: vec3<f32>, distance: f32, hit: Hit) -> f32 {
+    if materials[material_of(hit)].medium_density == 0.0 {
+        return 0.0;
+    }
+    let length = length(dir);
+    if (hit.prim & OBJECT_BIT) == 0u {
+        let c = crossing_at(origin, dir, hit);
+        var sign = -1.0;
+        if c.leaving {
+            sign = 1.0;
+        }
+        return sign * c.density * hit.t * length;
+    }
+    let o = objects[hit.prim & ~OBJECT_BIT];
+    var depth = 0.0;
+    // Where the ray entered, with the density inside, while it is inside.
+    var inside = false;
+    var entered_at = 0.0;
+    var density_inside = 0.0;
+    var at = hit;
+    for (var k = 0u; k < MAX_CROSSINGS; k++) {
+        let c = crossing_at(origin, dir, at);
+        if c.leaving {
+            var start = 0.0;
+            var density = c.density;
+            if inside {
+                start = entered_at;
+                density = density_inside;
+            }
+            depth += density * (at.t - start) * length;
+            inside = false;
+        } else {
+            inside = true;
+            entered_at = at.t;
+            density_inside = c.density;
+        }
+        let next = intersect_object(o, origin, dir, at.t, distance);
+        if !next.found {
+            break;
+        }
+        at = Hit(next.t, hit.prim, next.part, 0u, vec2<f32>(0.0), true);
+    }
+    return depth;
+}
+
 // `offset_origin` in src/ray.rs: a point moved off its surface along the normal, by an amount
 // that grows with the point's magnitude.
 fn offset_origin(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
@@ -78,10 +154,10 @@ fn local_color(m: Material, base: vec3<f32>, surface: SurfacePoint, normal: vec3
         if cos_l <= 0.0 || dot(geometric_normal, sample.dir) <= 0.0 || all(sample.color == vec3<f32>(0.0)) {
             continue;
         }
-        var light_color = sample.color;
+        var light_color = dim_by_fog(surface.point, sample).color;
         if (frame.flags & SHADOWS) != 0u {
             (*counts).shadow++;
-            light_color *= walk(shadow_origin, sample.dir, 0.0, sample.distance, FIND_SHADOW).passed;
+            light_color *= shadow_transmittance(shadow_origin, sample.dir, sample.distance);
         }
         if all(light_color == vec3<f32>(0.0)) {
             continue;

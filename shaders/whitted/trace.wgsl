@@ -1,10 +1,13 @@
 // The ray tree of one eye ray: the twin of src/whitted/mod.rs (`trace_eye`, `shade`, `trace`,
-// `traces_branch`) without recursion. A ray's colour is its local colour plus the weighted
-// colours of its reflected and transmitted rays; the same sum is built front to back, each
-// ray's local colour added with `throughput`, the product of the scales on the way from the
-// eye. The children wait on an explicit stack, reflected first, as the CPU's recursion takes
-// them depth first; the ray budget is checked when a child is taken, as the CPU checks it when
-// it starts a child.
+// `traces_branch`) without recursion. A ray's colour is `T·(local + children) + S`, its local
+// colour plus the weighted colours of its reflected and transmitted rays, seen through the
+// transmittance `T` of the medium it runs through, plus the light `S` that medium scatters into
+// it (`through_fog`, `through_medium`); the same sum is built front to back, each ray's `S`
+// added with `throughput`, the product of the scales and transmittances on the way from the
+// eye, and its local colour with its own `T` besides. The children wait on an explicit stack,
+// reflected first, as the CPU's recursion takes them depth first, each with the medium it runs
+// through (`Within`); the ray budget is checked when a child is taken, as the CPU checks it
+// when it starts a child.
 
 // `EYE_RAY_T_MIN`: eye rays see only what lies beyond the image plane.
 const EYE_RAY_T_MIN: f32 = 1.0;
@@ -22,6 +25,8 @@ struct Branch {
     throughput: vec3<f32>,
     // REFLECTIONS or TRANSMISSION: which child it is.
     kind: u32,
+    // The medium it runs through (`Within`: WITHIN_FOG, WITHIN_CLEAR or a material).
+    within: u32,
 }
 
 // The colour seen along an eye ray, and the rays its tree traced.
@@ -63,12 +68,20 @@ fn trace_eye(dir: vec3<f32>) -> Traced {
     var color = vec3<f32>(0.0);
     var stack: array<Branch, TREE_STACK>;
     var size = 0u;
-    var ray = Branch(frame.eye, 1u, dir, 1.0, vec3<f32>(1.0), 0u);
+    var ray = Branch(frame.eye, 1u, dir, 1.0, vec3<f32>(1.0), 0u, WITHIN_FOG);
     var t_min = EYE_RAY_T_MIN;
     loop {
         let hit = closest_hit(ray.origin, ray.dir, t_min, T_FAR);
+        var t_end = T_FAR;
+        if hit.found {
+            t_end = hit.t;
+        }
+        let passage = through_medium(ray.within, ray.origin, ray.dir, t_end, &counts);
+        color += ray.throughput * passage.in_scattered;
+        // What the ray meets, and its children, are seen through the medium.
+        let throughput = ray.throughput * passage.transmittance;
         if !hit.found {
-            color += ray.throughput * miss_color(ray.dir);
+            color += throughput * miss_color(ray.dir);
         } else {
             if ray.depth == 1u {
                 counts.primary_hits++;
@@ -86,18 +99,18 @@ fn trace_eye(dir: vec3<f32>) -> Traced {
             }
             let normal = surface.normal * side;
             let geometric_normal = surface.geometric_normal * side;
-            color += ray.throughput * local_color(m, base, surface, normal, geometric_normal, dir, &counts);
+            color += throughput * local_color(m, base, surface, normal, geometric_normal, dir, &counts);
             if ray.depth < frame.max_depth {
                 let s = scattering(m, dir, normal, entering);
                 // The transmitted child waits below the reflected one, which goes first.
                 let transmit_weight = ray.weight * s.transmit;
                 if s.refracted.found && s.transmit > 0.0 && wanted(TRANSMISSION, transmit_weight) {
-                    stack[size] = Branch(offset_origin(surface.point, -geometric_normal), ray.depth + 1u, s.refracted.dir, transmit_weight, ray.throughput * (s.transmit * base), TRANSMISSION);
+                    stack[size] = Branch(offset_origin(surface.point, -geometric_normal), ray.depth + 1u, s.refracted.dir, transmit_weight, throughput * (s.transmit * base), TRANSMISSION, after_crossing(surface.material, entering));
                     size++;
                 }
                 let reflect_weight = ray.weight * s.reflect;
                 if s.reflect > 0.0 && wanted(REFLECTIONS, reflect_weight) {
-                    stack[size] = Branch(offset_origin(surface.point, geometric_normal), ray.depth + 1u, mirror(dir, normal), reflect_weight, ray.throughput * s.reflect, REFLECTIONS);
+                    stack[size] = Branch(offset_origin(surface.point, geometric_normal), ray.depth + 1u, mirror(dir, normal), reflect_weight, throughput * s.reflect, REFLECTIONS, ray.within);
                     size++;
                 }
             }
