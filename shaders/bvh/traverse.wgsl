@@ -76,28 +76,24 @@ const FIND_CLOSEST: u32 = 0u;
 const FIND_SHADOW: u32 = 1u;
 
 // What a walk found: the closest hit, or the product of the tints of what the shadow ray met
-// and the sum of the optical depths of the media inside them (`Tracer::tints`).
+// and the sum of the optical depths of the media inside what it passed (`Tracer::tints`).
 struct WalkResult {
     hit: Hit,
     passed: vec3<f32>,
     depth: f32,
 }
 
-// Meets the primitive of `hit` on `ray`: the closest search keeps it and shrinks the ray's
-// range, the shadow search takes its tint and, while light passes, its optical depth. Returns
-// whether the walk can stop (nothing gets through).
-fn meet(hit: Hit, ray: WalkRay, find: u32, result: ptr<function, WalkResult>, t_max: ptr<function, f32>) -> bool {
+// Meets the primitive of `hit`: the closest search keeps it and shrinks the ray's range, the
+// shadow search takes its tint. Returns whether the walk can stop (nothing gets through); where
+// light passes, a shadow search adds the primitive's optical depth after.
+fn meet(hit: Hit, find: u32, result: ptr<function, WalkResult>, t_max: ptr<function, f32>) -> bool {
     if find == FIND_CLOSEST {
         (*result).hit = hit;
         *t_max = hit.t;
         return false;
     }
     (*result).passed *= tint(hit);
-    if all((*result).passed == vec3<f32>(0.0)) {
-        return true;
-    }
-    (*result).depth += optical_depth(ray.origin, ray.dir, *t_max, hit);
-    return false;
+    return all((*result).passed == vec3<f32>(0.0));
 }
 
 // Tests the `count` objects listed in `refs` from `first`; returns whether the walk can stop.
@@ -105,8 +101,15 @@ fn visit_objects(first: u32, count: u32, ray: WalkRay, t_min: f32, find: u32, re
     for (var i = first; i < first + count; i++) {
         let index = refs[i];
         let h = intersect_object(objects[index], ray.origin, ray.dir, t_min, *t_max);
-        if h.found && meet(Hit(h.t, index | OBJECT_BIT, h.part, 0u, vec2<f32>(0.0), true), ray, find, result, t_max) {
+        if !h.found {
+            continue;
+        }
+        let hit = Hit(h.t, index | OBJECT_BIT, h.part, 0u, vec2<f32>(0.0), true);
+        if meet(hit, find, result, t_max) {
             return true;
+        }
+        if find == FIND_SHADOW {
+            (*result).depth += object_optical_depth(ray.origin, ray.dir, *t_max, hit);
         }
     }
     return false;
@@ -117,8 +120,15 @@ fn visit_triangles(first: u32, count: u32, ray: WalkRay, t_min: f32, find: u32, 
     for (var i = first; i < first + count; i++) {
         let tri = triangles[i];
         let h = intersect_triangle(tri, ray.sheared, t_min, *t_max);
-        if h.found && meet(Hit(h.t, tri.index, 0u, i, h.bary, true), ray, find, result, t_max) {
+        if !h.found {
+            continue;
+        }
+        let hit = Hit(h.t, tri.index, 0u, i, h.bary, true);
+        if meet(hit, find, result, t_max) {
             return true;
+        }
+        if find == FIND_SHADOW {
+            (*result).depth += triangle_optical_depth(ray.origin, ray.dir, hit);
         }
     }
     return false;

@@ -67,63 +67,40 @@ fn shadow_transmittance(origin: vec3<f32>, dir: vec3<f32>, distance: f32) -> vec
     return found.passed * exp(-max(found.depth, 0.0));
 }
 
-// The density of the medium behind the crossing of a ray's surface, and whether the ray passes
-// out of the object there.
-struct Crossing {
-    density: f32,
-    leaving: bool,
-}
-
-fn crossing_at(origin: vec3<f32>, dir: vec3<f32>, at: Hit) -> Crossing {
-    let surface = surface_at(origin, dir, at);
-    return Crossing(materials[surface.material].medium_density, dot(dir, surface.geometric_normal) > 0.0);
-}
-
 // The most times a line crosses the surface of an object the GPU traces (a torus's four).
 const MAX_CROSSINGS: u32 = 4u;
 
-// `Tracer::optical_depth`: the optical depth `σ·length` the shadow ray from `origin` along `dir`
-// (up to `distance`) adds by running through the medium inside the primitive of `hit`, the
-// first hit the walk met on it. The length inside is the sum of `+t` at each crossing out and
-// `−t` at each crossing in (a ray that starts inside has only the crossing out): a mesh
-// triangle adds its own term, an object is intersected again past each crossing for its later
-// ones. Inside, the medium is that of the surface the ray entered by (left by, if it starts
-// inside).
-fn optical_depth(origin: vec3<f32>, dir: vec3<f32>, distance: f32, hit: Hit) -> f32 {
-    if materials[material_of(hit)].medium_density == 0.0 {
+// `Tracer::optical_depth`: the optical depth `σ·length` that the shadow ray from `origin` along
+// `dir` (up to `distance`) adds by running through the medium inside the primitive of `hit`,
+// the first hit the walk met on it. The hits come in no particular order, but the length
+// inside an object is the sum of `+t` at each crossing out of it and `−t` at each crossing
+// into it (a ray that starts inside has only the crossing out). This is an object's share: it
+// is met once, at its first crossing, so its later crossings are found by intersecting it
+// again past each one. An object the GPU traces has one material, whose medium fills it.
+fn object_optical_depth(origin: vec3<f32>, dir: vec3<f32>, distance: f32, hit: Hit) -> f32 {
+    let o = objects[hit.prim & ~OBJECT_BIT];
+    let density = materials[o.material].medium_density;
+    if density == 0.0 {
         return 0.0;
     }
     let length = length(dir);
-    if (hit.prim & OBJECT_BIT) == 0u {
-        let c = crossing_at(origin, dir, hit);
-        var sign = -1.0;
-        if c.leaving {
-            sign = 1.0;
-        }
-        return sign * c.density * hit.t * length;
-    }
-    let o = objects[hit.prim & ~OBJECT_BIT];
     var depth = 0.0;
-    // Where the ray entered, with the density inside, while it is inside.
+    // Where the ray entered, while it is inside.
     var inside = false;
     var entered_at = 0.0;
-    var density_inside = 0.0;
     var at = hit;
     for (var k = 0u; k < MAX_CROSSINGS; k++) {
-        let c = crossing_at(origin, dir, at);
-        if c.leaving {
+        let normal = object_surface(o, origin, dir, at.t, at.part).normal;
+        if dot(dir, normal) > 0.0 {
             var start = 0.0;
-            var density = c.density;
             if inside {
                 start = entered_at;
-                density = density_inside;
             }
             depth += density * (at.t - start) * length;
             inside = false;
         } else {
             inside = true;
             entered_at = at.t;
-            density_inside = c.density;
         }
         let next = intersect_object(o, origin, dir, at.t, distance);
         if !next.found {
@@ -132,6 +109,18 @@ fn optical_depth(origin: vec3<f32>, dir: vec3<f32>, distance: f32, hit: Hit) -> 
         at = Hit(next.t, hit.prim, next.part, 0u, vec2<f32>(0.0), true);
     }
     return depth;
+}
+
+// `Tracer::optical_depth` of a mesh triangle, met once: `+σ·t` where the ray passes out of the
+// mesh through it, `−σ·t` where it passes in.
+fn triangle_optical_depth(origin: vec3<f32>, dir: vec3<f32>, hit: Hit) -> f32 {
+    let surface = triangle_surface(origin + dir * hit.t, hit);
+    let density = materials[surface.material].medium_density;
+    var sign = -1.0;
+    if dot(dir, surface.geometric_normal) > 0.0 {
+        sign = 1.0;
+    }
+    return sign * density * hit.t * length(dir);
 }
 
 // `offset_origin` in src/ray.rs: a point moved off its surface along the normal, by an amount
