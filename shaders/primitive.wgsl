@@ -31,8 +31,12 @@ fn surface_at(origin: vec3<f32>, dir: vec3<f32>, hit: Hit) -> SurfacePoint {
         let s = object_surface(o, origin, dir, hit.t, hit.part);
         return SurfacePoint(point, s.object_point, s.normal, s.normal, s.uv, material_of(hit));
     }
-    // A mesh triangle: its corners are in the leaf copy, its shading record beside it says which
-    // mesh vertices they are (`Mesh::shading`).
+    return triangle_surface(point, hit);
+}
+
+// The surface at `hit`, a mesh triangle's, whose point is `point`: its corners are in the leaf
+// copy, its shading record beside it says which mesh vertices they are (`Mesh::shading`).
+fn triangle_surface(point: vec3<f32>, hit: Hit) -> SurfacePoint {
     let shading = triangle_shading[hit.slot];
     let geometric = triangle_normal(triangles[hit.slot]);
     let b0 = 1.0 - hit.bary.x - hit.bary.y;

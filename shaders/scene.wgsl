@@ -24,6 +24,8 @@ const TRANSMISSION: u32 = 4u;
 const OPAQUE: u32 = 8u;
 // Textures are on: a textured material takes its colour from its texture.
 const TEXTURES: u32 = 16u;
+// The fog's backdrop is the ball around the scene (`Backdrop::Ball`), not a distance.
+const BALL_BACKDROP: u32 = 32u;
 
 // The camera (`Camera`), the image, and the settings the tracer reads (`RenderSettings`).
 struct Frame {
@@ -53,9 +55,16 @@ struct Frame {
     film_top: u32,
     // The background image's texture record (NO_TEXTURE: none).
     background_image: u32,
-    pad0: u32,
-    pad1: u32,
-    pad2: u32,
+    // `fog_steps`: the sample points of the light a medium scatters into a ray, per light.
+    fog_steps: u32,
+    // The fog's medium (`Fog::medium`; a density of zero: no fog) and its backdrop: the ball
+    // around the scene where BALL_BACKDROP is set, else `backdrop_distance` along every ray.
+    fog_albedo: f32,
+    backdrop_distance: f32,
+    fog_color: vec3<f32>,
+    fog_density: f32,
+    backdrop_center: vec3<f32>,
+    backdrop_radius: f32,
 }
 
 // A material: the twin of `Material` in src/material.rs.
@@ -73,8 +82,11 @@ struct Material {
     fresnel: u32,
     // Its texture record (NO_TEXTURE: none).
     texture: u32,
-    pad0: u32,
-    pad1: u32,
+    // The medium inside it, `Material::medium` (a density of zero: none).
+    medium_density: f32,
+    medium_albedo: f32,
+    medium_color: vec3<f32>,
+    pad: f32,
 }
 
 const POINT_LIGHT: u32 = 0u;

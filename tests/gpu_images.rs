@@ -32,8 +32,7 @@ const NOT_YET_ON_GPU: &[(&str, &str)] = &[
     ("csg_hollow_glass.toml", "csg"),
     ("csg_lens.toml", "csg"),
     ("csg_nested.toml", "csg"),
-    ("fog_spot.toml", "fog"),
-    ("smoky_glass.toml", "media inside objects"),
+    ("smoky_glass.toml", "csg"),
     ("sdl_textures.dat", "csg"),
 ];
 

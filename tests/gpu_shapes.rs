@@ -649,6 +649,9 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
                 ior,
                 fresnel,
                 texture,
+                medium_density,
+                medium_albedo,
+                medium_color,
                 pad
             ]
         ),
@@ -682,7 +685,13 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
                 film_left,
                 film_top,
                 background_image,
-                pad
+                fog_steps,
+                fog_albedo,
+                backdrop_distance,
+                fog_color,
+                fog_density,
+                backdrop_center,
+                backdrop_radius
             ]
         ),
         rust_layout!("PixelSample", PixelSample, [x, y, k, pad]),
@@ -709,7 +718,7 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
     ];
     for (name, rust_size, rust_fields) in cases {
         let (wgsl_size, wgsl_fields) = wgsl_layout(&module, name);
-        // WGSL names the node's boxes `lo` and `hi`, the material's padding three fields.
+        // WGSL names the node's boxes `lo` and `hi`, the vertex attributes' padding three fields.
         let wgsl_offsets: Vec<u32> = wgsl_fields.iter().map(|f| f.1).collect();
         let rust_offsets: Vec<u32> = rust_fields.iter().map(|f| f.1).collect();
         assert_eq!(wgsl_size, rust_size, "size of {name}");

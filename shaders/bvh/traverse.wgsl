@@ -75,14 +75,17 @@ fn enter_child(node: WideNode, k: u32, ray: WalkRay, t_min: f32, t_max: f32) -> 
 const FIND_CLOSEST: u32 = 0u;
 const FIND_SHADOW: u32 = 1u;
 
-// What a walk found: the closest hit, or the product of the tints of what the shadow ray met.
+// What a walk found: the closest hit, or the product of the tints of what the shadow ray met
+// and the sum of the optical depths of the media inside what it passed (`Tracer::tints`).
 struct WalkResult {
     hit: Hit,
     passed: vec3<f32>,
+    depth: f32,
 }
 
 // Meets the primitive of `hit`: the closest search keeps it and shrinks the ray's range, the
-// shadow search takes its tint. Returns whether the walk can stop (nothing gets through).
+// shadow search takes its tint. Returns whether the walk can stop (nothing gets through); where
+// light passes, a shadow search adds the primitive's optical depth after.
 fn meet(hit: Hit, find: u32, result: ptr<function, WalkResult>, t_max: ptr<function, f32>) -> bool {
     if find == FIND_CLOSEST {
         (*result).hit = hit;
@@ -93,25 +96,81 @@ fn meet(hit: Hit, find: u32, result: ptr<function, WalkResult>, t_max: ptr<funct
     return all((*result).passed == vec3<f32>(0.0));
 }
 
+// The most times a line crosses the surface of an object the GPU traces (a torus's four).
+const MAX_CROSSINGS: u32 = 4u;
+
 // Tests the `count` objects listed in `refs` from `first`; returns whether the walk can stop.
+//
+// A shadow ray's walk also adds up the optical depth `σ·length` of the media inside the objects
+// it passes (`Tracer::optical_depth`). The crossings come in no particular order, but the length
+// inside an object is the sum of `+t` at each crossing out of it and `−t` at each crossing into
+// it (a ray that starts inside has only the crossing out). An object is met once, at its first
+// crossing in range, so its later crossings are found by intersecting it again past each one,
+// by the same call as the first: the compiler copies the shapes at each call.
 fn visit_objects(first: u32, count: u32, ray: WalkRay, t_min: f32, find: u32, result: ptr<function, WalkResult>, t_max: ptr<function, f32>) -> bool {
-    for (var i = first; i < first + count; i++) {
+    var i = first;
+    // While the crossings of object `i` are followed: how many were taken, where the next is
+    // looked for, the density of the object's medium, and whether and where the ray entered.
+    var crossings = 0u;
+    var search_from = t_min;
+    var density = 0.0;
+    var inside = false;
+    var entered_at = 0.0;
+    while i < first + count {
         let index = refs[i];
-        let h = intersect_object(objects[index], ray.origin, ray.dir, t_min, *t_max);
-        if h.found && meet(Hit(h.t, index | OBJECT_BIT, h.part, 0u, vec2<f32>(0.0), true), find, result, t_max) {
-            return true;
+        let o = objects[index];
+        let h = intersect_object(o, ray.origin, ray.dir, search_from, *t_max);
+        if crossings == 0u && h.found {
+            if meet(Hit(h.t, index | OBJECT_BIT, h.part, 0u, vec2<f32>(0.0), true), find, result, t_max) {
+                return true;
+            }
+            if find == FIND_SHADOW {
+                density = materials[o.material].medium_density;
+            }
         }
+        if h.found && density != 0.0 {
+            let normal = object_surface(o, ray.origin, ray.dir, h.t, h.part).normal;
+            if dot(ray.dir, normal) > 0.0 {
+                var start = 0.0;
+                if inside {
+                    start = entered_at;
+                }
+                (*result).depth += density * (h.t - start) * length(ray.dir);
+                inside = false;
+            } else {
+                inside = true;
+                entered_at = h.t;
+            }
+            crossings++;
+            if crossings < MAX_CROSSINGS {
+                search_from = h.t;
+                continue;
+            }
+        }
+        i++;
+        crossings = 0u;
+        search_from = t_min;
+        density = 0.0;
+        inside = false;
     }
     return false;
 }
 
-// Tests the `count` triangles from `first`; returns whether the walk can stop.
+// Tests the `count` triangles from `first`; returns whether the walk can stop. A shadow ray's
+// walk adds the optical depth of a mesh's medium at each triangle it passes.
 fn visit_triangles(first: u32, count: u32, ray: WalkRay, t_min: f32, find: u32, result: ptr<function, WalkResult>, t_max: ptr<function, f32>) -> bool {
     for (var i = first; i < first + count; i++) {
         let tri = triangles[i];
         let h = intersect_triangle(tri, ray.sheared, t_min, *t_max);
-        if h.found && meet(Hit(h.t, tri.index, 0u, i, h.bary, true), find, result, t_max) {
+        if !h.found {
+            continue;
+        }
+        let hit = Hit(h.t, tri.index, 0u, i, h.bary, true);
+        if meet(hit, find, result, t_max) {
             return true;
+        }
+        if find == FIND_SHADOW {
+            (*result).depth += triangle_optical_depth(ray.origin, ray.dir, hit);
         }
     }
     return false;
@@ -122,7 +181,7 @@ fn visit_triangles(first: u32, count: u32, ray: WalkRay, t_min: f32, find: u32, 
 // in its range unless something opaque stops it). The unbounded objects are visited as a leaf
 // of their own before the root, so that each kind of leaf is tested at one place only.
 fn walk(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max_in: f32, find: u32) -> WalkResult {
-    var result = WalkResult(Hit(t_max_in, 0u, 0u, 0u, vec2<f32>(0.0), false), vec3<f32>(1.0));
+    var result = WalkResult(Hit(t_max_in, 0u, 0u, 0u, vec2<f32>(0.0), false), vec3<f32>(1.0), 0.0);
     let ray = walk_ray(origin, dir);
     var t_max = min(t_max_in, T_FAR);
     var stack_first: array<u32, STACK_SIZE>;

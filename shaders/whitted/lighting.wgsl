@@ -1,8 +1,10 @@
 // The local colour at a hit, the lecture's shading model: the twin of src/whitted/lighting.rs
 // and of `Light::sample` in src/light.rs. Emission and ambient light, plus the diffuse
-// (Lambert) and specular (Phong) light of every light a shadow ray reaches; transparent
-// blockers tint the light that passes them. The shadow rays are cast by the ray tree's loop
-// (trace.wgsl), where every ray of a tree is cast.
+// (Lambert) and specular (Phong) light of every light a shadow ray reaches, dimmed by the fog
+// on its way; transparent blockers tint the light that passes them, and those filled with a
+// medium dim it by the length the shadow ray runs inside them (Beer–Lambert: the walk adds up
+// their optical depths). The shadow rays are cast by the ray tree's loop (trace.wgsl), where
+// every ray of a tree is cast.
 
 // `LightSample`: the unit direction towards the light, the distance a shadow ray covers, and
 // the colour that arrives before any blocker.
@@ -50,6 +52,24 @@ fn tint(hit: Hit) -> vec3<f32> {
     return m.transparency * m.color;
 }
 
+// `Tracer::optical_depth` of a mesh triangle, met once: `+σ·t` where the ray passes out of the
+// mesh through it, `−σ·t` where it passes in.
+fn triangle_optical_depth(origin: vec3<f32>, dir: vec3<f32>, hit: Hit) -> f32 {
+    let surface = triangle_surface(origin + dir * hit.t, hit);
+    let density = materials[surface.material].medium_density;
+    var sign = -1.0;
+    if dot(dir, surface.geometric_normal) > 0.0 {
+        sign = 1.0;
+    }
+    return sign * density * hit.t * length(dir);
+}
+
+// `Tracer::transmittance_and_blocker`: what a shadow ray's walk lets through: the product of
+// the blockers' tints, times the transmittance of the media inside them.
+fn shadow_transmittance(found: WalkResult) -> vec3<f32> {
+    return found.passed * exp(-max(found.depth, 0.0));
+}
+
 // `offset_origin` in src/ray.rs: a point moved off its surface along the normal, by an amount
 // that grows with the point's magnitude.
 fn offset_origin(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
@@ -89,7 +109,7 @@ fn unlit_color(s: Shading) -> vec3<f32> {
 
 // `Tracer::local_color`'s loop over the lights, a light at a time: the shadow ray towards the
 // next light that adds to the hit's colour, carrying its diffuse (Lambert) and specular (Phong)
-// light; not `found` once every light has been seen.
+// light, dimmed by the fog on its way; not `found` once every light has been seen.
 fn next_shadow_ray(s: ptr<function, Shading>) -> ShadowRay {
     let point = (*s).surface.point;
     let normal = (*s).normal;
@@ -110,7 +130,8 @@ fn next_shadow_ray(s: ptr<function, Shading>) -> ShadowRay {
         if m.specular > 0.0 && cos_r > 0.0 {
             specular = m.specular * pow(cos_r, m.shininess) * m.specular_color;
         }
-        let light = (*s).throughput * sample.color * (diffuse + specular);
+        let arrived = dim_by_fog(point, sample).color;
+        let light = (*s).throughput * arrived * (diffuse + specular);
         let origin = offset_origin(point, (*s).geometric_normal);
         return ShadowRay(origin, sample.distance, sample.dir, true, light);
     }

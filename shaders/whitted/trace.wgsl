@@ -1,9 +1,11 @@
 // The ray tree of one eye ray: the twin of src/whitted/mod.rs (`trace_eye`, `shade`, `trace`,
-// `traces_branch`) without recursion. A ray's colour is its local colour plus the weighted
-// colours of its reflected and transmitted rays; the same sum is built front to back, each
-// ray's local colour added with `throughput`, the product of the scales on the way from the
-// eye. The children wait on an explicit stack, reflected first, as the CPU's recursion takes
-// them depth first; the ray budget is checked when a child is taken, as the CPU checks it when
+// `traces_branch`) without recursion. A ray's colour is `T·(local + children) + S`, its local
+// colour plus the weighted colours of its reflected and transmitted rays, seen through the
+// transmittance `T` of the medium it runs through, plus the light `S` that medium scatters into
+// it (`through_fog`, `through_medium`); the same sum is built front to back, each ray's `S`
+// added with `throughput`, the product of the scales and transmittances on the way from the
+// eye, and its local colour with its own `T` besides. The children wait on an explicit stack, reflected first, as the CPU's recursion takes
+// them depth first, each with the medium it runs through (`Within`); the ray budget is checked when a child is taken, as the CPU checks it when
 // it starts a child. A hit's shadow rays are cast before the next child, each adding its
 // light's share of the local colour where it gets through.
 
@@ -23,6 +25,8 @@ struct Branch {
     throughput: vec3<f32>,
     // REFLECTIONS or TRANSMISSION: which child it is.
     kind: u32,
+    // The medium it runs through (`Within`: WITHIN_FOG, WITHIN_CLEAR or a material).
+    within: u32,
 }
 
 // Rays counted as the CPU counts them (`RayCounts`).
@@ -90,22 +94,27 @@ fn next_branch(stack: ptr<function, array<Branch, TREE_STACK>>, size: ptr<functi
 //
 // Every ray of the tree, shadow rays included, is cast by the one `walk` of the loop below: a
 // GPU compiler copies a function at each place it is called, and the walk holds every shape.
-// Each turn casts the next shadow ray of the hit being shaded, or, once its lights are done,
-// the next ray of the tree.
+// Each turn casts the next shadow ray of the medium the last ray ran through or of the hit
+// being shaded, or, once those are done, the next ray of the tree.
 fn trace_eye(dir: vec3<f32>) -> Traced {
     var counts = Counts(0u, 0u, 0u, 0u, 0u);
     var color = vec3<f32>(0.0);
     var stack: array<Branch, TREE_STACK>;
     var size = 0u;
-    var ray = Branch(frame.eye, 1u, dir, 1.0, vec3<f32>(1.0), 0u);
-    // Whether `ray` is still to cast (the eye ray is), and the hit being shaded (none yet).
+    var ray = Branch(frame.eye, 1u, dir, 1.0, vec3<f32>(1.0), 0u, WITHIN_FOG);
+    // Whether `ray` is still to cast (the eye ray is), the light scattered into the last ray
+    // still to gather, and the hit being shaded (none yet).
     var ray_waits = true;
+    var in_scatter: InScatter;
     var shading: Shading;
     shading.next_light = frame.light_count;
     loop {
         // The ray to cast: a shadow ray, or the tree's next ray, which the eye ray alone
         // starts at the image plane.
-        let shadow = next_shadow_ray(&shading);
+        var shadow = next_scatter_ray(&in_scatter);
+        if !shadow.found {
+            shadow = next_shadow_ray(&shading);
+        }
         var origin = shadow.origin;
         var ray_dir = shadow.dir;
         var t_min = 0.0;
@@ -132,12 +141,20 @@ fn trace_eye(dir: vec3<f32>) -> Traced {
         }
         let found = walk(origin, ray_dir, t_min, t_max, find);
         if find == FIND_SHADOW {
-            color += shadow.light * found.passed;
+            color += shadow.light * shadow_transmittance(found);
             continue;
         }
         let hit = found.hit;
+        var t_end = T_FAR;
+        if hit.found {
+            t_end = hit.t;
+        }
+        let passage = through_medium(ray.within, ray.origin, ray.dir, t_end, ray.throughput);
+        in_scatter = passage.in_scatter;
+        // What the ray meets, and its children, are seen through the medium.
+        let throughput = ray.throughput * passage.transmittance;
         if !hit.found {
-            color += ray.throughput * miss_color(ray.dir);
+            color += throughput * miss_color(ray.dir);
             continue;
         }
         if ray.depth == 1u {
@@ -156,20 +173,20 @@ fn trace_eye(dir: vec3<f32>) -> Traced {
         }
         let normal = surface.normal * side;
         let geometric_normal = surface.geometric_normal * side;
-        shading = Shading(m, base_color(m, surface), surface, normal, geometric_normal, unit_dir, ray.throughput, 0u);
-        color += ray.throughput * unlit_color(shading);
+        shading = Shading(m, base_color(m, surface), surface, normal, geometric_normal, unit_dir, throughput, 0u);
+        color += throughput * unlit_color(shading);
         if ray.depth < frame.max_depth {
             let s = scattering(m, unit_dir, normal, entering);
             let base = shading.base;
             // The transmitted child waits below the reflected one, which goes first.
             let transmit_weight = ray.weight * s.transmit;
             if s.refracted.found && s.transmit > 0.0 && wanted(TRANSMISSION, transmit_weight) {
-                stack[size] = Branch(offset_origin(surface.point, -geometric_normal), ray.depth + 1u, s.refracted.dir, transmit_weight, ray.throughput * (s.transmit * base), TRANSMISSION);
+                stack[size] = Branch(offset_origin(surface.point, -geometric_normal), ray.depth + 1u, s.refracted.dir, transmit_weight, throughput * (s.transmit * base), TRANSMISSION, after_crossing(surface.material, entering));
                 size++;
             }
             let reflect_weight = ray.weight * s.reflect;
             if s.reflect > 0.0 && wanted(REFLECTIONS, reflect_weight) {
-                stack[size] = Branch(offset_origin(surface.point, geometric_normal), ray.depth + 1u, mirror(unit_dir, normal), reflect_weight, ray.throughput * s.reflect, REFLECTIONS);
+                stack[size] = Branch(offset_origin(surface.point, geometric_normal), ray.depth + 1u, mirror(unit_dir, normal), reflect_weight, throughput * s.reflect, REFLECTIONS, ray.within);
                 size++;
             }
         }

@@ -9,11 +9,13 @@ use super::bvh::{GpuBvh, GpuTriangle, GpuWideNode};
 use super::device::GpuDevice;
 use super::shapes::{GpuObject, ObjectTable, Word};
 use super::texture::{GpuTexture, NO_TEXTURE, TextureRecords, background_record};
+use crate::aabb::Aabb;
 use crate::bvh::Bvh;
 use crate::camera::Camera;
 use crate::color::Color;
 use crate::light::Light;
 use crate::material::Material;
+use crate::medium::{Backdrop, Fog, Medium};
 use crate::render::Assembled;
 use crate::scene::Scene;
 
@@ -47,7 +49,17 @@ pub struct GpuFrame {
     pub film_top: u32,
     /// The background image's texture record ([`NO_TEXTURE`]: none).
     pub background_image: u32,
-    pub pad: [u32; 3],
+    /// `fog_steps`: the sample points of the light a medium scatters into a ray, per light.
+    pub fog_steps: u32,
+    /// The fog's [`Medium`]: its albedo, and below its colour and density (zero: no fog).
+    pub fog_albedo: f32,
+    /// The fog's [`Backdrop::Distance`] (unless [`BALL_BACKDROP`] is set).
+    pub backdrop_distance: f32,
+    pub fog_color: [f32; 3],
+    pub fog_density: f32,
+    /// The fog's [`Backdrop::Ball`] (where [`BALL_BACKDROP`] is set).
+    pub backdrop_center: [f32; 3],
+    pub backdrop_radius: f32,
 }
 
 /// Switches of [`GpuFrame::flags`], as `shaders/scene.wgsl` names them.
@@ -56,6 +68,8 @@ pub const REFLECTIONS: u32 = 2;
 pub const TRANSMISSION: u32 = 4;
 pub const OPAQUE: u32 = 8;
 pub const TEXTURES: u32 = 16;
+/// The fog's backdrop is the ball around the scene ([`Backdrop::Ball`]).
+pub const BALL_BACKDROP: u32 = 32;
 
 /// WGSL's `Material`.
 #[repr(C)]
@@ -74,11 +88,16 @@ pub struct GpuMaterial {
     pub fresnel: u32,
     /// Its texture record ([`NO_TEXTURE`]: none).
     pub texture: u32,
-    pub pad: [u32; 2],
+    /// The medium inside it (a density of zero: none).
+    pub medium_density: f32,
+    pub medium_albedo: f32,
+    pub medium_color: [f32; 3],
+    pub pad: f32,
 }
 
 impl From<&Material> for GpuMaterial {
     fn from(m: &Material) -> GpuMaterial {
+        let medium = m.medium.unwrap_or_default();
         GpuMaterial {
             color: m.color.to_array(),
             ambient: m.ambient,
@@ -92,7 +111,10 @@ impl From<&Material> for GpuMaterial {
             ior: m.ior,
             fresnel: u32::from(m.fresnel),
             texture: m.texture.unwrap_or(NO_TEXTURE),
-            pad: [0; 2],
+            medium_density: medium.density,
+            medium_albedo: medium.albedo,
+            medium_color: medium.color.to_array(),
+            pad: 0.0,
         }
     }
 }
@@ -243,11 +265,7 @@ impl SceneRecords {
 /// What the GPU tracer does not trace yet, named so that the user can render on the CPU.
 fn unsupported(scene: &Scene) -> Result<(), String> {
     let settings = &scene.settings;
-    let missing = if !scene.atmosphere.is_clear() {
-        Some("fog")
-    } else if scene.materials.iter().any(|m| m.medium.is_some()) {
-        Some("media inside objects")
-    } else if settings.caustic_photons > 0 {
+    let missing = if settings.caustic_photons > 0 {
         Some("caustics")
     } else {
         None
@@ -271,6 +289,8 @@ pub struct GpuScene {
     lights: wgpu::Buffer,
     /// How many records some buffers hold, as the frame record tells the WGSL.
     counts: RecordCounts,
+    /// The box around the bounded objects, which the fog's backdrop takes in.
+    object_bounds: Option<Aabb>,
 }
 
 /// How many records the buffers the WGSL loops over hold.
@@ -365,7 +385,8 @@ impl GpuScene {
             objects: records.table.objects.len() as u32,
             materials: records.materials.len() as u32,
         };
-        let frame_record = frame_record(scene, &scene.camera, counts, (0, 0));
+        let object_bounds = assembled.bvh.bounds();
+        let frame_record = frame_record(scene, &scene.camera, counts, object_bounds, (0, 0));
         let frame = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("the frame"),
             contents: bytemuck::bytes_of(&frame_record),
@@ -396,6 +417,7 @@ impl GpuScene {
             materials,
             lights,
             counts,
+            object_bounds,
         })
     }
 
@@ -423,7 +445,7 @@ impl GpuScene {
             ));
         }
         let queue = &gpu.queue;
-        let record = frame_record(scene, camera, self.counts, film_origin);
+        let record = frame_record(scene, camera, self.counts, self.object_bounds, film_origin);
         queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(&record));
         if !materials.is_empty() {
             queue.write_buffer(&self.materials, 0, bytemuck::cast_slice(&materials));
@@ -435,16 +457,25 @@ impl GpuScene {
     }
 }
 
-/// The frame record of `scene` seen by `camera`, for a film at `film_origin` of the image.
+/// The frame record of `scene` seen by `camera`, for a film at `film_origin` of the image;
+/// `object_bounds` is the box around its bounded objects.
 fn frame_record(
     scene: &Scene,
     camera: &Camera,
     counts: RecordCounts,
+    object_bounds: Option<Aabb>,
     film_origin: (u32, u32),
 ) -> GpuFrame {
     let settings = &scene.settings;
     let flag = |on: bool, bit: u32| if on { bit } else { 0 };
     let opaque = scene.materials.iter().all(|m| m.filter() == Color::ZERO);
+    let fog = Fog::new(scene.atmosphere, object_bounds, &scene.lights, camera.eye);
+    let medium = fog.map_or(Medium::default(), |fog| fog.medium);
+    let (ball, center, radius, distance) = match fog.map(|fog| fog.backdrop) {
+        Some(Backdrop::Ball { center, radius }) => (true, center.to_array(), radius, 0.0),
+        Some(Backdrop::Distance(distance)) => (false, [0.0; 3], 0.0, distance),
+        None => (false, [0.0; 3], 0.0, 0.0),
+    };
     GpuFrame {
         eye: camera.eye.to_array(),
         near: camera.near,
@@ -462,7 +493,8 @@ fn frame_record(
             | flag(settings.reflections, REFLECTIONS)
             | flag(settings.transmission, TRANSMISSION)
             | flag(opaque, OPAQUE)
-            | flag(settings.textures, TEXTURES),
+            | flag(settings.textures, TEXTURES)
+            | flag(ball, BALL_BACKDROP),
         unbounded_first: counts.refs - counts.unbounded,
         unbounded: counts.unbounded,
         node_count: counts.nodes,
@@ -471,7 +503,13 @@ fn frame_record(
         film_left: film_origin.0,
         film_top: film_origin.1,
         background_image: background_record(scene),
-        pad: [0; 3],
+        fog_steps: settings.fog_steps,
+        fog_albedo: medium.albedo,
+        backdrop_distance: distance,
+        fog_color: medium.color.to_array(),
+        fog_density: medium.density,
+        backdrop_center: center,
+        backdrop_radius: radius,
     }
 }
 

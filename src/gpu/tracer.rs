@@ -10,7 +10,8 @@ use super::scene::{GpuScene, storage_entry};
 use super::shapes::SHAPES_WGSL;
 
 /// All the GPU tracer's WGSL, as one module: the scene's records, the camera and the jitter,
-/// the shapes, the BVH's walk, the textures, the shading and the ray tree, and the entry points.
+/// the shapes, the BVH's walk, the textures, the shading, the media and the ray tree, and the
+/// entry points.
 pub const TRACER_WGSL: &str = concat!(
     include_str!("../../shaders/scene.wgsl"),
     include_str!("../../shaders/sampling.wgsl"),
@@ -22,6 +23,8 @@ pub const TRACER_WGSL: &str = concat!(
     include_str!("../../shaders/texture.wgsl"),
     include_str!("../../shaders/whitted/scattering.wgsl"),
     include_str!("../../shaders/whitted/lighting.wgsl"),
+    include_str!("../../shaders/medium.wgsl"),
+    include_str!("../../shaders/whitted/fog.wgsl"),
     include_str!("../../shaders/whitted/trace.wgsl"),
     include_str!("../../shaders/trace_samples.wgsl"),
     include_str!("../../shaders/probe.wgsl"),
