@@ -1,7 +1,8 @@
 // Boolean objects (CSG): the twin of src/shapes/csg.rs (`Csg::intersect`, `Csg::surface`).
 // Every operand says where the line of the ray is inside it, as spans along the whole line
 // (`shape_crossings`); the postfix program combines the spans with fixed-size stacks, and the
-// first boundary of the result in (t_min, t_max) is the hit.
+// first boundary of the result in (t_min, t_max) is the hit. Every leaf is traced, where the
+// CPU skips those whose box the ray misses in (t_min, t_max): that changes nothing inside it.
 //
 // The shape words of a node (`push_csg` in src/gpu/shapes.rs writes them): a header with the
 // numbers of leaves and of steps; one record per leaf (its shape's kind, or-ed with

@@ -1,8 +1,8 @@
 // Objects: an analytic shape, picked by its kind, placed in the world by its transform. The twin
 // of `Geometry::intersect_prepared` and `Geometry::surface_with` for objects in
-// src/primitive.rs and of `Shape::intersect` and `Shape::surface` in src/shapes/mod.rs. Every
-// shape's numbers and every transform are read from `shape_words` (src/gpu/shapes.rs writes
-// them).
+// src/primitive.rs and of `Shape::intersect`, `Shape::surface` and `Shape::crossings` in
+// src/shapes/mod.rs. Every shape's numbers and every transform are read from `shape_words`
+// (src/gpu/shapes.rs writes them).
 
 const PI: f32 = 3.14159265358979;
 

@@ -248,6 +248,16 @@ const CSG_COMPLEMENTED: u32 = 1 << 31;
 /// operation); a step without it pushes the spans of the leaf it names.
 const CSG_COMBINE: u32 = 1 << 31;
 
+/// The number of a CSG operation in a combining step, as the WGSL's `CSG_UNION`,
+/// `CSG_INTERSECTION` and `CSG_DIFFERENCE`.
+fn operation_number(operation: CsgOperation) -> u32 {
+    match operation {
+        CsgOperation::Union => 0,
+        CsgOperation::Intersection => 1,
+        CsgOperation::Difference => 2,
+    }
+}
+
 /// `intersect_csg`: a header (the numbers of leaves and of steps), a record per leaf (its
 /// shape's kind, or-ed with [`CSG_COMPLEMENTED`] where it is subtracted an odd number of times;
 /// where its numbers start; where its transform to the node's space starts, or
@@ -267,22 +277,13 @@ fn push_csg(csg: &Csg, words: &mut Vec<Word>) -> Result<(), String> {
     let first = words.len();
     words.push([bits(leaves.len()), bits(program.len()), 0.0, 0.0]);
     words.resize(first + 1 + leaves.len(), [0.0; 4]);
-    let steps = program.iter().map(|step| match *step {
-        CsgStep::Leaf(i) => u32::from(i),
-        CsgStep::Combine(operation) => {
-            CSG_COMBINE
-                | match operation {
-                    CsgOperation::Union => 0,
-                    CsgOperation::Intersection => 1,
-                    CsgOperation::Difference => 2,
-                }
-        }
-    });
-    let steps: Vec<u32> = steps.collect();
-    for chunk in steps.chunks(4) {
+    for chunk in program.chunks(4) {
         let mut word = [0.0; 4];
-        for (w, &step) in word.iter_mut().zip(chunk) {
-            *w = f32::from_bits(step);
+        for (w, step) in word.iter_mut().zip(chunk) {
+            *w = f32::from_bits(match *step {
+                CsgStep::Leaf(i) => u32::from(i),
+                CsgStep::Combine(operation) => CSG_COMBINE | operation_number(operation),
+            });
         }
         words.push(word);
     }
@@ -342,7 +343,7 @@ mod tests {
     }
 
     #[test]
-    fn the_wgsl_has_the_csg_limits_and_part_bits_of_the_rust() {
+    fn the_wgsl_has_the_csg_numbers_of_the_rust() {
         for line in [
             format!("const CSG_MAX_OPERANDS: u32 = {GPU_MAX_CSG_OPERANDS}u;"),
             format!("const CSG_MAX_LISTS: u32 = {}u;", MAX_CSG_DEPTH + 2),
@@ -350,6 +351,18 @@ mod tests {
             format!("const SHAPE_CSG: u32 = {}u;", ShapeKind::Csg as u32),
             format!("const CSG_COMPLEMENTED: u32 = {CSG_COMPLEMENTED:#x}u;"),
             format!("const CSG_COMBINE: u32 = {CSG_COMBINE:#x}u;"),
+            format!(
+                "const CSG_UNION: u32 = {}u;",
+                operation_number(CsgOperation::Union)
+            ),
+            format!(
+                "const CSG_INTERSECTION: u32 = {}u;",
+                operation_number(CsgOperation::Intersection)
+            ),
+            format!(
+                "const CSG_DIFFERENCE: u32 = {}u;",
+                operation_number(CsgOperation::Difference)
+            ),
         ] {
             assert!(SHAPES_WGSL.contains(&line), "the WGSL lacks `{line}`");
         }
