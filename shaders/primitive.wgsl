@@ -15,10 +15,14 @@ struct SurfacePoint {
 
 const MATERIAL_BITS: u32 = 0x3fffffffu;
 
-// The material at `hit`.
+// The material at `hit`: a CSG operand's own, or the object's.
 fn material_of(hit: Hit) -> u32 {
     if (hit.prim & OBJECT_BIT) != 0u {
-        return objects[hit.prim & ~OBJECT_BIT].material;
+        let o = objects[hit.prim & ~OBJECT_BIT];
+        if o.kind == SHAPE_CSG {
+            return csg_material(o.first, hit.part);
+        }
+        return o.material;
     }
     return triangle_shading[hit.slot].material & MATERIAL_BITS;
 }

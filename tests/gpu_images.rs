@@ -28,12 +28,6 @@ const SIZE: (u32, u32) = (160, 120);
 const NOT_YET_ON_GPU: &[(&str, &str)] = &[
     ("caustic_glass_ball.toml", "caustics"),
     ("caustic_ring.toml", "caustics"),
-    ("csg_die.toml", "csg"),
-    ("csg_hollow_glass.toml", "csg"),
-    ("csg_lens.toml", "csg"),
-    ("csg_nested.toml", "csg"),
-    ("smoky_glass.toml", "csg"),
-    ("sdl_textures.dat", "csg"),
 ];
 
 fn gpu() -> Arc<GpuDevice> {

@@ -27,7 +27,8 @@ use raylab::render::{Assembled, assemble};
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::{
-    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder, Torus,
+    Csg, CsgOperation, Cuboid, Ellipsoid, Operand, Paraboloid, Plane, Polygon, Shape, Sphere,
+    TaperedCylinder, Torus,
 };
 use raylab::texture::{Texture, TextureImage, WOOD_COLORS, Wrap};
 use raylab::transform::{Transform, TransformStep};
@@ -417,6 +418,120 @@ fn planes_among_bounded_shapes_give_the_cpus_closest_hits_on_random_rays() {
     let on_gpu = check_random_objects(&mut rng, objects, 40_000);
     let on_planes = hits_on_first(&on_gpu, planes);
     assert!(on_planes >= 10_000, "{on_planes} hits on planes");
+}
+
+/// A random closed solid about `at`, about a unit in size: a sphere, a box, an ellipsoid, a
+/// capped cone or cylinder, a capped paraboloid or a torus.
+fn random_solid(rng: &mut Rng, at: Vec3) -> Shape {
+    match rng.u32(..6) {
+        0 => Shape::Sphere(Sphere::new(at, in_range(rng, 0.5, 1.5)).unwrap()),
+        1 => {
+            let half = in_cube(rng, 0.4, 1.2);
+            Shape::Cuboid(Cuboid::new(at - half, at + half).unwrap())
+        }
+        2 => Shape::Ellipsoid(Ellipsoid::new(at, in_cube(rng, 0.4, 1.5)).unwrap()),
+        3 => {
+            let half_axis = direction(rng) * in_range(rng, 0.4, 1.5);
+            let radii = (in_range(rng, 0.3, 1.0), in_range(rng, 0.0, 1.0));
+            let cylinder =
+                TaperedCylinder::new(at - half_axis, at + half_axis, radii.0, radii.1, true);
+            Shape::TaperedCylinder(cylinder.unwrap())
+        }
+        4 => {
+            let (radius, height) = (in_range(rng, 0.4, 1.2), in_range(rng, 0.4, 1.5));
+            Shape::Paraboloid(Paraboloid::new(at, radius, height, true).unwrap())
+        }
+        _ => {
+            let major = in_range(rng, 0.6, 1.2);
+            let minor = major * in_range(rng, 0.25, 0.6);
+            Shape::Torus(Torus::new(at, major, minor).unwrap())
+        }
+    }
+}
+
+/// A random CSG node about `at`: the union, intersection or difference of 2 to 4 random solids,
+/// every other one placed by a [`random_transform`], with a plane's half-space among those of an
+/// intersection or subtracted in a third of them (never where the node would reach infinitely
+/// far) and, where `nest`, a nested node of the same kind in place of a solid now and then.
+fn random_csg(rng: &mut Rng, at: Vec3, nest: bool) -> Csg {
+    let operation = match rng.u32(..3) {
+        0 => CsgOperation::Union,
+        1 => CsgOperation::Intersection,
+        _ => CsgOperation::Difference,
+    };
+    let count = rng.usize(2..=4);
+    let plane =
+        (operation != CsgOperation::Union && rng.u32(..3) == 0).then(|| rng.usize(1..count));
+    let children = (0..count)
+        .map(|k| {
+            let to = at + in_cube(rng, -0.8, 0.8);
+            let (shape, transform) = if plane == Some(k) {
+                let shape = Shape::Plane(Plane {
+                    point: to,
+                    normal: direction(rng),
+                });
+                (shape, None)
+            } else if nest && rng.u32(..4) == 0 {
+                (Shape::Csg(Box::new(random_csg(rng, to, false))), None)
+            } else if rng.bool() {
+                (random_solid(rng, to), None)
+            } else {
+                (
+                    random_solid(rng, Vec3::ZERO),
+                    Some(random_transform(rng, to)),
+                )
+            };
+            Operand {
+                shape,
+                transform,
+                material: 0,
+            }
+        })
+        .collect();
+    Csg::new(operation, children).unwrap()
+}
+
+#[test]
+fn csg_objects_give_the_cpus_closest_hits_on_random_rays() {
+    let mut rng = Rng::with_seed(47);
+    let objects = random_objects(&mut rng, 24, 10.0, |rng, at| {
+        Shape::Csg(Box::new(random_csg(rng, at, true)))
+    });
+    let leaves: Vec<&Shape> = objects
+        .iter()
+        .flat_map(|(shape, _)| match shape {
+            Shape::Csg(csg) => csg.leaves().iter().map(|leaf| &leaf.shape),
+            _ => unreachable!(),
+        })
+        .collect();
+    for (kind, count) in [
+        (
+            "plane",
+            leaves
+                .iter()
+                .filter(|s| matches!(s, Shape::Plane(_)))
+                .count(),
+        ),
+        (
+            "torus",
+            leaves
+                .iter()
+                .filter(|s| matches!(s, Shape::Torus(_)))
+                .count(),
+        ),
+    ] {
+        assert!(count >= 3, "{count} {kind} operands");
+    }
+    let nested = objects
+        .iter()
+        .filter(|(shape, _)| match shape {
+            Shape::Csg(csg) => csg.leaves().iter().any(|leaf| leaf.label.contains("(csg)")),
+            _ => false,
+        })
+        .count();
+    assert!(nested >= 3, "{nested} nested nodes");
+    // Rays aimed into the bounds of an intersection or a difference miss it often.
+    check_random_objects(&mut rng, objects, 60_000);
 }
 
 /// The largest relative difference in `t` between the GPU's hits and the CPU's where both hit

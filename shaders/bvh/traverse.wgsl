@@ -96,61 +96,66 @@ fn meet(hit: Hit, find: u32, result: ptr<function, WalkResult>, t_max: ptr<funct
     return all((*result).passed == vec3<f32>(0.0));
 }
 
-// The most times a line crosses the surface of an object the GPU traces (a torus's four).
-const MAX_CROSSINGS: u32 = 4u;
+// The most crossings of one object a shadow ray follows: a CSG node's 32 solids, each crossed
+// at most four times (a torus).
+const MAX_CROSSINGS: u32 = 128u;
 
 // Tests the `count` objects listed in `refs` from `first`; returns whether the walk can stop.
 //
 // A shadow ray's walk also adds up the optical depth `σ·length` of the media inside the objects
 // it passes (`Tracer::optical_depth`). The crossings come in no particular order, but the length
 // inside an object is the sum of `+t` at each crossing out of it and `−t` at each crossing into
-// it (a ray that starts inside has only the crossing out). An object is met once, at its first
-// crossing in range, so its later crossings are found by intersecting it again past each one,
-// by the same call as the first: the compiler copies the shapes at each call.
+// it (a ray that starts inside has only the crossing out); inside, the medium is that of the
+// surface the ray entered by (the one it leaves by, if it starts inside). An object is met
+// once, at its first crossing in range, so its later crossings are found by intersecting it
+// again past each one, by the same call as the first: the compiler copies the shapes at each
+// call.
 fn visit_objects(first: u32, count: u32, ray: WalkRay, t_min: f32, find: u32, result: ptr<function, WalkResult>, t_max: ptr<function, f32>) -> bool {
     var i = first;
     // While the crossings of object `i` are followed: how many were taken, where the next is
-    // looked for, the density of the object's medium, and whether and where the ray entered.
+    // looked for, and whether the ray is inside, where it entered and the density there.
     var crossings = 0u;
     var search_from = t_min;
-    var density = 0.0;
     var inside = false;
     var entered_at = 0.0;
+    var inside_density = 0.0;
     while i < first + count {
         let index = refs[i];
         let o = objects[index];
         let h = intersect_object(o, ray.origin, ray.dir, search_from, *t_max);
+        let at = Hit(h.t, index | OBJECT_BIT, h.part, 0u, vec2<f32>(0.0), true);
+        var follow = h.found && crossings < MAX_CROSSINGS;
         if crossings == 0u && h.found {
-            if meet(Hit(h.t, index | OBJECT_BIT, h.part, 0u, vec2<f32>(0.0), true), find, result, t_max) {
+            if meet(at, find, result, t_max) {
                 return true;
             }
-            if find == FIND_SHADOW {
-                density = materials[o.material].medium_density;
-            }
+            // A CSG solid's operands may differ in material; any other object has one.
+            follow = find == FIND_SHADOW && (o.kind == SHAPE_CSG || materials[o.material].medium_density != 0.0);
         }
-        if h.found && density != 0.0 {
+        if follow {
+            let density = materials[material_of(at)].medium_density;
             let normal = object_surface(o, ray.origin, ray.dir, h.t, h.part).normal;
             if dot(ray.dir, normal) > 0.0 {
                 var start = 0.0;
+                var inside_at = density;
                 if inside {
                     start = entered_at;
+                    inside_at = inside_density;
                 }
-                (*result).depth += density * (h.t - start) * length(ray.dir);
+                (*result).depth += inside_at * (h.t - start) * length(ray.dir);
                 inside = false;
             } else {
                 inside = true;
                 entered_at = h.t;
+                inside_density = density;
             }
             crossings++;
-            if crossings < MAX_CROSSINGS {
-                search_from = h.t;
-                continue;
-            }
+            search_from = h.t;
+            continue;
         }
         i++;
         crossings = 0u;
         search_from = t_min;
-        density = 0.0;
         inside = false;
     }
     return false;

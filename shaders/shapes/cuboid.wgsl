@@ -1,9 +1,6 @@
 // Axis-aligned boxes: the twin of src/shapes/cuboid.rs. The faces are the parts 2·axis (the
 // `min` side) and 2·axis + 1 (the `max` side): −x, +x, −y, +y, −z, +z.
 
-// The largest finite float, where the Rust starts the slab test from ±infinity.
-const FLOAT_MAX: f32 = 3.40282347e38;
-
 struct Cuboid {
     min: vec3<f32>,
     max: vec3<f32>,
@@ -16,6 +13,7 @@ fn load_cuboid(first: u32) -> Cuboid {
 // `Cuboid::intersect`: the slab test, keeping track of the faces the ray enters and leaves by;
 // a ray from inside hits the face it leaves by.
 fn intersect_cuboid(s: Cuboid, origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max: f32) -> ShapeHit {
+    // ±FLOAT_MAX where the Rust starts the slab test from ±infinity.
     var enter = -FLOAT_MAX;
     var enter_face = 0u;
     var exit = FLOAT_MAX;

@@ -23,6 +23,25 @@ fn intersect_plane(s: Plane, origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_ma
     return no_hit();
 }
 
+// `Plane::crossings`: as a CSG operand the plane is the half-space behind it, which the line
+// is inside from where it crosses the plane going backwards, or up to where it crosses going
+// forwards; everywhere or nowhere when it runs parallel.
+fn plane_crossings(s: Plane, origin: vec3<f32>, dir: vec3<f32>) -> Crossings {
+    let denom = dot(s.normal, dir);
+    let height = dot(s.normal, origin - s.point);
+    var crossings = Crossings(vec4<f32>(-FLOAT_MAX, FLOAT_MAX, 0.0, 0.0), vec4<u32>(0u), 2u);
+    if denom == 0.0 {
+        if !(height < 0.0) {
+            crossings.count = 0u;
+        }
+    } else if denom < 0.0 {
+        crossings.t.x = -height / denom;
+    } else {
+        crossings.t.y = -height / denom;
+    }
+    return crossings;
+}
+
 // `Plane::surface`: planar mapping, distances along the two `tangent_axes`.
 fn plane_surface(s: Plane, p: vec3<f32>) -> LocalSurface {
     let axes = tangent_axes(s.normal);

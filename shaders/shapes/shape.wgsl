@@ -1,10 +1,14 @@
 // Objects: an analytic shape, picked by its kind, placed in the world by its transform. The twin
 // of `Geometry::intersect_prepared` and `Geometry::surface_with` for objects in
-// src/primitive.rs and of `Shape::intersect` and `Shape::surface` in src/shapes/mod.rs. Every
-// shape's numbers and every transform are read from `shape_words` (src/gpu/shapes.rs writes
-// them).
+// src/primitive.rs and of `Shape::intersect`, `Shape::surface` and `Shape::crossings` in
+// src/shapes/mod.rs. Every shape's numbers and every transform are read from `shape_words`
+// (src/gpu/shapes.rs writes them).
 
 const PI: f32 = 3.14159265358979;
+
+// The largest finite float, where the Rust has ±infinity (WGSL implementations may assume there
+// are no infinities).
+const FLOAT_MAX: f32 = 3.40282347e38;
 
 const SHAPE_SPHERE: u32 = 0u;
 const SHAPE_PLANE: u32 = 1u;
@@ -14,6 +18,7 @@ const SHAPE_TAPERED_CYLINDER: u32 = 4u;
 const SHAPE_ELLIPSOID: u32 = 5u;
 const SHAPE_PARABOLOID: u32 = 6u;
 const SHAPE_TORUS: u32 = 7u;
+const SHAPE_CSG: u32 = 8u;
 
 // WGSL's twin of `GpuObject`.
 struct Object {
@@ -46,6 +51,15 @@ struct LocalSurface {
 
 // The nearest hit of the shape `kind` whose numbers start at `first`, with `t` in (t_min, t_max).
 fn intersect_shape(kind: u32, first: u32, origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max: f32) -> ShapeHit {
+    if kind == SHAPE_CSG {
+        return intersect_csg(first, origin, dir, t_min, t_max);
+    }
+    return intersect_plain_shape(kind, first, origin, dir, t_min, t_max);
+}
+
+// `intersect_shape` for every shape but CSG, which traces its operands by this (WGSL has no
+// recursion).
+fn intersect_plain_shape(kind: u32, first: u32, origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max: f32) -> ShapeHit {
     switch kind {
         case SHAPE_SPHERE: {
             return intersect_sphere(load_sphere(first), origin, dir, t_min, t_max);
@@ -79,6 +93,14 @@ fn intersect_shape(kind: u32, first: u32, origin: vec3<f32>, dir: vec3<f32>, t_m
 
 // Normal and texture coordinates at the object-space point `p` of part `part`.
 fn shape_surface(kind: u32, first: u32, p: vec3<f32>, part: u32) -> LocalSurface {
+    if kind == SHAPE_CSG {
+        return csg_surface(first, p, part);
+    }
+    return plain_shape_surface(kind, first, p, part);
+}
+
+// `shape_surface` for every shape but CSG.
+fn plain_shape_surface(kind: u32, first: u32, p: vec3<f32>, part: u32) -> LocalSurface {
     switch kind {
         case SHAPE_SPHERE: {
             return sphere_surface(load_sphere(first), p);
@@ -133,21 +155,72 @@ struct ObjectRay {
     dir: vec3<f32>,
 }
 
-// `Transform::ray_to_object`, or the ray itself for an object without a transform.
-fn ray_to_object(o: Object, origin: vec3<f32>, dir: vec3<f32>) -> ObjectRay {
-    if o.transform == NO_TRANSFORM {
+// `Affine3A::transform_point3` of `object_from_world`, summed in glam's order so that both find
+// the same point.
+fn point_to_object(tr: Transform, p: vec3<f32>) -> vec3<f32> {
+    let m = tr.object_from_world;
+    return m[0] * p.x + m[1] * p.y + m[2] * p.z + tr.translation;
+}
+
+// `Transform::ray_to_object` for the transform that starts at `transform` in the shape words,
+// or the ray itself where there is none (`NO_TRANSFORM`).
+fn ray_to_object(transform: u32, origin: vec3<f32>, dir: vec3<f32>) -> ObjectRay {
+    if transform == NO_TRANSFORM {
         return ObjectRay(origin, dir);
     }
-    let tr = load_transform(o.transform);
+    let tr = load_transform(transform);
     let m = tr.object_from_world;
-    // Summed in glam's order (`Affine3A::transform_point3`), so that both find the same ray.
-    let object_origin = m[0] * origin.x + m[1] * origin.y + m[2] * origin.z + tr.translation;
-    return ObjectRay(object_origin, m[0] * dir.x + m[1] * dir.y + m[2] * dir.z);
+    return ObjectRay(point_to_object(tr, origin), m[0] * dir.x + m[1] * dir.y + m[2] * dir.z);
+}
+
+// Where the line of a ray crosses the surface of a closed solid, in increasing `t`: entry, exit,
+// entry, exit… (the first `count`; `t` is ±FLOAT_MAX where the ray never leaves a half-space)
+// and the part of each crossing. The twin of `Crossings`.
+struct Crossings {
+    t: vec4<f32>,
+    part: vec4<u32>,
+    count: u32,
+}
+
+// `Shape::crossings`, for a shape that is an operand of a CSG node (a closed solid or a plane,
+// not a node itself).
+fn shape_crossings(kind: u32, first: u32, origin: vec3<f32>, dir: vec3<f32>) -> Crossings {
+    var crossings = Crossings(vec4<f32>(0.0), vec4<u32>(0u), 0u);
+    switch kind {
+        case SHAPE_PLANE: {
+            crossings = plane_crossings(load_plane(first), origin, dir);
+        }
+        case SHAPE_TORUS: {
+            let roots = torus_crossings(load_torus(first), origin, dir);
+            crossings.t = roots.t;
+            crossings.count = roots.count;
+        }
+        default: {
+            // The other solids are convex, so a line crosses them at most twice: it enters at
+            // the first hit on the whole line and leaves at the next one (both found by one
+            // call, which the compiler copies once). A line that only touches the surface does
+            // not go in.
+            var search_from = -FLOAT_MAX;
+            for (var k = 0u; k < 2u; k++) {
+                let h = intersect_plain_shape(kind, first, origin, dir, search_from, FLOAT_MAX);
+                if !h.found {
+                    break;
+                }
+                crossings.t[k] = h.t;
+                crossings.part[k] = h.part;
+                search_from = h.t;
+                if k == 1u {
+                    crossings.count = 2u;
+                }
+            }
+        }
+    }
+    return crossings;
 }
 
 // The nearest hit of the object `o` along the world ray, with `t` in (t_min, t_max).
 fn intersect_object(o: Object, origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max: f32) -> ShapeHit {
-    let ray = ray_to_object(o, origin, dir);
+    let ray = ray_to_object(o.transform, origin, dir);
     return intersect_shape(o.kind, o.first, ray.origin, ray.dir, t_min, t_max);
 }
 
@@ -161,7 +234,7 @@ struct ObjectSurface {
 
 // The surface of object `o` where the world ray meets it at `t`, on part `part`.
 fn object_surface(o: Object, origin: vec3<f32>, dir: vec3<f32>, t: f32, part: u32) -> ObjectSurface {
-    let ray = ray_to_object(o, origin, dir);
+    let ray = ray_to_object(o.transform, origin, dir);
     let object_point = ray.origin + ray.dir * t;
     let local = shape_surface(o.kind, o.first, object_point, part);
     var normal = normalize(local.normal);

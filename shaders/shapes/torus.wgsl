@@ -26,9 +26,6 @@ fn load_torus(first: u32) -> Torus {
     return Torus(w.xyz, w.w, shape_words[first + 1u].x);
 }
 
-// The largest finite f32, for a range without ends.
-const TORUS_FAR: f32 = 3.40282347e38;
-
 // `Quartic`: the implicit function along the shifted ray, s⁴ + a2·s² + a1·s + a0.
 struct TorusQuartic {
     a2: f32,
@@ -272,7 +269,7 @@ fn intersect_torus(tor: Torus, origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_
 // `Torus::crossings`: every `t`, of any sign, where the line of the ray crosses the surface,
 // smallest first, in entry/exit pairs.
 fn torus_crossings(tor: Torus, origin: vec3<f32>, dir: vec3<f32>) -> TorusRoots {
-    return torus_roots(tor, origin, dir, -TORUS_FAR, TORUS_FAR, 4u);
+    return torus_roots(tor, origin, dir, -FLOAT_MAX, FLOAT_MAX, 4u);
 }
 
 // `Torus::surface`: the normal points from the nearest point of the ring out through `p`; u is

@@ -1,12 +1,25 @@
 //! A GPU for computing, without any window: the adapter `WGPU_BACKEND` and `WGPU_ADAPTER_NAME`
 //! choose (as wgpu reads them), or the best one there is, and its device opened with every limit
-//! the adapter offers; and reading back what the GPU wrote.
+//! the adapter offers; the compute pipelines compiled for it; and reading back what the GPU
+//! wrote.
 
-/// An adapter, its device and queue.
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
+
+/// An adapter, its device and queue, and the compute pipelines compiled for it.
 pub struct GpuDevice {
     pub adapter: wgpu::Adapter,
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
+    /// The pipelines compiled so far, by entry point: each is compiled once, when first asked
+    /// for (src/gpu/tracer.rs), as a software GPU takes a minute or more.
+    pub(super) pipelines: Mutex<HashMap<&'static str, Arc<ComputeEntry>>>,
+}
+
+/// A compiled compute entry point and the layout of the lists it reads and writes.
+pub struct ComputeEntry {
+    pub pipeline: wgpu::ComputePipeline,
+    pub work: wgpu::BindGroupLayout,
 }
 
 /// What to install where no adapter is found.
@@ -41,6 +54,7 @@ impl GpuDevice {
                 adapter,
                 device,
                 queue,
+                pipelines: Mutex::default(),
             })
         })
     }

@@ -7,7 +7,7 @@ use bytemuck::{Pod, Zeroable};
 
 use super::device::GpuDevice;
 use super::scene::GpuScene;
-use super::tracer::{pipeline, run_list, tracer_module};
+use super::tracer::{pipeline, run_list};
 use crate::ray::Ray;
 
 /// WGSL's `ProbeRay`: a ray and the range of `t` it looks in.
@@ -67,8 +67,7 @@ pub fn closest_hits(
         Search::Objects => "probe_objects",
         Search::Bvh => "probe_bvh",
     };
-    let module = tracer_module(gpu);
-    run_list(gpu, scene, &pipeline(gpu, scene, &module, entry), rays)
+    run_list(gpu, scene, &pipeline(gpu, entry), rays)
 }
 
 /// WGSL's `TextureProbe`: where to colour texture `texture` of the scene.
@@ -88,11 +87,5 @@ pub fn texture_colors(
     scene: &GpuScene,
     probes: &[TextureProbe],
 ) -> Result<Vec<[f32; 4]>, String> {
-    let module = tracer_module(gpu);
-    run_list(
-        gpu,
-        scene,
-        &pipeline(gpu, scene, &module, "probe_textures"),
-        probes,
-    )
+    run_list(gpu, scene, &pipeline(gpu, "probe_textures"), probes)
 }

@@ -514,7 +514,7 @@ fn frame_record(
 }
 
 /// Bind group 0's layout: the scene's storage buffers, read only, then the frame.
-fn scene_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+pub(super) fn scene_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let mut entries: Vec<wgpu::BindGroupLayoutEntry> = (0..STORAGE_BUFFERS)
         .map(|binding| storage_entry(binding, true))
         .collect();

@@ -8,7 +8,8 @@ use bytemuck::{Pod, Zeroable};
 
 use crate::primitive::Object;
 use crate::shapes::{
-    Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere, TaperedCylinder, Torus,
+    Csg, CsgOperation, CsgStep, Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere,
+    TaperedCylinder, Torus,
 };
 use crate::transform::Transform;
 
@@ -24,6 +25,7 @@ pub const SHAPES_WGSL: &str = concat!(
     include_str!("../../shaders/shapes/ellipsoid.wgsl"),
     include_str!("../../shaders/shapes/paraboloid.wgsl"),
     include_str!("../../shaders/shapes/torus.wgsl"),
+    include_str!("../../shaders/shapes/csg.wgsl"),
 );
 
 /// WGSL's `Object`: an analytic shape placed in the world.
@@ -55,7 +57,14 @@ pub enum ShapeKind {
     Ellipsoid = 5,
     Paraboloid = 6,
     Torus = 7,
+    Csg = 8,
 }
+
+/// The most solids one CSG object may combine on the GPU: fewer than the CPU's
+/// [`crate::shapes::MAX_CSG_OPERANDS`], since every ray keeps two stacks of two spans per solid
+/// (16 bytes each) in private memory: 2 KiB with this limit, 4 KiB with the CPU's. The WGSL's
+/// `CSG_MAX_OPERANDS` is the same number.
+pub const GPU_MAX_CSG_OPERANDS: usize = 32;
 
 /// Four floats of the shape words.
 pub type Word = [f32; 4];
@@ -126,10 +135,10 @@ fn push_shape(shape: &Shape, words: &mut Vec<Word>) -> Result<ShapeKind, String>
             push_torus(t, words);
             Ok(ShapeKind::Torus)
         }
-        other => Err(format!(
-            "the GPU tracer has no {} yet (render it with --device cpu)",
-            other.name()
-        )),
+        Shape::Csg(c) => {
+            push_csg(c, words)?;
+            Ok(ShapeKind::Csg)
+        }
     }
 }
 
@@ -232,6 +241,74 @@ fn push_torus(t: &Torus, words: &mut Vec<Word>) {
     words.push([t.minor_radius, 0.0, 0.0, 0.0]);
 }
 
+/// `load_csg_leaf`'s flag on the kind of a leaf that is subtracted an odd number of times.
+const CSG_COMPLEMENTED: u32 = 1 << 31;
+
+/// The flag of a step of a CSG program that combines the two topmost lists (or-ed with the
+/// operation); a step without it pushes the spans of the leaf it names.
+const CSG_COMBINE: u32 = 1 << 31;
+
+/// The number of a CSG operation in a combining step, as the WGSL's `CSG_UNION`,
+/// `CSG_INTERSECTION` and `CSG_DIFFERENCE`.
+fn operation_number(operation: CsgOperation) -> u32 {
+    match operation {
+        CsgOperation::Union => 0,
+        CsgOperation::Intersection => 1,
+        CsgOperation::Difference => 2,
+    }
+}
+
+/// `intersect_csg`: a header (the numbers of leaves and of steps), a record per leaf (its
+/// shape's kind, or-ed with [`CSG_COMPLEMENTED`] where it is subtracted an odd number of times;
+/// where its numbers start; where its transform to the node's space starts, or
+/// [`NO_TRANSFORM`]; its material), the steps of the program four to a word (a leaf's index, or
+/// [`CSG_COMBINE`] or-ed with the operation), then each leaf's transform and numbers. Nodes of
+/// more than [`GPU_MAX_CSG_OPERANDS`] solids are refused.
+fn push_csg(csg: &Csg, words: &mut Vec<Word>) -> Result<(), String> {
+    let leaves = csg.leaves();
+    if leaves.len() > GPU_MAX_CSG_OPERANDS {
+        return Err(format!(
+            "a csg object of {} solids: the GPU tracer combines at most {GPU_MAX_CSG_OPERANDS} \
+             (render it with --device cpu)",
+            leaves.len()
+        ));
+    }
+    let program = csg.program();
+    let first = words.len();
+    words.push([bits(leaves.len()), bits(program.len()), 0.0, 0.0]);
+    words.resize(first + 1 + leaves.len(), [0.0; 4]);
+    for chunk in program.chunks(4) {
+        let mut word = [0.0; 4];
+        for (w, step) in word.iter_mut().zip(chunk) {
+            *w = f32::from_bits(match *step {
+                CsgStep::Leaf(i) => u32::from(i),
+                CsgStep::Combine(operation) => CSG_COMBINE | operation_number(operation),
+            });
+        }
+        words.push(word);
+    }
+    for (index, leaf) in leaves.iter().enumerate() {
+        let transform = match &leaf.transform {
+            Some(t) => push_transform(t, words),
+            None => NO_TRANSFORM,
+        };
+        let shape_first = words.len();
+        let kind = push_shape(&leaf.shape, words)? as u32;
+        let flags = if leaf.is_complemented() {
+            CSG_COMPLEMENTED
+        } else {
+            0
+        };
+        words[first + 1 + index] = [
+            f32::from_bits(kind | flags),
+            bits(shape_first),
+            f32::from_bits(transform),
+            f32::from_bits(leaf.material),
+        ];
+    }
+    Ok(())
+}
+
 /// Appends a transform as `load_transform` reads it: the columns of `object_from_world` (three
 /// axes, then the translation), then those of `normal_to_world`. Returns where it starts.
 fn push_transform(t: &Transform, words: &mut Vec<Word>) -> u32 {
@@ -250,4 +327,58 @@ fn push_transform(t: &Transform, words: &mut Vec<Word>) -> u32 {
         words.push(column.extend(0.0).to_array());
     }
     first
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes::{CSG_PART_BITS, MAX_CSG_DEPTH, Operand};
+
+    fn sphere_operand(x: f32) -> Operand {
+        Operand {
+            shape: Shape::Sphere(Sphere::new(glam::Vec3::new(x, 0.0, 0.0), 1.0).unwrap()),
+            transform: None,
+            material: 0,
+        }
+    }
+
+    #[test]
+    fn the_wgsl_has_the_csg_numbers_of_the_rust() {
+        for line in [
+            format!("const CSG_MAX_OPERANDS: u32 = {GPU_MAX_CSG_OPERANDS}u;"),
+            format!("const CSG_MAX_LISTS: u32 = {}u;", MAX_CSG_DEPTH + 2),
+            format!("const CSG_PART_BITS: u32 = {CSG_PART_BITS}u;"),
+            format!("const SHAPE_CSG: u32 = {}u;", ShapeKind::Csg as u32),
+            format!("const CSG_COMPLEMENTED: u32 = {CSG_COMPLEMENTED:#x}u;"),
+            format!("const CSG_COMBINE: u32 = {CSG_COMBINE:#x}u;"),
+            format!(
+                "const CSG_UNION: u32 = {}u;",
+                operation_number(CsgOperation::Union)
+            ),
+            format!(
+                "const CSG_INTERSECTION: u32 = {}u;",
+                operation_number(CsgOperation::Intersection)
+            ),
+            format!(
+                "const CSG_DIFFERENCE: u32 = {}u;",
+                operation_number(CsgOperation::Difference)
+            ),
+        ] {
+            assert!(SHAPES_WGSL.contains(&line), "the WGSL lacks `{line}`");
+        }
+    }
+
+    #[test]
+    fn csg_objects_of_more_solids_than_the_gpu_combines_are_refused_with_the_limit() {
+        let within = (0..GPU_MAX_CSG_OPERANDS).map(|k| sphere_operand(k as f32));
+        let csg = Csg::new(CsgOperation::Union, within.collect()).unwrap();
+        assert!(push_shape(&Shape::Csg(Box::new(csg)), &mut Vec::new()).is_ok());
+        let over = (0..=GPU_MAX_CSG_OPERANDS).map(|k| sphere_operand(k as f32));
+        let csg = Csg::new(CsgOperation::Union, over.collect()).unwrap();
+        let error = push_shape(&Shape::Csg(Box::new(csg)), &mut Vec::new()).unwrap_err();
+        assert!(
+            error.contains(&GPU_MAX_CSG_OPERANDS.to_string()) && error.contains("--device cpu"),
+            "{error}"
+        );
+    }
 }

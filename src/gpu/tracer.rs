@@ -5,8 +5,10 @@
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
-use super::device::{GpuDevice, read_buffer};
-use super::scene::{GpuScene, storage_entry};
+use std::sync::Arc;
+
+use super::device::{ComputeEntry, GpuDevice, read_buffer};
+use super::scene::{GpuScene, scene_layout, storage_entry};
 use super::shapes::SHAPES_WGSL;
 
 /// All the GPU tracer's WGSL, as one module: the scene's records, the camera and the jitter,
@@ -55,50 +57,53 @@ pub struct SampleColor {
     pub over_budget: u32,
 }
 
-/// The WGSL module with every part, compiled for `gpu`.
-pub fn tracer_module(gpu: &GpuDevice) -> wgpu::ShaderModule {
-    let source = [SHAPES_WGSL, TRACER_WGSL].concat();
-    gpu.device
-        .create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("the GPU tracer"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        })
+/// The compute pipeline of WGSL entry point `entry` of the GPU tracer's module on `gpu`: bind
+/// group 0 the scene (any [`GpuScene`]'s: wgpu takes equal layouts as one), bind group 1 a list
+/// read and a list written. It is compiled the first time it is asked for on `gpu`.
+pub fn pipeline(gpu: &GpuDevice, entry: &'static str) -> Arc<ComputeEntry> {
+    let mut compiled = gpu
+        .pipelines
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
+    let entry_pipeline = compiled
+        .entry(entry)
+        .or_insert_with(|| Arc::new(compile(gpu, entry)));
+    Arc::clone(entry_pipeline)
 }
 
-/// A compute pipeline for `entry` of `module`: bind group 0 the scene, bind group 1 a list
-/// read and a list written.
-pub fn pipeline(
-    gpu: &GpuDevice,
-    scene: &GpuScene,
-    module: &wgpu::ShaderModule,
-    entry: &str,
-) -> (wgpu::ComputePipeline, wgpu::BindGroupLayout) {
+/// Compiles `entry` of all the tracer's WGSL for `gpu`.
+fn compile(gpu: &GpuDevice, entry: &str) -> ComputeEntry {
     let device = &gpu.device;
+    let source = [SHAPES_WGSL, TRACER_WGSL].concat();
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("the GPU tracer"),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
     let work = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some(entry),
         entries: &[storage_entry(0, true), storage_entry(1, false)],
     });
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(entry),
-        bind_group_layouts: &[Some(&scene.layout), Some(&work)],
+        bind_group_layouts: &[Some(&scene_layout(device)), Some(&work)],
         immediate_size: 0,
     });
     let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some(entry),
         layout: Some(&layout),
-        module,
+        module: &module,
         entry_point: Some(entry),
         compilation_options: Default::default(),
         cache: None,
     });
-    (pipeline, work)
+    ComputeEntry { pipeline, work }
 }
 
 /// Runs `pipeline` over `input` (one invocation per entry) and reads back one `Out` per entry.
 pub fn run_list<In: Pod, Out: Pod>(
     gpu: &GpuDevice,
     scene: &GpuScene,
-    (pipeline, work): &(wgpu::ComputePipeline, wgpu::BindGroupLayout),
+    ComputeEntry { pipeline, work }: &ComputeEntry,
     input: &[In],
 ) -> Result<Vec<Out>, String> {
     if input.is_empty() {

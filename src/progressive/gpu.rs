@@ -13,9 +13,9 @@ use super::control::{Cancelled, PassStats, RenderControl, RenderStats, run_plan}
 use super::plan::{Pass, PassGrid, passes, take_snapshot, unwatched_passes};
 use crate::color::Color;
 use crate::film::Film;
-use crate::gpu::device::GpuDevice;
+use crate::gpu::device::{ComputeEntry, GpuDevice};
 use crate::gpu::scene::GpuScene;
-use crate::gpu::tracer::{PixelSample, SampleColor, pipeline, run_list, tracer_module};
+use crate::gpu::tracer::{PixelSample, SampleColor, pipeline, run_list};
 use crate::render::Assembled;
 use crate::scene::Scene;
 use crate::settings::RenderSettings;
@@ -33,15 +33,14 @@ const DISPATCH_TIME: Duration = Duration::from_millis(100);
 pub struct GpuRenderer {
     gpu: Arc<GpuDevice>,
     scene: GpuScene,
-    trace: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
+    trace: Arc<ComputeEntry>,
 }
 
 impl GpuRenderer {
     /// Uploads `assembled` to `gpu`; the error says what the GPU does not trace or hold.
     pub fn new(gpu: Arc<GpuDevice>, assembled: &Assembled) -> Result<GpuRenderer, String> {
         let scene = GpuScene::upload(&gpu, assembled)?;
-        let module = tracer_module(&gpu);
-        let trace = pipeline(&gpu, &scene, &module, "trace_samples");
+        let trace = pipeline(&gpu, "trace_samples");
         Ok(GpuRenderer { gpu, scene, trace })
     }
 

@@ -36,7 +36,7 @@ const MAX_SPANS: usize = MAX_OPERANDS * MAX_OPERAND_SPANS;
 
 /// A CSG hit's part is the operand's index shifted by this many bits, or-ed with the part of
 /// the operand's shape that was hit (every shape has fewer than 16 parts).
-const PART_BITS: u32 = 4;
+pub const PART_BITS: u32 = 4;
 
 /// The three boolean operations.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -94,7 +94,7 @@ pub struct Leaf {
 
 /// One step of the postfix program that evaluates the tree.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Step {
+pub enum Step {
     /// Push the spans of leaf `i`.
     Leaf(u16),
     /// Replace the two topmost span lists by their combination.
@@ -254,6 +254,11 @@ impl Csg {
         &self.leaves
     }
 
+    /// The postfix program over [`Self::leaves`] that evaluates the tree.
+    pub fn program(&self) -> &[Step] {
+        &self.program
+    }
+
     /// The index of the leaf a hit's `part` belongs to.
     pub fn leaf_index(&self, part: u32) -> usize {
         (part >> PART_BITS) as usize
@@ -337,6 +342,12 @@ impl Csg {
 }
 
 impl Leaf {
+    /// Whether the leaf is subtracted an odd number of times, so that [`Csg::surface`] turns
+    /// its normals round.
+    pub fn is_complemented(&self) -> bool {
+        self.complemented
+    }
+
     /// Pushes the spans where `ray` (in the node's space) is inside the leaf, tagged with
     /// `part_base`.
     fn push_spans(&self, ray: &Ray, part_base: u32, out: &mut Spans) {

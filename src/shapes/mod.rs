@@ -24,6 +24,7 @@ mod triangle_pack;
 
 pub use csg::{
     Csg, CsgOperation, Leaf, MAX_DEPTH as MAX_CSG_DEPTH, MAX_OPERANDS as MAX_CSG_OPERANDS, Operand,
+    PART_BITS as CSG_PART_BITS, Step as CsgStep,
 };
 pub use cuboid::Cuboid;
 pub use cylinder_pack::CylinderPack;
