@@ -14,7 +14,8 @@
 @group(0) @binding(9) var<storage, read> textures: array<Texture>;
 // The sRGB decode table (the bits of 256 floats), then every image's texels.
 @group(0) @binding(10) var<storage, read> texels: array<u32>;
-@group(0) @binding(11) var<uniform> frame: Frame;
+@group(0) @binding(11) var<storage, read> photons: array<Photon>;
+@group(0) @binding(12) var<uniform> frame: Frame;
 
 // Switches of `Frame::flags`.
 const SHADOWS: u32 = 1u;
@@ -26,6 +27,8 @@ const OPAQUE: u32 = 8u;
 const TEXTURES: u32 = 16u;
 // The fog's backdrop is the ball around the scene (`Backdrop::Ball`), not a distance.
 const BALL_BACKDROP: u32 = 32u;
+// Caustics are on: the photon map brings the light that glass bends (caustics.wgsl).
+const CAUSTICS: u32 = 64u;
 
 // The camera (`Camera`), the image, and the settings the tracer reads (`RenderSettings`).
 struct Frame {
@@ -65,6 +68,22 @@ struct Frame {
     fog_density: f32,
     backdrop_center: vec3<f32>,
     backdrop_radius: f32,
+    // What the pixels show (views.wgsl), and the depth view's range.
+    view: u32,
+    depth_near: f32,
+    depth_far: f32,
+    // `caustic_gather`: the photons each caustic estimate gathers.
+    caustic_gather: u32,
+    // The caustic photon map: the box around its photons, their number, how far an estimate
+    // looks at most, and how many photons were shot.
+    photons_min: vec3<f32>,
+    photon_count: u32,
+    photons_max: vec3<f32>,
+    photon_radius: f32,
+    photons_shot: f32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
 }
 
 // A material: the twin of `Material` in src/material.rs.

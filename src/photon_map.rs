@@ -17,7 +17,7 @@ use crate::settings::MAX_CAUSTIC_GATHER;
 
 /// Ranges of this many photons or fewer are searched one photon after another, without
 /// descending further.
-const LEAF_SIZE: usize = 8;
+pub const LEAF_SIZE: usize = 8;
 
 /// The most photons one estimate may gather.
 const MAX_GATHER: usize = MAX_CAUSTIC_GATHER as usize;
@@ -84,6 +84,23 @@ impl PhotonMap {
     /// The photons, in the tree's order.
     pub fn photons(&self) -> &[Photon] {
         &self.photons
+    }
+
+    /// The tree as a search reads it: each photon's position, with in `w` the axis (0, 1 or 2)
+    /// its node splits. The node of the range `lo..hi` is its middle, `(lo + hi) / 2`, splitting
+    /// it into `lo..mid` and `mid + 1..hi`; a range of at most [`LEAF_SIZE`] is a leaf.
+    pub fn nodes(&self) -> &[Vec4] {
+        &self.nodes
+    }
+
+    /// The box around all the photons.
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// How far an estimate looks for photons at most.
+    pub fn max_radius(&self) -> f32 {
+        self.max_radius
     }
 
     /// The irradiance at `point` on a surface whose normal (on the side the light is wanted

@@ -12,6 +12,7 @@ use common::random::{Rng, direction, in_cube, in_range};
 use glam::{Vec2, Vec3};
 use raylab::camera::Camera;
 use raylab::color::Color;
+use raylab::gpu::caustics::GpuPhoton;
 use raylab::gpu::device::GpuDevice;
 use raylab::gpu::probe::{
     NO_PRIM, ProbeHit, ProbeRay, Search, TextureProbe, closest_hits, texture_colors,
@@ -745,7 +746,7 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
     let cases = [
         rust_layout!("Object", GpuObject, [kind, first, transform, material]),
         rust_layout!("WideNode", GpuWideNode, [min, max, first, count]),
-        rust_layout!("Triangle", GpuTriangle, [p0, index, p1, pad1, p2, pad2]),
+        rust_layout!("Triangle", GpuTriangle, [p0, index, p1, object, p2, pad2]),
         rust_layout!("TriangleShading", GpuTriangleShading, [corners, material]),
         rust_layout!("VertexAttributes", GpuVertexAttributes, [normal, u, v, pad]),
         rust_layout!(
@@ -806,10 +807,27 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
                 fog_color,
                 fog_density,
                 backdrop_center,
-                backdrop_radius
+                backdrop_radius,
+                view,
+                depth_near,
+                depth_far,
+                caustic_gather,
+                photons_min,
+                photon_count,
+                photons_max,
+                photon_radius,
+                photons_shot,
+                pad0,
+                pad1,
+                pad2
             ]
         ),
         rust_layout!("PixelSample", PixelSample, [x, y, k, pad]),
+        rust_layout!(
+            "Photon",
+            GpuPhoton,
+            [position, axis, power, pad0, dir, pad1]
+        ),
         rust_layout!(
             "SampleColor",
             SampleColor,

@@ -7,7 +7,8 @@ struct Triangle {
     p0: vec3<f32>,
     index: u32,
     p1: vec3<f32>,
-    pad1: u32,
+    // The id the object view colours it by: its mesh's (`Geometry::object_id`).
+    object: u32,
     p2: vec3<f32>,
     pad2: u32,
 }

@@ -1,5 +1,5 @@
 // The local colour at a hit, the lecture's shading model: the twin of src/whitted/lighting.rs
-// and of `Light::sample` in src/light.rs. Emission and ambient light, plus the diffuse
+// and of `Light::sample` in src/light.rs. Emission, ambient light and caustics, plus the diffuse
 // (Lambert) and specular (Phong) light of every light a shadow ray reaches, dimmed by the fog
 // on its way; transparent blockers tint the light that passes them, and those filled with a
 // medium dim it by the length the shadow ray runs inside them (Beer–Lambert: the walk adds up
@@ -43,12 +43,17 @@ fn light_sample(light: Light, point: vec3<f32>) -> LightSample {
     return LightSample(to_light / distance, distance, light.color);
 }
 
-// `Tracer::tint`: what the primitive hit lets through of the light behind it.
+// `Tracer::tint`: what the primitive hit lets through of the light behind it; nothing through
+// glass that bends light when the caustic photons bring that light instead.
 fn tint(hit: Hit) -> vec3<f32> {
     if (frame.flags & OPAQUE) != 0u {
         return vec3<f32>(0.0);
     }
     let m = materials[material_of(hit)];
+    // `Material::bends_light`.
+    if (frame.flags & CAUSTICS) != 0u && m.transparency > 0.0 && m.ior != 1.0 {
+        return vec3<f32>(0.0);
+    }
     return m.transparency * m.color;
 }
 
@@ -102,9 +107,14 @@ struct Shading {
     next_light: u32,
 }
 
-// `Tracer::local_color`'s light that needs no shadow ray: emission and ambient light.
-fn unlit_color(s: Shading) -> vec3<f32> {
-    return s.m.emission + s.m.ambient * s.base * frame.ambient;
+// `Tracer::local_color`'s light that needs no shadow ray: emission, ambient light, and with
+// caustics on the diffuse light of the caustic photons nearby.
+fn shadowless_color(s: Shading) -> vec3<f32> {
+    var color = s.m.emission + s.m.ambient * s.base * frame.ambient;
+    if (frame.flags & CAUSTICS) != 0u && s.m.diffuse > 0.0 {
+        color += s.m.diffuse * s.base * caustic_irradiance(s.surface.point, s.normal);
+    }
+    return color;
 }
 
 // `Tracer::local_color`'s loop over the lights, a light at a time: the shadow ray towards the

@@ -145,24 +145,35 @@ fn trace_eye(dir: vec3<f32>) -> Traced {
             continue;
         }
         let hit = found.hit;
-        var t_end = T_FAR;
-        if hit.found {
-            t_end = hit.t;
+        // A debug view shows the eye ray's first hit alone (black where it misses).
+        let viewing = frame.view != VIEW_SHADED;
+        var throughput = ray.throughput;
+        if !viewing {
+            var t_end = T_FAR;
+            if hit.found {
+                t_end = hit.t;
+            }
+            let passage = through_medium(ray.within, ray.origin, ray.dir, t_end, ray.throughput);
+            in_scatter = passage.in_scatter;
+            // What the ray meets, and its children, are seen through the medium.
+            throughput *= passage.transmittance;
         }
-        let passage = through_medium(ray.within, ray.origin, ray.dir, t_end, ray.throughput);
-        in_scatter = passage.in_scatter;
-        // What the ray meets, and its children, are seen through the medium.
-        let throughput = ray.throughput * passage.transmittance;
         if !hit.found {
-            color += throughput * miss_color(ray.dir);
+            if !viewing {
+                color += throughput * miss_color(ray.dir);
+            }
             continue;
         }
         if ray.depth == 1u {
             counts.primary_hits++;
         }
-        // `Tracer::shade`: the local colour's unlit part now, its lights by the turns to come,
-        // and the children onto the stack.
         let surface = surface_at(ray.origin, ray.dir, hit);
+        if viewing {
+            color = view_color(hit, surface);
+            break;
+        }
+        // `Tracer::shade`: the shadowless part of the local colour now, its lights by the turns
+        // to come, and the children onto the stack.
         let m = materials[surface.material];
         let unit_dir = normalize(ray.dir);
         // Face the normals towards the side the ray came from.
@@ -174,7 +185,7 @@ fn trace_eye(dir: vec3<f32>) -> Traced {
         let normal = surface.normal * side;
         let geometric_normal = surface.geometric_normal * side;
         shading = Shading(m, base_color(m, surface), surface, normal, geometric_normal, unit_dir, throughput, 0u);
-        color += throughput * unlit_color(shading);
+        color += throughput * shadowless_color(shading);
         if ray.depth < frame.max_depth {
             let s = scattering(m, unit_dir, normal, entering);
             let base = shading.base;

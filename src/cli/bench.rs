@@ -20,6 +20,7 @@ use raylab::film::Film;
 use raylab::formats::load_any;
 use raylab::formats::toml::default_scene;
 use raylab::gpu::device::GpuDevice;
+use raylab::gpu::scene::GpuView;
 use raylab::large_mesh::{bumpy_sphere_scene, check_bumpy_triangles};
 use raylab::output::{check_writable, write_atomically};
 use raylab::photon::{Caustics, PhotonMap};
@@ -214,7 +215,7 @@ fn render_on_gpu(renderer: &GpuRenderer, scene: &Scene) -> Result<RenderStats, S
     let film = Film::new(scene.settings.width, scene.settings.height);
     let control = RenderControl::default();
     renderer
-        .render(scene, &film, &control, |_| {})?
+        .render(scene, GpuView::Shaded, &film, &control, |_| {})?
         .map_err(|_| "the render was cancelled".to_string())
 }
 

@@ -53,8 +53,9 @@ pub struct RenderArgs {
     #[arg(long)]
     threads: Option<usize>,
     /// Which tracer renders: cpu (all cores) or gpu (wgpu compute, the adapter WGPU_BACKEND and
-    /// WGPU_ADAPTER_NAME choose). The GPU renders the shaded image; the debug views trace on
-    /// the CPU.
+    /// WGPU_ADAPTER_NAME choose). The GPU renders the shaded image and the first-hit views
+    /// (normals, depth, uv, object, material); the heat maps (tree-depth, rays, bvh-cost) trace
+    /// on the CPU only.
     #[arg(long, default_value_t = Device::Cpu)]
     device: Device,
     /// Brightness of NFF and SPD scenes' lights: `readme` (each light and the ambient light
@@ -165,13 +166,15 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     let mut assembled = pool.install(|| assemble(scene))?;
     let gpu = match args.device {
         Device::Cpu => None,
-        Device::Gpu if args.view != DebugView::Shaded => {
-            return Err(format!(
-                "--view {} traces on the CPU only: leave out --device gpu",
-                args.view
-            ));
+        Device::Gpu => {
+            args.view.on_gpu(&assembled.tracer()).map_err(|_| {
+                format!(
+                    "--view {} traces on the CPU only: leave out --device gpu",
+                    args.view
+                )
+            })?;
+            Some(GpuRenderer::new(Arc::new(GpuDevice::new()?), &assembled)?)
         }
-        Device::Gpu => Some(GpuRenderer::new(Arc::new(GpuDevice::new()?), &assembled)?),
     };
     let backend = match &gpu {
         Some(renderer) => Backend::Gpu(renderer),
@@ -320,7 +323,9 @@ fn render_frame(
                 Backend::Cpu(pool) => {
                     Ok(pool.install(|| progressive::render_unwatched(tracer, view, film, control)))
                 }
-                Backend::Gpu(renderer) => renderer.render_unwatched(tracer.scene, film, control),
+                Backend::Gpu(renderer) => view
+                    .on_gpu(tracer)
+                    .and_then(|view| renderer.render_unwatched(tracer.scene, view, film, control)),
             };
             // Should this thread panic instead, dropping `done` ends the wait too.
             let _ = done.send(());

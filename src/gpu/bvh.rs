@@ -34,7 +34,8 @@ pub struct GpuTriangle {
     /// The triangle's index ([`crate::primitive::PrimId::triangle`]).
     pub index: u32,
     pub p1: [f32; 3],
-    pub pad1: u32,
+    /// The id the object view colours it by: its mesh's ([`Geometry::object_id`]).
+    pub object: u32,
     pub p2: [f32; 3],
     pub pad2: u32,
 }
@@ -79,7 +80,7 @@ impl GpuBvh {
                             p0: t.p0.to_array(),
                             index: index as u32,
                             p1: t.p1.to_array(),
-                            pad1: 0,
+                            object: geometry.object_id(*p),
                             p2: t.p2.to_array(),
                             pad2: 0,
                         }

@@ -2,10 +2,13 @@
 //! [`Scene`] and [`Bvh`] the CPU traces, each buffer checked against the device's limits
 //! before it is made, and bound as bind group 0 of every entry point.
 
+use std::sync::Arc;
+
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
 use super::bvh::{GpuBvh, GpuTriangle, GpuWideNode};
+use super::caustics::{GpuPhoton, photon_records};
 use super::device::GpuDevice;
 use super::shapes::{GpuObject, ObjectTable, Word};
 use super::texture::{GpuTexture, NO_TEXTURE, TextureRecords, background_record};
@@ -16,6 +19,7 @@ use crate::color::Color;
 use crate::light::Light;
 use crate::material::Material;
 use crate::medium::{Backdrop, Fog, Medium};
+use crate::photon_map::PhotonMap;
 use crate::render::Assembled;
 use crate::scene::Scene;
 
@@ -60,6 +64,55 @@ pub struct GpuFrame {
     /// The fog's [`Backdrop::Ball`] (where [`BALL_BACKDROP`] is set).
     pub backdrop_center: [f32; 3],
     pub backdrop_radius: f32,
+    /// What the pixels show: a [`GpuView`]'s number.
+    pub view: u32,
+    /// The depth view's range ([`GpuView::Depth`]).
+    pub depth_near: f32,
+    pub depth_far: f32,
+    /// `caustic_gather`: the photons each caustic estimate gathers.
+    pub caustic_gather: u32,
+    /// The caustic photon map ([`PhotonMap`]): the box around its photons, their number, how
+    /// far an estimate looks at most, and how many photons were shot.
+    pub photons_min: [f32; 3],
+    pub photon_count: u32,
+    pub photons_max: [f32; 3],
+    pub photon_radius: f32,
+    pub photons_shot: f32,
+    pub pad0: u32,
+    pub pad1: u32,
+    pub pad2: u32,
+}
+
+/// What the GPU's pixels show: the Whitted colour, or one of the debug views that look at the
+/// eye ray's first hit (the twins of `inspect::DebugView`'s, which the CPU draws; the heat
+/// maps of the whole ray tree are drawn on the CPU only).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum GpuView {
+    #[default]
+    Shaded,
+    Normals,
+    /// Grey from white at `near` to black at `far`, along the view direction.
+    Depth {
+        near: f32,
+        far: f32,
+    },
+    Uv,
+    Object,
+    Material,
+}
+
+impl GpuView {
+    /// Its number in the frame record, as `shaders/views.wgsl` names them.
+    fn number(self) -> u32 {
+        match self {
+            GpuView::Shaded => 0,
+            GpuView::Normals => 1,
+            GpuView::Depth { .. } => 2,
+            GpuView::Uv => 3,
+            GpuView::Object => 4,
+            GpuView::Material => 5,
+        }
+    }
 }
 
 /// Switches of [`GpuFrame::flags`], as `shaders/scene.wgsl` names them.
@@ -70,6 +123,8 @@ pub const OPAQUE: u32 = 8;
 pub const TEXTURES: u32 = 16;
 /// The fog's backdrop is the ball around the scene ([`Backdrop::Ball`]).
 pub const BALL_BACKDROP: u32 = 32;
+/// Caustics are on: the photon map brings the light that glass bends.
+pub const CAUSTICS: u32 = 64;
 
 /// WGSL's `Material`.
 #[repr(C)]
@@ -202,7 +257,6 @@ impl SceneRecords {
     /// The records of `scene` and its BVH `bvh`; the error says what of the scene the GPU
     /// tracer does not trace.
     pub fn new(scene: &Scene, bvh: &Bvh) -> Result<SceneRecords, String> {
-        unsupported(scene)?;
         let depth = bvh.depth();
         if depth > MAX_TREE_DEPTH {
             return Err(format!(
@@ -262,22 +316,6 @@ impl SceneRecords {
     }
 }
 
-/// What the GPU tracer does not trace yet, named so that the user can render on the CPU.
-fn unsupported(scene: &Scene) -> Result<(), String> {
-    let settings = &scene.settings;
-    let missing = if settings.caustic_photons > 0 {
-        Some("caustics")
-    } else {
-        None
-    };
-    match missing {
-        Some(what) => Err(format!(
-            "the GPU tracer does not trace {what} yet (render this scene with --device cpu)"
-        )),
-        None => Ok(()),
-    }
-}
-
 /// The scene's buffers on the GPU and the bind group that binds them.
 pub struct GpuScene {
     pub layout: wgpu::BindGroupLayout,
@@ -287,6 +325,11 @@ pub struct GpuScene {
     /// The materials' and the lights' buffers, rewritten as they are edited.
     materials: wgpu::Buffer,
     lights: wgpu::Buffer,
+    /// The storage buffers, in binding order (the caustic photons last), bound anew when the
+    /// photon map changes.
+    buffers: Vec<wgpu::Buffer>,
+    /// The caustic photon map uploaded (none: caustics off).
+    caustics: Option<Arc<PhotonMap>>,
     /// How many records some buffers hold, as the frame record tells the WGSL.
     counts: RecordCounts,
     /// The box around the bounded objects, which the fog's backdrop takes in.
@@ -305,7 +348,7 @@ struct RecordCounts {
 }
 
 /// Storage buffers in bind group 0, and the frame's uniform buffer after them.
-const STORAGE_BUFFERS: u32 = 11;
+const STORAGE_BUFFERS: u32 = 12;
 
 impl GpuScene {
     /// Uploads `assembled`'s scene and BVH; the error says what the GPU tracer does not trace,
@@ -323,23 +366,7 @@ impl GpuScene {
             ));
         }
         let device = &gpu.device;
-        let storage = |what: &str, contents: &[u8]| -> Result<wgpu::Buffer, String> {
-            gpu.check_storage(what, contents.len() as u64)?;
-            // A buffer is never empty: an unused one holds zeros (the frame's counts say so).
-            let zeros = [0u8; 256];
-            let contents = if contents.is_empty() {
-                &zeros[..]
-            } else {
-                contents
-            };
-            Ok(
-                device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(what),
-                    contents,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                }),
-            )
-        };
+        let storage = |what: &str, contents: &[u8]| storage_buffer(gpu, what, contents);
         // Kept apart as well: edits rewrite them.
         let materials = storage("the materials", bytemuck::cast_slice(&records.materials))?;
         let lights = storage("the lights", bytemuck::cast_slice(&records.lights))?;
@@ -376,6 +403,7 @@ impl GpuScene {
                 bytemuck::cast_slice::<GpuTexture, u8>(&records.textures.textures),
             )?,
             storage("the texels", bytemuck::cast_slice(&records.textures.texels))?,
+            photons_buffer(gpu, assembled.caustics.as_deref())?,
         ];
         let counts = RecordCounts {
             refs: records.bvh.refs.len() as u32,
@@ -385,50 +413,149 @@ impl GpuScene {
             objects: records.table.objects.len() as u32,
             materials: records.materials.len() as u32,
         };
-        let object_bounds = assembled.bvh.bounds();
-        let frame_record = frame_record(scene, &scene.camera, counts, object_bounds, (0, 0));
-        let frame = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        let frame = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("the frame"),
-            contents: bytemuck::bytes_of(&frame_record),
+            size: std::mem::size_of::<GpuFrame>() as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
         });
         let layout = scene_layout(device);
-        let mut entries: Vec<wgpu::BindGroupEntry> = buffers
-            .iter()
-            .enumerate()
-            .map(|(binding, buffer)| wgpu::BindGroupEntry {
-                binding: binding as u32,
-                resource: buffer.as_entire_binding(),
-            })
-            .collect();
-        entries.push(wgpu::BindGroupEntry {
-            binding: STORAGE_BUFFERS,
-            resource: frame.as_entire_binding(),
-        });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("the scene"),
-            layout: &layout,
-            entries: &entries,
-        });
-        Ok(GpuScene {
+        let bind_group = scene_bind_group(device, &layout, &buffers, &frame);
+        let gpu_scene = GpuScene {
             layout,
             bind_group,
             frame,
             materials,
             lights,
+            buffers: buffers.into(),
+            caustics: assembled.caustics.clone(),
             counts,
-            object_bounds,
-        })
+            object_bounds: assembled.bvh.bounds(),
+        };
+        let record = gpu_scene.frame_record(scene, &scene.camera, GpuView::Shaded, (0, 0));
+        gpu.queue
+            .write_buffer(&gpu_scene.frame, 0, bytemuck::bytes_of(&record));
+        Ok(gpu_scene)
+    }
+
+    /// Uploads `caustics`, the caustic photon map the scene is traced with now (none: caustics
+    /// off), unless it is the one uploaded; the error says if it does not fit the GPU.
+    pub fn set_caustics(
+        &mut self,
+        gpu: &GpuDevice,
+        caustics: Option<&Arc<PhotonMap>>,
+    ) -> Result<(), String> {
+        let same = match (caustics, &self.caustics) {
+            (Some(new), Some(old)) => Arc::ptr_eq(new, old),
+            (new, old) => new.is_none() && old.is_none(),
+        };
+        if same {
+            return Ok(());
+        }
+        let photons = photons_buffer(gpu, caustics.map(|map| &**map))?;
+        *self
+            .buffers
+            .last_mut()
+            .expect("the photons' buffer is bound last") = photons;
+        self.bind_group = scene_bind_group(&gpu.device, &self.layout, &self.buffers, &self.frame);
+        self.caustics = caustics.cloned();
+        Ok(())
+    }
+
+    /// The frame record of `scene` (the one uploaded, edited) seen by `camera` in `view`, for a
+    /// film at `film_origin` of the image.
+    fn frame_record(
+        &self,
+        scene: &Scene,
+        camera: &Camera,
+        view: GpuView,
+        film_origin: (u32, u32),
+    ) -> GpuFrame {
+        let counts = self.counts;
+        let settings = &scene.settings;
+        let flag = |on: bool, bit: u32| if on { bit } else { 0 };
+        let opaque = scene.materials.iter().all(|m| m.filter() == Color::ZERO);
+        let fog = Fog::new(
+            scene.atmosphere,
+            self.object_bounds,
+            &scene.lights,
+            camera.eye,
+        );
+        let medium = fog.map_or(Medium::default(), |fog| fog.medium);
+        let (ball, center, radius, distance) = match fog.map(|fog| fog.backdrop) {
+            Some(Backdrop::Ball { center, radius }) => (true, center.to_array(), radius, 0.0),
+            Some(Backdrop::Distance(distance)) => (false, [0.0; 3], 0.0, distance),
+            None => (false, [0.0; 3], 0.0, 0.0),
+        };
+        let map = self.caustics.as_deref();
+        // The box around the photons (none without a map: nothing reads it then).
+        let (photons_min, photons_max) = map.map_or(([0.0; 3], [0.0; 3]), |map| {
+            (map.bounds().min.to_array(), map.bounds().max.to_array())
+        });
+        let (depth_near, depth_far) = match view {
+            GpuView::Depth { near, far } => (near, far),
+            _ => (0.0, 0.0),
+        };
+        GpuFrame {
+            eye: camera.eye.to_array(),
+            near: camera.near,
+            u: camera.u.to_array(),
+            half_height: camera.half_height,
+            v: camera.v.to_array(),
+            width: settings.width,
+            n: camera.n.to_array(),
+            height: settings.height,
+            background: settings.background.to_array(),
+            max_depth: settings.max_depth,
+            ambient: settings.ambient.to_array(),
+            min_weight: settings.min_weight,
+            flags: flag(settings.shadows, SHADOWS)
+                | flag(settings.reflections, REFLECTIONS)
+                | flag(settings.transmission, TRANSMISSION)
+                | flag(opaque, OPAQUE)
+                | flag(settings.textures, TEXTURES)
+                | flag(ball, BALL_BACKDROP)
+                | flag(map.is_some(), CAUSTICS),
+            unbounded_first: counts.refs - counts.unbounded,
+            unbounded: counts.unbounded,
+            node_count: counts.nodes,
+            light_count: counts.lights,
+            object_count: counts.objects,
+            film_left: film_origin.0,
+            film_top: film_origin.1,
+            background_image: background_record(scene),
+            fog_steps: settings.fog_steps,
+            fog_albedo: medium.albedo,
+            backdrop_distance: distance,
+            fog_color: medium.color.to_array(),
+            fog_density: medium.density,
+            backdrop_center: center,
+            backdrop_radius: radius,
+            view: view.number(),
+            depth_near,
+            depth_far,
+            caustic_gather: settings.caustic_gather,
+            photons_min,
+            photon_count: map.map_or(0, |map| map.len() as u32),
+            photons_max,
+            photon_radius: map.map_or(0.0, PhotonMap::max_radius),
+            photons_shot: map.map_or(0.0, |map| map.shot() as f32),
+            pad0: 0,
+            pad1: 0,
+            pad2: 0,
+        }
     }
 
     /// Makes the next dispatches see `scene` as it is now (its settings, materials and lights:
-    /// the scene uploaded, edited) through `camera`, on a film at `film_origin` of the image.
+    /// the scene uploaded, edited) through `camera` in `view`, on a film at `film_origin` of the
+    /// image.
     /// The error says if the scene's lights or materials changed in number.
     pub fn update(
         &self,
         gpu: &GpuDevice,
         scene: &Scene,
         camera: &Camera,
+        view: GpuView,
         film_origin: (u32, u32),
     ) -> Result<(), String> {
         let materials: Vec<GpuMaterial> = scene.materials.iter().map(GpuMaterial::from).collect();
@@ -445,7 +572,7 @@ impl GpuScene {
             ));
         }
         let queue = &gpu.queue;
-        let record = frame_record(scene, camera, self.counts, self.object_bounds, film_origin);
+        let record = self.frame_record(scene, camera, view, film_origin);
         queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(&record));
         if !materials.is_empty() {
             queue.write_buffer(&self.materials, 0, bytemuck::cast_slice(&materials));
@@ -457,60 +584,59 @@ impl GpuScene {
     }
 }
 
-/// The frame record of `scene` seen by `camera`, for a film at `film_origin` of the image;
-/// `object_bounds` is the box around its bounded objects.
-fn frame_record(
-    scene: &Scene,
-    camera: &Camera,
-    counts: RecordCounts,
-    object_bounds: Option<Aabb>,
-    film_origin: (u32, u32),
-) -> GpuFrame {
-    let settings = &scene.settings;
-    let flag = |on: bool, bit: u32| if on { bit } else { 0 };
-    let opaque = scene.materials.iter().all(|m| m.filter() == Color::ZERO);
-    let fog = Fog::new(scene.atmosphere, object_bounds, &scene.lights, camera.eye);
-    let medium = fog.map_or(Medium::default(), |fog| fog.medium);
-    let (ball, center, radius, distance) = match fog.map(|fog| fog.backdrop) {
-        Some(Backdrop::Ball { center, radius }) => (true, center.to_array(), radius, 0.0),
-        Some(Backdrop::Distance(distance)) => (false, [0.0; 3], 0.0, distance),
-        None => (false, [0.0; 3], 0.0, 0.0),
+/// A storage buffer holding `contents`, checked against the GPU's limits; never empty: an
+/// unused one holds zeros (the frame's counts say so).
+fn storage_buffer(gpu: &GpuDevice, what: &str, contents: &[u8]) -> Result<wgpu::Buffer, String> {
+    gpu.check_storage(what, contents.len() as u64)?;
+    let zeros = [0u8; 256];
+    let contents = if contents.is_empty() {
+        &zeros[..]
+    } else {
+        contents
     };
-    GpuFrame {
-        eye: camera.eye.to_array(),
-        near: camera.near,
-        u: camera.u.to_array(),
-        half_height: camera.half_height,
-        v: camera.v.to_array(),
-        width: settings.width,
-        n: camera.n.to_array(),
-        height: settings.height,
-        background: settings.background.to_array(),
-        max_depth: settings.max_depth,
-        ambient: settings.ambient.to_array(),
-        min_weight: settings.min_weight,
-        flags: flag(settings.shadows, SHADOWS)
-            | flag(settings.reflections, REFLECTIONS)
-            | flag(settings.transmission, TRANSMISSION)
-            | flag(opaque, OPAQUE)
-            | flag(settings.textures, TEXTURES)
-            | flag(ball, BALL_BACKDROP),
-        unbounded_first: counts.refs - counts.unbounded,
-        unbounded: counts.unbounded,
-        node_count: counts.nodes,
-        light_count: counts.lights,
-        object_count: counts.objects,
-        film_left: film_origin.0,
-        film_top: film_origin.1,
-        background_image: background_record(scene),
-        fog_steps: settings.fog_steps,
-        fog_albedo: medium.albedo,
-        backdrop_distance: distance,
-        fog_color: medium.color.to_array(),
-        fog_density: medium.density,
-        backdrop_center: center,
-        backdrop_radius: radius,
-    }
+    Ok(gpu
+        .device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(what),
+            contents,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        }))
+}
+
+/// The buffer of the caustic photons of `caustics` (zeros without a map).
+fn photons_buffer(gpu: &GpuDevice, caustics: Option<&PhotonMap>) -> Result<wgpu::Buffer, String> {
+    let photons = caustics.map(photon_records).unwrap_or_default();
+    storage_buffer(
+        gpu,
+        "the caustic photons",
+        bytemuck::cast_slice::<GpuPhoton, u8>(&photons),
+    )
+}
+
+/// Bind group 0: the storage `buffers` in binding order, then the `frame`.
+fn scene_bind_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    buffers: &[wgpu::Buffer],
+    frame: &wgpu::Buffer,
+) -> wgpu::BindGroup {
+    let mut entries: Vec<wgpu::BindGroupEntry> = buffers
+        .iter()
+        .enumerate()
+        .map(|(binding, buffer)| wgpu::BindGroupEntry {
+            binding: binding as u32,
+            resource: buffer.as_entire_binding(),
+        })
+        .collect();
+    entries.push(wgpu::BindGroupEntry {
+        binding: STORAGE_BUFFERS,
+        resource: frame.as_entire_binding(),
+    });
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("the scene"),
+        layout,
+        entries: &entries,
+    })
 }
 
 /// Bind group 0's layout: the scene's storage buffers, read only, then the frame.

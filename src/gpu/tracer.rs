@@ -12,8 +12,8 @@ use super::scene::{GpuScene, scene_layout, storage_entry};
 use super::shapes::SHAPES_WGSL;
 
 /// All the GPU tracer's WGSL, as one module: the scene's records, the camera and the jitter,
-/// the shapes, the BVH's walk, the textures, the shading, the media and the ray tree, and the
-/// entry points.
+/// the shapes, the BVH's walk, the textures, the caustic photons, the shading, the media and the
+/// ray tree, the debug views, and the entry points.
 pub const TRACER_WGSL: &str = concat!(
     include_str!("../../shaders/scene.wgsl"),
     include_str!("../../shaders/sampling.wgsl"),
@@ -24,10 +24,12 @@ pub const TRACER_WGSL: &str = concat!(
     include_str!("../../shaders/noise.wgsl"),
     include_str!("../../shaders/texture.wgsl"),
     include_str!("../../shaders/whitted/scattering.wgsl"),
+    include_str!("../../shaders/caustics.wgsl"),
     include_str!("../../shaders/whitted/lighting.wgsl"),
     include_str!("../../shaders/medium.wgsl"),
     include_str!("../../shaders/whitted/fog.wgsl"),
     include_str!("../../shaders/whitted/trace.wgsl"),
+    include_str!("../../shaders/views.wgsl"),
     include_str!("../../shaders/trace_samples.wgsl"),
     include_str!("../../shaders/probe.wgsl"),
 );

@@ -5,6 +5,8 @@
 use strum::VariantNames;
 
 use super::legend::{Legend, depth_range};
+#[cfg(feature = "gpu")]
+use crate::gpu::scene::GpuView;
 use crate::scene::Scene;
 use crate::whitted::Tracer;
 
@@ -49,6 +51,28 @@ pub enum DebugView {
     RayCount,
     /// BVH nodes visited plus primitives tested by all the pixel's rays: heat map, log scale.
     BvhCost,
+}
+
+#[cfg(feature = "gpu")]
+impl DebugView {
+    /// The view as the GPU tracer draws it, or why it is drawn on the CPU only: the heat maps,
+    /// which look at the whole ray tree.
+    pub fn on_gpu(self, tracer: &Tracer) -> Result<GpuView, String> {
+        Ok(match self {
+            DebugView::Shaded => GpuView::Shaded,
+            DebugView::Normals => GpuView::Normals,
+            DebugView::Depth => {
+                let (near, far) = depth_range(tracer);
+                GpuView::Depth { near, far }
+            }
+            DebugView::Uv => GpuView::Uv,
+            DebugView::ObjectId => GpuView::Object,
+            DebugView::MaterialId => GpuView::Material,
+            DebugView::TreeDepth | DebugView::RayCount | DebugView::BvhCost => {
+                return Err(format!("the {self} view is drawn on the CPU only"));
+            }
+        })
+    }
 }
 
 impl DebugView {

@@ -14,8 +14,9 @@ use super::plan::{Pass, PassGrid, passes, take_snapshot, unwatched_passes};
 use crate::color::Color;
 use crate::film::Film;
 use crate::gpu::device::{ComputeEntry, GpuDevice};
-use crate::gpu::scene::GpuScene;
+use crate::gpu::scene::{GpuScene, GpuView};
 use crate::gpu::tracer::{PixelSample, SampleColor, pipeline, run_list};
+use crate::photon_map::PhotonMap;
 use crate::render::Assembled;
 use crate::scene::Scene;
 use crate::settings::RenderSettings;
@@ -28,8 +29,9 @@ const BAND: u32 = 8;
 /// systems reset a GPU that does not answer, and short enough to stop soon after a cancel.
 const DISPATCH_TIME: Duration = Duration::from_millis(100);
 
-/// A scene's objects, BVH, materials and lights on the GPU, ready to render it from any camera
-/// with any of the settings the frame record carries (the switches, depth, weights, sizes).
+/// A scene's objects, BVH, materials, lights and caustic photons on the GPU, ready to render it
+/// from any camera with any of the settings the frame record carries (the switches, depth,
+/// weights, sizes).
 pub struct GpuRenderer {
     gpu: Arc<GpuDevice>,
     scene: GpuScene,
@@ -49,12 +51,19 @@ impl GpuRenderer {
         &self.gpu
     }
 
-    /// Renders `scene` (the one uploaded, with its camera and settings now) into `film` pass
-    /// after pass as [`super::render`] does on the CPU, calling `on_pass` after each. The error
-    /// says why the GPU failed.
+    /// Takes `caustics` as the scene's caustic photon map from now on (none: caustics off),
+    /// uploading it unless it is the one the GPU holds; the error says if it does not fit.
+    pub fn set_caustics(&mut self, caustics: Option<&Arc<PhotonMap>>) -> Result<(), String> {
+        self.scene.set_caustics(&self.gpu, caustics)
+    }
+
+    /// Renders `scene` (the one uploaded, with its camera and settings now) in `view` into
+    /// `film` pass after pass as [`super::render`] does on the CPU, calling `on_pass` after
+    /// each. The error says why the GPU failed.
     pub fn render(
         &self,
         scene: &Scene,
+        view: GpuView,
         film: &Film,
         control: &RenderControl,
         on_pass: impl FnMut(&PassStats),
@@ -65,7 +74,7 @@ impl GpuRenderer {
             settings.samples,
             settings.aa_threshold > 0.0,
         );
-        self.run(scene, &plan, film, control, on_pass)
+        self.run(scene, view, &plan, film, control, on_pass)
     }
 
     /// [`Self::render`] for a film nobody looks at before it is finished, as
@@ -73,25 +82,27 @@ impl GpuRenderer {
     pub fn render_unwatched(
         &self,
         scene: &Scene,
+        view: GpuView,
         film: &Film,
         control: &RenderControl,
     ) -> Result<Result<RenderStats, Cancelled>, String> {
         let settings = &scene.settings;
         let plan = unwatched_passes(settings.samples, settings.aa_threshold > 0.0);
-        self.run(scene, &plan, film, control, |_| {})
+        self.run(scene, view, &plan, film, control, |_| {})
     }
 
     /// Runs `plan`; a GPU failure ends the render with its message.
     fn run(
         &self,
         scene: &Scene,
+        view: GpuView,
         plan: &[Pass],
         film: &Film,
         control: &RenderControl,
         on_pass: impl FnMut(&PassStats),
     ) -> Result<Result<RenderStats, Cancelled>, String> {
         self.scene
-            .update(&self.gpu, scene, &scene.camera, film.origin())?;
+            .update(&self.gpu, scene, &scene.camera, view, film.origin())?;
         let settings = &scene.settings;
         let mut shown = Vec::new();
         let mut failure = None;

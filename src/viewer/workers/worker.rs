@@ -12,7 +12,7 @@ use std::time::Instant;
 
 use raylab::film::Film;
 use raylab::gpu::device::GpuDevice;
-use raylab::inspect::{DebugView, Legend};
+use raylab::inspect::Legend;
 use raylab::progressive::{self, PassStats, RenderControl};
 use raylab::render::Device;
 
@@ -215,22 +215,19 @@ fn run(
         }
         let cpu = format!("cpu: {} threads", pool.current_num_threads());
         if job.setup.device == Device::Gpu {
-            let shaded = job.setup.debug_view == DebugView::Shaded;
+            let view = job.setup.debug_view.on_gpu(&tracer);
             let gpu = gpu.get_or_insert_with(|| GpuDevice::new().map(Arc::new));
-            let on_gpu = match gpu {
-                Ok(_) if !shaded => Err(format!(
-                    "the {} view traces on the CPU",
-                    job.setup.debug_view
-                )),
-                Ok(gpu) => working.on_gpu(gpu),
-                Err(e) => Err(e.clone()),
+            let on_gpu = match (gpu, view) {
+                (Ok(gpu), Ok(view)) => working.on_gpu(gpu).map(|on_gpu| (on_gpu, view)),
+                (Err(e), _) => Err(e.clone()),
+                (_, Err(why)) => Err(why),
             };
             match on_gpu {
-                Ok((copy, renderer)) => {
+                Ok(((copy, renderer), view)) => {
                     job.report
                         .set_device(format!("gpu: {}", renderer.gpu().name()));
                     let rendered = std::panic::catch_unwind(AssertUnwindSafe(|| {
-                        renderer.render(&copy.scene, &job.film, &job.control, |pass| {
+                        renderer.render(&copy.scene, view, &job.film, &job.control, |pass| {
                             job.report.push_pass(pass)
                         })
                     }));

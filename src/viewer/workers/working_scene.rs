@@ -58,14 +58,16 @@ impl WorkingScene {
     }
 
     /// The copy (as the last [`Self::tracer`] made it) and the renderer of its scene on `gpu`,
-    /// uploaded the first time it is asked for; the error says why the GPU does not render it.
+    /// uploaded the first time it is asked for, with the copy's caustic photon map; the error
+    /// says why the GPU does not render it.
     pub fn on_gpu(&mut self, gpu: &Arc<GpuDevice>) -> Result<(&Assembled, &GpuRenderer), String> {
         let (_, copy) = self.copy.as_ref().ok_or("no scene to upload to the GPU")?;
         let renderer = self
             .on_gpu
             .get_or_insert_with(|| GpuRenderer::new(Arc::clone(gpu), copy))
-            .as_ref()
+            .as_mut()
             .map_err(|e| e.clone())?;
+        renderer.set_caustics(copy.caustics.as_ref())?;
         Ok((copy, renderer))
     }
 }
