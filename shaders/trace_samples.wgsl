@@ -11,7 +11,8 @@ struct PixelSample {
     pad: u32,
 }
 
-// What a sample's tree gave: its colour and the rays it traced.
+// What a sample's tree gave: its colour and the rays it traced, or that the driver cut its
+// work short (`cut_short`, 1).
 struct SampleColor {
     color: vec3<f32>,
     primary_hits: u32,
@@ -19,6 +20,10 @@ struct SampleColor {
     reflected: u32,
     transmitted: u32,
     over_budget: u32,
+    cut_short: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
 }
 
 @group(1) @binding(0) var<storage, read> samples: array<PixelSample>;
@@ -40,5 +45,5 @@ fn trace_samples(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let traced = trace_eye(eye_ray_dir(x, y, offset));
     let c = traced.counts;
-    colors[i] = SampleColor(traced.color, c.primary_hits, c.shadow, c.reflected, c.transmitted, c.over_budget);
+    colors[i] = SampleColor(traced.color, c.primary_hits, c.shadow, c.reflected, c.transmitted, c.over_budget, u32(cut_short), 0u, 0u, 0u);
 }

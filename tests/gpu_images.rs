@@ -18,9 +18,12 @@ use raylab::gpu::device::GpuDevice;
 use raylab::gpu::scene::GpuView;
 use raylab::inspect::DebugView;
 use raylab::progressive::gpu::GpuRenderer;
-use raylab::progressive::{RenderControl, RenderStats, Shaded, render_image, render_image_with};
+use raylab::progressive::{
+    RenderControl, RenderStats, Shaded, Shader, render_image, render_image_with,
+};
 use raylab::render::assemble;
 use raylab::scene::Scene;
+use raylab::whitted::Tracer;
 use strum::IntoEnumIterator;
 
 const SIZE: (u32, u32) = (160, 120);
@@ -101,7 +104,7 @@ fn compare_all(keep: impl Fn(&Scene) -> bool, adjust: impl Fn(&mut Scene)) {
         let assembled = assemble(scene).unwrap();
         let renderer = GpuRenderer::new(Arc::clone(&gpu), &assembled)
             .unwrap_or_else(|e| panic!("{name}: {e}"));
-        let (on_gpu, stats) = gpu_render(&renderer, &assembled.scene);
+        let (on_gpu, stats) = gpu_render(&renderer, &assembled.tracer());
         let (cpu_pixels, cpu_stats) = render_image(&assembled.tracer());
         let on_cpu = to_srgb8(&cpu_pixels);
         let (mean, close) = difference(&on_gpu, &on_cpu);
@@ -149,17 +152,22 @@ fn every_textured_scene_renders_on_the_gpu_as_on_the_cpu_with_textures_off() {
     compare_all(textured, |scene| scene.settings.textures = false);
 }
 
-/// `scene` rendered by `renderer` (which holds it on the GPU), as 8-bit sRGB, and what it
-/// traced.
-fn gpu_render(renderer: &GpuRenderer, scene: &Scene) -> (Vec<u8>, RenderStats) {
-    gpu_render_view(renderer, scene, GpuView::Shaded)
+/// `tracer`'s scene rendered by `renderer` (which holds it on the GPU), as 8-bit sRGB, and what
+/// it traced.
+fn gpu_render(renderer: &GpuRenderer, tracer: &Tracer) -> (Vec<u8>, RenderStats) {
+    gpu_render_view(renderer, tracer, (GpuView::Shaded, &Shaded))
 }
 
-/// [`gpu_render`] in `view`.
-fn gpu_render_view(renderer: &GpuRenderer, scene: &Scene, view: GpuView) -> (Vec<u8>, RenderStats) {
-    let film = Film::new(scene.settings.width, scene.settings.height);
+/// [`gpu_render`] in `view` (on the GPU, and on the CPU for the samples the driver cuts short).
+fn gpu_render_view(
+    renderer: &GpuRenderer,
+    tracer: &Tracer,
+    view: (GpuView, &dyn Shader),
+) -> (Vec<u8>, RenderStats) {
+    let settings = &tracer.scene.settings;
+    let film = Film::new(settings.width, settings.height);
     let stats = renderer
-        .render(scene, view, &film, &RenderControl::default(), |_| {})
+        .render(tracer, view, &film, &RenderControl::default(), |_| {})
         .unwrap()
         .unwrap();
     (to_srgb8(&film.pixels()), stats)
@@ -197,7 +205,7 @@ fn the_first_hit_debug_views_render_on_the_gpu_as_on_the_cpu() {
                     continue;
                 }
             };
-            let (gpu_pixels, stats) = gpu_render_view(&renderer, &assembled.scene, on_gpu);
+            let (gpu_pixels, stats) = gpu_render_view(&renderer, &tracer, (on_gpu, &view));
             let (cpu_pixels, cpu_stats) = render_image_with(&tracer, &view);
             let (mean, close) = difference(&gpu_pixels, &to_srgb8(&cpu_pixels));
             assert!(
@@ -230,7 +238,7 @@ fn edited_materials_lights_camera_and_settings_reach_the_scene_on_the_gpu() {
     (scene.settings.width, scene.settings.height) = SIZE;
     let mut assembled = assemble(scene).unwrap();
     let renderer = GpuRenderer::new(Arc::clone(&gpu), &assembled).unwrap();
-    let (before, _) = gpu_render(&renderer, &assembled.scene);
+    let (before, _) = gpu_render(&renderer, &assembled.tracer());
     // Edited as the viewer edits its copy of the scene: the same renderer, no new upload.
     let scene = &mut assembled.scene;
     scene.materials[0].color = Color::new(0.1, 0.7, 0.2);
@@ -241,7 +249,7 @@ fn edited_materials_lights_camera_and_settings_reach_the_scene_on_the_gpu() {
     let mut camera = scene.camera.spec;
     camera.eye += Vec3::new(0.5, 0.3, 0.0);
     scene.camera = Camera::new(camera).unwrap();
-    let (after, _) = gpu_render(&renderer, &assembled.scene);
+    let (after, _) = gpu_render(&renderer, &assembled.tracer());
     let (cpu_pixels, _) = render_image(&assembled.tracer());
     let (mean, close) = difference(&after, &to_srgb8(&cpu_pixels));
     assert!(
@@ -276,9 +284,13 @@ fn the_first_block_pass_paints_each_block_with_its_top_left_pixel_as_the_cpu_doe
     let on_gpu = first_pass(&|film, after_pass| {
         let control = RenderControl::default();
         renderer
-            .render(&assembled.scene, GpuView::Shaded, film, &control, |_| {
-                after_pass()
-            })
+            .render(
+                &assembled.tracer(),
+                (GpuView::Shaded, &Shaded),
+                film,
+                &control,
+                |_| after_pass(),
+            )
             .unwrap()
             .unwrap();
     });

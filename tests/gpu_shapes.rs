@@ -837,7 +837,11 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
                 shadow,
                 reflected,
                 transmitted,
-                over_budget
+                over_budget,
+                cut_short,
+                pad0,
+                pad1,
+                pad2
             ]
         ),
         rust_layout!("ProbeRay", ProbeRay, [origin, t_min, dir, t_max]),

@@ -71,6 +71,13 @@ fn enter_child(node: WideNode, k: u32, ray: WalkRay, t_min: f32, t_max: f32) -> 
     return -1.0;
 }
 
+// Whether a loop of this invocation ended without reaching its end: the driver cut the work
+// short. A GPU driver may bound the loop iterations a shader runs (Mesa's llvmpipe and lavapipe
+// end every loop once an invocation has run 65535 iterations in all); the renderer then traces
+// the sample again on the CPU. Set where a loop that only ends by `return` or `break` falls
+// through.
+var<private> cut_short: bool;
+
 // What a walk looks for: the closest hit, or what a shadow ray lets through.
 const FIND_CLOSEST: u32 = 0u;
 const FIND_SHADOW: u32 = 1u;
@@ -264,6 +271,7 @@ fn walk(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max_in: f32, find: u32)
             return result;
         }
     }
+    cut_short = true;
     return result;
 }
 

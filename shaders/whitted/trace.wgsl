@@ -108,6 +108,8 @@ fn trace_eye(dir: vec3<f32>) -> Traced {
     var in_scatter: InScatter;
     var shading: Shading;
     shading.next_light = frame.light_count;
+    // Whether the loop ended by its own `break` (see `cut_short`).
+    var finished = false;
     loop {
         // The ray to cast: a shadow ray, or the tree's next ray, which the eye ray alone
         // starts at the image plane.
@@ -128,6 +130,7 @@ fn trace_eye(dir: vec3<f32>) -> Traced {
             counts.shadow++;
         } else {
             if !ray_waits && !next_branch(&stack, &size, &ray, &counts) {
+                finished = true;
                 break;
             }
             ray_waits = false;
@@ -170,6 +173,7 @@ fn trace_eye(dir: vec3<f32>) -> Traced {
         let surface = surface_at(ray.origin, ray.dir, hit);
         if viewing {
             color = view_color(hit, surface);
+            finished = true;
             break;
         }
         // `Tracer::shade`: the shadowless part of the local colour now, its lights by the turns
@@ -201,6 +205,9 @@ fn trace_eye(dir: vec3<f32>) -> Traced {
                 size++;
             }
         }
+    }
+    if !finished {
+        cut_short = true;
     }
     return Traced(color, counts);
 }

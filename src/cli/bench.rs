@@ -25,7 +25,7 @@ use raylab::large_mesh::{bumpy_sphere_scene, check_bumpy_triangles};
 use raylab::output::{check_writable, write_atomically};
 use raylab::photon::{Caustics, PhotonMap};
 use raylab::progressive::gpu::GpuRenderer;
-use raylab::progressive::{self, RenderControl, RenderStats};
+use raylab::progressive::{self, RenderControl, RenderStats, Shaded};
 use raylab::render::{Assembled, Device};
 use raylab::scene::Scene;
 use raylab::whitted::Tracer;
@@ -182,7 +182,7 @@ fn bench_scene(
             renders_off.push(pool.install(|| progressive::render_image(&plain)).1.time);
         }
         let stats = match &gpu_renderer {
-            Some(renderer) => render_on_gpu(renderer, &assembled.scene)?,
+            Some(renderer) => render_on_gpu(renderer, &tracer)?,
             None => pool.install(|| progressive::render_image(&tracer)).1,
         };
         renders.push(stats.time);
@@ -210,12 +210,14 @@ fn bench_scene(
     })
 }
 
-/// Renders `scene` on the GPU pass after pass, as [`progressive::render_image`] does on the CPU.
-fn render_on_gpu(renderer: &GpuRenderer, scene: &Scene) -> Result<RenderStats, String> {
-    let film = Film::new(scene.settings.width, scene.settings.height);
+/// Renders `tracer`'s scene on the GPU pass after pass, as [`progressive::render_image`] does
+/// on the CPU.
+fn render_on_gpu(renderer: &GpuRenderer, tracer: &Tracer) -> Result<RenderStats, String> {
+    let settings = &tracer.scene.settings;
+    let film = Film::new(settings.width, settings.height);
     let control = RenderControl::default();
     renderer
-        .render(scene, GpuView::Shaded, &film, &control, |_| {})?
+        .render(tracer, (GpuView::Shaded, &Shaded), &film, &control, |_| {})?
         .map_err(|_| "the render was cancelled".to_string())
 }
 

@@ -323,9 +323,9 @@ fn render_frame(
                 Backend::Cpu(pool) => {
                     Ok(pool.install(|| progressive::render_unwatched(tracer, view, film, control)))
                 }
-                Backend::Gpu(renderer) => view
-                    .on_gpu(tracer)
-                    .and_then(|view| renderer.render_unwatched(tracer.scene, view, film, control)),
+                Backend::Gpu(renderer) => view.on_gpu(tracer).and_then(|on_gpu| {
+                    renderer.render_unwatched(tracer, (on_gpu, view), film, control)
+                }),
             };
             // Should this thread panic instead, dropping `done` ends the wait too.
             let _ = done.send(());

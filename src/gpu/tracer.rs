@@ -47,7 +47,9 @@ pub struct PixelSample {
     pub pad: u32,
 }
 
-/// WGSL's `SampleColor`: a sample's colour and the rays its tree traced.
+/// WGSL's `SampleColor`: a sample's colour and the rays its tree traced, or that the driver
+/// cut its work short (`cut_short` 1: a driver may bound the loop iterations of a shader, as
+/// Mesa's llvmpipe does at 65535, and the sample must be traced again).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct SampleColor {
@@ -57,6 +59,10 @@ pub struct SampleColor {
     pub reflected: u32,
     pub transmitted: u32,
     pub over_budget: u32,
+    pub cut_short: u32,
+    pub pad0: u32,
+    pub pad1: u32,
+    pub pad2: u32,
 }
 
 /// The compute pipeline of WGSL entry point `entry` of the GPU tracer's module on `gpu`: bind

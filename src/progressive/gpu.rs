@@ -3,14 +3,17 @@
 //! traced on the GPU ([`crate::gpu::tracer`]) a few bands per dispatch, so that no dispatch
 //! runs long enough for an operating system's GPU watchdog; the colours come back and go into
 //! the film as the CPU's do (a block painted for a pixel's first sample, otherwise a sample
-//! added to its mean). Between dispatches the render waits while paused and stops when
-//! cancelled.
+//! added to its mean). A sample whose work the GPU's driver cut short (a driver may bound the
+//! loop iterations of a shader, as Mesa's software Vulkan does) is traced again on the CPU.
+//! Between dispatches the render waits while paused and stops when cancelled.
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use super::control::{Cancelled, PassStats, RenderControl, RenderStats, run_plan};
+use super::cpu::Shader;
 use super::plan::{Pass, PassGrid, passes, take_snapshot, unwatched_passes};
+use crate::camera::PIXEL_CENTRE;
 use crate::color::Color;
 use crate::film::Film;
 use crate::gpu::device::{ComputeEntry, GpuDevice};
@@ -18,9 +21,9 @@ use crate::gpu::scene::{GpuScene, GpuView};
 use crate::gpu::tracer::{PixelSample, SampleColor, pipeline, run_list};
 use crate::photon_map::PhotonMap;
 use crate::render::Assembled;
-use crate::scene::Scene;
-use crate::settings::RenderSettings;
+use crate::sampling::jitter;
 use crate::stats::RayCounts;
+use crate::whitted::Tracer;
 
 /// Rows of a pass's grid in a band, as the CPU's sweep takes them.
 const BAND: u32 = 8;
@@ -57,58 +60,65 @@ impl GpuRenderer {
         self.scene.set_caustics(&self.gpu, caustics)
     }
 
-    /// Renders `scene` (the one uploaded, with its camera and settings now) in `view` into
-    /// `film` pass after pass as [`super::render`] does on the CPU, calling `on_pass` after
-    /// each. The error says why the GPU failed.
+    /// Renders `tracer`'s scene (the one uploaded, with its camera and settings now) in `view`
+    /// into `film` pass after pass as [`super::render`] does on the CPU, calling `on_pass`
+    /// after each. `shader` is the same view on the CPU, for the samples the driver cuts short.
+    /// The error says why the GPU failed.
     pub fn render(
         &self,
-        scene: &Scene,
-        view: GpuView,
+        tracer: &Tracer,
+        (view, shader): (GpuView, &dyn Shader),
         film: &Film,
         control: &RenderControl,
         on_pass: impl FnMut(&PassStats),
     ) -> Result<Result<RenderStats, Cancelled>, String> {
-        let settings = &scene.settings;
+        let settings = &tracer.scene.settings;
         let plan = passes(
             settings.block_size,
             settings.samples,
             settings.aa_threshold > 0.0,
         );
-        self.run(scene, view, &plan, film, control, on_pass)
+        self.run(tracer, (view, shader), &plan, film, control, on_pass)
     }
 
     /// [`Self::render`] for a film nobody looks at before it is finished, as
     /// [`super::render_unwatched`].
     pub fn render_unwatched(
         &self,
-        scene: &Scene,
-        view: GpuView,
+        tracer: &Tracer,
+        (view, shader): (GpuView, &dyn Shader),
         film: &Film,
         control: &RenderControl,
     ) -> Result<Result<RenderStats, Cancelled>, String> {
-        let settings = &scene.settings;
+        let settings = &tracer.scene.settings;
         let plan = unwatched_passes(settings.samples, settings.aa_threshold > 0.0);
-        self.run(scene, view, &plan, film, control, |_| {})
+        self.run(tracer, (view, shader), &plan, film, control, |_| {})
     }
 
     /// Runs `plan`; a GPU failure ends the render with its message.
     fn run(
         &self,
-        scene: &Scene,
-        view: GpuView,
+        tracer: &Tracer,
+        (view, shader): (GpuView, &dyn Shader),
         plan: &[Pass],
         film: &Film,
         control: &RenderControl,
         on_pass: impl FnMut(&PassStats),
     ) -> Result<Result<RenderStats, Cancelled>, String> {
+        let scene = tracer.scene;
         self.scene
             .update(&self.gpu, scene, &scene.camera, view, film.origin())?;
-        let settings = &scene.settings;
         let mut shown = Vec::new();
         let mut failure = None;
         let mut batch_bands = 1;
         let stats = run_plan(plan, control, on_pass, |pass| {
-            let result = self.run_pass(settings, film, control, pass, &mut shown, &mut batch_bands);
+            let sweep = Sweep {
+                tracer,
+                shader,
+                film,
+                control,
+            };
+            let result = self.run_pass(&sweep, pass, &mut shown, &mut batch_bands);
             result.map_err(|e| {
                 if let Some(message) = e {
                     failure = Some(message);
@@ -127,13 +137,13 @@ impl GpuRenderer {
     /// takes). `Err(None)` when cancelled, `Err(Some(message))` when the GPU failed.
     fn run_pass(
         &self,
-        settings: &RenderSettings,
-        film: &Film,
-        control: &RenderControl,
+        sweep: &Sweep,
         pass: Pass,
         shown: &mut Vec<[u8; 3]>,
         batch_bands: &mut u32,
     ) -> Result<PassStats, Option<String>> {
+        let Sweep { film, control, .. } = *sweep;
+        let settings = &sweep.tracer.scene.settings;
         let started = Instant::now();
         if let Pass::Refine(_) = pass {
             take_snapshot(film, shown);
@@ -164,6 +174,15 @@ impl GpuRenderer {
             *batch_bands = next_batch(*batch_bands, dispatched.elapsed());
             let mut counts = RayCounts::default();
             for (s, c) in samples.iter().zip(&colors) {
+                if c.cut_short != 0 {
+                    let color = sweep.trace_on_cpu(s, &mut counts);
+                    if s.k == 0 {
+                        film.fill_block(s.x, s.y, step, color);
+                    } else {
+                        film.add_sample(s.x, s.y, color);
+                    }
+                    continue;
+                }
                 let color = Color::from_array(c.color);
                 if s.k == 0 {
                     film.fill_block(s.x, s.y, step, color);
@@ -187,6 +206,34 @@ impl GpuRenderer {
             rays: control.rays() - rays_before,
             time: started.elapsed(),
         })
+    }
+}
+
+/// What a pass sweeps: the tracer and the CPU's shader of the view (for the samples the GPU's
+/// driver cuts short), the film and the control.
+struct Sweep<'a> {
+    tracer: &'a Tracer<'a>,
+    shader: &'a dyn Shader,
+    film: &'a Film,
+    control: &'a RenderControl,
+}
+
+impl Sweep<'_> {
+    /// The colour of sample `s` traced on the CPU, as the CPU sweep traces it, counting its
+    /// rays into `counts`.
+    fn trace_on_cpu(&self, s: &PixelSample, counts: &mut RayCounts) -> Color {
+        let size = self.film.image_size();
+        let (left, top) = self.film.origin();
+        let pixel = (left + s.x, top + s.y);
+        let offset = if s.k == 0 {
+            PIXEL_CENTRE
+        } else {
+            jitter(pixel.0, pixel.1, s.k)
+        };
+        let ray = self.tracer.scene.camera.eye_ray(pixel, offset, size);
+        let mut color = [Color::ZERO];
+        self.shader.shade(self.tracer, &[ray], &mut color, counts);
+        color[0]
     }
 }
 

@@ -226,8 +226,10 @@ fn run(
                 Ok(((copy, renderer), view)) => {
                     job.report
                         .set_device(format!("gpu: {}", renderer.gpu().name()));
+                    let cpu_view = &job.setup.debug_view;
                     let rendered = std::panic::catch_unwind(AssertUnwindSafe(|| {
-                        renderer.render(&copy.scene, view, &job.film, &job.control, |pass| {
+                        let (tracer, film) = (&copy.tracer(), &job.film);
+                        renderer.render(tracer, (view, cpu_view), film, &job.control, |pass| {
                             job.report.push_pass(pass)
                         })
                     }));
