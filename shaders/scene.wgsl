@@ -15,7 +15,8 @@
 // The sRGB decode table (the bits of 256 floats), then every image's texels.
 @group(0) @binding(10) var<storage, read> texels: array<u32>;
 @group(0) @binding(11) var<storage, read> photons: array<Photon>;
-@group(0) @binding(12) var<uniform> frame: Frame;
+// A storage buffer, not a uniform one: lavapipe would compile the tracer anew for its values.
+@group(0) @binding(12) var<storage, read> frame: Frame;
 
 // Switches of `Frame::flags`.
 const SHADOWS: u32 = 1u;

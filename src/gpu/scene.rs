@@ -347,7 +347,9 @@ struct RecordCounts {
     materials: u32,
 }
 
-/// Storage buffers in bind group 0, and the frame's uniform buffer after them.
+/// Storage buffers in bind group 0 before the frame's. The frame is a storage buffer too, not a
+/// uniform one: Mesa's lavapipe inlines a uniform buffer's values into the shader, so that it
+/// compiled the tracer again (for minutes) for every scene.
 const STORAGE_BUFFERS: u32 = 12;
 
 impl GpuScene {
@@ -357,8 +359,8 @@ impl GpuScene {
         let scene = &assembled.scene;
         let records = SceneRecords::new(scene, &assembled.bvh)?;
         let limits = gpu.device.limits();
-        // Bind group 1 holds two more: the work's input and output.
-        let needed = STORAGE_BUFFERS + 2;
+        // The frame's, and in bind group 1 two more: the work's input and output.
+        let needed = STORAGE_BUFFERS + 3;
         if limits.max_storage_buffers_per_shader_stage < needed {
             return Err(format!(
                 "the GPU tracer needs {needed} storage buffers per shader stage; this GPU allows {}",
@@ -416,7 +418,7 @@ impl GpuScene {
         let frame = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("the frame"),
             size: std::mem::size_of::<GpuFrame>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let layout = scene_layout(device);
@@ -639,21 +641,11 @@ fn scene_bind_group(
     })
 }
 
-/// Bind group 0's layout: the scene's storage buffers, read only, then the frame.
+/// Bind group 0's layout: the scene's storage buffers, read only, the frame's last.
 pub(super) fn scene_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let mut entries: Vec<wgpu::BindGroupLayoutEntry> = (0..STORAGE_BUFFERS)
+    let entries: Vec<wgpu::BindGroupLayoutEntry> = (0..=STORAGE_BUFFERS)
         .map(|binding| storage_entry(binding, true))
         .collect();
-    entries.push(wgpu::BindGroupLayoutEntry {
-        binding: STORAGE_BUFFERS,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    });
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("the scene"),
         entries: &entries,
