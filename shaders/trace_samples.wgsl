@@ -3,29 +3,6 @@
 // its pixel (sample 0 at the centre, sample k ≥ 1 at its jittered point), traced by the ray
 // tree. Bind group 1 holds the list and the colours.
 
-// Sample `k` of film pixel (x, y).
-struct PixelSample {
-    x: u32,
-    y: u32,
-    k: u32,
-    pad: u32,
-}
-
-// What a sample's tree gave: its colour and the rays it traced, or that the driver cut its
-// work short (`cut_short`, 1).
-struct SampleColor {
-    color: vec3<f32>,
-    primary_hits: u32,
-    shadow: u32,
-    reflected: u32,
-    transmitted: u32,
-    over_budget: u32,
-    cut_short: u32,
-    pad0: u32,
-    pad1: u32,
-    pad2: u32,
-}
-
 @group(1) @binding(0) var<storage, read> samples: array<PixelSample>;
 @group(1) @binding(1) var<storage, read_write> colors: array<SampleColor>;
 

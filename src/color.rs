@@ -46,7 +46,7 @@ pub fn to_srgb8(pixels: &[Color]) -> Vec<u8> {
 /// Bucket of a linear value in [0, 1): its bit pattern without the lowest bits. Each bucket is
 /// 1/128 of an octave wide, narrower than the gap between two byte thresholds, so it holds at
 /// most one of them.
-const BUCKET_SHIFT: u32 = 16;
+pub const BUCKET_SHIFT: u32 = 16;
 
 /// [`srgb8`] by table, for whole images: for each bucket of linear values, the byte of its
 /// lowest value and the value (if any) from which the byte is one more. It gives exactly
@@ -84,6 +84,13 @@ impl SrgbEncoder {
             })
             .collect();
         SrgbEncoder { buckets }
+    }
+
+    /// The table: for each bucket of linear values in [0, 1) (the bits of a value shifted right
+    /// by [`BUCKET_SHIFT`]), the byte of its lowest value and the value (infinity: none) from
+    /// which the byte is one more.
+    pub fn buckets(&self) -> &[(u8, f32)] {
+        &self.buckets
     }
 
     /// [`srgb8`] of `v`.

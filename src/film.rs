@@ -102,6 +102,12 @@ impl Film {
         self.channels[i + 2].store(c.z.to_bits(), Ordering::Relaxed);
     }
 
+    /// Sets pixel (x, y) to colour `c`, the mean of `samples` samples.
+    pub fn put(&self, x: u32, y: u32, c: Color, samples: u32) {
+        self.set(x, y, c);
+        self.samples[self.pixel(x, y)].store(samples, Ordering::Relaxed);
+    }
+
     /// Paints the block of `size × size` pixels whose top-left corner is (x, y), clipped at the
     /// image's edges, with the colour of the one sample taken at (x, y): that pixel now holds one
     /// sample, the others none.

@@ -25,12 +25,12 @@
 //!   [`photon`] fills the photon map beforehand by shooting photons from the lights with the
 //!   same tracer.
 //! - Rendering: [`render`] assembles what a render needs from a scene (its BVH, its caustic
-//!   photons, the tracer over them) for every program; [`gpu`] (under the `gpu` feature) holds
-//!   the GPU tracer's parts, each the twin of a CPU part above and tested against it; a
-//!   [`film::Film`] holds the image that [`progressive`] refines pass after pass (the plan and
-//!   control of any backend, the CPU sweep on all cores, the GPU sweep), each CPU pixel sample
-//!   coloured by a [`progressive::Shader`] (the shaded image is [`progressive::Shaded`]);
-//!   [`formats::image`] saves it.
+//!   photons, the tracer over them) for every program; a [`film::Film`] holds the image; [`gpu`]
+//!   (under the `gpu` feature) holds the GPU tracer's parts, each the twin of a CPU part above
+//!   and tested against it, the film included; [`progressive`] refines the image pass after
+//!   pass (the plan and control of any backend, the CPU sweep on all cores, the GPU sweep), each
+//!   CPU pixel sample coloured by a [`progressive::Shader`] (the shaded image is
+//!   [`progressive::Shaded`]); [`formats::image`] saves it.
 //! - Looking inside: [`inspect`] records one pixel's ray tree with a tree observer and renders
 //!   debug views as shaders of the same renderer. Nothing above depends on it.
 //!

@@ -709,15 +709,19 @@ fn wgsl_layout(module: &naga::Module, name: &str) -> (u32, Vec<(String, u32)>) {
 
 /// The tracer's whole WGSL, parsed and validated by naga.
 fn tracer_module() -> naga::Module {
-    let source = [SHAPES_WGSL, TRACER_WGSL].concat();
-    let module = naga::front::wgsl::parse_str(&source)
-        .unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
+    parsed(&[SHAPES_WGSL, TRACER_WGSL].concat())
+}
+
+/// `source` parsed and validated by naga.
+fn parsed(source: &str) -> naga::Module {
+    let module = naga::front::wgsl::parse_str(source)
+        .unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
     naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::all(),
     )
     .validate(&module)
-    .unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
+    .unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
     module
 }
 
@@ -735,6 +739,7 @@ macro_rules! rust_layout {
 #[test]
 fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
     use raylab::gpu::bvh::{GpuTriangle, GpuWideNode};
+    use raylab::gpu::film::{FILM_WGSL, FilmPass, FilmPixel, ShowRows, Tally};
     use raylab::gpu::probe::ProbeHit;
     use raylab::gpu::scene::{
         GpuFrame, GpuLight, GpuMaterial, GpuTriangleShading, GpuVertexAttributes,
@@ -853,8 +858,36 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
         ),
         rust_layout!("TextureProbe", TextureProbe, [point, texture, uv, pad]),
     ];
-    for (name, rust_size, rust_fields) in cases {
-        let (wgsl_size, wgsl_fields) = wgsl_layout(&module, name);
+    let film = parsed(FILM_WGSL);
+    let film_cases = [
+        rust_layout!("PixelSample", PixelSample, [x, y, k, pad]),
+        rust_layout!("FilmPixel", FilmPixel, [color, samples]),
+        rust_layout!("FilmPass", FilmPass, [width, height, step, pad]),
+        rust_layout!(
+            "Tally",
+            Tally,
+            [
+                primary,
+                primary_hits,
+                shadow,
+                reflected,
+                transmitted,
+                over_budget,
+                cut_short,
+                pad
+            ]
+        ),
+        rust_layout!(
+            "ShowRows",
+            ShowRows,
+            [width, first_row, rows, row_texels, scale, curve, pad0, pad1]
+        ),
+    ];
+    let tracer_cases = cases.into_iter().map(|case| (&module, case));
+    for (module, (name, rust_size, rust_fields)) in
+        tracer_cases.chain(film_cases.into_iter().map(|case| (&film, case)))
+    {
+        let (wgsl_size, wgsl_fields) = wgsl_layout(module, name);
         // WGSL names the node's boxes `lo` and `hi`, the vertex attributes' padding three fields.
         let wgsl_offsets: Vec<u32> = wgsl_fields.iter().map(|f| f.1).collect();
         let rust_offsets: Vec<u32> = rust_fields.iter().map(|f| f.1).collect();

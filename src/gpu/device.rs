@@ -8,12 +8,14 @@ use std::sync::{Arc, Mutex};
 
 /// An adapter, its device and queue, and the compute pipelines compiled for it.
 pub struct GpuDevice {
+    /// The instance the adapter came from: a window's surface on it may show what the GPU made.
+    pub instance: wgpu::Instance,
     pub adapter: wgpu::Adapter,
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
     /// The pipelines compiled so far, by entry point: each is compiled once, when first asked
     /// for (src/gpu/tracer.rs), as a software GPU takes a minute or more.
-    pub(super) pipelines: Mutex<HashMap<&'static str, Arc<ComputeEntry>>>,
+    pipelines: Mutex<HashMap<&'static str, Arc<ComputeEntry>>>,
 }
 
 /// A compiled compute entry point and the layout of the lists it reads and writes.
@@ -40,6 +42,19 @@ impl GpuDevice {
     ) -> Result<GpuDevice, String> {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        GpuDevice::open(instance, choose)
+    }
+
+    /// [`Self::new`] on `instance`: one made with a display's handle, so that a window's surface
+    /// on it can show what the GPU made without copying it through the CPU.
+    pub fn on_instance(instance: wgpu::Instance) -> Result<GpuDevice, String> {
+        GpuDevice::open(instance, |offered| offered)
+    }
+
+    fn open(
+        instance: wgpu::Instance,
+        choose: impl FnOnce(wgpu::Limits) -> wgpu::Limits,
+    ) -> Result<GpuDevice, String> {
         pollster::block_on(async {
             let adapter = pick_adapter(&instance).await?;
             let (device, queue) = adapter
@@ -51,6 +66,7 @@ impl GpuDevice {
                 .await
                 .map_err(|e| format!("cannot open the GPU device: {e}"))?;
             Ok(GpuDevice {
+                instance,
                 adapter,
                 device,
                 queue,
@@ -63,6 +79,23 @@ impl GpuDevice {
     pub fn name(&self) -> String {
         let info = self.adapter.get_info();
         format!("{} ({})", info.name, info.backend)
+    }
+
+    /// The pipeline of `entry`, made by `compile` the first time it is asked for on this device
+    /// and kept.
+    pub fn pipeline(
+        &self,
+        entry: &'static str,
+        compile: impl FnOnce(&wgpu::Device) -> ComputeEntry,
+    ) -> Arc<ComputeEntry> {
+        let mut compiled = self
+            .pipelines
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        let entry_pipeline = compiled
+            .entry(entry)
+            .or_insert_with(|| Arc::new(compile(&self.device)));
+        Arc::clone(entry_pipeline)
     }
 
     /// Checks that a storage buffer of `bytes` for `what` fits the device's limits; the error

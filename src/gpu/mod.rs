@@ -2,12 +2,15 @@
 //! of a CPU part and tested against it on the same input. A compute device found without any
 //! window ([`device`]); the objects' records and the shapes' WGSL ([`shapes`]); the BVH's nodes
 //! and leaves ([`bvh`]); the textures' records and texels ([`texture`]); the caustic photon
-//! map's photons ([`caustics`]); the whole scene on the GPU ([`scene`]); the ray tree's pipeline and the colours of pixel samples ([`tracer`]); and
-//! test entry points for the closest hits and the textures' colours ([`probe`]). The WGSL is in `shaders/`, split as the Rust it mirrors.
+//! map's photons ([`caustics`]); the whole scene on the GPU ([`scene`]); the ray tree's
+//! pipeline and the colours of pixel samples ([`tracer`]); the film the colours go into on the
+//! GPU, and how it reaches a texture ([`film`]); and test entry points for the closest hits and
+//! the textures' colours ([`probe`]). The WGSL is in `shaders/`, split as the Rust it mirrors.
 
 pub mod bvh;
 pub mod caustics;
 pub mod device;
+pub mod film;
 pub mod probe;
 pub mod scene;
 pub mod shapes;

@@ -16,6 +16,7 @@ use super::shapes::SHAPES_WGSL;
 /// ray tree, the debug views, and the entry points.
 pub const TRACER_WGSL: &str = concat!(
     include_str!("../../shaders/scene.wgsl"),
+    include_str!("../../shaders/samples.wgsl"),
     include_str!("../../shaders/sampling.wgsl"),
     include_str!("../../shaders/camera.wgsl"),
     include_str!("../../shaders/shapes/triangle.wgsl"),
@@ -69,19 +70,11 @@ pub struct SampleColor {
 /// group 0 the scene (any [`GpuScene`]'s: wgpu takes equal layouts as one), bind group 1 a list
 /// read and a list written. It is compiled the first time it is asked for on `gpu`.
 pub fn pipeline(gpu: &GpuDevice, entry: &'static str) -> Arc<ComputeEntry> {
-    let mut compiled = gpu
-        .pipelines
-        .lock()
-        .unwrap_or_else(|poisoned| poisoned.into_inner());
-    let entry_pipeline = compiled
-        .entry(entry)
-        .or_insert_with(|| Arc::new(compile(gpu, entry)));
-    Arc::clone(entry_pipeline)
+    gpu.pipeline(entry, |device| compile(device, entry))
 }
 
-/// Compiles `entry` of all the tracer's WGSL for `gpu`.
-fn compile(gpu: &GpuDevice, entry: &str) -> ComputeEntry {
-    let device = &gpu.device;
+/// Compiles `entry` of all the tracer's WGSL for `device`.
+fn compile(device: &wgpu::Device, entry: &str) -> ComputeEntry {
     let source = [SHAPES_WGSL, TRACER_WGSL].concat();
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("the GPU tracer"),
@@ -107,18 +100,21 @@ fn compile(gpu: &GpuDevice, entry: &str) -> ComputeEntry {
     ComputeEntry { pipeline, work }
 }
 
-/// Runs `pipeline` over `input` (one invocation per entry) and reads back one `Out` per entry.
-pub fn run_list<In: Pod, Out: Pod>(
+/// A list on the GPU: its entries, and a buffer for one result per entry.
+pub struct WorkList {
+    pub input: wgpu::Buffer,
+    pub output: wgpu::Buffer,
+    pub len: usize,
+}
+
+/// Uploads `input` and makes a buffer of `out_bytes` for its results; the error says if either
+/// does not fit the GPU, or the list needs more workgroups than one dispatch runs.
+pub fn upload_list<In: Pod>(
     gpu: &GpuDevice,
-    scene: &GpuScene,
-    ComputeEntry { pipeline, work }: &ComputeEntry,
     input: &[In],
-) -> Result<Vec<Out>, String> {
-    if input.is_empty() {
-        return Ok(Vec::new());
-    }
+    out_bytes: u64,
+) -> Result<WorkList, String> {
     let device = &gpu.device;
-    let out_bytes = (input.len() * std::mem::size_of::<Out>()) as u64;
     gpu.check_storage("the work list", std::mem::size_of_val(input) as u64)?;
     gpu.check_storage("its results", out_bytes)?;
     let groups = (input.len() as u64).div_ceil(u64::from(WORKGROUP));
@@ -140,35 +136,64 @@ pub fn run_list<In: Pod, Out: Pod>(
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
+    Ok(WorkList {
+        input: input_buffer,
+        output,
+        len: input.len(),
+    })
+}
+
+/// Encodes `entry` run over `list` (one invocation per entry) into `encoder`.
+pub fn dispatch_list(
+    gpu: &GpuDevice,
+    scene: &GpuScene,
+    ComputeEntry { pipeline, work }: &ComputeEntry,
+    list: &WorkList,
+    encoder: &mut wgpu::CommandEncoder,
+) {
+    let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("work"),
+        layout: work,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: list.input.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: list.output.as_entire_binding(),
+            },
+        ],
+    });
+    let mut pass = encoder.begin_compute_pass(&Default::default());
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, &scene.bind_group, &[]);
+    pass.set_bind_group(1, &bind_group, &[]);
+    pass.dispatch_workgroups((list.len as u32).div_ceil(WORKGROUP), 1, 1);
+}
+
+/// Runs `entry` over `input` (one invocation per entry) and reads back one `Out` per entry.
+pub fn run_list<In: Pod, Out: Pod>(
+    gpu: &GpuDevice,
+    scene: &GpuScene,
+    entry: &ComputeEntry,
+    input: &[In],
+) -> Result<Vec<Out>, String> {
+    if input.is_empty() {
+        return Ok(Vec::new());
+    }
+    let device = &gpu.device;
+    let out_bytes = (input.len() * std::mem::size_of::<Out>()) as u64;
+    let list = upload_list(gpu, input, out_bytes)?;
     let read_back = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("work results read back"),
         size: out_bytes,
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
         mapped_at_creation: false,
     });
-    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("work"),
-        layout: work,
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: input_buffer.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: output.as_entire_binding(),
-            },
-        ],
-    });
     let mut encoder = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, &scene.bind_group, &[]);
-        pass.set_bind_group(1, &bind_group, &[]);
-        pass.dispatch_workgroups(groups as u32, 1, 1);
-    }
-    encoder.copy_buffer_to_buffer(&output, 0, &read_back, 0, out_bytes);
+    dispatch_list(gpu, scene, entry, &list, &mut encoder);
+    encoder.copy_buffer_to_buffer(&list.output, 0, &read_back, 0, out_bytes);
     gpu.queue.submit([encoder.finish()]);
     let bytes = read_buffer(device, &read_back)?;
     Ok(bytemuck::pod_collect_to_vec(&bytes))

@@ -1,11 +1,14 @@
 //! The GPU sweep of a progressive render: the same passes as the CPU's ([`super::plan`]), each
 //! pass's pixel samples listed band by band of 8 rows of its grid, as the CPU sweeps them, and
 //! traced on the GPU ([`crate::gpu::tracer`]) a few bands per dispatch, so that no dispatch
-//! runs long enough for an operating system's GPU watchdog; the colours come back and go into
-//! the film as the CPU's do (a block painted for a pixel's first sample, otherwise a sample
-//! added to its mean). A sample whose work the GPU's driver cut short (a driver may bound the
-//! loop iterations of a shader, as Mesa's software Vulkan does) is traced again on the CPU.
-//! Between dispatches the render waits while paused and stops when cancelled.
+//! runs long enough for an operating system's GPU watchdog. The colours stay on the GPU: they go
+//! into the film there ([`GpuFilm`]) as the CPU's go into its film (a block painted for a
+//! pixel's first sample, otherwise a sample added to its mean), where a viewer on the same
+//! device shows them ([`crate::gpu::film::FilmShow`]); only their ray counts come back. The
+//! film on the CPU is a copy read back after each pass, from which the next pass's adaptive
+//! rule reads and which is saved. A sample whose work the GPU's driver cut short (a driver may
+//! bound the loop iterations of a shader, as Mesa's software Vulkan does) is traced again on
+//! the CPU. Between dispatches the render waits while paused and stops when cancelled.
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -17,8 +20,9 @@ use crate::camera::PIXEL_CENTRE;
 use crate::color::Color;
 use crate::film::Film;
 use crate::gpu::device::{ComputeEntry, GpuDevice};
+use crate::gpu::film::GpuFilm;
 use crate::gpu::scene::{GpuScene, GpuView};
-use crate::gpu::tracer::{PixelSample, SampleColor, pipeline, run_list};
+use crate::gpu::tracer::{PixelSample, SampleColor, dispatch_list, pipeline, upload_list};
 use crate::photon_map::PhotonMap;
 use crate::render::Assembled;
 use crate::sampling::jitter;
@@ -72,13 +76,34 @@ impl GpuRenderer {
         control: &RenderControl,
         on_pass: impl FnMut(&PassStats),
     ) -> Result<Result<RenderStats, Cancelled>, String> {
+        let on_gpu = GpuFilm::new(&self.gpu, film)?;
+        self.render_into(tracer, (view, shader), (film, &on_gpu), control, on_pass)
+    }
+
+    /// [`Self::render`] into `on_gpu`, the film on the GPU, which a viewer on the same device
+    /// shows as it fills; `film` (of the same size) gets a copy of it after each pass.
+    pub fn render_into(
+        &self,
+        tracer: &Tracer,
+        (view, shader): (GpuView, &dyn Shader),
+        (film, on_gpu): (&Film, &GpuFilm),
+        control: &RenderControl,
+        on_pass: impl FnMut(&PassStats),
+    ) -> Result<Result<RenderStats, Cancelled>, String> {
         let settings = &tracer.scene.settings;
         let plan = passes(
             settings.block_size,
             settings.samples,
             settings.aa_threshold > 0.0,
         );
-        self.run(tracer, (view, shader), &plan, film, control, on_pass)
+        self.run(
+            tracer,
+            (view, shader),
+            &plan,
+            (film, on_gpu),
+            control,
+            on_pass,
+        )
     }
 
     /// [`Self::render`] for a film nobody looks at before it is finished, as
@@ -92,7 +117,15 @@ impl GpuRenderer {
     ) -> Result<Result<RenderStats, Cancelled>, String> {
         let settings = &tracer.scene.settings;
         let plan = unwatched_passes(settings.samples, settings.aa_threshold > 0.0);
-        self.run(tracer, (view, shader), &plan, film, control, |_| {})
+        let on_gpu = GpuFilm::new(&self.gpu, film)?;
+        self.run(
+            tracer,
+            (view, shader),
+            &plan,
+            (film, &on_gpu),
+            control,
+            |_| {},
+        )
     }
 
     /// Runs `plan`; a GPU failure ends the render with its message.
@@ -101,7 +134,7 @@ impl GpuRenderer {
         tracer: &Tracer,
         (view, shader): (GpuView, &dyn Shader),
         plan: &[Pass],
-        film: &Film,
+        (film, on_gpu): (&Film, &GpuFilm),
         control: &RenderControl,
         on_pass: impl FnMut(&PassStats),
     ) -> Result<Result<RenderStats, Cancelled>, String> {
@@ -116,6 +149,7 @@ impl GpuRenderer {
                 tracer,
                 shader,
                 film,
+                on_gpu,
                 control,
             };
             let result = self.run_pass(&sweep, pass, &mut shown, &mut batch_bands);
@@ -169,37 +203,14 @@ impl GpuRenderer {
                 }
             }
             let dispatched = Instant::now();
-            let colors: Vec<SampleColor> =
-                run_list(&self.gpu, &self.scene, &self.trace, &samples).map_err(Some)?;
+            let counts = self.trace_batch(sweep, &samples, step).map_err(Some)?;
             *batch_bands = next_batch(*batch_bands, dispatched.elapsed());
-            let mut counts = RayCounts::default();
-            for (s, c) in samples.iter().zip(&colors) {
-                if c.cut_short != 0 {
-                    let color = sweep.trace_on_cpu(s, &mut counts);
-                    if s.k == 0 {
-                        film.fill_block(s.x, s.y, step, color);
-                    } else {
-                        film.add_sample(s.x, s.y, color);
-                    }
-                    continue;
-                }
-                let color = Color::from_array(c.color);
-                if s.k == 0 {
-                    film.fill_block(s.x, s.y, step, color);
-                } else {
-                    film.add_sample(s.x, s.y, color);
-                }
-                counts.primary += 1;
-                counts.primary_hits += u64::from(c.primary_hits);
-                counts.shadow += u64::from(c.shadow);
-                counts.reflected += u64::from(c.reflected);
-                counts.transmitted += u64::from(c.transmitted);
-                counts.over_budget += u64::from(c.over_budget);
-            }
             control.band_done(band_end - band_start, samples.len() as u64, &counts);
             film.touch_rows(band_start * step..band_end * step);
             band_start = band_end;
         }
+        sweep.on_gpu.read_into(&self.gpu, film).map_err(Some)?;
+        film.touch();
         Ok(PassStats {
             pass,
             pixels,
@@ -207,14 +218,44 @@ impl GpuRenderer {
             time: started.elapsed(),
         })
     }
+
+    /// Traces `samples` (of a pass of block side `step`) on the GPU into the GPU's film, those
+    /// the driver cuts short again on the CPU; returns their rays.
+    fn trace_batch(
+        &self,
+        sweep: &Sweep,
+        samples: &[PixelSample],
+        step: u32,
+    ) -> Result<RayCounts, String> {
+        if samples.is_empty() {
+            return Ok(RayCounts::default());
+        }
+        let gpu = &self.gpu;
+        let colors_bytes = samples.len() * size_of::<SampleColor>();
+        let list = upload_list(gpu, samples, colors_bytes as u64)?;
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        dispatch_list(gpu, &self.scene, &self.trace, &list, &mut encoder);
+        let (tally, cut) = sweep.on_gpu.add(gpu, encoder, &list, step)?;
+        let mut counts = tally.counts();
+        if !cut.is_empty() {
+            let again: Vec<PixelSample> = cut.iter().map(|&i| samples[i as usize]).collect();
+            let colors: Vec<Color> = again
+                .iter()
+                .map(|s| sweep.trace_on_cpu(s, &mut counts))
+                .collect();
+            sweep.on_gpu.put(gpu, &again, &colors, step)?;
+        }
+        Ok(counts)
+    }
 }
 
 /// What a pass sweeps: the tracer and the CPU's shader of the view (for the samples the GPU's
-/// driver cuts short), the film and the control.
+/// driver cuts short), the film on the GPU and its copy, and the control.
 struct Sweep<'a> {
     tracer: &'a Tracer<'a>,
     shader: &'a dyn Shader,
     film: &'a Film,
+    on_gpu: &'a GpuFilm,
     control: &'a RenderControl,
 }
 

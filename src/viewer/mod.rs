@@ -80,7 +80,8 @@ pub fn run(options: Options) -> Result<(), String> {
                  WAYLAND_DISPLAY set?); without one, use `raylab render` to render to a file"
             )
         })?;
-    let mut app = app::App::new(options, event_loop.create_proxy())?;
+    let display = event_loop.owned_display_handle();
+    let mut app = app::App::new(options, event_loop.create_proxy(), display)?;
     event_loop
         .run_app(&mut app)
         .map_err(|e| format!("the window's event loop failed: {e}"))?;

@@ -16,9 +16,11 @@ pub struct Timing {
     window_time: Duration,
     first_images: Vec<Duration>,
     block_ones: Vec<Duration>,
-    /// Film-to-texture uploads and the time they took.
+    /// Film-to-texture uploads and the time they took, and how many of them were made on the
+    /// GPU from the GPU tracer's film.
     uploads: u32,
     upload_time: Duration,
+    uploads_on_gpu: u32,
     last_log: Instant,
 }
 
@@ -34,6 +36,7 @@ impl Timing {
             block_ones: Vec::new(),
             uploads: 0,
             upload_time: Duration::ZERO,
+            uploads_on_gpu: 0,
             last_log: Instant::now(),
         }
     }
@@ -60,10 +63,12 @@ impl Timing {
         }
     }
 
-    /// The film was converted and written to the texture in `time`.
-    pub fn upload(&mut self, time: Duration) {
+    /// The film was converted and written to the texture in `time`, on the GPU from the GPU
+    /// tracer's film if `on_gpu`.
+    pub fn upload(&mut self, time: Duration, on_gpu: bool) {
         self.uploads += 1;
         self.upload_time += time;
+        self.uploads_on_gpu += u32::from(on_gpu);
     }
 
     fn mean_upload_ms(&self) -> f64 {
@@ -116,11 +121,14 @@ impl Timing {
     /// One line over the whole session.
     pub fn summary(&self) -> String {
         format!(
-            "stats: summary: UI {:.1} fps while tracing ({} frames); upload {:.2} ms on average; \
-             first image median {} over {} restarts; block size 1 median {} over {} renders",
+            "stats: summary: UI {:.1} fps while tracing ({} frames); upload {:.2} ms on average \
+             ({} of {} made on the GPU from its film); first image median {} over {} restarts; \
+             block size 1 median {} over {} renders",
             fps(self.frames, self.tracing),
             self.frames,
             self.mean_upload_ms(),
+            self.uploads_on_gpu,
+            self.uploads,
             median_ms(&self.first_images),
             self.first_images.len(),
             median_ms(&self.block_ones),
@@ -165,11 +173,14 @@ mod tests {
             t.first_image(Duration::from_millis(ms), 16);
         }
         t.block_one(Duration::from_millis(700), (512, 512));
-        t.upload(Duration::from_millis(1));
-        t.upload(Duration::from_millis(3));
+        t.upload(Duration::from_millis(1), false);
+        t.upload(Duration::from_millis(3), true);
         let s = t.summary();
         assert!(s.contains("UI 50.0 fps while tracing (30 frames)"), "{s}");
-        assert!(s.contains("upload 2.00 ms on average"), "{s}");
+        assert!(
+            s.contains("upload 2.00 ms on average (1 of 2 made on the GPU from its film)"),
+            "{s}"
+        );
         assert!(
             s.contains("first image median 20.0 ms over 3 restarts"),
             "{s}"

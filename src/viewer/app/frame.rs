@@ -101,16 +101,18 @@ impl App {
         gfx.set_display(self.ui.panel.display.settings());
         // How far the render was before its film is read: the film is at least that far.
         let progress = self.tracing.progress();
-        let film = self.tracing.rendering.as_ref().map(|r| &r.film);
+        let rendering = self.tracing.rendering.as_ref();
+        let film = rendering.map(|r| &r.film);
+        let on_gpu = rendering.and_then(|r| r.report.film_on_gpu());
         let painted = gfx.paint(
             &self.ui.egui,
             frame.output,
             frame.image_rect,
-            film,
+            (film, on_gpu.as_deref()),
             screenshot,
         );
-        if let Some(time) = painted.upload {
-            self.clock.timing.upload(time);
+        if let Some((time, on_gpu)) = painted.upload {
+            self.clock.timing.upload(time, on_gpu);
         }
         if let Some(e) = painted.screenshot_error {
             self.ended = Some(Err(e));

@@ -12,7 +12,7 @@ use raylab::gpu::device::GpuDevice;
 use raylab::render::Device;
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
-use winit::event_loop::{ActiveEventLoop, EventLoopProxy};
+use winit::event_loop::{ActiveEventLoop, EventLoopProxy, OwnedDisplayHandle};
 use winit::window::WindowId;
 
 mod apply;
@@ -43,6 +43,8 @@ pub enum UserEvent {
 pub struct App {
     /// The window and what draws into it, once it is open.
     pub(super) gpu: Option<Graphics>,
+    /// The GPU the tracer opened at the start, if any, which the window shares when it can.
+    tracer_gpu: Option<Arc<GpuDevice>>,
     pub(super) ui: Ui,
     pub(super) input: Input,
     pub(super) scene: SceneSlot,
@@ -53,7 +55,13 @@ pub struct App {
 }
 
 impl App {
-    pub fn new(options: Options, proxy: EventLoopProxy<UserEvent>) -> Result<App, String> {
+    /// The viewer for `options`; `display` is the display its window will open on, which the
+    /// tracer's GPU is opened for.
+    pub fn new(
+        options: Options,
+        proxy: EventLoopProxy<UserEvent>,
+        display: OwnedDisplayHandle,
+    ) -> Result<App, String> {
         let Options {
             scene,
             format,
@@ -69,9 +77,9 @@ impl App {
             script,
             max_fps,
         } = options;
-        let (device, gpu) = pick_device(device)?;
+        let (device, tracer_gpu) = pick_device(device, display)?;
         let wake = proxy.clone();
-        let tracing = Tracing::start(threads, gpu, move || {
+        let tracing = Tracing::start(threads, tracer_gpu.clone(), move || {
             let _ = wake.send_event(UserEvent::RayTreeTraced);
         })?;
         let panel = PanelState {
@@ -87,6 +95,7 @@ impl App {
         };
         Ok(App {
             gpu: None,
+            tracer_gpu,
             ui: Ui::new(panel, window),
             input: Input::new(script, exit_when_done, screenshot),
             scene: SceneSlot::new(
@@ -178,7 +187,8 @@ impl ApplicationHandler<UserEvent> for App {
         if self.gpu.is_some() {
             return;
         }
-        match Graphics::open(event_loop, self.ui.window_size, &self.ui.egui) {
+        let (size, tracer_gpu) = (self.ui.window_size, self.tracer_gpu.as_ref());
+        match Graphics::open(event_loop, size, &self.ui.egui, tracer_gpu) {
             Ok(gfx) => {
                 self.ui.panel.max_side = gfx.max_side();
                 self.gpu = Some(gfx);
@@ -239,21 +249,31 @@ impl ApplicationHandler<UserEvent> for App {
     }
 }
 
-/// The tracer the viewer starts with, and the GPU if it opened one: the one asked for, else the
-/// GPU when its adapter is real hardware and the CPU when it is a software rasterizer or there
-/// is none. The error says why the GPU asked for cannot be opened.
-fn pick_device(asked: Option<Device>) -> Result<(Device, Option<Arc<GpuDevice>>), String> {
+/// The tracer the viewer starts with, and the GPU if it opened one (on `display`, so that the
+/// window can share it): the one asked for, else the GPU when its adapter is real hardware and
+/// the CPU when it is a software rasterizer or there is none. The error says why the GPU asked
+/// for cannot be opened.
+fn pick_device(
+    asked: Option<Device>,
+    display: OwnedDisplayHandle,
+) -> Result<(Device, Option<Arc<GpuDevice>>), String> {
+    let open = || {
+        let instance = wgpu::Instance::new(
+            wgpu::InstanceDescriptor::new_with_display_handle_from_env(Box::new(display)),
+        );
+        GpuDevice::on_instance(instance).map(Arc::new)
+    };
     match asked {
         Some(Device::Cpu) => Ok((Device::Cpu, None)),
         Some(Device::Gpu) => {
-            let gpu = GpuDevice::new().map_err(|e| format!("--device gpu: {e}"))?;
-            Ok((Device::Gpu, Some(Arc::new(gpu))))
+            let gpu = open().map_err(|e| format!("--device gpu: {e}"))?;
+            Ok((Device::Gpu, Some(gpu)))
         }
-        None => match GpuDevice::new() {
+        None => match open() {
             Ok(gpu) if gpu.adapter.get_info().device_type != wgpu::DeviceType::Cpu => {
-                Ok((Device::Gpu, Some(Arc::new(gpu))))
+                Ok((Device::Gpu, Some(gpu)))
             }
-            Ok(gpu) => Ok((Device::Cpu, Some(Arc::new(gpu)))),
+            Ok(gpu) => Ok((Device::Cpu, Some(gpu))),
             Err(_) => Ok((Device::Cpu, None)),
         },
     }

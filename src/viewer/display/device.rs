@@ -1,7 +1,11 @@
-//! The GPU: a wgpu instance, adapter, device and queue, for a window (with its surface) or, in
-//! tests, without any display (a software adapter such as Mesa's lavapipe).
+//! The GPU: a wgpu instance, adapter, device and queue, for a window (with its surface): the
+//! tracer's own where its adapter can draw into the window, so that the image it traces reaches
+//! the window's texture on the GPU, else one of its own; or, in tests, without any display (a
+//! software adapter such as Mesa's lavapipe).
 
 use std::sync::Arc;
+
+use raylab::gpu::device::GpuDevice;
 
 use winit::event_loop::ActiveEventLoop;
 use winit::window::Window;
@@ -28,6 +32,28 @@ impl Gpu {
             .map_err(|e| format!("cannot draw into the window: {e}"))?;
         let gpu = pollster::block_on(Gpu::request(&instance, Some(&surface), false))?;
         Ok((gpu, surface))
+    }
+
+    /// The tracer's GPU, if its adapter can draw into `window`, and the window's surface (not
+    /// configured yet).
+    pub fn sharing(
+        tracer: &GpuDevice,
+        window: Arc<Window>,
+    ) -> Result<Option<(Gpu, wgpu::Surface<'static>)>, String> {
+        let surface = tracer
+            .instance
+            .create_surface(window)
+            .map_err(|e| format!("cannot draw into the window: {e}"))?;
+        if !tracer.adapter.is_surface_supported(&surface) {
+            return Ok(None);
+        }
+        let gpu = Gpu {
+            instance: tracer.instance.clone(),
+            adapter: tracer.adapter.clone(),
+            device: tracer.device.clone(),
+            queue: tracer.queue.clone(),
+        };
+        Ok(Some((gpu, surface)))
     }
 
     /// A GPU with no display: the software fallback adapter if there is one, else any.

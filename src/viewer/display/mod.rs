@@ -1,5 +1,6 @@
 //! Everything that talks to the GPU (wgpu): the device, the window's surface, the image quad and
-//! egui drawn into a frame, the film's changed rows uploaded into the image texture, and
+//! egui drawn into a frame, the film's changed rows put into the image texture (uploaded, or
+//! made on the GPU from the GPU tracer's film when the window shares its device), and
 //! screenshots read back from the GPU. It paints what it is given: a film and egui's shapes.
 
 pub mod device;
@@ -14,6 +15,8 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use raylab::film::Film;
+use raylab::gpu::device::GpuDevice;
+use raylab::gpu::film::{FilmShow, GpuFilm};
 use winit::event::WindowEvent;
 use winit::event_loop::ActiveEventLoop;
 use winit::window::Window;
@@ -34,6 +37,8 @@ pub struct Graphics {
     egui_state: egui_winit::State,
     /// What of the film the image texture shows.
     uploader: Uploader,
+    /// The tracer's GPU, when the window draws with it, and what shows its films on it.
+    shared: Option<(Arc<GpuDevice>, FilmShow)>,
     /// How the image is shown (exposure, tone curve, split).
     display: Display,
 }
@@ -42,18 +47,21 @@ pub struct Graphics {
 pub struct Painted {
     /// The frame reached the window.
     pub presented: bool,
-    /// The time the film's changed rows took to reach the image texture, if any had changed.
-    pub upload: Option<Duration>,
+    /// The time the film's changed rows took to reach the image texture, if any had changed,
+    /// and whether they were made on the GPU from the GPU tracer's film.
+    pub upload: Option<(Duration, bool)>,
     /// Why the screenshot could not be saved.
     pub screenshot_error: Option<String>,
 }
 
 impl Graphics {
-    /// Opens a window of `size` (logical pixels) with its GPU, for `egui` to draw into.
+    /// Opens a window of `size` (logical pixels) for `egui` to draw into, with the tracer's GPU
+    /// where its adapter can draw into the window, else a GPU of its own.
     pub fn open(
         event_loop: &ActiveEventLoop,
         size: (u32, u32),
         egui: &egui::Context,
+        tracer_gpu: Option<&Arc<GpuDevice>>,
     ) -> Result<Graphics, String> {
         let attributes = Window::default_attributes()
             .with_title("raylab")
@@ -63,7 +71,18 @@ impl Graphics {
                 .create_window(attributes)
                 .map_err(|e| format!("cannot open a window: {e}"))?,
         );
-        let (gpu, surface) = Gpu::for_window(event_loop, window.clone())?;
+        let mut shared = None;
+        let mut sharing = None;
+        if let Some(tracer) = tracer_gpu {
+            sharing = Gpu::sharing(tracer, window.clone())?;
+            if sharing.is_some() {
+                shared = Some((Arc::clone(tracer), FilmShow::new(tracer)));
+            }
+        }
+        let (gpu, surface) = match sharing {
+            Some(both) => both,
+            None => Gpu::for_window(event_loop, window.clone())?,
+        };
         let surface = WindowSurface::new(&gpu, surface, window.clone())?;
         let painter = Painter::new(&gpu, surface.format());
         let egui_state = egui_winit::State::new(
@@ -81,6 +100,7 @@ impl Graphics {
             painter,
             egui_state,
             uploader: Uploader::new(),
+            shared,
             display: Display::default(),
         })
     }
@@ -125,15 +145,16 @@ impl Graphics {
         self.display = display;
     }
 
-    /// Paints a frame: egui's `output` over the image (`film`, its changed rows uploaded) shown
-    /// at `shown`, presented in the window; then, if it was presented and `screenshot` is given,
-    /// saved there as a PNG.
+    /// Paints a frame: egui's `output` over the image (`film`, its changed rows put into the
+    /// texture, from `on_gpu`, its twin on the GPU, where there is one) shown at `shown`,
+    /// presented in the window; then, if it was presented and `screenshot` is given, saved there
+    /// as a PNG.
     pub fn paint(
         &mut self,
         egui: &egui::Context,
         output: egui::FullOutput,
         image_rect: PixelRect,
-        film: Option<&Arc<Film>>,
+        (film, on_gpu): (Option<&Arc<Film>>, Option<&GpuFilm>),
         screenshot: Option<&Path>,
     ) -> Painted {
         let egui::FullOutput {
@@ -147,7 +168,7 @@ impl Graphics {
             .handle_platform_output(&self.window, platform_output);
         let primitives = egui.tessellate(shapes, pixels_per_point);
         self.painter.set_textures(&self.gpu, &mut textures_delta);
-        let upload = film.and_then(|film| self.upload(film));
+        let upload = film.and_then(|film| self.upload(film, on_gpu));
         let quad = &self.painter.quad;
         let divider = if quad.snapshot_size().is_some() {
             self.display.divider
@@ -191,9 +212,10 @@ impl Graphics {
             .take_snapshot(&self.gpu.device, &self.gpu.queue)
     }
 
-    /// Uploads the rows of `film` that changed since the last upload; returns the time it took,
-    /// if any had.
-    fn upload(&mut self, film: &Arc<Film>) -> Option<Duration> {
+    /// Puts the rows of `film` that changed since the last time into the texture, from
+    /// `on_gpu` on the GPU where the window shares the tracer's device, else uploaded from the
+    /// CPU; returns the time it took, if any had changed, and whether it was on the GPU.
+    fn upload(&mut self, film: &Arc<Film>, on_gpu: Option<&GpuFilm>) -> Option<(Duration, bool)> {
         let (texture, created) =
             self.painter
                 .quad
@@ -202,9 +224,21 @@ impl Graphics {
             self.uploader.invalidate();
         }
         let start = Instant::now();
-        let (texels, rows) = self.uploader.changed_pixels(film, self.display.tone)?;
-        write_rows(&self.gpu.queue, texture, texels, &rows);
-        Some(start.elapsed())
+        let tone = self.display.tone;
+        let same_size = |g: &&GpuFilm| (g.width(), g.height()) == (film.width(), film.height());
+        match (&mut self.shared, on_gpu.filter(same_size)) {
+            (Some((tracer, show)), Some(on_gpu)) => {
+                let rows = self.uploader.changed_rows(film, tone)?;
+                let span = rows.first()?.start..rows.last()?.end;
+                show.show(tracer, on_gpu, tone, span, texture);
+                Some((start.elapsed(), true))
+            }
+            _ => {
+                let (texels, rows) = self.uploader.changed_pixels(film, tone)?;
+                write_rows(&self.gpu.queue, texture, texels, &rows);
+                Some((start.elapsed(), false))
+            }
+        }
     }
 
     /// Saves the frame as painted into `path` and says so on the terminal.

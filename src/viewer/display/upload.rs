@@ -57,15 +57,9 @@ impl Uploader {
         self.uploaded = None;
     }
 
-    /// The film through `tone` as texels of [`IMAGE_FORMAT`](super::quad::IMAGE_FORMAT), row 0
-    /// at the top, with the runs of rows that changed since the last call (all of them for a
-    /// film not uploaded before, or a new tone), if any did; the caller writes those rows to the
-    /// texture ([`write_rows`]).
-    pub fn changed_pixels(
-        &mut self,
-        film: &Arc<Film>,
-        tone: Tone,
-    ) -> Option<(&[u8], Vec<Range<u32>>)> {
+    /// The runs of rows of `film` the texture does not show through `tone` yet (all of them for
+    /// a film not shown before, or a new tone), if any; from now on they count as shown.
+    pub fn changed_rows(&mut self, film: &Arc<Film>, tone: Tone) -> Option<Vec<Range<u32>>> {
         if !self.is_stale(film, tone) {
             return None;
         }
@@ -73,11 +67,25 @@ impl Uploader {
         // missed.
         let version = film.version();
         let changed = film.take_changed_rows();
-        let (w, h) = (film.width() as usize, film.height());
         let rows = match &self.uploaded {
             Some((last, _, made_with)) if Arc::ptr_eq(last, film) && *made_with == tone => changed,
-            _ => std::iter::once(0..h).collect(),
+            _ => std::iter::once(0..film.height()).collect(),
         };
+        self.uploaded = Some((film.clone(), version, tone));
+        Some(rows)
+    }
+
+    /// The film through `tone` as texels of [`IMAGE_FORMAT`](super::quad::IMAGE_FORMAT), row 0
+    /// at the top, with the runs of rows that changed since the last call
+    /// ([`Self::changed_rows`]), if any did; the caller writes those rows to the texture
+    /// ([`write_rows`]).
+    pub fn changed_pixels(
+        &mut self,
+        film: &Arc<Film>,
+        tone: Tone,
+    ) -> Option<(&[u8], Vec<Range<u32>>)> {
+        let rows = self.changed_rows(film, tone)?;
+        let (w, h) = (film.width() as usize, film.height());
         self.bytes.resize(w * h as usize * TEXEL_BYTES, 0);
         let row_bytes = w * TEXEL_BYTES;
         let (encoder, scale) = (SrgbEncoder::shared(), tone.scale());
@@ -87,7 +95,6 @@ impl Uploader {
                 texel(encoder, film.get(x as u32, y), scale, tone.curve, out);
             }
         }
-        self.uploaded = Some((film.clone(), version, tone));
         Some((&self.bytes, rows))
     }
 }

@@ -12,6 +12,7 @@ use std::time::Instant;
 
 use raylab::film::Film;
 use raylab::gpu::device::GpuDevice;
+use raylab::gpu::film::GpuFilm;
 use raylab::inspect::Legend;
 use raylab::progressive::{self, PassStats, RenderControl};
 use raylab::render::Device;
@@ -54,6 +55,8 @@ pub struct JobReport {
     /// What traces the job: `cpu: N threads` or `gpu: ADAPTER (BACKEND)`, and why not the GPU
     /// where it was asked for and cannot.
     device: Mutex<String>,
+    /// The film on the GPU the job renders into, when it renders on the GPU.
+    film_on_gpu: Mutex<Option<Arc<GpuFilm>>>,
 }
 
 impl JobReport {
@@ -66,7 +69,13 @@ impl JobReport {
             caustics: Mutex::new(None),
             photons: AtomicU32::new(0),
             device: Mutex::new(String::new()),
+            film_on_gpu: Mutex::new(None),
         }
+    }
+
+    /// The film on the GPU the job renders into, if it renders on the GPU.
+    pub fn film_on_gpu(&self) -> Option<Arc<GpuFilm>> {
+        self.film_on_gpu.lock().ok().and_then(|f| f.clone())
     }
 
     /// What traces the job (empty until it starts).
@@ -229,8 +238,13 @@ fn run(
                     let cpu_view = &job.setup.debug_view;
                     let rendered = std::panic::catch_unwind(AssertUnwindSafe(|| {
                         let (tracer, film) = (&copy.tracer(), &job.film);
-                        renderer.render(tracer, (view, cpu_view), film, &job.control, |pass| {
-                            job.report.push_pass(pass)
+                        let on_gpu = Arc::new(GpuFilm::new(renderer.gpu(), film)?);
+                        if let Ok(mut shown) = job.report.film_on_gpu.lock() {
+                            *shown = Some(Arc::clone(&on_gpu));
+                        }
+                        let target = (film.as_ref(), on_gpu.as_ref());
+                        renderer.render_into(tracer, (view, cpu_view), target, &job.control, |p| {
+                            job.report.push_pass(p)
                         })
                     }));
                     job.report.finish(match rendered {
