@@ -3,7 +3,7 @@
 
 @group(0) @binding(0) var<storage, read> objects: array<Object>;
 @group(0) @binding(1) var<storage, read> shape_words: array<vec4<f32>>;
-@group(0) @binding(2) var<storage, read> nodes: array<WideNode>;
+@group(0) @binding(2) var<storage, read> nodes: array<Node>;
 @group(0) @binding(3) var<storage, read> triangles: array<Triangle>;
 @group(0) @binding(4) var<storage, read> refs: array<u32>;
 @group(0) @binding(5) var<storage, read> triangle_shading: array<TriangleShading>;

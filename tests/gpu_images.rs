@@ -1,8 +1,9 @@
 //! The GPU's images against the CPU's: every shipped scene (CSG, fog, media and caustics
 //! included) and the SPD scenes rendered by both tracers at 160 × 120, compared as they are
 //! saved (8-bit sRGB): mean absolute difference at most 0.5 levels and at least 99 % of pixels
-//! within 3 levels, with one sample per pixel, with adaptive anti-aliasing (16 samples,
-//! threshold 0.03), with textures switched off, and in the first-hit debug views. These tests
+//! within 3 levels, with one sample per pixel (with each layout of the BVH's nodes), with
+//! adaptive anti-aliasing (16 samples, threshold 0.03), with textures switched off, and in the
+//! first-hit debug views. These tests
 //! need a GPU adapter: without one they fail, saying what to install (Mesa's lavapipe will do).
 
 use std::path::Path;
@@ -14,6 +15,7 @@ use raylab::color::{Color, to_srgb8};
 use raylab::film::Film;
 use raylab::formats::load_any;
 use raylab::formats::spd::{Database, load_spd};
+use raylab::gpu::bvh::NodeLayout;
 use raylab::gpu::device::GpuDevice;
 use raylab::gpu::scene::GpuView;
 use raylab::inspect::DebugView;
@@ -92,9 +94,9 @@ fn difference(a: &[u8], b: &[u8]) -> (f64, f64) {
     (mean, close as f64 / (a.len() / 3) as f64)
 }
 
-/// Renders every scene that `keep` keeps on both tracers with `adjust`ed settings and compares
-/// them.
-fn compare_all(keep: impl Fn(&Scene) -> bool, adjust: impl Fn(&mut Scene)) {
+/// Renders every scene that `keep` keeps on both tracers with `adjust`ed settings, the GPU's
+/// BVH nodes in `nodes`, and compares them.
+fn compare_all(nodes: NodeLayout, keep: impl Fn(&Scene) -> bool, adjust: impl Fn(&mut Scene)) {
     let gpu = gpu();
     let mut failures = Vec::new();
     let mut compared = 0;
@@ -102,7 +104,7 @@ fn compare_all(keep: impl Fn(&Scene) -> bool, adjust: impl Fn(&mut Scene)) {
         (scene.settings.width, scene.settings.height) = SIZE;
         adjust(&mut scene);
         let assembled = assemble(scene).unwrap();
-        let renderer = GpuRenderer::new(Arc::clone(&gpu), &assembled)
+        let renderer = GpuRenderer::with_nodes(Arc::clone(&gpu), &assembled, nodes)
             .unwrap_or_else(|e| panic!("{name}: {e}"));
         let (on_gpu, stats) = gpu_render(&renderer, &assembled.tracer());
         let (cpu_pixels, cpu_stats) = render_image(&assembled.tracer());
@@ -130,12 +132,21 @@ fn compare_all(keep: impl Fn(&Scene) -> bool, adjust: impl Fn(&mut Scene)) {
 
 #[test]
 fn every_scene_renders_on_the_gpu_as_on_the_cpu() {
-    compare_all(|_| true, |_| {});
+    compare_all(NodeLayout::default(), |_| true, |_| {});
+}
+
+#[test]
+fn every_scene_renders_on_the_gpu_as_on_the_cpu_with_the_other_node_layout() {
+    let other = NodeLayout::iter()
+        .find(|&nodes| nodes != NodeLayout::default())
+        .unwrap();
+    compare_all(other, |_| true, |_| {});
 }
 
 #[test]
 fn every_scene_renders_on_the_gpu_as_on_the_cpu_with_adaptive_anti_aliasing() {
     compare_all(
+        NodeLayout::default(),
         |_| true,
         |scene| {
             scene.settings.samples = 16;
@@ -149,7 +160,9 @@ fn every_textured_scene_renders_on_the_gpu_as_on_the_cpu_with_textures_off() {
     let textured = |scene: &Scene| {
         scene.background_image.is_some() || scene.materials.iter().any(|m| m.texture.is_some())
     };
-    compare_all(textured, |scene| scene.settings.textures = false);
+    compare_all(NodeLayout::default(), textured, |scene| {
+        scene.settings.textures = false
+    });
 }
 
 /// `tracer`'s scene rendered by `renderer` (which holds it on the GPU), as 8-bit sRGB, and what

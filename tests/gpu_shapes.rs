@@ -12,14 +12,14 @@ use common::random::{Rng, direction, in_cube, in_range};
 use glam::{Vec2, Vec3};
 use raylab::camera::Camera;
 use raylab::color::Color;
+use raylab::gpu::bvh::NodeLayout;
 use raylab::gpu::caustics::GpuPhoton;
 use raylab::gpu::device::GpuDevice;
 use raylab::gpu::probe::{
     NO_PRIM, ProbeHit, ProbeRay, Search, TextureProbe, closest_hits, texture_colors,
 };
 use raylab::gpu::scene::GpuScene;
-use raylab::gpu::shapes::SHAPES_WGSL;
-use raylab::gpu::tracer::TRACER_WGSL;
+use raylab::gpu::tracer::tracer_wgsl;
 use raylab::material::Material;
 use raylab::mesh::Mesh;
 use raylab::primitive::PrimId;
@@ -33,6 +33,7 @@ use raylab::shapes::{
 };
 use raylab::texture::{Texture, TextureImage, WOOD_COLORS, Wrap};
 use raylab::transform::{Transform, TransformStep};
+use strum::IntoEnumIterator;
 
 fn gpu() -> GpuDevice {
     GpuDevice::new().unwrap_or_else(|e| panic!("these tests run on a GPU: {e}"))
@@ -679,14 +680,19 @@ fn the_bvh_walk_finds_the_cpus_closest_hits_among_triangles_and_spheres() {
     let assembled = scene_of(untransformed(spheres), meshes);
     assert!(assembled.bvh.depth() >= 3, "a tree deep enough to walk");
     let rays = rays_towards(&mut rng, 30_000, 20.0, |rng| in_cube(rng, -12.0, 12.0));
-    let scene = GpuScene::upload(&gpu, &assembled).unwrap();
-    let on_gpu = closest_hits(&gpu, &scene, Search::Bvh, &rays).unwrap();
-    let compared = compare(&assembled, Search::Bvh, &rays, &on_gpu);
-    assert!(compared >= 10_000, "{compared} hits compared");
-    let triangles = on_gpu
-        .iter()
-        .filter(|h| h.prim != NO_PRIM && PrimId(h.prim).kind().is_err());
-    assert!(triangles.count() >= 5_000, "most hits are triangles");
+    for nodes in NodeLayout::iter() {
+        let scene = GpuScene::upload_with(&gpu, &assembled, nodes).unwrap();
+        let on_gpu = closest_hits(&gpu, &scene, Search::Bvh, &rays).unwrap();
+        let compared = compare(&assembled, Search::Bvh, &rays, &on_gpu);
+        assert!(compared >= 10_000, "{nodes}: {compared} hits compared");
+        let triangles = on_gpu
+            .iter()
+            .filter(|h| h.prim != NO_PRIM && PrimId(h.prim).kind().is_err());
+        assert!(
+            triangles.count() >= 5_000,
+            "{nodes}: most hits are triangles"
+        );
+    }
 }
 
 /// The size of the WGSL struct `name` and the offsets of its members, as naga lays them out.
@@ -708,8 +714,8 @@ fn wgsl_layout(module: &naga::Module, name: &str) -> (u32, Vec<(String, u32)>) {
 }
 
 /// The tracer's whole WGSL, parsed and validated by naga.
-fn tracer_module() -> naga::Module {
-    parsed(&[SHAPES_WGSL, TRACER_WGSL].concat())
+fn tracer_module(nodes: NodeLayout) -> naga::Module {
+    parsed(&tracer_wgsl(nodes))
 }
 
 /// `source` parsed and validated by naga.
@@ -738,7 +744,7 @@ macro_rules! rust_layout {
 
 #[test]
 fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
-    use raylab::gpu::bvh::{GpuTriangle, GpuWideNode};
+    use raylab::gpu::bvh::{GpuBinaryNode, GpuTriangle, GpuWideNode};
     use raylab::gpu::film::{FILM_WGSL, FilmPass, FilmPixel, ShowRows, Tally};
     use raylab::gpu::probe::ProbeHit;
     use raylab::gpu::scene::{
@@ -747,7 +753,7 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
     use raylab::gpu::shapes::GpuObject;
     use raylab::gpu::texture::GpuTexture;
     use raylab::gpu::tracer::{PixelSample, SampleColor};
-    let module = tracer_module();
+    let module = tracer_module(NodeLayout::Wide);
     let cases = [
         rust_layout!("Object", GpuObject, [kind, first, transform, material]),
         rust_layout!("WideNode", GpuWideNode, [min, max, first, count]),
@@ -858,6 +864,12 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
         ),
         rust_layout!("TextureProbe", TextureProbe, [point, texture, uv, pad]),
     ];
+    let binary = tracer_module(NodeLayout::Binary);
+    let binary_cases = [rust_layout!(
+        "BinaryNode",
+        GpuBinaryNode,
+        [lo0, first0, hi0, count0, lo1, first1, hi1, count1]
+    )];
     let film = parsed(FILM_WGSL);
     let film_cases = [
         rust_layout!("PixelSample", PixelSample, [x, y, k, pad]),
@@ -884,8 +896,10 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
         ),
     ];
     let tracer_cases = cases.into_iter().map(|case| (&module, case));
+    let binary_cases = binary_cases.into_iter().map(|case| (&binary, case));
+    let film_cases = film_cases.into_iter().map(|case| (&film, case));
     for (module, (name, rust_size, rust_fields)) in
-        tracer_cases.chain(film_cases.into_iter().map(|case| (&film, case)))
+        tracer_cases.chain(binary_cases).chain(film_cases)
     {
         let (wgsl_size, wgsl_fields) = wgsl_layout(module, name);
         // WGSL names the node's boxes `lo` and `hi`, the vertex attributes' padding three fields.

@@ -1,23 +1,26 @@
-// The BVH's walk: the twin of `Bvh::walk` in src/bvh/traverse.rs over the CPU's eight-wide
-// nodes (src/gpu/bvh.rs copies them), the leaves' tests of src/bvh/leaf.rs, and the closest-hit
-// and shadow searches built on them (`Bvh::closest_hit`, `Bvh::any_hit`). The unbounded objects
-// (planes) are tested first, against every ray.
+// The BVH's walk: the twin of `Bvh::walk` in src/bvh/traverse.rs over the nodes of one of the
+// layouts src/gpu/bvh.rs makes (the CPU's eight-wide nodes, `wide_node.wgsl`, or two-wide ones,
+// `binary_node.wgsl`: each gives `Node`, its `WIDTH` and its children), the leaves' tests of
+// src/bvh/leaf.rs, and the closest-hit and shadow searches built on them (`Bvh::closest_hit`,
+// `Bvh::any_hit`). The unbounded objects (planes) are tested first, against every ray.
 
-const WIDTH: u32 = 8u;
 const INTERIOR: u32 = 0xffffffffu;
 const TRIANGLE_LEAF: u32 = 0x40000000u;
-// Entries of the walk's stack: a visited node leaves at most seven siblings waiting, so a tree
-// up to STACK_SIZE / 7 levels deep fits (src/gpu/scene.rs refuses deeper ones).
+// Entries of the walk's stack: a visited node of the eight-wide tree leaves at most seven
+// siblings waiting, so a tree up to STACK_SIZE / 7 levels deep fits (src/gpu/scene.rs refuses
+// deeper ones); the two-wide tree made of it is at most seven times as deep, with one sibling
+// waiting per level.
 const STACK_SIZE: u32 = 128u;
 // The far end of a ray that runs on for ever: the largest float, as the CPU clamps its limit.
 const T_FAR: f32 = 3.40282347e38;
 
-// `WideNode`: eight children's boxes, axis by axis, and where each child is.
-struct WideNode {
-    lo: array<array<f32, 8>, 3>,
-    hi: array<array<f32, 8>, 3>,
-    first: array<u32, 8>,
-    count: array<u32, 8>,
+// A child of a node, as the layout gives it (`node_child`): its box, and an interior child's
+// node or a leaf's entries (count 0: no child in this slot).
+struct NodeChild {
+    lo: vec3<f32>,
+    hi: vec3<f32>,
+    first: u32,
+    count: u32,
 }
 
 // `PrimId`: an object's index with the top bit set, or a triangle's index.
@@ -55,10 +58,8 @@ fn walk_ray(origin: vec3<f32>, dir: vec3<f32>) -> WalkRay {
     return WalkRay(origin, dir, inv_dir, shear_ray(origin, dir));
 }
 
-// The slab test of child `k` of `node` (`Aabb::entry`): the entry distance, or -1 for a miss.
-fn enter_child(node: WideNode, k: u32, ray: WalkRay, t_min: f32, t_max: f32) -> f32 {
-    let lo = vec3<f32>(node.lo[0][k], node.lo[1][k], node.lo[2][k]);
-    let hi = vec3<f32>(node.hi[0][k], node.hi[1][k], node.hi[2][k]);
+// The slab test of a child's box (`Aabb::entry`): the entry distance, or -1 for a miss.
+fn enter_box(lo: vec3<f32>, hi: vec3<f32>, ray: WalkRay, t_min: f32, t_max: f32) -> f32 {
     let t0 = (lo - ray.origin) * ray.inv_dir;
     let t1 = (hi - ray.origin) * ray.inv_dir;
     let near_axes = min(t0, t1);
@@ -224,10 +225,11 @@ fn walk(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max_in: f32, find: u32)
             let base = size;
             var entered = 0u;
             for (var k = 0u; k < WIDTH; k++) {
-                if node.count[k] == 0u {
+                let child = node_child(node, k);
+                if child.count == 0u {
                     continue;
                 }
-                let t = enter_child(node, k, ray, t_min, t_max);
+                let t = enter_box(child.lo, child.hi, ray, t_min, t_max);
                 if t < 0.0 {
                     continue;
                 }
@@ -244,8 +246,8 @@ fn walk(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max_in: f32, find: u32)
                         i--;
                     }
                 }
-                stack_first[i] = node.first[k];
-                stack_count[i] = node.count[k];
+                stack_first[i] = child.first;
+                stack_count[i] = child.count;
                 stack_t[i] = t;
             }
             if entered > 0u {

@@ -19,6 +19,7 @@ use raylab::color::Color;
 use raylab::film::Film;
 use raylab::formats::load_any;
 use raylab::formats::toml::default_scene;
+use raylab::gpu::bvh::NodeLayout;
 use raylab::gpu::device::GpuDevice;
 use raylab::gpu::scene::GpuView;
 use raylab::large_mesh::{bumpy_sphere_scene, check_bumpy_triangles};
@@ -57,6 +58,10 @@ pub struct BenchArgs {
     /// WGPU_ADAPTER_NAME choose).
     #[arg(long, default_value_t = Device::Cpu)]
     device: Device,
+    /// With --device gpu: how the GPU holds the BVH's nodes, wide (the CPU's eight-wide nodes,
+    /// 256 bytes) or binary (two-wide nodes of 64 bytes over the same leaves).
+    #[arg(long, default_value_t = NodeLayout::default())]
+    gpu_nodes: NodeLayout,
 }
 
 /// The standard set: the default scene, the seven SPD databases at their standard sizes, and a
@@ -82,6 +87,9 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
     }
     let pool = super::thread_pool(args.threads)?;
     let gpu = match args.device {
+        Device::Cpu if args.gpu_nodes != NodeLayout::default() => {
+            return Err("--gpu-nodes lays out the GPU's BVH: add --device gpu".into());
+        }
         Device::Cpu => None,
         Device::Gpu if args.scaling => {
             return Err("--scaling measures the CPU's threads: leave out --device gpu".into());
@@ -100,6 +108,9 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
     };
     let threads = pool.current_num_threads();
     let device = match &gpu {
+        Some(gpu) if args.gpu_nodes != NodeLayout::default() => {
+            format!("gpu: {}; BVH nodes: {}", gpu.name(), args.gpu_nodes)
+        }
         Some(gpu) => format!("gpu: {}", gpu.name()),
         None => format!("{threads} threads"),
     };
@@ -168,7 +179,8 @@ fn bench_scene(
     };
     let gpu_renderer = match gpu {
         Some(gpu) => Some(
-            GpuRenderer::new(Arc::clone(gpu), &assembled).map_err(|e| format!("{name}: {e}"))?,
+            GpuRenderer::with_nodes(Arc::clone(gpu), &assembled, args.gpu_nodes)
+                .map_err(|e| format!("{name}: {e}"))?,
         ),
         None => None,
     };

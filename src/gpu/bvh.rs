@@ -1,12 +1,49 @@
 //! The BVH on the GPU: the CPU's eight-wide tree, node for node, with each leaf's primitives
 //! copied out in leaf order — a mesh's triangles with their corners, so that a ray reads a
-//! triangle in one load, and any other primitive as its object's index. The WGSL that walks it
-//! is `shaders/bvh/traverse.wgsl`.
+//! triangle in one load, and any other primitive as its object's index. The nodes go to the GPU
+//! in one of two layouts ([`NodeLayout`]): as they are (256 bytes a node), or as a two-wide tree
+//! of 64-byte nodes made of them, over the same leaves. The WGSL that walks them is
+//! `shaders/bvh/traverse.wgsl`, with `wide_node.wgsl` or `binary_node.wgsl`.
 
 use bytemuck::{Pod, Zeroable};
 
-use crate::bvh::{Bvh, WIDTH};
+use crate::aabb::Aabb;
+use crate::bvh::{Bvh, WIDTH, WideNode};
 use crate::primitive::Geometry;
+
+/// How the GPU holds the BVH's nodes.
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    strum::Display,
+    strum::EnumString,
+    strum::EnumIter,
+    strum::VariantNames,
+)]
+#[strum(serialize_all = "lowercase")]
+pub enum NodeLayout {
+    /// The CPU's eight-wide nodes, 256 bytes each: a shallow tree, a large load per node.
+    #[default]
+    Wide,
+    /// Two-wide nodes of 64 bytes (both children's boxes in one cache line), each eight-wide
+    /// node a small tree of them: about three times as deep, a small load per node.
+    Binary,
+}
+
+impl NodeLayout {
+    /// The WGSL of the layout's nodes.
+    pub fn wgsl(self) -> &'static str {
+        match self {
+            NodeLayout::Wide => include_str!("../../shaders/bvh/wide_node.wgsl"),
+            NodeLayout::Binary => include_str!("../../shaders/bvh/binary_node.wgsl"),
+        }
+    }
+}
 
 /// WGSL's `WideNode`: [`crate::bvh::WideNode`] with the leaves pointing into
 /// [`GpuBvh::triangles`] or [`GpuBvh::refs`]. 256 bytes.
@@ -21,6 +58,21 @@ pub struct GpuWideNode {
     /// `WideNode::INTERIOR` for an interior child, 0 for an unused slot, or a leaf's entry
     /// count with [`TRIANGLE_LEAF`] set for a leaf of triangles.
     pub count: [u32; WIDTH],
+}
+
+/// WGSL's `BinaryNode`: two children, each its box and, as in [`GpuWideNode`], an interior
+/// child's node index or a leaf's entries (count 0: no child). 64 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuBinaryNode {
+    pub lo0: [f32; 3],
+    pub first0: u32,
+    pub hi0: [f32; 3],
+    pub count0: u32,
+    pub lo1: [f32; 3],
+    pub first1: u32,
+    pub hi1: [f32; 3],
+    pub count1: u32,
 }
 
 /// The bit of a leaf's count that says its entries are triangles (else object indices).
@@ -101,7 +153,175 @@ impl GpuBvh {
     }
 }
 
+/// A child of a wide node, or a pair of them joined under a two-wide node.
+enum Part {
+    Child {
+        bounds: Aabb,
+        first: u32,
+        count: u32,
+    },
+    Pair {
+        bounds: Aabb,
+        parts: Box<[Part; 2]>,
+    },
+}
+
+impl Part {
+    fn bounds(&self) -> Aabb {
+        match self {
+            Part::Child { bounds, .. } | Part::Pair { bounds, .. } => *bounds,
+        }
+    }
+}
+
+/// Half the surface area of `b`: what the surface area heuristic compares.
+fn half_area(b: &Aabb) -> f32 {
+    let d = b.max - b.min;
+    d.x * d.y + d.y * d.z + d.z * d.x
+}
+
+impl GpuBvh {
+    /// The tree as two-wide nodes over the same leaves, root first: each eight-wide node
+    /// becomes a small tree over its children, made by joining, again and again, the two parts
+    /// whose joint box has the least surface area (the most likely to be entered together).
+    pub fn binary_nodes(&self) -> Vec<GpuBinaryNode> {
+        let mut out = Vec::with_capacity(self.nodes.len() * 3);
+        if !self.nodes.is_empty() {
+            self.push_wide(0, &mut out);
+        }
+        out
+    }
+
+    /// Pushes the small tree of wide node `w` (and below it, its subtrees); returns its root.
+    fn push_wide(&self, w: usize, out: &mut Vec<GpuBinaryNode>) -> u32 {
+        let node = &self.nodes[w];
+        let mut parts: Vec<Part> = (0..WIDTH)
+            .filter(|&k| node.count[k] != 0)
+            .map(|k| {
+                let corner = |c: &[[f32; WIDTH]; 3]| glam::Vec3::new(c[0][k], c[1][k], c[2][k]);
+                Part::Child {
+                    bounds: Aabb::new(corner(&node.min), corner(&node.max)),
+                    first: node.first[k],
+                    count: node.count[k],
+                }
+            })
+            .collect();
+        while parts.len() > 2 {
+            let mut best = (f32::INFINITY, 0, 1);
+            for i in 0..parts.len() {
+                for j in i + 1..parts.len() {
+                    let area = half_area(&parts[i].bounds().union(parts[j].bounds()));
+                    if area < best.0 {
+                        best = (area, i, j);
+                    }
+                }
+            }
+            let (_, i, j) = best;
+            let b = parts.swap_remove(j);
+            let a = parts.swap_remove(i);
+            let bounds = a.bounds().union(b.bounds());
+            parts.push(Part::Pair {
+                bounds,
+                parts: Box::new([a, b]),
+            });
+        }
+        self.push_pair(parts, out)
+    }
+
+    /// Pushes a two-wide node over `parts` (one or two) and the nodes below it; returns it.
+    fn push_pair(&self, parts: Vec<Part>, out: &mut Vec<GpuBinaryNode>) -> u32 {
+        let index = out.len();
+        let empty = ([f32::INFINITY; 3], [f32::INFINITY; 3], 0, 0);
+        out.push(GpuBinaryNode::zeroed());
+        let mut slots = [empty; 2];
+        for (slot, part) in slots.iter_mut().zip(parts) {
+            let bounds = part.bounds();
+            let (first, count) = match part {
+                Part::Child { first, count, .. } if count == WideNode::INTERIOR => {
+                    (self.push_wide(first as usize, out), count)
+                }
+                Part::Child { first, count, .. } => (first, count),
+                Part::Pair { parts, .. } => {
+                    let [a, b] = *parts;
+                    (self.push_pair(vec![a, b], out), WideNode::INTERIOR)
+                }
+            };
+            *slot = (bounds.min.to_array(), bounds.max.to_array(), first, count);
+        }
+        let [(lo0, hi0, first0, count0), (lo1, hi1, first1, count1)] = slots;
+        out[index] = GpuBinaryNode {
+            lo0,
+            first0,
+            hi0,
+            count0,
+            lo1,
+            first1,
+            hi1,
+            count1,
+        };
+        index as u32
+    }
+}
+
 /// The object index of a primitive that is an object.
 fn object_index(kind: Result<usize, usize>) -> u32 {
     kind.expect("a leaf of objects holds only objects") as u32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::large_mesh::bumpy_sphere_scene;
+    use crate::render::assemble;
+
+    /// Walks the two-wide tree from node `n` inside `bounds`: every child's box inside its
+    /// parent's, and each leaf met counted by where its entries start.
+    fn walk(nodes: &[GpuBinaryNode], n: u32, bounds: Aabb, leaves: &mut Vec<(u32, u32)>) -> usize {
+        let node = nodes[n as usize];
+        let children = [
+            (node.lo0, node.hi0, node.first0, node.count0),
+            (node.lo1, node.hi1, node.first1, node.count1),
+        ];
+        let mut depth = 0;
+        for (lo, hi, first, count) in children.into_iter().filter(|c| c.3 != 0) {
+            let child = Aabb::new(lo.into(), hi.into());
+            assert_eq!(
+                bounds.union(child),
+                bounds,
+                "node {n}'s child leaves its box"
+            );
+            if count == WideNode::INTERIOR {
+                depth = depth.max(walk(nodes, first, child, leaves));
+            } else {
+                leaves.push((first, count));
+            }
+        }
+        depth + 1
+    }
+
+    #[test]
+    fn the_two_wide_tree_holds_every_leaf_of_the_eight_wide_one_once_inside_its_boxes() {
+        let assembled = assemble(bumpy_sphere_scene(20_000, 8, 8)).unwrap();
+        let gpu = GpuBvh::new(&assembled.bvh, &assembled.scene.geometry);
+        let binary = gpu.binary_nodes();
+        let mut wide_leaves: Vec<(u32, u32)> = gpu
+            .nodes
+            .iter()
+            .flat_map(|node| (0..WIDTH).map(|k| (node.first[k], node.count[k])))
+            .filter(|&(_, count)| count != 0 && count != WideNode::INTERIOR)
+            .collect();
+        let mut leaves = Vec::new();
+        let everything = Aabb::new(glam::Vec3::splat(-1e30), glam::Vec3::splat(1e30));
+        let depth = walk(&binary, 0, everything, &mut leaves);
+        wide_leaves.sort_unstable();
+        leaves.sort_unstable();
+        assert_eq!(leaves, wide_leaves);
+        // Each wide node's children make a small tree of one to seven two-wide nodes.
+        assert!(binary.len() > gpu.nodes.len() && binary.len() <= 7 * gpu.nodes.len());
+        let wide_depth = assembled.bvh.depth();
+        assert!(
+            depth >= wide_depth && depth <= 7 * wide_depth,
+            "{depth} vs {wide_depth}"
+        );
+    }
 }

@@ -13,9 +13,9 @@ pub struct GpuDevice {
     pub adapter: wgpu::Adapter,
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
-    /// The pipelines compiled so far, by entry point: each is compiled once, when first asked
-    /// for (src/gpu/tracer.rs), as a software GPU takes a minute or more.
-    pipelines: Mutex<HashMap<&'static str, Arc<ComputeEntry>>>,
+    /// The pipelines compiled so far, by module and entry point: each is compiled once, when
+    /// first asked for ([`Self::pipeline`]), as a software GPU takes a minute or more.
+    pipelines: Mutex<HashMap<(&'static str, &'static str), Arc<ComputeEntry>>>,
 }
 
 /// A compiled compute entry point and the layout of the lists it reads and writes.
@@ -81,11 +81,11 @@ impl GpuDevice {
         format!("{} ({})", info.name, info.backend)
     }
 
-    /// The pipeline of `entry`, made by `compile` the first time it is asked for on this device
-    /// and kept.
+    /// The pipeline `entry` (a module's name and an entry point's), made by `compile` the first
+    /// time it is asked for on this device and kept.
     pub fn pipeline(
         &self,
-        entry: &'static str,
+        entry: (&'static str, &'static str),
         compile: impl FnOnce(&wgpu::Device) -> ComputeEntry,
     ) -> Arc<ComputeEntry> {
         let mut compiled = self

@@ -101,7 +101,7 @@ const _: () = assert!(SRGB_BUCKET_SHIFT == BUCKET_SHIFT);
 /// The pipeline of entry point `entry` of the film's WGSL on `gpu`, compiled once per device;
 /// its bind group 0 is the layout wgpu derives from what the entry uses.
 fn film_pipeline(gpu: &GpuDevice, entry: &'static str) -> Arc<ComputeEntry> {
-    gpu.pipeline(entry, |device| {
+    gpu.pipeline(("film", entry), |device| {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("the film"),
             source: wgpu::ShaderSource::Wgsl(FILM_WGSL.into()),

@@ -67,7 +67,7 @@ pub fn closest_hits(
         Search::Objects => "probe_objects",
         Search::Bvh => "probe_bvh",
     };
-    run_list(gpu, scene, &pipeline(gpu, entry), rays)
+    run_list(gpu, scene, &pipeline(gpu, entry, scene.node_layout), rays)
 }
 
 /// WGSL's `TextureProbe`: where to colour texture `texture` of the scene.
@@ -87,5 +87,10 @@ pub fn texture_colors(
     scene: &GpuScene,
     probes: &[TextureProbe],
 ) -> Result<Vec<[f32; 4]>, String> {
-    run_list(gpu, scene, &pipeline(gpu, "probe_textures"), probes)
+    run_list(
+        gpu,
+        scene,
+        &pipeline(gpu, "probe_textures", scene.node_layout),
+        probes,
+    )
 }

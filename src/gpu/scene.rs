@@ -7,7 +7,7 @@ use std::sync::Arc;
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
-use super::bvh::{GpuBvh, GpuTriangle, GpuWideNode};
+use super::bvh::{GpuBinaryNode, GpuBvh, GpuTriangle, GpuWideNode, NodeLayout};
 use super::caustics::{GpuPhoton, photon_records};
 use super::device::GpuDevice;
 use super::shapes::{GpuObject, ObjectTable, Word};
@@ -318,6 +318,8 @@ impl SceneRecords {
 
 /// The scene's buffers on the GPU and the bind group that binds them.
 pub struct GpuScene {
+    /// How the BVH's nodes are laid out: the pipelines that walk them must be compiled for it.
+    pub node_layout: NodeLayout,
     pub layout: wgpu::BindGroupLayout,
     pub bind_group: wgpu::BindGroup,
     /// The frame record's buffer, rewritten when the camera or the film moves.
@@ -356,6 +358,15 @@ impl GpuScene {
     /// Uploads `assembled`'s scene and BVH; the error says what the GPU tracer does not trace,
     /// or what does not fit the GPU: how much it needs, and how much the GPU allows.
     pub fn upload(gpu: &GpuDevice, assembled: &Assembled) -> Result<GpuScene, String> {
+        GpuScene::upload_with(gpu, assembled, NodeLayout::default())
+    }
+
+    /// [`Self::upload`] with the BVH's nodes in `node_layout`.
+    pub fn upload_with(
+        gpu: &GpuDevice,
+        assembled: &Assembled,
+        node_layout: NodeLayout,
+    ) -> Result<GpuScene, String> {
         let scene = &assembled.scene;
         let records = SceneRecords::new(scene, &assembled.bvh)?;
         let limits = gpu.device.limits();
@@ -369,6 +380,20 @@ impl GpuScene {
         }
         let device = &gpu.device;
         let storage = |what: &str, contents: &[u8]| storage_buffer(gpu, what, contents);
+        let binary_nodes;
+        let (nodes, node_count): (&[u8], usize) = match node_layout {
+            NodeLayout::Wide => (
+                bytemuck::cast_slice::<GpuWideNode, u8>(&records.bvh.nodes),
+                records.bvh.nodes.len(),
+            ),
+            NodeLayout::Binary => {
+                binary_nodes = records.bvh.binary_nodes();
+                (
+                    bytemuck::cast_slice::<GpuBinaryNode, u8>(&binary_nodes),
+                    binary_nodes.len(),
+                )
+            }
+        };
         // Kept apart as well: edits rewrite them.
         let materials = storage("the materials", bytemuck::cast_slice(&records.materials))?;
         let lights = storage("the lights", bytemuck::cast_slice(&records.lights))?;
@@ -381,10 +406,7 @@ impl GpuScene {
                 "the shapes",
                 bytemuck::cast_slice::<Word, u8>(&records.table.words),
             )?,
-            storage(
-                "the BVH nodes",
-                bytemuck::cast_slice::<GpuWideNode, u8>(&records.bvh.nodes),
-            )?,
+            storage("the BVH nodes", nodes)?,
             storage(
                 "the triangles",
                 bytemuck::cast_slice::<GpuTriangle, u8>(&records.bvh.triangles),
@@ -410,7 +432,7 @@ impl GpuScene {
         let counts = RecordCounts {
             refs: records.bvh.refs.len() as u32,
             unbounded: records.bvh.unbounded,
-            nodes: records.bvh.nodes.len() as u32,
+            nodes: node_count as u32,
             lights: records.lights.len() as u32,
             objects: records.table.objects.len() as u32,
             materials: records.materials.len() as u32,
@@ -424,6 +446,7 @@ impl GpuScene {
         let layout = scene_layout(device);
         let bind_group = scene_bind_group(device, &layout, &buffers, &frame);
         let gpu_scene = GpuScene {
+            node_layout,
             layout,
             bind_group,
             frame,

@@ -7,12 +7,14 @@ use wgpu::util::DeviceExt;
 
 use std::sync::Arc;
 
+use super::bvh::NodeLayout;
 use super::device::{ComputeEntry, GpuDevice, read_buffer};
 use super::scene::{GpuScene, scene_layout, storage_entry};
 use super::shapes::SHAPES_WGSL;
 
-/// All the GPU tracer's WGSL, as one module: the scene's records, the camera and the jitter,
-/// the shapes, the BVH's walk, the textures, the caustic photons, the shading, the media and the
+/// All the GPU tracer's WGSL but the shapes' ([`SHAPES_WGSL`]) and the BVH's nodes'
+/// ([`NodeLayout::wgsl`]), which go with it into one module: the scene's records, the camera
+/// and the jitter, the triangles, the BVH's walk, the textures, the caustic photons, the shading, the media and the
 /// ray tree, the debug views, and the entry points.
 pub const TRACER_WGSL: &str = concat!(
     include_str!("../../shaders/scene.wgsl"),
@@ -66,16 +68,26 @@ pub struct SampleColor {
     pub pad2: u32,
 }
 
-/// The compute pipeline of WGSL entry point `entry` of the GPU tracer's module on `gpu`: bind
-/// group 0 the scene (any [`GpuScene`]'s: wgpu takes equal layouts as one), bind group 1 a list
-/// read and a list written. It is compiled the first time it is asked for on `gpu`.
-pub fn pipeline(gpu: &GpuDevice, entry: &'static str) -> Arc<ComputeEntry> {
-    gpu.pipeline(entry, |device| compile(device, entry))
+/// The compute pipeline of WGSL entry point `entry` of the GPU tracer's module on `gpu`, for
+/// the BVH's nodes in `nodes`: bind group 0 the scene (any [`GpuScene`]'s of that layout: wgpu
+/// takes equal layouts as one), bind group 1 a list read and a list written. It is compiled the
+/// first time it is asked for on `gpu`.
+pub fn pipeline(gpu: &GpuDevice, entry: &'static str, nodes: NodeLayout) -> Arc<ComputeEntry> {
+    let module = match nodes {
+        NodeLayout::Wide => "tracer, wide nodes",
+        NodeLayout::Binary => "tracer, binary nodes",
+    };
+    gpu.pipeline((module, entry), |device| compile(device, entry, nodes))
+}
+
+/// All the tracer's WGSL, for the BVH's nodes in `nodes`.
+pub fn tracer_wgsl(nodes: NodeLayout) -> String {
+    [SHAPES_WGSL, nodes.wgsl(), TRACER_WGSL].concat()
 }
 
 /// Compiles `entry` of all the tracer's WGSL for `device`.
-fn compile(device: &wgpu::Device, entry: &str) -> ComputeEntry {
-    let source = [SHAPES_WGSL, TRACER_WGSL].concat();
+fn compile(device: &wgpu::Device, entry: &str, nodes: NodeLayout) -> ComputeEntry {
+    let source = tracer_wgsl(nodes);
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("the GPU tracer"),
         source: wgpu::ShaderSource::Wgsl(source.into()),

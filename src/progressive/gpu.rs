@@ -19,6 +19,7 @@ use super::plan::{Pass, PassGrid, passes, take_snapshot, unwatched_passes};
 use crate::camera::PIXEL_CENTRE;
 use crate::color::Color;
 use crate::film::Film;
+use crate::gpu::bvh::NodeLayout;
 use crate::gpu::device::{ComputeEntry, GpuDevice};
 use crate::gpu::film::GpuFilm;
 use crate::gpu::scene::{GpuScene, GpuView};
@@ -48,8 +49,17 @@ pub struct GpuRenderer {
 impl GpuRenderer {
     /// Uploads `assembled` to `gpu`; the error says what the GPU does not trace or hold.
     pub fn new(gpu: Arc<GpuDevice>, assembled: &Assembled) -> Result<GpuRenderer, String> {
-        let scene = GpuScene::upload(&gpu, assembled)?;
-        let trace = pipeline(&gpu, "trace_samples");
+        GpuRenderer::with_nodes(gpu, assembled, NodeLayout::default())
+    }
+
+    /// [`Self::new`] with the BVH's nodes in `nodes` on the GPU.
+    pub fn with_nodes(
+        gpu: Arc<GpuDevice>,
+        assembled: &Assembled,
+        nodes: NodeLayout,
+    ) -> Result<GpuRenderer, String> {
+        let scene = GpuScene::upload_with(&gpu, assembled, nodes)?;
+        let trace = pipeline(&gpu, "trace_samples", nodes);
         Ok(GpuRenderer { gpu, scene, trace })
     }
 

@@ -56,6 +56,34 @@ fn bench_on_the_gpu_names_the_adapter() {
     let scaling = raylab(&[&args[..], &["--scaling"]].concat(), dir.path());
     assert_eq!(scaling.status.code(), Some(1), "{}", stderr(&scaling));
     assert!(stderr(&scaling).contains("--scaling measures the CPU's threads"));
+    // The other layout of the BVH's nodes traces the same rays, and says so in the header.
+    let binary = raylab(
+        &[&args[..], &["--gpu-nodes", "binary"]].concat(),
+        dir.path(),
+    );
+    assert!(binary.status.success(), "{}", stderr(&binary));
+    let binary_report = String::from_utf8_lossy(&binary.stdout);
+    assert!(
+        binary_report
+            .lines()
+            .next()
+            .unwrap()
+            .ends_with("; BVH nodes: binary"),
+        "{binary_report}"
+    );
+    let rays = |report: &str| {
+        let row = report.lines().find(|l| l.starts_with("default")).unwrap();
+        let columns: Vec<String> = row.split_whitespace().map(String::from).collect();
+        columns[6..10].to_vec()
+    };
+    assert_eq!(
+        rays(&binary_report),
+        rays(&report),
+        "{binary_report}\n{report}"
+    );
+    let on_cpu = raylab(&["bench", "--gpu-nodes", "binary"], dir.path());
+    assert_eq!(on_cpu.status.code(), Some(1), "{}", stderr(&on_cpu));
+    assert!(stderr(&on_cpu).contains("--gpu-nodes lays out the GPU's BVH: add --device gpu"));
 }
 
 #[test]
