@@ -156,6 +156,35 @@ fn every_scene_renders_on_the_gpu_as_on_the_cpu_with_adaptive_anti_aliasing() {
 }
 
 #[test]
+fn a_gpu_that_runs_few_workgroups_a_dispatch_renders_the_same_image_in_more_dispatches() {
+    // 16 workgroups of 64: a dispatch of at most 1024 samples, fewer than a row of 160 pixels
+    // takes at 16 samples each.
+    let small = GpuDevice::with_limits(|offered| wgpu::Limits {
+        max_compute_workgroups_per_dimension: 16,
+        ..offered
+    })
+    .unwrap_or_else(|e| panic!("these tests run on a GPU: {e}"));
+    let mut scene = load_any(&format!(
+        "{}/assets/scenes/default.toml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    (scene.settings.width, scene.settings.height) = SIZE;
+    scene.settings.samples = 16;
+    scene.settings.aa_threshold = 0.0;
+    let assembled = assemble(scene).unwrap();
+    let renderer = GpuRenderer::new(Arc::new(small), &assembled).unwrap();
+    let (on_gpu, stats) = gpu_render(&renderer, &assembled.tracer());
+    let (cpu_pixels, cpu_stats) = render_image(&assembled.tracer());
+    let (mean, close) = difference(&on_gpu, &to_srgb8(&cpu_pixels));
+    assert!(
+        mean <= 0.5 && close >= 0.99,
+        "mean {mean}, {close} within 3"
+    );
+    assert_eq!(stats.rays.primary, cpu_stats.rays.primary);
+}
+
+#[test]
 fn every_textured_scene_renders_on_the_gpu_as_on_the_cpu_with_textures_off() {
     let textured = |scene: &Scene| {
         scene.background_image.is_some() || scene.materials.iter().any(|m| m.texture.is_some())

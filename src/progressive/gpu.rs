@@ -23,7 +23,9 @@ use crate::gpu::bvh::NodeLayout;
 use crate::gpu::device::{ComputeEntry, GpuDevice};
 use crate::gpu::film::GpuFilm;
 use crate::gpu::scene::{GpuScene, GpuView};
-use crate::gpu::tracer::{PixelSample, SampleColor, dispatch_list, pipeline, upload_list};
+use crate::gpu::tracer::{
+    PixelSample, SampleColor, WORKGROUP, dispatch_list, pipeline, upload_list,
+};
 use crate::photon_map::PhotonMap;
 use crate::render::Assembled;
 use crate::sampling::jitter;
@@ -196,13 +198,22 @@ impl GpuRenderer {
         let grid = PassGrid::new(pass, start_block, film, shown, threshold);
         let step = pass.step();
         let (rows, columns) = (film.height().div_ceil(step), film.width().div_ceil(step));
+        // At most as many rows a dispatch as their samples fit one dispatch: however fast the
+        // GPU, a list stays within its limits.
+        let pixel_samples = match pass {
+            Pass::Block(_) | Pass::Sample(_) => 1,
+            Pass::Refine(n) | Pass::Sweep(n) => n,
+        };
+        let row_samples = u64::from(columns) * u64::from(pixel_samples.max(1));
+        let most_rows = (most_samples(&self.gpu) / row_samples.max(1)).clamp(1, u64::from(rows));
         control.start_pass(step, pass.samples(), rows);
         let rays_before = control.rays();
         let mut pixels = 0;
         let mut band_start = 0;
         while band_start < rows {
             control.wait_for_band().map_err(|Cancelled| None)?;
-            let band_end = (band_start + *batch_bands * BAND).min(rows);
+            let batch_rows = (*batch_bands * BAND).min(most_rows as u32);
+            let band_end = (band_start + batch_rows).min(rows);
             let mut samples = Vec::new();
             for row in band_start..band_end {
                 for column in 0..columns {
@@ -286,6 +297,17 @@ impl Sweep<'_> {
         self.shader.shade(self.tracer, &[ray], &mut color, counts);
         color[0]
     }
+}
+
+/// The most samples one dispatch takes: as many as the GPU runs workgroups for in one dispatch,
+/// and as many as one storage buffer holds the colours of.
+fn most_samples(gpu: &GpuDevice) -> u64 {
+    let limits = gpu.device.limits();
+    let invocations = u64::from(limits.max_compute_workgroups_per_dimension) * u64::from(WORKGROUP);
+    let buffer = limits
+        .max_storage_buffer_binding_size
+        .min(limits.max_buffer_size);
+    invocations.min(buffer / size_of::<SampleColor>() as u64)
 }
 
 /// The bands the next dispatch takes, after one of `bands` took `took`: as many as fit in
