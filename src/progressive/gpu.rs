@@ -35,9 +35,10 @@ use crate::whitted::Tracer;
 /// Rows of a pass's grid in a band, as the CPU's sweep takes them.
 const BAND: u32 = 8;
 
-/// How long one dispatch should take at most: well under the two seconds after which operating
+/// How long one dispatch should take at most, unless told otherwise
+/// ([`GpuRenderer::set_dispatch_time`]): well under the two seconds after which operating
 /// systems reset a GPU that does not answer, and short enough to stop soon after a cancel.
-const DISPATCH_TIME: Duration = Duration::from_millis(100);
+pub const DISPATCH_TIME: Duration = Duration::from_millis(100);
 
 /// A scene's objects, BVH, materials, lights and caustic photons on the GPU, ready to render it
 /// from any camera with any of the settings the frame record carries (the switches, depth,
@@ -46,6 +47,8 @@ pub struct GpuRenderer {
     gpu: Arc<GpuDevice>,
     scene: GpuScene,
     trace: Arc<ComputeEntry>,
+    /// How long one dispatch should take at most.
+    dispatch_time: Duration,
 }
 
 impl GpuRenderer {
@@ -62,7 +65,18 @@ impl GpuRenderer {
     ) -> Result<GpuRenderer, String> {
         let scene = GpuScene::upload_with(&gpu, assembled, nodes)?;
         let trace = pipeline(&gpu, "trace_samples", nodes);
-        Ok(GpuRenderer { gpu, scene, trace })
+        Ok(GpuRenderer {
+            gpu,
+            scene,
+            trace,
+            dispatch_time: DISPATCH_TIME,
+        })
+    }
+
+    /// Makes each dispatch take about `time` at most (the default is [`DISPATCH_TIME`]): a
+    /// window drawn on the same GPU waits for the dispatch in flight before its frame.
+    pub fn set_dispatch_time(&mut self, time: Duration) {
+        self.dispatch_time = time;
     }
 
     /// The device it renders on.
@@ -225,7 +239,7 @@ impl GpuRenderer {
             }
             let dispatched = Instant::now();
             let counts = self.trace_batch(sweep, &samples, step).map_err(Some)?;
-            *batch_bands = next_batch(*batch_bands, dispatched.elapsed());
+            *batch_bands = next_batch(*batch_bands, dispatched.elapsed(), self.dispatch_time);
             control.band_done(band_end - band_start, samples.len() as u64, &counts);
             film.touch_rows(band_start * step..band_end * step);
             band_start = band_end;
@@ -311,9 +325,9 @@ fn most_samples(gpu: &GpuDevice) -> u64 {
 }
 
 /// The bands the next dispatch takes, after one of `bands` took `took`: as many as fit in
-/// [`DISPATCH_TIME`], at most twice as many as before.
-fn next_batch(bands: u32, took: Duration) -> u32 {
+/// `budget`, at most twice as many as before.
+fn next_batch(bands: u32, took: Duration, budget: Duration) -> u32 {
     let per_band = took.as_secs_f64() / f64::from(bands);
-    let fit = (DISPATCH_TIME.as_secs_f64() / per_band.max(1e-9)) as u32;
+    let fit = (budget.as_secs_f64() / per_band.max(1e-9)) as u32;
     fit.clamp(1, bands.saturating_mul(2).max(1))
 }

@@ -6,6 +6,7 @@
 //! copy also keeps the scene uploaded to the GPU, once the GPU is asked to render it.
 
 use std::sync::Arc;
+use std::time::Duration;
 
 use raylab::gpu::device::GpuDevice;
 use raylab::photon::PhotonMap;
@@ -15,6 +16,11 @@ use raylab::whitted::Tracer;
 
 use crate::viewer::scene::controls::TraceSetup;
 use crate::viewer::scene::source::LoadedScene;
+
+/// How long one of the GPU tracer's dispatches takes at most in the viewer: the window draws on
+/// the same GPU, and its frame waits for the dispatch in flight, so a dispatch takes about a
+/// frame's share at 60 frames a second.
+const FRAME_SHARE: Duration = Duration::from_millis(12);
 
 /// A thread's copy of the scene it traces.
 #[derive(Default)]
@@ -64,7 +70,11 @@ impl WorkingScene {
         let (_, copy) = self.copy.as_ref().ok_or("no scene to upload to the GPU")?;
         let renderer = self
             .on_gpu
-            .get_or_insert_with(|| GpuRenderer::new(Arc::clone(gpu), copy))
+            .get_or_insert_with(|| {
+                let mut renderer = GpuRenderer::new(Arc::clone(gpu), copy)?;
+                renderer.set_dispatch_time(FRAME_SHARE);
+                Ok(renderer)
+            })
             .as_mut()
             .map_err(|e| e.clone())?;
         renderer.set_caustics(copy.caustics.as_ref())?;
