@@ -43,8 +43,8 @@ pub enum UserEvent {
 pub struct App {
     /// The window and what draws into it, once it is open.
     pub(super) gpu: Option<Graphics>,
-    /// The GPU the tracer opened at the start, if any, which the window shares when it can.
-    tracer_gpu: Option<Arc<GpuDevice>>,
+    /// The GPU the tracer opened at the start, if the window is to share it ([`window_shares`]).
+    shared_gpu: Option<Arc<GpuDevice>>,
     pub(super) ui: Ui,
     pub(super) input: Input,
     pub(super) scene: SceneSlot,
@@ -79,7 +79,8 @@ impl App {
         } = options;
         let (device, tracer_gpu) = pick_device(device, display)?;
         let wake = proxy.clone();
-        let tracing = Tracing::start(threads, tracer_gpu.clone(), move || {
+        let shared_gpu = tracer_gpu.clone().filter(|gpu| window_shares(gpu, device));
+        let tracing = Tracing::start(threads, tracer_gpu, move || {
             let _ = wake.send_event(UserEvent::RayTreeTraced);
         })?;
         let panel = PanelState {
@@ -95,7 +96,7 @@ impl App {
         };
         Ok(App {
             gpu: None,
-            tracer_gpu,
+            shared_gpu,
             ui: Ui::new(panel, window),
             input: Input::new(script, exit_when_done, screenshot),
             scene: SceneSlot::new(
@@ -187,8 +188,8 @@ impl ApplicationHandler<UserEvent> for App {
         if self.gpu.is_some() {
             return;
         }
-        let (size, tracer_gpu) = (self.ui.window_size, self.tracer_gpu.as_ref());
-        match Graphics::open(event_loop, size, &self.ui.egui, tracer_gpu) {
+        let (size, shared_gpu) = (self.ui.window_size, self.shared_gpu.as_ref());
+        match Graphics::open(event_loop, size, &self.ui.egui, shared_gpu) {
             Ok(gfx) => {
                 self.ui.panel.max_side = gfx.max_side();
                 self.gpu = Some(gfx);
@@ -249,10 +250,21 @@ impl ApplicationHandler<UserEvent> for App {
     }
 }
 
+/// Whether the window draws with the tracer's GPU `gpu`, so that the GPU tracer's image goes
+/// straight into the window's texture: when the viewer starts on the GPU (`device`), or the
+/// adapter is real hardware. Not on a software adapter when the viewer starts on the CPU: Mesa's
+/// lavapipe compiles a shader under the lock of its device's queue, so the window would stand
+/// still for the minute or two of the GPU tracer's first compile, should the device switch
+/// hand it the render.
+fn window_shares(gpu: &GpuDevice, device: Device) -> bool {
+    device == Device::Gpu || gpu.adapter.get_info().device_type != wgpu::DeviceType::Cpu
+}
+
 /// The tracer the viewer starts with, and the GPU if it opened one (on `display`, so that the
-/// window can share it): the one asked for, else the GPU when its adapter is real hardware and
-/// the CPU when it is a software rasterizer or there is none. The error says why the GPU asked
-/// for cannot be opened.
+/// window can share it, whichever tracer starts: the device switch may hand the render to the
+/// GPU later): the one asked for, else the GPU when its adapter is real hardware and the CPU
+/// when it is a software rasterizer or there is none. The error says why the GPU asked for
+/// cannot be opened.
 fn pick_device(
     asked: Option<Device>,
     display: OwnedDisplayHandle,
@@ -264,7 +276,7 @@ fn pick_device(
         GpuDevice::on_instance(instance).map(Arc::new)
     };
     match asked {
-        Some(Device::Cpu) => Ok((Device::Cpu, None)),
+        Some(Device::Cpu) => Ok((Device::Cpu, open().ok())),
         Some(Device::Gpu) => {
             let gpu = open().map_err(|e| format!("--device gpu: {e}"))?;
             Ok((Device::Gpu, Some(gpu)))
