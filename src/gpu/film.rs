@@ -269,14 +269,9 @@ impl GpuFilm {
                 ..SampleColor::zeroed()
             })
             .collect();
-        let mut list = upload_list(gpu, samples, size_of_val(colors.as_slice()) as u64)?;
-        list.output = gpu
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("sample colours"),
-                contents: bytemuck::cast_slice(&colors),
-                usage: wgpu::BufferUsages::STORAGE,
-            });
+        let list = upload_list(gpu, samples, size_of_val(colors.as_slice()) as u64)?;
+        gpu.queue
+            .write_buffer(&list.output, 0, bytemuck::cast_slice(&colors));
         let encoder = gpu.device.create_command_encoder(&Default::default());
         self.add(gpu, encoder, &list, step).map(|_| ())
     }

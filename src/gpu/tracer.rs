@@ -119,7 +119,8 @@ pub struct WorkList {
     pub len: usize,
 }
 
-/// Uploads `input` and makes a buffer of `out_bytes` for its results; the error says if either
+/// Uploads `input` and makes a buffer of `out_bytes` for its results (which may also be written
+/// from the CPU, for results made there); the error says if either
 /// does not fit the GPU, or the list needs more workgroups than one dispatch runs.
 pub fn upload_list<In: Pod>(
     gpu: &GpuDevice,
@@ -145,7 +146,9 @@ pub fn upload_list<In: Pod>(
     let output = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("work results"),
         size: out_bytes,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        usage: wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_SRC
+            | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
     Ok(WorkList {
