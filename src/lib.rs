@@ -19,8 +19,9 @@
 //!   [`noise`] and the [`texture`]s made of it, [`settings`] and [`scene::Scene`], which
 //!   [`formats`] reads from TOML, OBJ, NFF, SPD and SDL files (or [`large_mesh`] generates, for
 //!   benchmarks).
-//! - Tracing: [`bvh::Bvh`] finds what a ray hits, [`stats`] counts rays and a
-//!   [`photon_map::PhotonMap`] holds the light of caustics; [`whitted`] builds each eye ray's ray
+//! - Tracing: [`bvh::Bvh`] finds what a ray hits, [`stats`] counts rays, an
+//!   [`item_buffer::ItemBuffer`] holds the first hits a raster pass found (the lecture's modified
+//!   Z-buffer) and a [`photon_map::PhotonMap`] holds the light of caustics; [`whitted`] builds each eye ray's ray
 //!   tree with them, adding the caustics, and tells a [`whitted::TreeObserver`] what it does;
 //!   [`photon`] fills the photon map beforehand by shooting photons from the lights with the
 //!   same tracer.
@@ -45,6 +46,7 @@ pub mod formats;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod inspect;
+pub mod item_buffer;
 pub mod large_mesh;
 pub mod light;
 pub mod limits;

@@ -50,10 +50,39 @@ pub enum Device {
 
 fn unknown_device(s: &str) -> String {
     use strum::VariantNames;
-    format!(
-        "unknown device `{s}` (use one of: {})",
-        Device::VARIANTS.join(", ")
-    )
+    unknown_choice("device", s, Device::VARIANTS)
+}
+
+/// Why `s` is none of the `choices` of `what`.
+fn unknown_choice(what: &str, s: &str, choices: &[&str]) -> String {
+    format!("unknown {what} `{s}` (use one of: {})", choices.join(", "))
+}
+
+/// Where a render's eye rays find their first hits: by searching the BVH (`rays`), or starting
+/// from the item buffer a raster pass drew on the GPU (`raster`, the lecture's modified
+/// Z-buffer, [`crate::item_buffer`]). The image is the same either way.
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    strum::Display,
+    strum::EnumString,
+    strum::EnumIter,
+    strum::VariantNames,
+)]
+#[strum(serialize_all = "lowercase", parse_err_ty = String, parse_err_fn = unknown_first_hit)]
+pub enum FirstHit {
+    #[default]
+    Rays,
+    Raster,
+}
+
+fn unknown_first_hit(s: &str) -> String {
+    use strum::VariantNames;
+    unknown_choice("first-hit search", s, FirstHit::VARIANTS)
 }
 
 /// What a render needs: the scene, its BVH and its caustic photon map. The BVH and the map are

@@ -11,6 +11,9 @@ pub struct RayCounts {
     pub primary: u64,
     /// Eye rays that hit something.
     pub primary_hits: u64,
+    /// Eye rays whose closest hit was searched for only up to their pixel's item in the item
+    /// buffer, and found there ([`crate::item_buffer`]).
+    pub from_item_buffer: u64,
     pub shadow: u64,
     pub reflected: u64,
     pub transmitted: u64,
@@ -29,6 +32,7 @@ impl std::ops::AddAssign for RayCounts {
     fn add_assign(&mut self, o: RayCounts) {
         self.primary += o.primary;
         self.primary_hits += o.primary_hits;
+        self.from_item_buffer += o.from_item_buffer;
         self.shadow += o.shadow;
         self.reflected += o.reflected;
         self.transmitted += o.transmitted;
@@ -42,6 +46,7 @@ impl std::ops::Sub for RayCounts {
         RayCounts {
             primary: self.primary - o.primary,
             primary_hits: self.primary_hits - o.primary_hits,
+            from_item_buffer: self.from_item_buffer - o.from_item_buffer,
             shadow: self.shadow - o.shadow,
             reflected: self.reflected - o.reflected,
             transmitted: self.transmitted - o.transmitted,
@@ -55,6 +60,7 @@ impl std::ops::Sub for RayCounts {
 pub struct SharedRayCounts {
     primary: AtomicU64,
     primary_hits: AtomicU64,
+    from_item_buffer: AtomicU64,
     shadow: AtomicU64,
     reflected: AtomicU64,
     transmitted: AtomicU64,
@@ -66,6 +72,8 @@ impl SharedRayCounts {
         self.primary.fetch_add(c.primary, Ordering::Relaxed);
         self.primary_hits
             .fetch_add(c.primary_hits, Ordering::Relaxed);
+        self.from_item_buffer
+            .fetch_add(c.from_item_buffer, Ordering::Relaxed);
         self.shadow.fetch_add(c.shadow, Ordering::Relaxed);
         self.reflected.fetch_add(c.reflected, Ordering::Relaxed);
         self.transmitted.fetch_add(c.transmitted, Ordering::Relaxed);
@@ -76,6 +84,7 @@ impl SharedRayCounts {
         RayCounts {
             primary: self.primary.load(Ordering::Relaxed),
             primary_hits: self.primary_hits.load(Ordering::Relaxed),
+            from_item_buffer: self.from_item_buffer.load(Ordering::Relaxed),
             shadow: self.shadow.load(Ordering::Relaxed),
             reflected: self.reflected.load(Ordering::Relaxed),
             transmitted: self.transmitted.load(Ordering::Relaxed),

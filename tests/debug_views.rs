@@ -54,6 +54,7 @@ fn every_view_has_a_name_that_parses_back() {
         "uv",
         "object",
         "material",
+        "item-buffer",
         "tree-depth",
         "rays",
         "bvh-cost",

@@ -6,6 +6,8 @@
 //! first-hit debug views. These tests
 //! need a GPU adapter: without one they fail, saying what to install (Mesa's lavapipe will do).
 
+mod common;
+
 use std::path::Path;
 use std::sync::Arc;
 
@@ -14,7 +16,7 @@ use raylab::camera::Camera;
 use raylab::color::{Color, to_srgb8};
 use raylab::film::Film;
 use raylab::formats::load_any;
-use raylab::formats::spd::{Database, load_spd};
+
 use raylab::gpu::bvh::NodeLayout;
 use raylab::gpu::device::GpuDevice;
 use raylab::gpu::scene::GpuView;
@@ -34,27 +36,6 @@ fn gpu() -> Arc<GpuDevice> {
     Arc::new(GpuDevice::new().unwrap_or_else(|e| panic!("these tests run on a GPU: {e}")))
 }
 
-/// The scene files of `folder` (of the repository), by file name, in order.
-fn scene_files(folder: &str) -> Vec<(String, Scene)> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(folder);
-    let mut files: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|entry| entry.unwrap().path())
-        .filter(|path| {
-            let name = path.file_name().unwrap().to_string_lossy();
-            (name.ends_with(".toml") && !name.ends_with(".camera.toml")) || name.ends_with(".dat")
-        })
-        .collect();
-    files.sort();
-    files
-        .into_iter()
-        .map(|path| {
-            let name = path.file_name().unwrap().to_string_lossy().into_owned();
-            (name, load_any(path.to_str().unwrap()).unwrap())
-        })
-        .collect()
-}
-
 /// A scene of `tests/gpu_scenes/`, made for these tests: each puts together what the GPU must
 /// trace as the CPU does, whatever the shipped scenes need besides.
 fn made_here(name: &str) -> Scene {
@@ -67,14 +48,11 @@ fn made_here(name: &str) -> Scene {
 /// Every shipped scene, every SPD scene at its standard size, and the scenes of
 /// `tests/gpu_scenes/`, by name.
 fn all_scenes() -> Vec<(String, Scene)> {
-    let spd = Database::iter().map(|database| {
-        let name = format!("spd:{database}");
-        let scene = load_spd(&name, Default::default()).unwrap();
-        (name, scene)
-    });
-    let shipped = scene_files("assets/scenes");
-    let made_here = scene_files("tests/gpu_scenes");
-    shipped.into_iter().chain(spd).chain(made_here).collect()
+    let made_here = common::scene_files("tests/gpu_scenes");
+    common::shipped_and_spd_scenes()
+        .into_iter()
+        .chain(made_here)
+        .collect()
 }
 
 /// The mean absolute difference of two 8-bit images, in levels, and the share of pixels where
@@ -239,11 +217,14 @@ fn the_first_hit_debug_views_render_on_the_gpu_as_on_the_cpu() {
             let on_gpu = match view.on_gpu(&tracer) {
                 Ok(on_gpu) => on_gpu,
                 Err(why) => {
-                    let heat_map = matches!(
+                    let cpu_only = matches!(
                         view,
-                        DebugView::TreeDepth | DebugView::RayCount | DebugView::BvhCost
+                        DebugView::TreeDepth
+                            | DebugView::RayCount
+                            | DebugView::BvhCost
+                            | DebugView::ItemBuffer
                     );
-                    assert!(heat_map && why.contains("CPU only"), "{view}: {why}");
+                    assert!(cpu_only && why.contains("CPU only"), "{view}: {why}");
                     continue;
                 }
             };

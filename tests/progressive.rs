@@ -8,6 +8,7 @@ use raylab::bvh::Bvh;
 use raylab::camera::PIXEL_CENTRE;
 use raylab::color::{Color, to_srgb8};
 use raylab::film::Film;
+use raylab::item_buffer::Item;
 use raylab::progressive::{
     self, Cancelled, Pass, RenderControl, RenderStats, Shaded, Shader, passes, traces_pixel,
     unwatched_passes,
@@ -313,7 +314,13 @@ fn a_threshold_of_zero_samples_every_pixel_alike_as_before() {
     let trace = |x, y, offset| {
         let ray = scene.camera.eye_ray((x, y), offset, (40, 30));
         let mut color = [Color::ZERO];
-        Shaded.shade(&tracer, &[ray], &mut color, &mut Default::default());
+        Shaded.shade(
+            &tracer,
+            &[ray],
+            &[None],
+            &mut color,
+            &mut Default::default(),
+        );
         color[0]
     };
     for (x, y) in [(0, 0), (17, 11), (39, 29), (25, 20)] {
@@ -357,7 +364,14 @@ fn adaptive_pixels_at_the_cap_are_the_uniform_renders_and_the_rest_the_one_sampl
 struct Edge;
 
 impl Shader for Edge {
-    fn shade(&self, tracer: &Tracer, rays: &[Ray], colors: &mut [Color], counts: &mut RayCounts) {
+    fn shade(
+        &self,
+        tracer: &Tracer,
+        rays: &[Ray],
+        _: &[Option<Item>],
+        colors: &mut [Color],
+        counts: &mut RayCounts,
+    ) {
         for (ray, color) in rays.iter().zip(colors) {
             let right = ray.dir.dot(tracer.scene.camera.u) > 0.0;
             *color = if right { Color::ONE } else { Color::ZERO };

@@ -49,11 +49,36 @@ impl Bvh {
         t_max: f32,
         hits: &mut [Option<Hit>],
     ) {
+        let limits = [t_max; PACKET_SIZE];
+        self.closest_hits_within(
+            geometry,
+            rays,
+            t_min,
+            &limits[..rays.len().min(PACKET_SIZE)],
+            hits,
+        );
+    }
+
+    /// [`Self::closest_hits`] with a far limit of its own for each ray: ray r's closest hit with
+    /// `t` in `(t_min, t_max[r])`.
+    ///
+    /// # Panics
+    /// When there are more than [`PACKET_SIZE`] rays, or `t_max` or `hits` is not as long as
+    /// `rays`.
+    pub fn closest_hits_within(
+        &self,
+        geometry: &Geometry,
+        rays: &[Ray],
+        t_min: f32,
+        t_max: &[f32],
+        hits: &mut [Option<Hit>],
+    ) {
         assert!(
             rays.len() <= PACKET_SIZE,
             "a packet holds {PACKET_SIZE} rays"
         );
         assert_eq!(rays.len(), hits.len(), "one hit per ray");
+        assert_eq!(rays.len(), t_max.len(), "one far limit per ray");
         hits.fill(None);
         if !rays.is_empty() {
             let packet = Packet {
@@ -75,7 +100,7 @@ struct Packet<'a> {
     geometry: &'a Geometry,
     rays: &'a [Ray],
     t_min: f32,
-    t_max: f32,
+    t_max: &'a [f32],
     hits: &'a mut [Option<Hit>],
 }
 
@@ -97,7 +122,10 @@ impl Kernel for Packet<'_> {
         let ray = |r: usize| &rays[r.min(n - 1)];
         let sheared: [ShearedRay; PACKET_SIZE] = array::from_fn(|r| ShearedRay::new(ray(r)));
         // A finite far limit keeps the unused slots of a node, whose boxes lie at +∞, shut.
-        let mut t_limit = [t_max.min(f32::MAX); PACKET_SIZE];
+        let mut t_limit = [f32::MAX; PACKET_SIZE];
+        for (limit, &t_max) in t_limit.iter_mut().zip(t_max) {
+            *limit = t_max.min(f32::MAX);
+        }
         for r in 0..n {
             let (limit, best) = (&mut t_limit[r], &mut hits[r]);
             let unbounded = Leaf::Objects(&bvh.unbounded);

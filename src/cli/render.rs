@@ -6,7 +6,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::mpsc::{self, RecvTimeoutError};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -16,11 +16,12 @@ use raylab::formats::image::{OutputFormat, check_image_path, save_image, save_to
 use raylab::formats::nff::NffLighting;
 use raylab::formats::part::{PartInfo, scene_hash, write_part};
 use raylab::gpu::device::GpuDevice;
+use raylab::gpu::item_raster::ItemRaster;
 use raylab::inspect::DebugView;
 use raylab::memory;
 use raylab::progressive::gpu::GpuRenderer;
 use raylab::progressive::{self, RenderControl, RenderStats};
-use raylab::render::{Device, assemble};
+use raylab::render::{Assembled, Device, FirstHit, assemble};
 use raylab::settings::{RenderSettings, SettingsOverrides};
 use raylab::tiles::Rect;
 use raylab::tone::{Tone, ToneCurve};
@@ -58,6 +59,11 @@ pub struct RenderArgs {
     /// on the CPU only.
     #[arg(long, default_value_t = Device::Cpu)]
     device: Device,
+    /// Where the eye rays find their first hits: rays (each searches the BVH) or raster (each
+    /// starts from the item buffer, the lecture's modified Z-buffer, drawn on the GPU by one
+    /// raster pass over the scene). The image is the same bit for bit.
+    #[arg(long, default_value_t = FirstHit::Rays)]
+    first_hit: FirstHit,
     /// Brightness of NFF and SPD scenes' lights: `readme` (each light and the ambient light
     /// √N/2N for N lights, the SPD readme's suggestion) or `povray` (each light 1/√N, no
     /// ambient light, as SPD's POV-Ray exporter writes them).
@@ -173,9 +179,16 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
                     args.view
                 )
             })?;
+            if args.first_hit == FirstHit::Raster {
+                return Err(
+                    "--first-hit raster feeds the CPU tracer: leave out --device gpu".into(),
+                );
+            }
             Some(GpuRenderer::new(Arc::new(GpuDevice::new()?), &assembled)?)
         }
     };
+    let raster = item_raster(args.first_hit, args.view, &assembled)?;
+    let mut raster_time = Duration::ZERO;
     let backend = match &gpu {
         Some(renderer) => Backend::Gpu(renderer),
         None => Backend::Cpu(&pool),
@@ -191,7 +204,17 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     let mut written = Vec::new();
     for (k, (camera, output)) in cameras.iter().zip(&outputs).enumerate() {
         assembled.scene.camera = *camera;
-        let tracer = assembled.tracer();
+        let items = match &raster {
+            Some(raster) => {
+                let started = Instant::now();
+                let film = ((traced.x0, traced.y0), (traced.width(), traced.height()));
+                let items = raster.draw(&assembled.scene, camera, film)?;
+                raster_time += started.elapsed();
+                Some(items)
+            }
+            None => None,
+        };
+        let tracer = assembled.tracer().with_item_buffer(items.as_ref());
         let scene = tracer.scene;
         let done = per_frame * k as u64;
         let frame = render_frame(&tracer, &args.view, traced, &backend, |traced| {
@@ -269,6 +292,16 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
                 &args.output
             )
         )?;
+        if args.first_hit == FirstHit::Raster {
+            writeln!(
+                out,
+                "first hits: raster, {} of {} eye rays from the item buffer (raster pass and \
+                 read-back: {:.1} ms)",
+                stats.rays.from_item_buffer,
+                stats.rays.primary,
+                raster_time.as_secs_f64() * 1e3
+            )?;
+        }
         if let Some(map) = &assembled.caustics {
             writeln!(
                 out,
@@ -283,6 +316,25 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         }
         Ok(())
     })
+}
+
+/// The item buffer's raster pass over `assembled`'s scene, where the first hits come from it or
+/// the view shows it; the error says that it needs a GPU, and what to install.
+fn item_raster(
+    first_hit: FirstHit,
+    view: DebugView,
+    assembled: &Assembled,
+) -> Result<Option<ItemRaster>, String> {
+    let flag = match (first_hit, view) {
+        (FirstHit::Raster, _) => "--first-hit raster",
+        (_, DebugView::ItemBuffer) => "--view item-buffer",
+        _ => return Ok(None),
+    };
+    let gpu =
+        GpuDevice::new().map_err(|e| format!("{flag} draws the item buffer on the GPU: {e}"))?;
+    ItemRaster::new(Arc::new(gpu), assembled)
+        .map(Some)
+        .map_err(|e| format!("{flag}: {e}"))
 }
 
 /// What traces the frames: the CPU's threads or the GPU.

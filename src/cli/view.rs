@@ -10,7 +10,8 @@ use raylab::render::Device;
 use raylab::settings::{RenderSettings, SettingsOverrides};
 
 use super::overrides::{OverrideArgs, parse_size};
-use crate::viewer::{self, Options, Script, script_steps};
+
+use crate::viewer::{self, Options, Script, parse_shown_view, script_steps};
 
 #[derive(Args, Debug)]
 pub struct ViewArgs {
@@ -25,7 +26,7 @@ pub struct ViewArgs {
     overrides: OverrideArgs,
     /// What the image shows: shaded, normals, depth, uv, object, material, tree-depth, rays or
     /// bvh-cost (switchable in the Tracing panel).
-    #[arg(long, value_name = "NAME", default_value = "shaded", value_parser = |s: &str| s.parse::<DebugView>())]
+    #[arg(long, value_name = "NAME", default_value = "shaded", value_parser = parse_shown_view)]
     view: DebugView,
     /// Tracing threads (default: one per core).
     #[arg(long)]

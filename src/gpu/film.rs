@@ -67,6 +67,7 @@ impl Tally {
             reflected: self.reflected.into(),
             transmitted: self.transmitted.into(),
             over_budget: self.over_budget.into(),
+            from_item_buffer: 0,
         }
     }
 }

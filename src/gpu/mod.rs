@@ -4,13 +4,15 @@
 //! and leaves ([`bvh`]); the textures' records and texels ([`texture`]); the caustic photon
 //! map's photons ([`caustics`]); the whole scene on the GPU ([`scene`]); the ray tree's
 //! pipeline and the colours of pixel samples ([`tracer`]); the film the colours go into on the
-//! GPU, and how it reaches a texture ([`film`]); and test entry points for the closest hits and
+//! GPU, and how it reaches a texture ([`film`]); the raster pass that draws the item buffer
+//! (the lecture's modified Z-buffer, [`item_raster`]); and test entry points for the closest hits and
 //! the textures' colours ([`probe`]). The WGSL is in `shaders/`, split as the Rust it mirrors.
 
 pub mod bvh;
 pub mod caustics;
 pub mod device;
 pub mod film;
+pub mod item_raster;
 pub mod probe;
 pub mod scene;
 pub mod shapes;

@@ -342,6 +342,7 @@ pub struct GpuScene {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct RecordCounts {
     refs: u32,
+    triangles: usize,
     unbounded: u32,
     nodes: u32,
     lights: u32,
@@ -431,6 +432,7 @@ impl GpuScene {
         ];
         let counts = RecordCounts {
             refs: records.bvh.refs.len() as u32,
+            triangles: records.bvh.triangles.len(),
             unbounded: records.bvh.unbounded,
             nodes: node_count as u32,
             lights: records.lights.len() as u32,
@@ -443,7 +445,7 @@ impl GpuScene {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let layout = scene_layout(device);
+        let layout = scene_layout(device, wgpu::ShaderStages::COMPUTE);
         let bind_group = scene_bind_group(device, &layout, &buffers, &frame);
         let gpu_scene = GpuScene {
             node_layout,
@@ -461,6 +463,24 @@ impl GpuScene {
         gpu.queue
             .write_buffer(&gpu_scene.frame, 0, bytemuck::bytes_of(&record));
         Ok(gpu_scene)
+    }
+
+    /// How many mesh triangles the scene holds.
+    pub fn triangle_count(&self) -> usize {
+        self.counts.triangles
+    }
+
+    /// Bind group 0 for pipelines of other `stages` than compute (a raster pass's): its layout,
+    /// and the same buffers bound in it. Made anew with each call: bind it before the next
+    /// [`Self::set_caustics`].
+    pub fn bind_group_in(
+        &self,
+        device: &wgpu::Device,
+        stages: wgpu::ShaderStages,
+    ) -> (wgpu::BindGroupLayout, wgpu::BindGroup) {
+        let layout = scene_layout(device, stages);
+        let bind_group = scene_bind_group(device, &layout, &self.buffers, &self.frame);
+        (layout, bind_group)
     }
 
     /// Uploads `caustics`, the caustic photon map the scene is traced with now (none: caustics
@@ -664,10 +684,14 @@ fn scene_bind_group(
     })
 }
 
-/// Bind group 0's layout: the scene's storage buffers, read only, the frame's last.
-pub(super) fn scene_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+/// Bind group 0's layout for pipelines of `stages`: the scene's storage buffers, read only, the
+/// frame's last.
+pub(super) fn scene_layout(
+    device: &wgpu::Device,
+    stages: wgpu::ShaderStages,
+) -> wgpu::BindGroupLayout {
     let entries: Vec<wgpu::BindGroupLayoutEntry> = (0..=STORAGE_BUFFERS)
-        .map(|binding| storage_entry(binding, true))
+        .map(|binding| storage_entry_in(binding, true, stages))
         .collect();
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("the scene"),
@@ -677,9 +701,18 @@ pub(super) fn scene_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 
 /// A storage buffer at `binding` of a compute shader's bind group.
 pub fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
+    storage_entry_in(binding, read_only, wgpu::ShaderStages::COMPUTE)
+}
+
+/// A storage buffer at `binding` of a bind group seen by `stages`.
+pub fn storage_entry_in(
+    binding: u32,
+    read_only: bool,
+    stages: wgpu::ShaderStages,
+) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
+        visibility: stages,
         ty: wgpu::BindingType::Buffer {
             ty: wgpu::BufferBindingType::Storage { read_only },
             has_dynamic_offset: false,

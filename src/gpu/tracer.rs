@@ -98,7 +98,10 @@ fn compile(device: &wgpu::Device, entry: &str, nodes: NodeLayout) -> ComputeEntr
     });
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(entry),
-        bind_group_layouts: &[Some(&scene_layout(device)), Some(&work)],
+        bind_group_layouts: &[
+            Some(&scene_layout(device, wgpu::ShaderStages::COMPUTE)),
+            Some(&work),
+        ],
         immediate_size: 0,
     });
     let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {

@@ -44,6 +44,10 @@ pub enum DebugView {
     /// A distinct colour per material seen by the eye ray.
     #[strum(serialize = "material")]
     MaterialId,
+    /// The [`ObjectId`](Self::ObjectId) colours of the first hits the raster pass found, the
+    /// item buffer ([`crate::item_buffer`]): black where it drew nothing, or the render has no
+    /// item buffer.
+    ItemBuffer,
     /// How deep the pixel's ray tree went: heat map over 1 ..= max_depth.
     TreeDepth,
     /// Rays traced for the pixel (eye, shadow, reflected, transmitted): heat map, log scale.
@@ -68,7 +72,10 @@ impl DebugView {
             DebugView::Uv => GpuView::Uv,
             DebugView::ObjectId => GpuView::Object,
             DebugView::MaterialId => GpuView::Material,
-            DebugView::TreeDepth | DebugView::RayCount | DebugView::BvhCost => {
+            DebugView::TreeDepth
+            | DebugView::RayCount
+            | DebugView::BvhCost
+            | DebugView::ItemBuffer => {
                 return Err(format!("the {self} view is drawn on the CPU only"));
             }
         })

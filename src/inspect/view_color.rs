@@ -3,7 +3,7 @@
 //! ray's hit; the tree views trace the whole Whitted tree (the renderer's own code) with an
 //! observer that counts.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 use super::debug_view::{DebugView, max_rays};
 use super::legend::{
@@ -11,6 +11,7 @@ use super::legend::{
 };
 use crate::bvh::cost::{BvhCost, TraversalCost};
 use crate::color::Color;
+use crate::item_buffer::Item;
 use crate::primitive::{Hit, SurfacePoint};
 use crate::progressive::{Shaded, Shader};
 use crate::ray::Ray;
@@ -24,9 +25,30 @@ pub const MISS_COLOR: Color = Color::ZERO;
 /// Each view's colour of the neighbouring eye rays `rays`. The shaded view is the renderer's
 /// own [`Shaded`], with the eye rays traced as one packet.
 impl Shader for DebugView {
-    fn shade(&self, tracer: &Tracer, rays: &[Ray], colors: &mut [Color], counts: &mut RayCounts) {
+    fn shade(
+        &self,
+        tracer: &Tracer,
+        rays: &[Ray],
+        items: &[Option<Item>],
+        colors: &mut [Color],
+        counts: &mut RayCounts,
+    ) {
         match *self {
-            DebugView::Shaded => Shaded.shade(tracer, rays, colors, counts),
+            DebugView::Shaded => Shaded.shade(tracer, rays, items, colors, counts),
+            DebugView::ItemBuffer => {
+                let geometry = &tracer.scene.geometry;
+                for (item, color) in items.iter().zip(colors) {
+                    *color = item.map_or(MISS_COLOR, |item| {
+                        let hit = Hit {
+                            t: item.t,
+                            prim: item.prim,
+                            part: item.part,
+                            bary: Vec2::ZERO,
+                        };
+                        id_color(geometry.part_id(&hit))
+                    });
+                }
+            }
             view => {
                 for (ray, color) in rays.iter().zip(colors) {
                     *color = debug_color(tracer, view, ray, counts);

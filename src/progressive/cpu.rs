@@ -19,6 +19,7 @@ use crate::bvh::packet::PACKET_SIZE;
 use crate::camera::PIXEL_CENTRE;
 use crate::color::Color;
 use crate::film::Film;
+use crate::item_buffer::Item;
 use crate::ray::Ray;
 use crate::sampling::jitter;
 use crate::stats::RayCounts;
@@ -28,8 +29,16 @@ use crate::whitted::Tracer;
 /// ([`Shaded`]) or another view of the scene.
 pub trait Shader: Sync {
     /// The colours of the neighbouring eye rays `rays` (up to [`PACKET_SIZE`]), into `colors`,
-    /// counting the rays traced into `counts`.
-    fn shade(&self, tracer: &Tracer, rays: &[Ray], colors: &mut [Color], counts: &mut RayCounts);
+    /// counting the rays traced into `counts`. `items` holds each ray's pixel's item from the
+    /// tracer's item buffer (`None` without one).
+    fn shade(
+        &self,
+        tracer: &Tracer,
+        rays: &[Ray],
+        items: &[Option<Item>],
+        colors: &mut [Color],
+        counts: &mut RayCounts,
+    );
 }
 
 /// The shaded image: the Whitted colour of each eye ray, the eye rays traced as one packet
@@ -39,8 +48,15 @@ pub struct Shaded;
 
 impl Shader for Shaded {
     #[inline]
-    fn shade(&self, tracer: &Tracer, rays: &[Ray], colors: &mut [Color], counts: &mut RayCounts) {
-        tracer.trace_eye_packet(rays, colors, counts);
+    fn shade(
+        &self,
+        tracer: &Tracer,
+        rays: &[Ray],
+        items: &[Option<Item>],
+        colors: &mut [Color],
+        counts: &mut RayCounts,
+    ) {
+        tracer.trace_eye_packet(rays, items, colors, counts);
     }
 }
 
@@ -206,12 +222,13 @@ struct Traced {
     samples: u64,
 }
 
-/// Up to [`PACKET_SIZE`] pixel samples whose eye rays are traced together: the pixel and the
-/// sample's number for each ray.
+/// Up to [`PACKET_SIZE`] pixel samples whose eye rays are traced together: the pixel, the
+/// sample's number and its item for each ray.
 #[derive(Default)]
 struct Packet {
     samples: ArrayVec<(u32, u32, u32), PACKET_SIZE>,
     rays: ArrayVec<Ray, PACKET_SIZE>,
+    items: ArrayVec<Option<Item>, PACKET_SIZE>,
 }
 
 impl Packet {
@@ -226,7 +243,7 @@ impl Packet {
     ) {
         let mut colors = [Color::ZERO; PACKET_SIZE];
         let colors = &mut colors[..self.rays.len()];
-        shader.shade(tracer, &self.rays, colors, counts);
+        shader.shade(tracer, &self.rays, &self.items, colors, counts);
         for (&(x, y, sample), &color) in self.samples.iter().zip(colors.iter()) {
             if sample == 0 {
                 grid.film.fill_block(x, y, grid.step, color);
@@ -236,6 +253,7 @@ impl Packet {
         }
         self.samples.clear();
         self.rays.clear();
+        self.items.clear();
     }
 }
 
@@ -253,6 +271,10 @@ fn trace_tile(
     // The film may be a window of the image: rays and jitter go by the pixel's place in it.
     let size = grid.film.image_size();
     let (left, top) = grid.film.origin();
+    let film_size = (grid.film.width(), grid.film.height());
+    let item_buffer = tracer
+        .item_buffer
+        .filter(|buffer| buffer.fits(size, (left, top), film_size));
     let mut packet = Packet::default();
     let mut traced = Traced::default();
     for row in rows.clone() {
@@ -273,6 +295,9 @@ fn trace_tile(
                 };
                 packet.rays.push(camera.eye_ray(pixel, offset, size));
                 packet.samples.push((x, y, k));
+                packet
+                    .items
+                    .push(item_buffer.and_then(|buffer| buffer.at(x, y)));
             }
         }
     }

@@ -308,7 +308,8 @@ impl Sweep<'_> {
         };
         let ray = self.tracer.scene.camera.eye_ray(pixel, offset, size);
         let mut color = [Color::ZERO];
-        self.shader.shade(self.tracer, &[ray], &mut color, counts);
+        self.shader
+            .shade(self.tracer, &[ray], &[None], &mut color, counts);
         color[0]
     }
 }

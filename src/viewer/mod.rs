@@ -39,6 +39,7 @@ use winit::event_loop::EventLoop;
 
 pub use input::script::Script;
 pub use input::script_steps;
+pub use scene::controls::parse_shown_view;
 
 /// How the viewer starts.
 pub struct Options {

@@ -32,6 +32,7 @@ pub use within::Within;
 use crate::bvh::Bvh;
 use crate::bvh::packet::PACKET_SIZE;
 use crate::color::Color;
+use crate::item_buffer::{Item, ItemBuffer, far_limit};
 use crate::material::Material;
 use crate::medium::Fog;
 use crate::photon_map::PhotonMap;
@@ -66,6 +67,9 @@ pub struct Tracer<'a> {
     /// Whether every material is opaque (lets no light through): a shadow ray then stops at
     /// the first hit without looking up its material.
     pub opaque: bool,
+    /// The first hits a raster pass found for the film's pixel centres
+    /// ([`Self::with_item_buffer`]).
+    pub item_buffer: Option<&'a ItemBuffer>,
 }
 
 impl<'a> Tracer<'a> {
@@ -83,6 +87,17 @@ impl<'a> Tracer<'a> {
             caustics: None,
             media: scene.materials.iter().any(|m| m.medium.is_some()),
             opaque: scene.materials.iter().all(|m| m.filter() == Color::ZERO),
+            item_buffer: None,
+        }
+    }
+
+    /// The same tracer starting the eye rays through the pixel centres of a film from
+    /// `item_buffer`'s first hits (the renderer uses it for a film it fits); `None` searches
+    /// every eye ray's first hit in full. The image is the same either way.
+    pub fn with_item_buffer(self, item_buffer: Option<&'a ItemBuffer>) -> Self {
+        Tracer {
+            item_buffer,
+            ..self
         }
     }
 
@@ -120,13 +135,34 @@ impl<'a> Tracer<'a> {
     }
 
     /// The colours seen by the eye rays `rays` (up to [`PACKET_SIZE`], neighbours in the image),
-    /// into `colors`: [`Self::trace_eye`] of each, with the eye rays traced as one packet.
-    pub fn trace_eye_packet(&self, rays: &[Ray], colors: &mut [Color], counts: &mut RayCounts) {
+    /// into `colors`: [`Self::trace_eye`] of each, with the eye rays traced as one packet. Where a
+    /// ray's `items` entry names its pixel's item (the film has an item buffer), its closest hit
+    /// is searched for only up to the item ([`far_limit`]), and in full if none is found there.
+    pub fn trace_eye_packet(
+        &self,
+        rays: &[Ray],
+        items: &[Option<Item>],
+        colors: &mut [Color],
+        counts: &mut RayCounts,
+    ) {
         let mut hits = [None; PACKET_SIZE];
         let hits = &mut hits[..rays.len()];
         let geometry = &self.scene.geometry;
+        let mut limits = [f32::INFINITY; PACKET_SIZE];
+        let limits = &mut limits[..rays.len()];
+        for ((limit, ray), &item) in limits.iter_mut().zip(rays).zip(items) {
+            *limit = far_limit(geometry, item, ray, EYE_RAY_T_MIN);
+        }
         self.bvh
-            .closest_hits(geometry, rays, EYE_RAY_T_MIN, f32::INFINITY, hits);
+            .closest_hits_within(geometry, rays, EYE_RAY_T_MIN, limits, hits);
+        for ((ray, hit), &limit) in rays.iter().zip(hits.iter_mut()).zip(limits.iter()) {
+            if limit.is_finite() {
+                match hit {
+                    Some(_) => counts.from_item_buffer += 1,
+                    None => *hit = self.closest_hit(ray, EYE_RAY_T_MIN),
+                }
+            }
+        }
         for ((ray, hit), color) in rays.iter().zip(hits.iter()).zip(colors) {
             *color = self.shade_eye(ray, *hit, counts, &mut ());
         }

@@ -8,13 +8,18 @@ pub mod random;
 pub mod run;
 
 use glam::Vec3;
+use std::path::Path;
+
 use raylab::camera::{Camera, CameraSpec};
 use raylab::color::Color;
+use raylab::formats::load_any;
+use raylab::formats::spd::{Database, load_spd};
 use raylab::light::Light;
 use raylab::material::Material;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
 use raylab::shapes::{Plane, Shape, Sphere};
+use strum::IntoEnumIterator;
 
 /// A camera at `eye` looking at `look_at` with +Y up.
 pub fn camera(eye: Vec3, look_at: Vec3, view_angle: f32) -> Camera {
@@ -85,4 +90,38 @@ pub fn spheres_on_a_floor(width: u32, height: u32) -> Scene {
         color: Color::ONE,
     });
     scene
+}
+
+/// The scene files of `folder` (of the repository), by file name, in order.
+pub fn scene_files(folder: &str) -> Vec<(String, Scene)> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(folder);
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| {
+            let name = path.file_name().unwrap().to_string_lossy();
+            (name.ends_with(".toml") && !name.ends_with(".camera.toml")) || name.ends_with(".dat")
+        })
+        .collect();
+    files.sort();
+    files
+        .into_iter()
+        .map(|path| {
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            (name, load_any(path.to_str().unwrap()).unwrap())
+        })
+        .collect()
+}
+
+/// Every shipped scene (`assets/scenes/`) and every SPD scene at its standard size, by name.
+pub fn shipped_and_spd_scenes() -> Vec<(String, Scene)> {
+    let spd = Database::iter().map(|database| {
+        let name = format!("spd:{database}");
+        let scene = load_spd(&name, Default::default()).unwrap();
+        (name, scene)
+    });
+    scene_files("assets/scenes")
+        .into_iter()
+        .chain(spd)
+        .collect()
 }

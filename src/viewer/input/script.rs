@@ -6,8 +6,8 @@ use std::collections::VecDeque;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
+use crate::viewer::scene::controls::parse_shown_view;
 use glam::Vec3;
-use raylab::inspect::DebugView;
 use raylab::render::Device;
 use raylab::tone::{Tone, ToneCurve};
 
@@ -166,7 +166,7 @@ fn parse_step(step: &str) -> Result<Step, String> {
                 _ => Action::Click { x, y },
             })
         }
-        "view" if args.len() == 1 => once(Action::SetDebugView(args[0].parse::<DebugView>()?)),
+        "view" if args.len() == 1 => once(Action::SetDebugView(parse_shown_view(args[0])?)),
         "view" => return Err("takes one view name".into()),
         "device" if args.len() == 1 => once(Action::SetDevice(args[0].parse::<Device>()?)),
         "device" => return Err("takes `cpu` or `gpu`".into()),
@@ -302,6 +302,7 @@ fn numbers_of(args: &[&str]) -> Result<Vec<f32>, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use raylab::inspect::DebugView;
 
     #[test]
     fn steps_run_in_order_and_wait_for_refinement() {

@@ -10,6 +10,7 @@ use raylab::material::Material;
 use raylab::render::Device;
 use raylab::scene::Scene;
 use raylab::settings::{RenderSettings, SettingsOverrides};
+use strum::IntoEnumIterator;
 
 use super::edits;
 
@@ -18,6 +19,26 @@ use super::edits;
 pub const VIEWER_SAMPLES: u32 = 16;
 /// …where a pixel differs from a neighbour by more than this (see `RenderSettings::aa_threshold`).
 pub const VIEWER_AA_THRESHOLD: f32 = 0.03;
+
+/// The debug views the viewer shows: every one but the item buffer's, which it does not draw
+/// (`raylab render --view item-buffer` does).
+pub fn shown_views() -> impl Iterator<Item = DebugView> {
+    DebugView::iter().filter(|&view| view != DebugView::ItemBuffer)
+}
+
+/// The view `name` names, if the viewer shows it ([`shown_views`]); the error says which it
+/// shows.
+pub fn parse_shown_view(name: &str) -> Result<DebugView, String> {
+    let view: DebugView = name.parse()?;
+    if shown_views().any(|shown| shown == view) {
+        return Ok(view);
+    }
+    let names: Vec<String> = shown_views().map(|view| view.to_string()).collect();
+    Err(format!(
+        "the viewer does not draw the {view} view (`raylab render --view {view}` does); it shows {}",
+        names.join(", ")
+    ))
+}
 
 /// What the controls change in a scene before it is traced.
 #[derive(Clone, Debug)]

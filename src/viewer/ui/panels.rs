@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use egui::{Color32, DragValue, Slider};
-use raylab::inspect::{DebugView, Legend};
+use raylab::inspect::Legend;
 use raylab::render::Device;
 use raylab::settings::{MAX_BLOCK_SIZE, MAX_CAUSTIC_GATHER, MAX_DEPTH_LIMIT, MAX_SAMPLES};
 use strum::IntoEnumIterator;
@@ -14,7 +14,7 @@ use super::{legend_bar, materials_panel};
 use crate::viewer::input::action::Action;
 use crate::viewer::layout::Resolution;
 use crate::viewer::scene::SceneInfo;
-use crate::viewer::scene::controls::Controls;
+use crate::viewer::scene::controls::{Controls, shown_views};
 use crate::viewer::scene::views::{SceneViews, TURNTABLE_FRAMES};
 
 /// What the side panel keeps besides the scene and the controls.
@@ -219,7 +219,7 @@ fn tracing_section(
             egui::ComboBox::from_label("view")
                 .selected_text(controls.debug_view.to_string())
                 .show_ui(ui, |ui| {
-                    for view in DebugView::iter() {
+                    for view in shown_views() {
                         ui.selectable_value(&mut controls.debug_view, view, view.to_string());
                     }
                 });

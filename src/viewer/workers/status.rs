@@ -116,6 +116,7 @@ mod tests {
                 reflected: 300_000,
                 transmitted: 200_000,
                 over_budget: 7,
+                ..Default::default()
             },
             elapsed: Duration::from_secs(1),
             fps: 59.6,
