@@ -21,16 +21,18 @@ use raylab::formats::load_any;
 use raylab::formats::toml::default_scene;
 use raylab::gpu::bvh::NodeLayout;
 use raylab::gpu::device::GpuDevice;
+use raylab::gpu::item_raster::ItemRaster;
 use raylab::gpu::scene::GpuView;
 use raylab::large_mesh::{bumpy_sphere_scene, check_bumpy_triangles};
 use raylab::output::{check_writable, write_atomically};
 use raylab::photon::{Caustics, PhotonMap};
 use raylab::progressive::gpu::GpuRenderer;
 use raylab::progressive::{self, RenderControl, RenderStats, Shaded};
-use raylab::render::{Assembled, Device};
+use raylab::render::{Assembled, Device, FirstHit};
 use raylab::scene::Scene;
 use raylab::whitted::Tracer;
 
+use super::bench_first_hits::bench_first_hits;
 use super::bench_report::{self, BenchResult, CausticBench};
 
 #[derive(Args, Debug)]
@@ -62,6 +64,10 @@ pub struct BenchArgs {
     /// 256 bytes) or binary (two-wide nodes of 64 bytes over the same leaves).
     #[arg(long, default_value_t = NodeLayout::default())]
     gpu_nodes: NodeLayout,
+    /// Where the eye rays find their first hits: rays, or raster (from the item buffer drawn
+    /// on the GPU, which is timed too, with the first hits found both ways).
+    #[arg(long, default_value_t = FirstHit::Rays)]
+    first_hit: FirstHit,
 }
 
 /// The standard set: the default scene, the seven SPD databases at their standard sizes, and a
@@ -94,7 +100,14 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
         Device::Gpu if args.scaling => {
             return Err("--scaling measures the CPU's threads: leave out --device gpu".into());
         }
+        Device::Gpu if args.first_hit == FirstHit::Raster => {
+            return Err(super::RASTER_FEEDS_THE_CPU.into());
+        }
         Device::Gpu => Some(Arc::new(GpuDevice::new()?)),
+    };
+    let raster_gpu = match args.first_hit {
+        FirstHit::Rays => None,
+        FirstHit::Raster => Some(super::item_buffer_gpu("--first-hit raster")?),
     };
     let single = if args.scaling {
         Some(super::thread_pool(Some(1))?)
@@ -120,7 +133,8 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
     })?;
     let mut results = Vec::new();
     for name in &names {
-        let result = bench_scene(name, &args, &pool, single.as_ref(), gpu.as_ref())?;
+        let devices = (gpu.as_ref(), raster_gpu.as_ref());
+        let result = bench_scene(name, &args, &pool, single.as_ref(), devices)?;
         super::print_out(|out| bench_report::write_row(out, &result))?;
         results.push(result);
     }
@@ -155,7 +169,7 @@ fn bench_scene(
     args: &BenchArgs,
     pool: &rayon::ThreadPool,
     single: Option<&rayon::ThreadPool>,
-    gpu: Option<&Arc<GpuDevice>>,
+    (gpu, raster_gpu): (Option<&Arc<GpuDevice>>, Option<&Arc<GpuDevice>>),
 ) -> Result<BenchResult, String> {
     reset_peak_rss();
     let start = Instant::now();
@@ -184,8 +198,19 @@ fn bench_scene(
         ),
         None => None,
     };
-    let tracer = assembled.tracer();
-    let plain = assembled.tracer().with_caustics(None);
+    let (first_hits, items) = match raster_gpu {
+        Some(raster_gpu) => {
+            let raster = ItemRaster::new(Arc::clone(raster_gpu), &assembled)
+                .map_err(|e| format!("{name}: {e}"))?;
+            let tracer = assembled.tracer();
+            let (bench, items) =
+                pool.install(|| bench_first_hits(&tracer, &raster, args.repeat))?;
+            (Some(bench), Some(items))
+        }
+        None => (None, None),
+    };
+    let tracer = assembled.tracer().with_item_buffer(items.as_ref());
+    let plain = tracer.with_caustics(None);
     let (mut renders, mut first_passes, mut single_renders) = (Vec::new(), Vec::new(), Vec::new());
     let mut renders_off = Vec::new();
     let mut rays = Default::default();
@@ -219,6 +244,7 @@ fn bench_scene(
             render_off: median(renders_off),
             ..c
         }),
+        first_hits,
     })
 }
 
@@ -287,7 +313,7 @@ fn bench_caustics(
     Ok((map, bench))
 }
 
-fn median(mut times: Vec<Duration>) -> Duration {
+pub(super) fn median(mut times: Vec<Duration>) -> Duration {
     times.sort();
     times[times.len() / 2]
 }

@@ -6,6 +6,8 @@ use std::time::Duration;
 
 use raylab::stats::RayCounts;
 
+use super::bench_first_hits::FirstHitBench;
+
 /// What one scene measured (times are medians over the repeats).
 pub struct BenchResult {
     pub name: String,
@@ -26,6 +28,8 @@ pub struct BenchResult {
     pub peak_rss_bytes: Option<u64>,
     /// For a scene with caustics on; `render` is then the render with them.
     pub caustics: Option<CausticBench>,
+    /// With `--first-hit raster`; `render` is then the render from the item buffer.
+    pub first_hits: Option<FirstHitBench>,
 }
 
 /// What the caustics of a scene cost (times are medians over the repeats).
@@ -148,7 +152,48 @@ pub fn write_row(out: &mut impl Write, r: &BenchResult) -> io::Result<()> {
             ms(c.render_off)
         )?;
     }
+    if let Some(f) = &r.first_hits {
+        writeln!(
+            out,
+            "  first hits: raster, {} of {} eye rays from the item buffer; raster pass and \
+             read-back {:.1} ms; the eye rays' first hits {:.1} ms from the rays, {:.1} ms from the \
+             item buffer; per eye ray, BVH nodes {:.2} and {:.2}, primitives tested {:.2} and {:.2}",
+            f.from_item_buffer,
+            f.eye_rays,
+            ms(f.raster),
+            ms(f.first_hits_rays),
+            ms(f.first_hits_raster),
+            f.cost_rays.0,
+            f.cost_raster.0,
+            f.cost_rays.1,
+            f.cost_raster.1
+        )?;
+    }
     Ok(())
+}
+
+/// The first hits' JSON object, or `null`.
+fn first_hits_json(f: Option<&FirstHitBench>) -> String {
+    let Some(f) = f else {
+        return "null".into();
+    };
+    format!(
+        concat!(
+            "{{\"eye_rays\": {}, \"from_item_buffer\": {}, \"raster_ms\": {:.3}, ",
+            "\"first_hits_rays_ms\": {:.3}, \"first_hits_raster_ms\": {:.3}, ",
+            "\"nodes_per_eye_ray_rays\": {:.3}, \"nodes_per_eye_ray_raster\": {:.3}, ",
+            "\"prims_per_eye_ray_rays\": {:.3}, \"prims_per_eye_ray_raster\": {:.3}}}"
+        ),
+        f.eye_rays,
+        f.from_item_buffer,
+        ms(f.raster),
+        ms(f.first_hits_rays),
+        ms(f.first_hits_raster),
+        f.cost_rays.0,
+        f.cost_raster.0,
+        f.cost_rays.1,
+        f.cost_raster.1,
+    )
 }
 
 /// The caustics' JSON object, or `null`.
@@ -187,7 +232,7 @@ pub fn to_json(results: &[BenchResult], size: u32, threads: usize) -> String {
                     "\"eye_rays\": {}, \"eye_hits\": {}, \"shadow_rays\": {}, ",
                     "\"reflected_rays\": {}, \"transmitted_rays\": {}, \"mrays_per_s\": {:.3}, ",
                     "\"scene_bytes\": {}, \"bytes_per_primitive\": {:.1}, \"peak_rss_bytes\": {}, ",
-                    "\"caustics\": {}}}"
+                    "\"caustics\": {}, \"first_hits\": {}}}"
                 ),
                 r.name,
                 r.primitives,
@@ -207,6 +252,7 @@ pub fn to_json(results: &[BenchResult], size: u32, threads: usize) -> String {
                 r.bytes_per_primitive(),
                 null_or(r.peak_rss_bytes.map(|b| b.to_string())),
                 caustics_json(r.caustics.as_ref()),
+                first_hits_json(r.first_hits.as_ref()),
             )
         })
         .collect();

@@ -3,6 +3,7 @@
 //! standard output, and removing unfinished files when a signal stops the program.
 
 mod bench;
+mod bench_first_hits;
 mod bench_report;
 mod generate;
 mod inspect;
@@ -14,11 +15,13 @@ mod sequence;
 mod view;
 
 use std::io::{self, BufWriter, StdoutLock, Write};
+use std::sync::Arc;
 
 use clap::{Parser, Subcommand};
 use raylab::formats::nff::NffLighting;
 use raylab::formats::toml::default_scene;
 use raylab::formats::{SceneFormat, camera_file_beside, load_any_as};
+use raylab::gpu::device::GpuDevice;
 use raylab::scene::Scene;
 
 #[derive(Parser, Debug)]
@@ -91,6 +94,18 @@ fn load_scene(
         eprintln!("note: the camera is from {}", camera_file.display());
     }
     Ok(scene)
+}
+
+/// Why `--first-hit raster` and `--device gpu` do not go together.
+const RASTER_FEEDS_THE_CPU: &str =
+    "--first-hit raster feeds the CPU tracer: leave out --device gpu";
+
+/// The GPU that draws the item buffer `flag` asks for; the error says that it needs one, and
+/// what to install.
+fn item_buffer_gpu(flag: &str) -> Result<Arc<GpuDevice>, String> {
+    GpuDevice::new()
+        .map(Arc::new)
+        .map_err(|e| format!("{flag} draws the item buffer on the GPU: {e}"))
 }
 
 /// A rayon pool of `threads` workers (default: one per core).

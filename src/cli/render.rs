@@ -330,9 +330,7 @@ fn item_raster(
         (_, DebugView::ItemBuffer) => "--view item-buffer",
         _ => return Ok(None),
     };
-    let gpu =
-        GpuDevice::new().map_err(|e| format!("{flag} draws the item buffer on the GPU: {e}"))?;
-    ItemRaster::new(Arc::new(gpu), assembled)
+    ItemRaster::new(super::item_buffer_gpu(flag)?, assembled)
         .map(Some)
         .map_err(|e| format!("{flag}: {e}"))
 }

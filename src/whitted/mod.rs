@@ -135,9 +135,8 @@ impl<'a> Tracer<'a> {
     }
 
     /// The colours seen by the eye rays `rays` (up to [`PACKET_SIZE`], neighbours in the image),
-    /// into `colors`: [`Self::trace_eye`] of each, with the eye rays traced as one packet. Where a
-    /// ray's `items` entry names its pixel's item (the film has an item buffer), its closest hit
-    /// is searched for only up to the item ([`far_limit`]), and in full if none is found there.
+    /// into `colors`: [`Self::trace_eye`] of each, with the eye rays' first hits found together
+    /// ([`Self::first_hits`]).
     pub fn trace_eye_packet(
         &self,
         rays: &[Ray],
@@ -147,6 +146,24 @@ impl<'a> Tracer<'a> {
     ) {
         let mut hits = [None; PACKET_SIZE];
         let hits = &mut hits[..rays.len()];
+        self.first_hits(rays, items, hits, counts);
+        for ((ray, hit), color) in rays.iter().zip(hits.iter()).zip(colors) {
+            *color = self.shade_eye(ray, *hit, counts, &mut ());
+        }
+    }
+
+    /// The closest hits of the eye rays `rays` (up to [`PACKET_SIZE`], neighbours in the image)
+    /// into `hits`, the rays traced as one packet. Where a ray's `items` entry names its pixel's
+    /// item (the film has an item buffer), its hit is searched for only up to the item
+    /// ([`far_limit`]), and in full if none is found there; the rays found within their items
+    /// are counted in `counts`.
+    pub fn first_hits(
+        &self,
+        rays: &[Ray],
+        items: &[Option<Item>],
+        hits: &mut [Option<Hit>],
+        counts: &mut RayCounts,
+    ) {
         let geometry = &self.scene.geometry;
         let mut limits = [f32::INFINITY; PACKET_SIZE];
         let limits = &mut limits[..rays.len()];
@@ -162,9 +179,6 @@ impl<'a> Tracer<'a> {
                     None => *hit = self.closest_hit(ray, EYE_RAY_T_MIN),
                 }
             }
-        }
-        for ((ray, hit), color) in rays.iter().zip(hits.iter()).zip(colors) {
-            *color = self.shade_eye(ray, *hit, counts, &mut ());
         }
     }
 

@@ -5,6 +5,7 @@ mod common;
 mod harness;
 
 mod camera;
+mod first_hit;
 mod gen_and_bench;
 mod gpu;
 mod inspect;

@@ -1,0 +1,165 @@
+//! `--first-hit raster` as a user meets it: `render` writes the rays' image byte for byte and
+//! says how many eye rays started from the item buffer, the item-buffer view shows what the
+//! object view shows, `bench` times the raster pass and both searches, and what cannot be done
+//! (no GPU adapter, the GPU tracer) is a clear error. These need a GPU adapter (Mesa's lavapipe
+//! will do): without one they fail, saying what to install.
+
+use std::path::Path;
+use std::process::Command;
+
+use crate::common::run::{raylab, stderr};
+
+/// `raylab render` of the default scene at 64 × 48 with `extra` arguments into `name`: the
+/// file's bytes and the standard output.
+fn render(dir: &Path, name: &str, extra: &[&str]) -> (Vec<u8>, String) {
+    let args = [&["render", "--size", "64x48", "-o", name][..], extra].concat();
+    let out = raylab(&args, dir);
+    assert!(out.status.success(), "{extra:?}: {}", stderr(&out));
+    let bytes = std::fs::read(dir.join(name)).unwrap();
+    (bytes, String::from_utf8_lossy(&out.stdout).into_owned())
+}
+
+/// The numbers N and M of a line `first hits: raster, N of M eye rays from the item buffer …`.
+fn from_item_buffer(report: &str) -> (u64, u64) {
+    let line = report
+        .lines()
+        .map(str::trim)
+        .find_map(|line| line.strip_prefix("first hits: raster, "))
+        .unwrap_or_else(|| panic!("no first-hits line in {report}"));
+    let words: Vec<&str> = line.split_whitespace().collect();
+    assert_eq!(words[1], "of", "{line}");
+    assert!(line.contains(" eye rays from the item buffer"), "{line}");
+    (words[0].parse().unwrap(), words[2].parse().unwrap())
+}
+
+#[test]
+fn render_from_the_item_buffer_writes_the_rays_image_and_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    for samples in ["1", "4"] {
+        let (rays, rays_report) = render(dir.path(), "rays.png", &["--samples", samples]);
+        let (raster, report) = render(
+            dir.path(),
+            "raster.png",
+            &["--samples", samples, "--first-hit", "raster"],
+        );
+        assert!(rays == raster, "--samples {samples}: the PNGs differ");
+        assert!(!rays_report.contains("first hits"), "{rays_report}");
+        let (from_items, eye_rays) = from_item_buffer(&report);
+        assert!(eye_rays >= 64 * 48, "{report}");
+        assert!(from_items > eye_rays / 2, "{report}");
+    }
+}
+
+#[test]
+fn the_item_buffer_view_shows_the_objects_the_rays_see() {
+    let dir = tempfile::tempdir().unwrap();
+    let (object, _) = render(dir.path(), "object.png", &["--view", "object"]);
+    let (items, _) = render(dir.path(), "items.png", &["--view", "item-buffer"]);
+    let pixels = |bytes: &[u8]| image::load_from_memory(bytes).unwrap().to_rgb8();
+    let (object, items) = (pixels(&object), pixels(&items));
+    let same = object
+        .pixels()
+        .zip(items.pixels())
+        .filter(|(a, b)| a == b)
+        .count();
+    // Only pixels at a silhouette may differ.
+    assert!(
+        same * 100 >= 99 * 64 * 48,
+        "{same} of {} pixels the same",
+        64 * 48
+    );
+    assert!(items.pixels().any(|p| p.0 != [0, 0, 0]), "nothing drawn");
+}
+
+#[test]
+fn bench_times_the_raster_pass_and_both_searches() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = [
+        "bench",
+        "--scenes",
+        "default",
+        "--size",
+        "32",
+        "--repeat",
+        "1",
+        "--first-hit",
+        "raster",
+        "--json",
+        "bench.json",
+    ];
+    let out = raylab(&args, dir.path());
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report = String::from_utf8_lossy(&out.stdout);
+    let (from_items, eye_rays) = from_item_buffer(&report);
+    assert_eq!(eye_rays, 32 * 32, "{report}");
+    assert!(from_items > 0, "{report}");
+    assert!(report.contains("raster pass and read-back"), "{report}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("bench.json")).unwrap())
+            .unwrap();
+    let first_hits = &json["scenes"][0]["first_hits"];
+    assert_eq!(first_hits["eye_rays"], 32 * 32, "{json}");
+    assert!(
+        first_hits["nodes_per_eye_ray_raster"].as_f64().unwrap() > 0.0,
+        "{json}"
+    );
+}
+
+#[test]
+fn what_the_item_buffer_cannot_do_is_an_error_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let no_adapter = Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .args([
+            "render",
+            "--first-hit",
+            "raster",
+            "--size",
+            "16",
+            "-o",
+            "out.png",
+        ])
+        .current_dir(dir.path())
+        .env("WGPU_ADAPTER_NAME", "no-such-gpu")
+        .output()
+        .unwrap();
+    let on_gpu = |command: &str| {
+        let args = [
+            command,
+            "--first-hit",
+            "raster",
+            "--device",
+            "gpu",
+            "--size",
+            "16",
+        ];
+        raylab(&args, dir.path())
+    };
+    for (out, expected) in [
+        (
+            no_adapter,
+            "--first-hit raster draws the item buffer on the GPU: no GPU adapter named like",
+        ),
+        (on_gpu("render"), "--first-hit raster feeds the CPU tracer"),
+        (on_gpu("bench"), "--first-hit raster feeds the CPU tracer"),
+        (
+            raylab(
+                &["render", "--first-hit", "zbuffer", "-o", "out.png"],
+                dir.path(),
+            ),
+            "unknown first-hit search `zbuffer`",
+        ),
+        (
+            raylab(&["view", "--view", "item-buffer"], dir.path()),
+            "the viewer does not draw the item-buffer view",
+        ),
+    ] {
+        let message = stderr(&out);
+        assert!(message.contains(expected), "{message}");
+        assert!(!message.contains("panicked"), "{message}");
+        assert!(matches!(out.status.code(), Some(1 | 2)), "{message}");
+    }
+    assert!(
+        !dir.path().join("out.png").exists(),
+        "no image for a refused render"
+    );
+}
