@@ -25,12 +25,13 @@ struct RasterFilm {
     pad1: u32,
 }
 
-@group(1) @binding(2) var<storage, read> proxies: array<Proxy>;
-@group(1) @binding(3) var<storage, read> raster_film: RasterFilm;
+// Bindings 3 and 4: 0 to 2 are the tracer's lists and item buffer (trace_samples.wgsl).
+@group(1) @binding(3) var<storage, read> proxies: array<Proxy>;
+@group(1) @binding(4) var<storage, read> raster_film: RasterFilm;
 
 // What a fragment writes: the primitive (`PrimId`), the bits of `t`, the part of an object hit,
 // and a triangle's slot in `triangles`. A pixel nothing was drawn on keeps the primitive
-// 0xffffffff.
+// `NO_ITEM`.
 struct ItemOutput {
     @location(0) item: vec4<u32>,
     @builtin(frag_depth) depth: f32,
@@ -80,7 +81,7 @@ const BOX_CORNERS = array<u32, 36>(
 
 struct ProxyCorner {
     @builtin(position) position: vec4<f32>,
-    @location(0) @interpolate(flat) object: u32,
+    @location(0) @interpolate(flat) instance: u32,
 }
 
 // Corner `vertex` of proxy `instance`'s triangles: 36 per proxy. A proxy of the whole film uses
@@ -95,22 +96,23 @@ fn proxy_corner(@builtin(vertex_index) vertex: u32, @builtin(instance_index) ins
         } else if vertex == 2u {
             corner = vec2<f32>(-1.0, 3.0);
         }
-        return ProxyCorner(vec4<f32>(corner, 0.5, 1.0), proxy.object);
+        return ProxyCorner(vec4<f32>(corner, 0.5, 1.0), instance);
     }
     let bits = BOX_CORNERS[vertex];
     let p = select(proxy.lo, proxy.hi, vec3<bool>((bits & 1u) != 0u, (bits & 2u) != 0u, (bits & 4u) != 0u));
-    return ProxyCorner(clip_position(p), proxy.object);
+    return ProxyCorner(clip_position(p), instance);
 }
 
 // An object's fragment: where its exact shape meets the pixel's eye ray, if it does.
 @fragment
 fn proxy_item(corner: ProxyCorner) -> ItemOutput {
     let dir = fragment_ray_dir(corner.position);
-    let h = intersect_object(objects[corner.object], frame.eye, dir, EYE_RAY_T_MIN, T_FAR);
+    let proxy = proxies[corner.instance];
+    let h = intersect_object(objects[proxy.object], frame.eye, dir, EYE_RAY_T_MIN, T_FAR);
     if !h.found {
         discard;
     }
-    let item = vec4<u32>(corner.object | OBJECT_BIT, bitcast<u32>(h.t), h.part, 0u);
+    let item = vec4<u32>(proxy.object | OBJECT_BIT, bitcast<u32>(h.t), h.part, 0u);
     return ItemOutput(item, 1.0 / h.t);
 }
 

@@ -10,12 +10,13 @@ use std::sync::Arc;
 
 use common::random::{Rng, direction, in_cube, in_range};
 use glam::{Vec2, Vec3};
+use raylab::aabb::Aabb;
 use raylab::camera::{Camera, PIXEL_CENTRE};
 use raylab::color::Color;
 use raylab::gpu::bvh::NodeLayout;
 use raylab::gpu::caustics::GpuPhoton;
 use raylab::gpu::device::GpuDevice;
-use raylab::gpu::item_raster::{GpuProxy, ItemRaster, proxies};
+use raylab::gpu::item_raster::{CpuItems, proxy_box};
 use raylab::gpu::probe::{
     NO_PRIM, ProbeHit, ProbeRay, Search, TextureProbe, closest_hits, texture_colors,
 };
@@ -748,6 +749,7 @@ macro_rules! rust_layout {
 fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
     use raylab::gpu::bvh::{GpuBinaryNode, GpuTriangle, GpuWideNode};
     use raylab::gpu::film::{FILM_WGSL, FilmPass, FilmPixel, ShowRows, Tally};
+    use raylab::gpu::item_raster::{GpuProxy, ITEM_BUFFER_WGSL};
     use raylab::gpu::probe::ProbeHit;
     use raylab::gpu::scene::{
         GpuFrame, GpuLight, GpuMaterial, GpuTriangleShading, GpuVertexAttributes,
@@ -897,11 +899,16 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
             [width, first_row, rows, row_texels, scale, curve, pad0, pad1]
         ),
     ];
+    let raster = parsed(&(tracer_wgsl(NodeLayout::Wide) + ITEM_BUFFER_WGSL));
+    let raster_cases = [rust_layout!("Proxy", GpuProxy, [lo, object, hi, full_film])];
     let tracer_cases = cases.into_iter().map(|case| (&module, case));
     let binary_cases = binary_cases.into_iter().map(|case| (&binary, case));
     let film_cases = film_cases.into_iter().map(|case| (&film, case));
-    for (module, (name, rust_size, rust_fields)) in
-        tracer_cases.chain(binary_cases).chain(film_cases)
+    let raster_cases = raster_cases.into_iter().map(|case| (&raster, case));
+    for (module, (name, rust_size, rust_fields)) in tracer_cases
+        .chain(binary_cases)
+        .chain(film_cases)
+        .chain(raster_cases)
     {
         let (wgsl_size, wgsl_fields) = wgsl_layout(module, name);
         // WGSL names the node's boxes `lo` and `hi`, the vertex attributes' padding three fields.
@@ -1071,10 +1078,9 @@ fn a_scene_larger_than_the_gpu_holds_is_refused_with_both_sizes() {
     );
 }
 
-/// Whether `point` lies inside the proxy `proxy`'s box, or the proxy covers the whole film.
-fn in_proxy(proxy: &GpuProxy, point: Vec3) -> bool {
-    let (lo, hi) = (Vec3::from(proxy.lo), Vec3::from(proxy.hi));
-    proxy.full_film == 1 || (point.cmpgt(lo).all() && point.cmplt(hi).all())
+/// Whether `point` lies inside the proxy box `proxy`, or the proxy covers the whole film.
+fn in_proxy(proxy: Option<Aabb>, point: Vec3) -> bool {
+    proxy.is_none_or(|b| point.cmpgt(b.min).all() && point.cmplt(b.max).all())
 }
 
 #[test]
@@ -1097,16 +1103,14 @@ fn every_proxy_covers_its_shape_from_random_cameras() {
             assembled.scene.settings.width,
             assembled.scene.settings.height,
         ) = SIZE;
-        let raster = ItemRaster::new(Arc::clone(&gpu), &assembled).unwrap();
+        let raster = CpuItems::new(Arc::clone(&gpu), &assembled).unwrap();
         for _ in 0..2 {
             let eye = direction(&mut rng) * in_range(&mut rng, 1.5, 12.0);
             let look_at = in_cube(&mut rng, -1.0, 1.0);
             let camera = common::camera(eye, look_at, in_range(&mut rng, 20.0, 100.0));
             assembled.scene.camera = camera;
-            let proxy = proxies(&assembled.scene.geometry, eye)[0];
-            let items = raster
-                .draw(&assembled.scene, &camera, ((0, 0), SIZE))
-                .unwrap();
+            let proxy = proxy_box(&assembled.scene.geometry, 0, eye);
+            let items = raster.draw(&assembled.scene, ((0, 0), SIZE)).unwrap();
             let tracer = assembled.tracer();
             let pixels: Vec<(u32, u32)> = (0..SIZE.1)
                 .flat_map(|y| (0..SIZE.0).map(move |x| (x, y)))
@@ -1121,7 +1125,7 @@ fn every_proxy_covers_its_shape_from_random_cameras() {
                     continue;
                 };
                 hits += 1;
-                if !in_proxy(&proxy, point) {
+                if !in_proxy(proxy, point) {
                     failures.push(format!(
                         "trial {trial}: ({x}, {y}) hits {point} outside {proxy:?}"
                     ));

@@ -10,7 +10,7 @@ use std::sync::Arc;
 
 use raylab::camera::PIXEL_CENTRE;
 use raylab::gpu::device::GpuDevice;
-use raylab::gpu::item_raster::ItemRaster;
+use raylab::gpu::item_raster::CpuItems;
 use raylab::item_buffer::ItemBuffer;
 use raylab::primitive::Hit;
 use raylab::progressive::render_image;
@@ -26,9 +26,9 @@ fn gpu() -> Arc<GpuDevice> {
 /// The item buffer of `assembled`'s whole image.
 fn item_buffer(gpu: &Arc<GpuDevice>, assembled: &Assembled) -> ItemBuffer {
     let scene = &assembled.scene;
-    let raster = ItemRaster::new(Arc::clone(gpu), assembled).unwrap();
+    let raster = CpuItems::new(Arc::clone(gpu), assembled).unwrap();
     let size = (scene.settings.width, scene.settings.height);
-    raster.draw(scene, &scene.camera, ((0, 0), size)).unwrap()
+    raster.draw(scene, ((0, 0), size)).unwrap()
 }
 
 /// Every shipped scene and SPD scene at [`SIZE`], assembled.

@@ -21,7 +21,7 @@ use raylab::formats::load_any;
 use raylab::formats::toml::default_scene;
 use raylab::gpu::bvh::NodeLayout;
 use raylab::gpu::device::GpuDevice;
-use raylab::gpu::item_raster::ItemRaster;
+use raylab::gpu::item_raster::CpuItems;
 use raylab::gpu::scene::GpuView;
 use raylab::large_mesh::{bumpy_sphere_scene, check_bumpy_triangles};
 use raylab::output::{check_writable, write_atomically};
@@ -200,7 +200,7 @@ fn bench_scene(
     };
     let (first_hits, items) = match raster_gpu {
         Some(raster_gpu) => {
-            let raster = ItemRaster::new(Arc::clone(raster_gpu), &assembled)
+            let raster = CpuItems::new(Arc::clone(raster_gpu), &assembled)
                 .map_err(|e| format!("{name}: {e}"))?;
             let tracer = assembled.tracer();
             let (bench, items) =

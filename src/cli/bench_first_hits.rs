@@ -10,7 +10,7 @@ use arrayvec::ArrayVec;
 use raylab::bvh::cost::BvhCost;
 use raylab::bvh::packet::PACKET_SIZE;
 use raylab::camera::PIXEL_CENTRE;
-use raylab::gpu::item_raster::ItemRaster;
+use raylab::gpu::item_raster::CpuItems;
 use raylab::item_buffer::{Item, ItemBuffer, far_limit};
 use raylab::ray::Ray;
 use raylab::stats::RayCounts;
@@ -40,7 +40,7 @@ pub struct FirstHitBench {
 /// `repeat` times each, on the current thread pool. Returns the measures and the item buffer.
 pub fn bench_first_hits(
     tracer: &Tracer,
-    raster: &ItemRaster,
+    raster: &CpuItems,
     repeat: usize,
 ) -> Result<(FirstHitBench, ItemBuffer), String> {
     let scene = tracer.scene;
@@ -49,7 +49,7 @@ pub fn bench_first_hits(
     let mut items = None;
     for _ in 0..repeat {
         let started = Instant::now();
-        items = Some(raster.draw(scene, &scene.camera, ((0, 0), size))?);
+        items = Some(raster.draw(scene, ((0, 0), size))?);
         raster_times.push(started.elapsed());
     }
     let items = items.ok_or("--repeat must be at least 1")?;

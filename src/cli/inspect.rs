@@ -6,8 +6,9 @@ use clap::Args;
 
 use raylab::formats::SceneFormat;
 use raylab::formats::nff::NffLighting;
+use raylab::gpu::item_raster::CpuItems;
 use raylab::inspect::trace_ray_tree;
-use raylab::render::assemble;
+use raylab::render::{FirstHit, assemble};
 use raylab::settings::SettingsOverrides;
 
 use super::overrides::OverrideArgs;
@@ -32,6 +33,10 @@ pub struct InspectArgs {
     /// Brightness of NFF and SPD scenes' lights (see `raylab render --help`).
     #[arg(long, default_value_t = NffLighting::default())]
     nff_lights: NffLighting,
+    /// Where the eye ray finds its first hit: rays, or raster (from the item buffer, drawn on
+    /// the GPU; the tree says whether the hit came from it).
+    #[arg(long, default_value_t = FirstHit::Rays)]
+    first_hit: FirstHit,
 }
 
 /// `X,Y` as two integers.
@@ -55,7 +60,17 @@ pub fn run(args: InspectArgs) -> Result<(), String> {
         ));
     }
     let assembled = assemble(scene)?;
-    let tree = trace_ray_tree(&assembled.tracer(), x, y);
+    let items = match args.first_hit {
+        FirstHit::Rays => None,
+        FirstHit::Raster => {
+            let flag = "--first-hit raster";
+            let raster = CpuItems::new(super::item_buffer_gpu(flag)?, &assembled)
+                .map_err(|e| format!("{flag}: {e}"))?;
+            Some(raster.draw(&assembled.scene, ((0, 0), (width, height)))?)
+        }
+    };
+    let tracer = assembled.tracer().with_item_buffer(items.as_ref());
+    let tree = trace_ray_tree(&tracer, x, y);
     let text = if args.json {
         let json = serde_json::to_string_pretty(&tree)
             .map_err(|e| format!("cannot write the tree as JSON: {e}"))?;

@@ -16,7 +16,7 @@ use raylab::formats::image::{OutputFormat, check_image_path, save_image, save_to
 use raylab::formats::nff::NffLighting;
 use raylab::formats::part::{PartInfo, scene_hash, write_part};
 use raylab::gpu::device::GpuDevice;
-use raylab::gpu::item_raster::ItemRaster;
+use raylab::gpu::item_raster::CpuItems;
 use raylab::inspect::DebugView;
 use raylab::memory;
 use raylab::progressive::gpu::GpuRenderer;
@@ -42,7 +42,8 @@ pub struct RenderArgs {
     /// Output image: .png or .ppm (8-bit sRGB), .exr or .hdr (linear floats).
     #[arg(short, long, default_value = "out.png")]
     output: PathBuf,
-    /// What the image shows: shaded, normals, depth, uv, object, material, tree-depth, rays or
+    /// What the image shows: shaded, normals, depth, uv, object, material, item-buffer (the
+    /// objects the item buffer's raster pass found, drawn on the GPU), tree-depth, rays or
     /// bvh-cost. For depth and the heat maps the scale is printed and its colour bar written
     /// beside the image as NAME.legend.png.
     #[arg(long, default_value_t = DebugView::Shaded)]
@@ -180,9 +181,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
                 )
             })?;
             if args.first_hit == FirstHit::Raster {
-                return Err(
-                    "--first-hit raster feeds the CPU tracer: leave out --device gpu".into(),
-                );
+                return Err(super::RASTER_FEEDS_THE_CPU.into());
             }
             Some(GpuRenderer::new(Arc::new(GpuDevice::new()?), &assembled)?)
         }
@@ -208,7 +207,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
             Some(raster) => {
                 let started = Instant::now();
                 let film = ((traced.x0, traced.y0), (traced.width(), traced.height()));
-                let items = raster.draw(&assembled.scene, camera, film)?;
+                let items = raster.draw(&assembled.scene, film)?;
                 raster_time += started.elapsed();
                 Some(items)
             }
@@ -324,13 +323,13 @@ fn item_raster(
     first_hit: FirstHit,
     view: DebugView,
     assembled: &Assembled,
-) -> Result<Option<ItemRaster>, String> {
+) -> Result<Option<CpuItems>, String> {
     let flag = match (first_hit, view) {
         (FirstHit::Raster, _) => "--first-hit raster",
         (_, DebugView::ItemBuffer) => "--view item-buffer",
         _ => return Ok(None),
     };
-    ItemRaster::new(super::item_buffer_gpu(flag)?, assembled)
+    CpuItems::new(super::item_buffer_gpu(flag)?, assembled)
         .map(Some)
         .map_err(|e| format!("{flag}: {e}"))
 }

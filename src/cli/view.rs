@@ -6,12 +6,12 @@ use clap::Args;
 use raylab::formats::SceneFormat;
 use raylab::inspect::DebugView;
 use raylab::output::check_writable;
-use raylab::render::Device;
+use raylab::render::{Device, FirstHit};
 use raylab::settings::{RenderSettings, SettingsOverrides};
 
 use super::overrides::{OverrideArgs, parse_size};
 
-use crate::viewer::{self, Options, Script, parse_shown_view, script_steps};
+use crate::viewer::{self, Options, Script, script_steps};
 
 #[derive(Args, Debug)]
 pub struct ViewArgs {
@@ -24,9 +24,9 @@ pub struct ViewArgs {
     /// Overrides of the scene's render settings.
     #[command(flatten)]
     overrides: OverrideArgs,
-    /// What the image shows: shaded, normals, depth, uv, object, material, tree-depth, rays or
-    /// bvh-cost (switchable in the Tracing panel).
-    #[arg(long, value_name = "NAME", default_value = "shaded", value_parser = parse_shown_view)]
+    /// What the image shows: shaded, normals, depth, uv, object, material, item-buffer,
+    /// tree-depth, rays or bvh-cost (switchable in the Tracing panel).
+    #[arg(long, value_name = "NAME", default_value = "shaded", value_parser = |s: &str| s.parse::<DebugView>())]
     view: DebugView,
     /// Tracing threads (default: one per core).
     #[arg(long)]
@@ -36,6 +36,11 @@ pub struct ViewArgs {
     /// rasterizer such as llvmpipe.
     #[arg(long)]
     device: Option<Device>,
+    /// Where the eye rays find their first hits: rays (each searches the BVH) or raster (each
+    /// starts from the item buffer, drawn on the GPU; the same image). The Tracing panel
+    /// switches it.
+    #[arg(long, default_value_t = FirstHit::Rays)]
+    first_hit: FirstHit,
     /// Window size in logical pixels.
     #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "1100x720")]
     window: Option<(u32, u32)>,
@@ -81,6 +86,7 @@ pub fn run(args: ViewArgs) -> Result<(), String> {
         debug_view: args.view,
         threads,
         device: args.device,
+        first_hit: args.first_hit,
         window: args.window.unwrap_or((1100, 720)),
         save_path: args.save,
         screenshot: args.screenshot,

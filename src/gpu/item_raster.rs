@@ -1,7 +1,8 @@
 //! The raster pass that draws the item buffer ([`crate::item_buffer`]) on the GPU
 //! (`shaders/item_buffer.wgsl`): the mesh triangles as themselves, every object as a proxy that
 //! covers it ([`proxies`]), each fragment intersecting the exact primitive along its pixel's eye
-//! ray, the depth test keeping the nearest; then the buffer read back to the CPU.
+//! ray, the depth test keeping the nearest ([`ItemRaster`]), then read back ([`GpuItems`]) for
+//! the CPU tracer's eye rays ([`CpuItems`]).
 
 use std::sync::Arc;
 
@@ -9,14 +10,18 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use wgpu::util::DeviceExt;
 
+use super::bvh::NodeLayout;
 use super::device::{GpuDevice, read_buffer};
-use super::scene::{GpuScene, GpuView, storage_entry_in};
+use super::scene::{GpuScene, GpuView, scene_layout, storage_entry_in};
 use super::tracer::tracer_wgsl;
-use crate::camera::Camera;
+use crate::aabb::Aabb;
 use crate::item_buffer::{Item, ItemBuffer};
 use crate::primitive::{Geometry, PrimId};
 use crate::render::Assembled;
 use crate::scene::Scene;
+
+/// The raster pass's WGSL, which goes with the tracer's into one module.
+pub const ITEM_BUFFER_WGSL: &str = include_str!("../../shaders/item_buffer.wgsl");
 
 /// WGSL's `Proxy`: an object's bounding box, or the whole film (`full_film` 1) for an object
 /// without finite bounds.
@@ -44,45 +49,42 @@ struct RasterFilm {
 /// plane of the axes).
 pub const PROXY_MARGIN: f32 = 1e-3;
 
-/// The proxy of every object of `geometry` seen from `eye`: its bounding box grown by
-/// [`PROXY_MARGIN`], or the whole film where it has no finite bounds.
-pub fn proxies(geometry: &Geometry, eye: Vec3) -> Vec<GpuProxy> {
+/// The proxy box of object `o` of `geometry` seen from `eye`: its bounding box grown by
+/// [`PROXY_MARGIN`]; `None` where it has no finite bounds (its proxy is the whole film).
+pub fn proxy_box(geometry: &Geometry, o: usize, eye: Vec3) -> Option<Aabb> {
+    let b = geometry
+        .bounds(PrimId::object(o))
+        .filter(|b| b.is_finite())?;
+    let reach = eye.distance(b.center()) + 0.5 * b.extent().length();
+    let margin = Vec3::splat(PROXY_MARGIN * reach);
+    Some(Aabb::new(b.min - margin, b.max + margin))
+}
+
+/// The proxy of every object of `geometry` seen from `eye` ([`proxy_box`]).
+fn proxies(geometry: &Geometry, eye: Vec3) -> Vec<GpuProxy> {
     (0..geometry.objects.len())
         .map(|o| {
-            let object = o as u32;
-            match geometry.bounds(PrimId::object(o)).filter(|b| b.is_finite()) {
-                Some(b) => {
-                    let reach = eye.distance(b.center()) + 0.5 * b.extent().length();
-                    let margin = Vec3::splat(PROXY_MARGIN * reach);
-                    GpuProxy {
-                        lo: (b.min - margin).to_array(),
-                        object,
-                        hi: (b.max + margin).to_array(),
-                        full_film: 0,
-                    }
-                }
-                None => GpuProxy {
-                    lo: [0.0; 3],
-                    object,
-                    hi: [0.0; 3],
-                    full_film: 1,
-                },
+            let bounds = proxy_box(geometry, o, eye);
+            let (lo, hi) = bounds.map_or((Vec3::ZERO, Vec3::ZERO), |b| (b.min, b.max));
+            GpuProxy {
+                lo: lo.to_array(),
+                object: o as u32,
+                hi: hi.to_array(),
+                full_film: u32::from(bounds.is_none()),
             }
         })
         .collect()
 }
 
-/// A scene on a GPU with the item buffer's pipelines compiled for it: what draws its item
-/// buffers, camera after camera.
+/// The item buffer's pipelines, compiled for one device and BVH node layout.
 pub struct ItemRaster {
-    gpu: Arc<GpuDevice>,
-    gpu_scene: GpuScene,
     proxy: wgpu::RenderPipeline,
     triangle: wgpu::RenderPipeline,
     film_layout: wgpu::BindGroupLayout,
 }
 
-/// The item buffer's texel: the primitive, the bits of `t`, the part, the triangle's slot.
+/// The item buffer's texel: the primitive, the bits of `t`, the part, a triangle's slot in the
+/// BVH's leaves.
 const ITEM_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// Bytes of one texel of [`ITEM_FORMAT`].
@@ -93,15 +95,21 @@ const NO_ITEM: u32 = u32::MAX;
 /// Where the raster pass's stages see the scene and the film.
 const STAGES: wgpu::ShaderStages = wgpu::ShaderStages::VERTEX_FRAGMENT;
 
+/// An item buffer on the GPU: a film's items row by row, `stride` texels a row, as the copy
+/// from the raster pass's target lays them out.
+pub struct GpuItems {
+    buffer: wgpu::Buffer,
+    stride: u32,
+    width: u32,
+    height: u32,
+}
+
 impl ItemRaster {
-    /// Uploads `assembled`'s scene to `gpu` and compiles the raster pass for it (the WGSL is the
-    /// tracer's, with the raster's entry points); the error says what of the scene the GPU does
-    /// not hold.
-    pub fn new(gpu: Arc<GpuDevice>, assembled: &Assembled) -> Result<ItemRaster, String> {
-        let gpu_scene = GpuScene::upload(&gpu, assembled)?;
+    /// Compiles the raster pass for `gpu` and scenes uploaded with BVH nodes in `nodes` (the
+    /// WGSL is the tracer's, with the raster's entry points).
+    pub fn new(gpu: &GpuDevice, nodes: NodeLayout) -> ItemRaster {
         let device = &gpu.device;
-        let source =
-            tracer_wgsl(gpu_scene.node_layout) + include_str!("../../shaders/item_buffer.wgsl");
+        let source = tracer_wgsl(nodes) + ITEM_BUFFER_WGSL;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("the item buffer"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
@@ -109,11 +117,11 @@ impl ItemRaster {
         let film_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("the item buffer's proxies and film"),
             entries: &[
-                storage_entry_in(2, true, STAGES),
                 storage_entry_in(3, true, STAGES),
+                storage_entry_in(4, true, STAGES),
             ],
         });
-        let scene_layout = super::scene::scene_layout(device, STAGES);
+        let scene_layout = scene_layout(device, STAGES);
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("the item buffer"),
             bind_group_layouts: &[Some(&scene_layout), Some(&film_layout)],
@@ -150,57 +158,49 @@ impl ItemRaster {
                 cache: None,
             })
         };
-        let (proxy, triangle) = (
-            pipeline("proxy_corner", "proxy_item"),
-            pipeline("triangle_corner", "triangle_item"),
-        );
-        Ok(ItemRaster {
-            gpu,
-            gpu_scene,
-            proxy,
-            triangle,
+        ItemRaster {
+            proxy: pipeline("proxy_corner", "proxy_item"),
+            triangle: pipeline("triangle_corner", "triangle_item"),
             film_layout,
-        })
+        }
     }
 
-    /// Draws the item buffer of `scene` (the one uploaded, its settings and materials perhaps
-    /// edited since) seen by `camera`, for a film of `size` at `origin` of the image, and reads
-    /// it back. The error says what does not fit the GPU: how much it needs, and how much the GPU
-    /// allows.
+    /// Draws the item buffer of `scene` (the one `gpu_scene` holds, seen by its camera; the
+    /// frame record already made for that camera and the film, which says where the film lies
+    /// in the image) for a film of `size`, into a buffer on the GPU. The error says what
+    /// does not fit the GPU: how much it needs, and how much the GPU allows.
     pub fn draw(
         &self,
+        gpu: &GpuDevice,
+        gpu_scene: &GpuScene,
         scene: &Scene,
-        camera: &Camera,
-        (origin, size): ((u32, u32), (u32, u32)),
-    ) -> Result<ItemBuffer, String> {
-        let (gpu, gpu_scene) = (&*self.gpu, &self.gpu_scene);
+        size: (u32, u32),
+    ) -> Result<GpuItems, String> {
         let device = &gpu.device;
         let (width, height) = size;
-        let limits = device.limits();
-        let side = limits.max_texture_dimension_2d;
+        let side = device.limits().max_texture_dimension_2d;
         if width > side || height > side {
             return Err(format!(
                 "the item buffer of a {width}×{height} film does not fit this GPU, whose images are \
                  at most {side}×{side} pixels"
             ));
         }
-        let row_bytes = (width * ITEM_BYTES).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-        let read_bytes = u64::from(row_bytes) * u64::from(height);
-        if read_bytes > limits.max_buffer_size {
+        let row_bytes = row_bytes(width);
+        let bytes = u64::from(row_bytes) * u64::from(height);
+        let most = device.limits().max_buffer_size;
+        if bytes > most {
             return Err(format!(
-                "the item buffer of a {width}×{height} film needs {read_bytes} bytes to read \
-                 back; this GPU allows {} in one buffer",
-                limits.max_buffer_size
+                "the item buffer of a {width}×{height} film needs {bytes} bytes; this GPU allows \
+                 {most} in one buffer"
             ));
         }
-        let objects = proxies(&scene.geometry, camera.eye);
+        let objects = proxies(&scene.geometry, scene.camera.eye);
         gpu.check_storage(
             "the item buffer's proxies",
             std::mem::size_of_val(objects.as_slice()) as u64,
         )?;
         let triangle_corners = u32::try_from(gpu_scene.triangle_count() * 3)
             .map_err(|_| "the item buffer draws at most 2³² triangle corners".to_string())?;
-        gpu_scene.update(gpu, scene, camera, GpuView::Shaded, origin)?;
 
         let extent = wgpu::Extent3d {
             width,
@@ -252,21 +252,21 @@ impl ItemRaster {
             layout: &self.film_layout,
             entries: &[
                 wgpu::BindGroupEntry {
-                    binding: 2,
+                    binding: 3,
                     resource: buffer("the proxies", proxy_bytes).as_entire_binding(),
                 },
                 wgpu::BindGroupEntry {
-                    binding: 3,
+                    binding: 4,
                     resource: buffer("the raster's film", bytemuck::bytes_of(&film))
                         .as_entire_binding(),
                 },
             ],
         });
         let (_, scene_group) = gpu_scene.bind_group_in(device, STAGES);
-        let read_back = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("the item buffer read back"),
-            size: read_bytes,
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        let on_gpu = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("the item buffer's rows"),
+            size: bytes,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
 
@@ -316,7 +316,7 @@ impl ItemRaster {
         encoder.copy_texture_to_buffer(
             items.as_image_copy(),
             wgpu::TexelCopyBufferInfo {
-                buffer: &read_back,
+                buffer: &on_gpu,
                 layout: wgpu::TexelCopyBufferLayout {
                     offset: 0,
                     bytes_per_row: Some(row_bytes),
@@ -326,13 +326,46 @@ impl ItemRaster {
             extent,
         );
         gpu.queue.submit([encoder.finish()]);
+        Ok(GpuItems {
+            buffer: on_gpu,
+            stride: row_bytes / ITEM_BYTES,
+            width,
+            height,
+        })
+    }
+}
+
+/// Bytes of a row of the item buffer of a film `width` pixels wide, as a copy from a texture lays
+/// it out.
+fn row_bytes(width: u32) -> u32 {
+    (width * ITEM_BYTES).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
+}
+
+impl GpuItems {
+    /// The items read back to the CPU, for a film at `origin` of an image of `image_size`.
+    pub fn read_back(
+        &self,
+        gpu: &GpuDevice,
+        image_size: (u32, u32),
+        origin: (u32, u32),
+    ) -> Result<ItemBuffer, String> {
+        let device = &gpu.device;
+        let size = self.buffer.size();
+        let read_back = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("the item buffer read back"),
+            size,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&self.buffer, 0, &read_back, 0, size);
+        gpu.queue.submit([encoder.finish()]);
         let bytes = read_buffer(device, &read_back)?;
         let texels: Vec<[u32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
-        let row_texels = (row_bytes / ITEM_BYTES) as usize;
         let decoded = texels
-            .chunks(row_texels)
-            .flat_map(|row| &row[..width as usize])
-            .map(|&[prim, t, part, _slot]| {
+            .chunks(self.stride as usize)
+            .flat_map(|row| &row[..self.width as usize])
+            .map(|&[prim, t, part, _leaf]| {
                 (prim != NO_ITEM).then(|| Item {
                     prim: PrimId(prim),
                     part,
@@ -340,7 +373,44 @@ impl ItemRaster {
                 })
             })
             .collect();
-        let image_size = (scene.settings.width, scene.settings.height);
+        let size = (self.width, self.height);
         Ok(ItemBuffer::new(image_size, origin, size, decoded))
+    }
+}
+
+/// A scene uploaded to a GPU with the item buffer's raster pass compiled for it: where the CPU
+/// tracer's item buffers come from, camera after camera.
+pub struct CpuItems {
+    gpu: Arc<GpuDevice>,
+    gpu_scene: GpuScene,
+    raster: ItemRaster,
+}
+
+impl CpuItems {
+    /// Uploads `assembled`'s scene to `gpu` and compiles the raster pass for it; the error says
+    /// what of the scene the GPU does not hold.
+    pub fn new(gpu: Arc<GpuDevice>, assembled: &Assembled) -> Result<CpuItems, String> {
+        let gpu_scene = GpuScene::upload(&gpu, assembled)?;
+        let raster = ItemRaster::new(&gpu, gpu_scene.node_layout);
+        Ok(CpuItems {
+            gpu,
+            gpu_scene,
+            raster,
+        })
+    }
+
+    /// The item buffer of `scene` (the one uploaded, its settings and materials perhaps edited
+    /// since) seen by its camera, for a film of `size` at `origin` of the image, drawn and read
+    /// back. The error says what does not fit the GPU.
+    pub fn draw(
+        &self,
+        scene: &Scene,
+        (origin, size): ((u32, u32), (u32, u32)),
+    ) -> Result<ItemBuffer, String> {
+        let (gpu, gpu_scene) = (&*self.gpu, &self.gpu_scene);
+        gpu_scene.update(gpu, scene, &scene.camera, GpuView::Shaded, origin)?;
+        let items = self.raster.draw(gpu, gpu_scene, scene, size)?;
+        let image_size = (scene.settings.width, scene.settings.height);
+        items.read_back(gpu, image_size, origin)
     }
 }

@@ -128,6 +128,23 @@ pub struct RayTree {
     pub nodes: Vec<RayNode>,
     /// The pixel's colour: what the renderer writes there at one sample per pixel.
     pub color: Color,
+    /// Where the eye ray's first hit came from, when the tracer has an item buffer; `None`: the
+    /// ray searched the BVH, as without one.
+    pub first_hit: Option<FirstHitSource>,
+}
+
+/// Where an eye ray's first hit came from in a render with an item buffer
+/// ([`crate::item_buffer`]): the hit is the same either way.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "kebab-case", tag = "from")]
+pub enum FirstHitSource {
+    /// Found by the walk up to the pixel's item (`item` names it), at `t`.
+    ItemBuffer { item: String, t: f32 },
+    /// The item buffer holds nothing at this pixel: the ray searched in full.
+    NoItem,
+    /// The ray misses the pixel's item, `item` (or finds nothing up to it): it searched in
+    /// full.
+    ItemMissed { item: String },
 }
 
 impl RayTree {

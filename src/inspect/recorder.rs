@@ -1,13 +1,16 @@
 //! The inspector: traces one pixel's eye ray with the renderer's own code and an observer that
 //! records every event as a [`RayTree`]; and the object each pixel's eye ray sees.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
-use super::ray_tree::{Blocker, Cut, NodeFog, NodeHit, RayNode, RayTree, ShadowRay};
+use super::ray_tree::{
+    Blocker, Cut, FirstHitSource, NodeFog, NodeHit, RayNode, RayTree, ShadowRay,
+};
 use crate::bvh::cost::TraversalCost;
 use crate::camera::PIXEL_CENTRE;
 use crate::color::Color;
+use crate::item_buffer::{Item, far_limit};
 use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::Ray;
 use crate::scene::Scene;
@@ -52,6 +55,36 @@ pub fn trace_ray_tree(tracer: &Tracer, x: u32, y: u32) -> RayTree {
         pixel: (x, y),
         nodes: recorder.nodes,
         color,
+        first_hit: tracer
+            .item_buffer
+            .map(|items| first_hit_source(tracer, items.at(x, y), &ray)),
+    }
+}
+
+/// Where the first hit of the eye ray `ray`, whose pixel's item is `item`, comes from: the
+/// renderer's own search ([`crate::whitted::Tracer::first_hits`]).
+fn first_hit_source(tracer: &Tracer, item: Option<Item>, ray: &Ray) -> FirstHitSource {
+    let geometry = &tracer.scene.geometry;
+    let Some(item) = item.filter(|item| geometry.contains(item.prim)) else {
+        return FirstHitSource::NoItem;
+    };
+    let named = Hit {
+        t: item.t,
+        prim: item.prim,
+        part: item.part,
+        bary: Vec2::ZERO,
+    };
+    let label = geometry.hit_label(&named);
+    let limit = far_limit(geometry, Some(item), ray, EYE_RAY_T_MIN);
+    let found = limit
+        .is_finite()
+        .then(|| tracer.bvh.closest_hit(geometry, ray, EYE_RAY_T_MIN, limit));
+    match found.flatten() {
+        Some(hit) => FirstHitSource::ItemBuffer {
+            item: label,
+            t: hit.t,
+        },
+        None => FirstHitSource::ItemMissed { item: label },
     }
 }
 

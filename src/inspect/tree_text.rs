@@ -5,7 +5,7 @@ use std::fmt::Write;
 
 use glam::Vec3;
 
-use super::ray_tree::{RayNode, RayTree, ShadowRay};
+use super::ray_tree::{FirstHitSource, RayNode, RayTree, ShadowRay};
 use crate::color::Color;
 use crate::whitted::{RayKind, StopReason};
 
@@ -18,6 +18,24 @@ impl RayTree {
             self.pixel.1,
             vec3(self.color)
         );
+        match &self.first_hit {
+            Some(FirstHitSource::ItemBuffer { item, t }) => {
+                let _ = writeln!(out, "first hit: from the item buffer ({item}, t = {t:.4})");
+            }
+            Some(FirstHitSource::NoItem) => {
+                let _ = writeln!(
+                    out,
+                    "first hit: searched in full (the item buffer holds nothing here)"
+                );
+            }
+            Some(FirstHitSource::ItemMissed { item }) => {
+                let _ = writeln!(
+                    out,
+                    "first hit: searched in full (the eye ray misses its item, {item})"
+                );
+            }
+            None => {}
+        }
         if !self.nodes.is_empty() {
             self.write_node(&mut out, 0);
         }

@@ -33,13 +33,12 @@ use std::path::PathBuf;
 
 use raylab::formats::SceneFormat;
 use raylab::inspect::DebugView;
-use raylab::render::Device;
+use raylab::render::{Device, FirstHit};
 use raylab::settings::SettingsOverrides;
 use winit::event_loop::EventLoop;
 
 pub use input::script::Script;
 pub use input::script_steps;
-pub use scene::controls::parse_shown_view;
 
 /// How the viewer starts.
 pub struct Options {
@@ -56,6 +55,8 @@ pub struct Options {
     /// Which tracer renders the shaded image; `None`: the GPU when it is real hardware, the CPU
     /// when the only adapter is a software rasterizer (llvmpipe) or there is none.
     pub device: Option<Device>,
+    /// Where the eye rays find their first hits at the start.
+    pub first_hit: FirstHit,
     /// Window size in logical pixels.
     pub window: (u32, u32),
     /// Where Save writes the image.

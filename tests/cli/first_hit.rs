@@ -1,7 +1,8 @@
 //! `--first-hit raster` as a user meets it: `render` writes the rays' image byte for byte and
-//! says how many eye rays started from the item buffer, the item-buffer view shows what the
-//! object view shows, `bench` times the raster pass and both searches, and what cannot be done
-//! (no GPU adapter, the GPU tracer) is a clear error. These need a GPU adapter (Mesa's lavapipe
+//! says how many eye rays started from the item buffer; the item-buffer view shows what the
+//! object view shows; `inspect` says where a pixel's first hit came from; `bench` times the
+//! raster pass and both searches; and what cannot be done (no GPU adapter, the GPU tracer) is
+//! a clear error. These need a GPU adapter (Mesa's lavapipe
 //! will do): without one they fail, saying what to install.
 
 use std::path::Path;
@@ -72,6 +73,35 @@ fn the_item_buffer_view_shows_the_objects_the_rays_see() {
 }
 
 #[test]
+fn inspect_says_whether_the_first_hit_came_from_the_item_buffer() {
+    let dir = tempfile::tempdir().unwrap();
+    let inspect = |pixel: &str, json: bool| {
+        let mut args = vec!["inspect", "--pixel", pixel, "--first-hit", "raster"];
+        if json {
+            args.push("--json");
+        }
+        let out = raylab(&args, dir.path());
+        assert!(out.status.success(), "{}", stderr(&out));
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    // The middle of the default scene shows a glass ball; its top-left corner, the background.
+    let ball = inspect("320,240", false);
+    assert!(
+        ball.contains("first hit: from the item buffer (sphere #"),
+        "{ball}"
+    );
+    let background = inspect("5,5", false);
+    assert!(
+        background.contains("first hit: searched in full (the item buffer holds nothing here)"),
+        "{background}"
+    );
+    let json: serde_json::Value = serde_json::from_str(&inspect("320,240", true)).unwrap();
+    assert_eq!(json["first_hit"]["from"], "item-buffer", "{json}");
+    let plain = raylab(&["inspect", "--pixel", "320,240"], dir.path());
+    assert!(!String::from_utf8_lossy(&plain.stdout).contains("first hit:"));
+}
+
+#[test]
 fn bench_times_the_raster_pass_and_both_searches() {
     let dir = tempfile::tempdir().unwrap();
     let args = [
@@ -135,22 +165,18 @@ fn what_the_item_buffer_cannot_do_is_an_error_not_a_panic() {
         raylab(&args, dir.path())
     };
     for (out, expected) in [
+        (on_gpu("render"), "--first-hit raster feeds the CPU tracer"),
+        (on_gpu("bench"), "--first-hit raster feeds the CPU tracer"),
         (
             no_adapter,
             "--first-hit raster draws the item buffer on the GPU: no GPU adapter named like",
         ),
-        (on_gpu("render"), "--first-hit raster feeds the CPU tracer"),
-        (on_gpu("bench"), "--first-hit raster feeds the CPU tracer"),
         (
             raylab(
                 &["render", "--first-hit", "zbuffer", "-o", "out.png"],
                 dir.path(),
             ),
             "unknown first-hit search `zbuffer`",
-        ),
-        (
-            raylab(&["view", "--view", "item-buffer"], dir.path()),
-            "the viewer does not draw the item-buffer view",
         ),
     ] {
         let message = stderr(&out);

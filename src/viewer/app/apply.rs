@@ -69,6 +69,11 @@ impl App {
                     s.controls.device = device;
                 }
             }
+            Action::SetFirstHit(first_hit) => {
+                if let Some(s) = self.scene.shown_mut() {
+                    s.controls.first_hit = first_hit;
+                }
+            }
             display @ (Action::Compare(_)
             | Action::ToggleCompare
             | Action::Divider(_)

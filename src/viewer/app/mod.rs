@@ -69,6 +69,7 @@ impl App {
             debug_view,
             threads,
             device,
+            first_hit,
             window,
             save_path,
             screenshot,
@@ -104,7 +105,7 @@ impl App {
                 format,
                 overrides,
                 debug_view,
-                device,
+                (device, first_hit),
                 Arc::new(move |news| {
                     let _ = proxy.send_event(UserEvent::Scene(news));
                 }),

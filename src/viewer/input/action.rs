@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 use raylab::inspect::DebugView;
-use raylab::render::Device;
+use raylab::render::{Device, FirstHit};
 use raylab::tone::ToneCurve;
 
 use crate::viewer::scene::edits::{LightEdit, MaterialEdit};
@@ -40,6 +40,8 @@ pub enum Action {
     SetDebugView(DebugView),
     /// Render the shaded image with this tracer (restarts refinement).
     SetDevice(Device),
+    /// Find the eye rays' first hits this way (restarts refinement).
+    SetFirstHit(FirstHit),
     /// Open a scene file (`None`: the built-in default scene).
     Open(Option<PathBuf>),
     /// Save the image and the camera snippet.

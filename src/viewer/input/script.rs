@@ -6,9 +6,9 @@ use std::collections::VecDeque;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use crate::viewer::scene::controls::parse_shown_view;
 use glam::Vec3;
-use raylab::render::Device;
+use raylab::inspect::DebugView;
+use raylab::render::{Device, FirstHit};
 use raylab::tone::{Tone, ToneCurve};
 
 use super::action::Action;
@@ -166,10 +166,12 @@ fn parse_step(step: &str) -> Result<Step, String> {
                 _ => Action::Click { x, y },
             })
         }
-        "view" if args.len() == 1 => once(Action::SetDebugView(parse_shown_view(args[0])?)),
+        "view" if args.len() == 1 => once(Action::SetDebugView(args[0].parse::<DebugView>()?)),
         "view" => return Err("takes one view name".into()),
         "device" if args.len() == 1 => once(Action::SetDevice(args[0].parse::<Device>()?)),
         "device" => return Err("takes `cpu` or `gpu`".into()),
+        "first-hit" if args.len() == 1 => once(Action::SetFirstHit(args[0].parse::<FirstHit>()?)),
+        "first-hit" => return Err("takes `rays` or `raster`".into()),
         "snapshot" if args.is_empty() => once(Action::Snapshot),
         "compare" => match args[..] {
             ["on"] => once(Action::Compare(true)),
@@ -302,7 +304,6 @@ fn numbers_of(args: &[&str]) -> Result<Vec<f32>, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use raylab::inspect::DebugView;
 
     #[test]
     fn steps_run_in_order_and_wait_for_refinement() {
@@ -386,6 +387,8 @@ mod tests {
             ("view glossy", "unknown view"),
             ("device", "takes `cpu` or `gpu`"),
             ("device tpu", "unknown device"),
+            ("first-hit", "takes `rays` or `raster`"),
+            ("first-hit zbuffer", "unknown first-hit search"),
         ] {
             let err = Script::parse(text).unwrap_err();
             assert!(err.contains(expected), "{text}: {err}");

@@ -84,11 +84,15 @@ pub const STEPS: &[StepHelp] = &[
     },
     StepHelp {
         syntax: "view NAME",
-        does: "shows a debug view: `shaded`, `normals`, `depth`, `uv`, `object`, `material`, `tree-depth`, `rays` or `bvh-cost`",
+        does: "shows a debug view: `shaded`, `normals`, `depth`, `uv`, `object`, `material`, `item-buffer`, `tree-depth`, `rays` or `bvh-cost`",
     },
     StepHelp {
         syntax: "device NAME",
         does: "renders the shaded image with `cpu` or `gpu`, as the Tracing panel's device switch",
+    },
+    StepHelp {
+        syntax: "first-hit NAME",
+        does: "finds the eye rays' first hits with `rays` or from the item buffer (`raster`), as the Tracing panel's first-hit switch",
     },
     StepHelp {
         syntax: "exposure STOPS",

@@ -7,10 +7,9 @@ use raylab::camera::{Camera, CameraSpec};
 use raylab::inspect::DebugView;
 use raylab::light::Light;
 use raylab::material::Material;
-use raylab::render::Device;
+use raylab::render::{Device, FirstHit};
 use raylab::scene::Scene;
 use raylab::settings::{RenderSettings, SettingsOverrides};
-use strum::IntoEnumIterator;
 
 use super::edits;
 
@@ -19,26 +18,6 @@ use super::edits;
 pub const VIEWER_SAMPLES: u32 = 16;
 /// …where a pixel differs from a neighbour by more than this (see `RenderSettings::aa_threshold`).
 pub const VIEWER_AA_THRESHOLD: f32 = 0.03;
-
-/// The debug views the viewer shows: every one but the item buffer's, which it does not draw
-/// (`raylab render --view item-buffer` does).
-pub fn shown_views() -> impl Iterator<Item = DebugView> {
-    DebugView::iter().filter(|&view| view != DebugView::ItemBuffer)
-}
-
-/// The view `name` names, if the viewer shows it ([`shown_views`]); the error says which it
-/// shows.
-pub fn parse_shown_view(name: &str) -> Result<DebugView, String> {
-    let view: DebugView = name.parse()?;
-    if shown_views().any(|shown| shown == view) {
-        return Ok(view);
-    }
-    let names: Vec<String> = shown_views().map(|view| view.to_string()).collect();
-    Err(format!(
-        "the viewer does not draw the {view} view (`raylab render --view {view}` does); it shows {}",
-        names.join(", ")
-    ))
-}
 
 /// What the controls change in a scene before it is traced.
 #[derive(Clone, Debug)]
@@ -57,6 +36,8 @@ pub struct TraceSetup {
     pub caustic_round: u32,
     /// Which tracer renders the shaded image (the debug views trace on the CPU).
     pub device: Device,
+    /// Where the eye rays find their first hits.
+    pub first_hit: FirstHit,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -78,6 +59,8 @@ pub struct Controls {
     pub auto_block: bool,
     /// Which tracer renders the shaded image.
     pub device: Device,
+    /// Where the eye rays find their first hits.
+    pub first_hit: FirstHit,
 }
 
 impl Controls {
@@ -92,6 +75,7 @@ impl Controls {
             lights: scene.lights.clone(),
             auto_block: true,
             device: Device::Cpu,
+            first_hit: FirstHit::Rays,
         }
     }
 
@@ -158,6 +142,7 @@ impl Controls {
             lights: self.lights.iter().map(edits::normalized).collect(),
             caustic_round: 0,
             device: self.device,
+            first_hit: self.first_hit,
         })
     }
 }

@@ -15,7 +15,7 @@ use std::sync::Arc;
 use raylab::formats::SceneFormat;
 use raylab::formats::toml::{Looks, save_edits};
 use raylab::inspect::DebugView;
-use raylab::render::Device;
+use raylab::render::{Device, FirstHit};
 use raylab::settings::SettingsOverrides;
 
 use self::controls::Controls;
@@ -82,8 +82,10 @@ pub struct SceneSlot {
     /// for the next scenes.
     overrides: SettingsOverrides,
     debug_view: DebugView,
-    /// The tracer the shaded image is rendered with, kept for the next scenes as the debug view.
+    /// The tracer the shaded image is rendered with, and where the eye rays find their first
+    /// hits, kept for the next scenes as the debug view.
     device: Device,
+    first_hit: FirstHit,
     /// The scene file asked for last (watched even while it fails to load); `None` for the
     /// built-in default scene.
     requested: Option<PathBuf>,
@@ -114,7 +116,7 @@ impl SceneSlot {
         format: Option<SceneFormat>,
         overrides: SettingsOverrides,
         debug_view: DebugView,
-        device: Device,
+        (device, first_hit): (Device, FirstHit),
         news: NewsSender,
     ) -> SceneSlot {
         SceneSlot {
@@ -122,6 +124,7 @@ impl SceneSlot {
             overrides,
             debug_view,
             device,
+            first_hit,
             format: first.clone().zip(format),
             requested: first,
             files_beside: Vec::new(),
@@ -197,6 +200,7 @@ impl SceneSlot {
             let mut controls =
                 Controls::with_overrides(loaded.scene(), &self.overrides, self.debug_view)?;
             controls.device = self.device;
+            controls.first_hit = self.first_hit;
             Ok((loaded, controls))
         });
         let (loaded, with_overrides) = match with_overrides {
@@ -355,6 +359,7 @@ impl SceneSlot {
         );
         let size = (settings.width, settings.height);
         let (debug_view, device) = (shown.controls.debug_view, shown.controls.device);
+        self.first_hit = shown.controls.first_hit;
         if size != started {
             (self.overrides.width, self.overrides.height) = (Some(size.0), Some(size.1));
         }

@@ -4,8 +4,8 @@
 use std::path::{Path, PathBuf};
 
 use egui::{Color32, DragValue, Slider};
-use raylab::inspect::Legend;
-use raylab::render::Device;
+use raylab::inspect::{DebugView, Legend};
+use raylab::render::{Device, FirstHit};
 use raylab::settings::{MAX_BLOCK_SIZE, MAX_CAUSTIC_GATHER, MAX_DEPTH_LIMIT, MAX_SAMPLES};
 use strum::IntoEnumIterator;
 
@@ -14,7 +14,7 @@ use super::{legend_bar, materials_panel};
 use crate::viewer::input::action::Action;
 use crate::viewer::layout::Resolution;
 use crate::viewer::scene::SceneInfo;
-use crate::viewer::scene::controls::{Controls, shown_views};
+use crate::viewer::scene::controls::Controls;
 use crate::viewer::scene::views::{SceneViews, TURNTABLE_FRAMES};
 
 /// What the side panel keeps besides the scene and the controls.
@@ -219,7 +219,7 @@ fn tracing_section(
             egui::ComboBox::from_label("view")
                 .selected_text(controls.debug_view.to_string())
                 .show_ui(ui, |ui| {
-                    for view in shown_views() {
+                    for view in DebugView::iter() {
                         ui.selectable_value(&mut controls.debug_view, view, view.to_string());
                     }
                 });
@@ -231,6 +231,17 @@ fn tracing_section(
                 for device in Device::iter() {
                     ui.selectable_value(&mut controls.device, device, device.to_string())
                         .on_hover_text("the tracer of the shaded image (debug views: the CPU)");
+                }
+            });
+            ui.horizontal(|ui| {
+                ui.label("first hits");
+                for first_hit in FirstHit::iter() {
+                    let name = first_hit.to_string();
+                    ui.selectable_value(&mut controls.first_hit, first_hit, name)
+                        .on_hover_text(
+                            "rays: each eye ray searches the BVH; raster: each starts from the \
+                             item buffer a raster pass draws on the GPU (the same image)",
+                        );
                 }
             });
             let auto_block = &mut controls.auto_block;

@@ -80,14 +80,19 @@ pub fn status_line(s: &RenderStatus) -> String {
     } else {
         format!(" on {}", s.device)
     };
+    let items = if r.from_item_buffer > 0 {
+        format!(" · {} from the item buffer", r.from_item_buffer)
+    } else {
+        String::new()
+    };
     let caustics = if s.photons > 0 {
         format!(" · caustics: {} photons", s.photons)
     } else {
         String::new()
     };
     format!(
-        "{paused}{state}{start} · ms per pass: {pass_times}{caustics}\nrays: {} eye ({} hit), {} shadow, {} \
-         reflected, {} transmitted{over_budget} · {mrays:.2} Mrays/s{device} · {:.0} fps",
+        "{paused}{state}{start} · ms per pass: {pass_times}{caustics}\nrays: {} eye ({} hit{items}), {} \
+         shadow, {} reflected, {} transmitted{over_budget} · {mrays:.2} Mrays/s{device} · {:.0} fps",
         r.primary, r.primary_hits, r.shadow, r.reflected, r.transmitted, s.fps
     )
 }

@@ -13,9 +13,10 @@ use std::time::Instant;
 use raylab::film::Film;
 use raylab::gpu::device::GpuDevice;
 use raylab::gpu::film::GpuFilm;
+use raylab::inspect::DebugView;
 use raylab::inspect::Legend;
 use raylab::progressive::{self, PassStats, RenderControl};
-use raylab::render::Device;
+use raylab::render::{Device, FirstHit};
 
 use super::caustics::{JobMap, SharedCaustics, Shot};
 use super::working_scene::WorkingScene;
@@ -233,8 +234,14 @@ fn run(
             };
             match on_gpu {
                 Ok(((copy, renderer), view)) => {
-                    job.report
-                        .set_device(format!("gpu: {}", renderer.gpu().name()));
+                    let from_rays = match job.setup.first_hit {
+                        FirstHit::Raster => {
+                            " (first hits from the rays: the item buffer feeds the CPU tracer)"
+                        }
+                        FirstHit::Rays => "",
+                    };
+                    let name = renderer.gpu().name();
+                    job.report.set_device(format!("gpu: {name}{from_rays}"));
                     let cpu_view = &job.setup.debug_view;
                     let rendered = std::panic::catch_unwind(AssertUnwindSafe(|| {
                         let (tracer, film) = (&copy.tracer(), &job.film);
@@ -258,9 +265,30 @@ fn run(
                 Err(why) => job.report.set_device(format!("{cpu} (not the GPU: {why})")),
             }
         } else {
-            job.report.set_device(cpu);
+            job.report.set_device(cpu.clone());
         }
-        let tracer = working.tracer(&job.scene, &job.setup, map);
+        // The item buffer, where the first hits come from it or the view shows it.
+        let setup = &job.setup;
+        let items = match (setup.first_hit, setup.debug_view) {
+            (FirstHit::Raster, _) | (_, DebugView::ItemBuffer) => {
+                let gpu = gpu.get_or_insert_with(|| GpuDevice::new().map(Arc::new));
+                let drawn = gpu
+                    .clone()
+                    .and_then(|gpu| working.item_buffer(&gpu, &job.film));
+                match drawn {
+                    Ok(items) => Some(items),
+                    Err(why) => {
+                        job.report
+                            .set_device(format!("{cpu} (first hits from the rays: {why})"));
+                        None
+                    }
+                }
+            }
+            _ => None,
+        };
+        let tracer = working
+            .tracer(&job.scene, &job.setup, map)
+            .with_item_buffer(items.as_ref());
         let rendered = std::panic::catch_unwind(AssertUnwindSafe(|| {
             pool.install(|| {
                 progressive::render(
@@ -346,6 +374,7 @@ mod tests {
                 lights: scene.scene().lights.clone(),
                 caustic_round: 0,
                 device: Default::default(),
+                first_hit: Default::default(),
             },
             film: Arc::new(Film::new(size, size)),
             control: Arc::new(RenderControl::default()),
@@ -354,17 +383,47 @@ mod tests {
     }
 
     fn wait_for(report: &JobReport) -> Outcome {
+        wait_at_most(report, Duration::from_secs(60))
+    }
+
+    fn wait_at_most(report: &JobReport, limit: Duration) -> Outcome {
         let start = Instant::now();
         loop {
             if let Some(outcome) = report.outcome() {
                 return outcome;
             }
-            assert!(
-                start.elapsed() < Duration::from_secs(60),
-                "the job never ended"
-            );
+            assert!(start.elapsed() < limit, "the job never ended");
             std::thread::sleep(Duration::from_millis(2));
         }
+    }
+
+    #[test]
+    fn a_job_from_the_item_buffer_renders_the_rays_film() {
+        let scene = Arc::new(source::load(None, None).unwrap());
+        let worker = Worker::start(2, SharedCaustics::default(), None).unwrap();
+        let mut films = Vec::new();
+        for first_hit in [FirstHit::Rays, FirstHit::Raster] {
+            let mut j = job(&scene, 32);
+            j.setup.first_hit = first_hit;
+            let (film, report) = (j.film.clone(), j.report.clone());
+            worker.submit(j).unwrap();
+            // Mesa's software GPU may first compile the raster pass for minutes.
+            let outcome = wait_at_most(&report, Duration::from_secs(600));
+            assert_eq!(outcome, Outcome::Finished, "{first_hit}");
+            let from_items: u64 = report
+                .passes()
+                .iter()
+                .map(|p| p.rays.from_item_buffer)
+                .sum();
+            assert_eq!(from_items > 0, first_hit == FirstHit::Raster, "{first_hit}");
+            assert!(
+                !report.device().contains("first hits from the rays"),
+                "{}",
+                report.device()
+            );
+            films.push(film.pixels());
+        }
+        assert!(films[0] == films[1], "the films differ");
     }
 
     #[test]

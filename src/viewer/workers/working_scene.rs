@@ -3,12 +3,16 @@
 //! map it is traced with. The threads that trace (the render worker, the ray tree thread) each
 //! keep one, copied once per loaded scene and updated in place for each job, so that moving the
 //! camera or editing a material copies no geometry (and keeps the BVH). The render worker's
-//! copy also keeps the scene uploaded to the GPU, once the GPU is asked to render it.
+//! copy also keeps the scene uploaded to the GPU, once the GPU is asked to render it or to draw
+//! its item buffers.
 
 use std::sync::Arc;
 use std::time::Duration;
 
+use raylab::film::Film;
 use raylab::gpu::device::GpuDevice;
+use raylab::gpu::item_raster::CpuItems;
+use raylab::item_buffer::ItemBuffer;
 use raylab::photon::PhotonMap;
 use raylab::progressive::gpu::GpuRenderer;
 use raylab::render::Assembled;
@@ -28,6 +32,9 @@ pub struct WorkingScene {
     copy: Option<(Arc<LoadedScene>, Assembled)>,
     /// The copy's scene on the GPU, or why the GPU does not render it.
     on_gpu: Option<Result<GpuRenderer, String>>,
+    /// The copy's scene on the GPU for the CPU tracer's item buffers, or why the GPU does not
+    /// draw them.
+    items: Option<Result<CpuItems, String>>,
 }
 
 impl WorkingScene {
@@ -46,6 +53,7 @@ impl WorkingScene {
         {
             self.copy = None;
             self.on_gpu = None;
+            self.items = None;
         }
         let (_, copy) = self
             .copy
@@ -61,6 +69,22 @@ impl WorkingScene {
             .map(|l| l.scaled(setup.light_scale))
             .collect();
         copy.tracer()
+    }
+
+    /// The item buffer of the copy (as the last [`Self::tracer`] made it) for `film`, drawn on
+    /// `gpu`, where the scene is uploaded the first time it is asked for; the error says why the
+    /// GPU does not draw it.
+    pub fn item_buffer(&mut self, gpu: &Arc<GpuDevice>, film: &Film) -> Result<ItemBuffer, String> {
+        let (_, copy) = self
+            .copy
+            .as_ref()
+            .ok_or("no scene to draw the item buffer of")?;
+        let items = self
+            .items
+            .get_or_insert_with(|| CpuItems::new(Arc::clone(gpu), copy))
+            .as_ref()
+            .map_err(|e| e.clone())?;
+        items.draw(&copy.scene, (film.origin(), (film.width(), film.height())))
     }
 
     /// The copy (as the last [`Self::tracer`] made it) and the renderer of its scene on `gpu`,
