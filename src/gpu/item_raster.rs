@@ -1,6 +1,6 @@
 //! The raster pass that draws the item buffer ([`crate::item_buffer`]) on the GPU
 //! (`shaders/item_buffer.wgsl`): the mesh triangles as themselves, every object as a proxy that
-//! covers it ([`proxies`]), each fragment intersecting the exact primitive along its pixel's eye
+//! covers it ([`proxy_box`]), each fragment intersecting the exact primitive along its pixel's eye
 //! ray, the depth test keeping the nearest ([`ItemRaster`]), then read back ([`GpuItems`]) for
 //! the CPU tracer's eye rays ([`CpuItems`]).
 
