@@ -29,7 +29,7 @@ struct Tally {
     transmitted: atomic<u32>,
     over_budget: atomic<u32>,
     cut_short: atomic<u32>,
-    pad: u32,
+    from_item_buffer: atomic<u32>,
 }
 
 // Rows `first_row .. first_row + rows` of the film as shown: `Tone::map` of each pixel, with
@@ -102,6 +102,7 @@ fn add_samples(@builtin(global_invocation_id) id: vec3<u32>) {
         atomicAdd(&tally.reflected, c.reflected);
         atomicAdd(&tally.transmitted, c.transmitted);
         atomicAdd(&tally.over_budget, c.over_budget);
+        atomicAdd(&tally.from_item_buffer, c.from_item_buffer);
     }
     let s = samples[i];
     if i > 0u && same_pixel(samples[i - 1u], s) {

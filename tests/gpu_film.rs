@@ -41,7 +41,12 @@ fn samples_put_on_the_gpu_give_the_cpu_films_pixels_and_counts() {
         for y in (0..height).step_by(step as usize) {
             for x in (0..width).step_by(step as usize) {
                 i += 1;
-                samples.push(PixelSample { x, y, k: 0, pad: 0 });
+                samples.push(PixelSample {
+                    x,
+                    y,
+                    k: 0,
+                    item_t: 0.0,
+                });
                 colours.push(colour(i));
                 cpu.fill_block(x, y, step, colour(i));
             }
@@ -55,7 +60,12 @@ fn samples_put_on_the_gpu_give_the_cpu_films_pixels_and_counts() {
             for x in 0..width {
                 for k in 1 + 3 * round..4 + 3 * round {
                     i += 1;
-                    samples.push(PixelSample { x, y, k, pad: 0 });
+                    samples.push(PixelSample {
+                        x,
+                        y,
+                        k,
+                        item_t: 0.0,
+                    });
                     colours.push(colour(i));
                     cpu.add_sample(x, y, colour(i));
                 }
@@ -130,7 +140,12 @@ fn rows_shown_on_the_gpu_are_the_bytes_tone_mapping_gives() {
     for (i, &v) in values.iter().enumerate() {
         let (x, y) = (i as u32 % width, i as u32 / width);
         let c = Color::new(v, v * 0.37, v * 2.9);
-        samples.push(PixelSample { x, y, k: 1, pad: 0 });
+        samples.push(PixelSample {
+            x,
+            y,
+            k: 1,
+            item_t: 0.0,
+        });
         colours.push(c);
         cpu.add_sample(x, y, c);
     }

@@ -25,7 +25,7 @@ use raylab::progressive::gpu::GpuRenderer;
 use raylab::progressive::{
     RenderControl, RenderStats, Shaded, Shader, render_image, render_image_with,
 };
-use raylab::render::assemble;
+use raylab::render::{FirstHit, assemble};
 use raylab::scene::Scene;
 use raylab::whitted::Tracer;
 use strum::IntoEnumIterator;
@@ -75,6 +75,16 @@ fn difference(a: &[u8], b: &[u8]) -> (f64, f64) {
 /// Renders every scene that `keep` keeps on both tracers with `adjust`ed settings, the GPU's
 /// BVH nodes in `nodes`, and compares them.
 fn compare_all(nodes: NodeLayout, keep: impl Fn(&Scene) -> bool, adjust: impl Fn(&mut Scene)) {
+    compare_all_from(FirstHit::Rays, nodes, keep, adjust);
+}
+
+/// [`compare_all`] with the GPU's eye rays finding their first hits as `first_hit` says.
+fn compare_all_from(
+    first_hit: FirstHit,
+    nodes: NodeLayout,
+    keep: impl Fn(&Scene) -> bool,
+    adjust: impl Fn(&mut Scene),
+) {
     let gpu = gpu();
     let mut failures = Vec::new();
     let mut compared = 0;
@@ -82,8 +92,9 @@ fn compare_all(nodes: NodeLayout, keep: impl Fn(&Scene) -> bool, adjust: impl Fn
         (scene.settings.width, scene.settings.height) = SIZE;
         adjust(&mut scene);
         let assembled = assemble(scene).unwrap();
-        let renderer = GpuRenderer::with_nodes(Arc::clone(&gpu), &assembled, nodes)
+        let mut renderer = GpuRenderer::with_nodes(Arc::clone(&gpu), &assembled, nodes)
             .unwrap_or_else(|e| panic!("{name}: {e}"));
+        renderer.set_first_hit(first_hit);
         let (on_gpu, stats) = gpu_render(&renderer, &assembled.tracer());
         let (cpu_pixels, cpu_stats) = render_image(&assembled.tracer());
         let on_cpu = to_srgb8(&cpu_pixels);
@@ -100,6 +111,15 @@ fn compare_all(nodes: NodeLayout, keep: impl Fn(&Scene) -> bool, adjust: impl Fn
             failures.push(format!(
                 "{name}: mean {mean:.3} levels, {:.2} % within 3",
                 close * 100.0
+            ));
+        }
+        // From the item buffer, nearly every eye ray that hits finds its pixel's item first.
+        let r = &stats.rays;
+        let from_items = r.from_item_buffer as f64 / r.primary_hits.max(1) as f64;
+        if first_hit == FirstHit::Raster && from_items < 0.95 {
+            failures.push(format!(
+                "{name}: {} of {} eye rays that hit came from the item buffer",
+                r.from_item_buffer, r.primary_hits
             ));
         }
         compared += 1;
@@ -119,6 +139,11 @@ fn every_scene_renders_on_the_gpu_as_on_the_cpu_with_the_other_node_layout() {
         .find(|&nodes| nodes != NodeLayout::default())
         .unwrap();
     compare_all(other, |_| true, |_| {});
+}
+
+#[test]
+fn every_scene_renders_on_the_gpu_from_the_item_buffer_as_on_the_cpu() {
+    compare_all_from(FirstHit::Raster, NodeLayout::default(), |_| true, |_| {});
 }
 
 #[test]

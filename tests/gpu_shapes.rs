@@ -837,7 +837,7 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
                 pad2
             ]
         ),
-        rust_layout!("PixelSample", PixelSample, [x, y, k, pad]),
+        rust_layout!("PixelSample", PixelSample, [x, y, k, item_t]),
         rust_layout!(
             "Photon",
             GpuPhoton,
@@ -854,7 +854,7 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
                 transmitted,
                 over_budget,
                 cut_short,
-                pad0,
+                from_item_buffer,
                 pad1,
                 pad2
             ]
@@ -876,7 +876,7 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
     )];
     let film = parsed(FILM_WGSL);
     let film_cases = [
-        rust_layout!("PixelSample", PixelSample, [x, y, k, pad]),
+        rust_layout!("PixelSample", PixelSample, [x, y, k, item_t]),
         rust_layout!("FilmPixel", FilmPixel, [color, samples]),
         rust_layout!("FilmPass", FilmPass, [width, height, step, pad]),
         rust_layout!(
@@ -890,7 +890,7 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
                 transmitted,
                 over_budget,
                 cut_short,
-                pad
+                from_item_buffer
             ]
         ),
         rust_layout!(

@@ -32,6 +32,7 @@ struct Branch {
 // Rays counted as the CPU counts them (`RayCounts`).
 struct Counts {
     primary_hits: u32,
+    from_item_buffer: u32,
     shadow: u32,
     reflected: u32,
     transmitted: u32,
@@ -90,14 +91,30 @@ fn next_branch(stack: ptr<function, array<Branch, TREE_STACK>>, size: ptr<functi
     return false;
 }
 
-// `Tracer::trace_eye`: the colour seen by the eye ray from the eye along `dir`.
+// `item_buffer::FAR_MARGIN`: how far beyond its item's distance an eye ray's search looks, as a
+// share of that distance (the raster pass's fragment and this walk may round the same test
+// differently).
+const FAR_MARGIN: f32 = 1e-4;
+
+// How far an eye ray's first search looks, given the distance `item_t` of its pixel's item in
+// the item buffer (0: none): a little beyond the item, or all the way without one.
+fn item_far(item_t: f32) -> f32 {
+    if item_t == 0.0 {
+        return T_FAR;
+    }
+    return item_t * (1.0 + FAR_MARGIN);
+}
+
+// `Tracer::trace_eye`: the colour seen by the eye ray from the eye along `dir`, whose first hit
+// is searched for only up to `item_t`, the distance of its pixel's item in the item buffer (0:
+// none), and again all the way if none is found there.
 //
 // Every ray of the tree, shadow rays included, is cast by the one `walk` of the loop below: a
 // GPU compiler copies a function at each place it is called, and the walk holds every shape.
 // Each turn casts the next shadow ray of the medium the last ray ran through or of the hit
 // being shaded, or, once those are done, the next ray of the tree.
-fn trace_eye(dir: vec3<f32>) -> Traced {
-    var counts = Counts(0u, 0u, 0u, 0u, 0u);
+fn trace_eye(dir: vec3<f32>, item_t: f32) -> Traced {
+    var counts = Counts(0u, 0u, 0u, 0u, 0u, 0u);
     var color = vec3<f32>(0.0);
     var stack: array<Branch, TREE_STACK>;
     var size = 0u;
@@ -108,6 +125,8 @@ fn trace_eye(dir: vec3<f32>) -> Traced {
     var in_scatter: InScatter;
     var shading: Shading;
     shading.next_light = frame.light_count;
+    // How far the eye ray's search looks.
+    var eye_far = item_far(item_t);
     // Whether the loop ended by its own `break` (see `cut_short`).
     var finished = false;
     loop {
@@ -136,10 +155,11 @@ fn trace_eye(dir: vec3<f32>) -> Traced {
             ray_waits = false;
             origin = ray.origin;
             ray_dir = ray.dir;
+            t_max = T_FAR;
             if ray.depth == 1u {
                 t_min = EYE_RAY_T_MIN;
+                t_max = eye_far;
             }
-            t_max = T_FAR;
             find = FIND_CLOSEST;
         }
         let found = walk(origin, ray_dir, t_min, t_max, find);
@@ -148,6 +168,13 @@ fn trace_eye(dir: vec3<f32>) -> Traced {
             continue;
         }
         let hit = found.hit;
+        if ray.depth == 1u && !hit.found && eye_far < T_FAR {
+            // Nothing up to the item (rounding put its primitive elsewhere): the eye ray again,
+            // all the way.
+            eye_far = T_FAR;
+            ray_waits = true;
+            continue;
+        }
         // A debug view shows the eye ray's first hit alone (black where it misses).
         let viewing = frame.view != VIEW_SHADED;
         var throughput = ray.throughput;
@@ -169,6 +196,9 @@ fn trace_eye(dir: vec3<f32>) -> Traced {
         }
         if ray.depth == 1u {
             counts.primary_hits++;
+            if eye_far < T_FAR {
+                counts.from_item_buffer++;
+            }
         }
         let surface = surface_at(ray.origin, ray.dir, hit);
         if viewing {

@@ -100,14 +100,13 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
         Device::Gpu if args.scaling => {
             return Err("--scaling measures the CPU's threads: leave out --device gpu".into());
         }
-        Device::Gpu if args.first_hit == FirstHit::Raster => {
-            return Err(super::RASTER_FEEDS_THE_CPU.into());
-        }
         Device::Gpu => Some(Arc::new(GpuDevice::new()?)),
     };
-    let raster_gpu = match args.first_hit {
-        FirstHit::Rays => None,
-        FirstHit::Raster => Some(super::item_buffer_gpu("--first-hit raster")?),
+    // The CPU tracer's item buffers are drawn on a GPU of their own; the GPU tracer draws its
+    // own.
+    let raster_gpu = match (args.first_hit, args.device) {
+        (FirstHit::Raster, Device::Cpu) => Some(super::item_buffer_gpu("--first-hit raster")?),
+        _ => None,
     };
     let single = if args.scaling {
         Some(super::thread_pool(Some(1))?)
@@ -192,10 +191,12 @@ fn bench_scene(
         }
     };
     let gpu_renderer = match gpu {
-        Some(gpu) => Some(
-            GpuRenderer::with_nodes(Arc::clone(gpu), &assembled, args.gpu_nodes)
-                .map_err(|e| format!("{name}: {e}"))?,
-        ),
+        Some(gpu) => {
+            let mut renderer = GpuRenderer::with_nodes(Arc::clone(gpu), &assembled, args.gpu_nodes)
+                .map_err(|e| format!("{name}: {e}"))?;
+            renderer.set_first_hit(args.first_hit);
+            Some(renderer)
+        }
         None => None,
     };
     let (first_hits, items) = match raster_gpu {

@@ -96,10 +96,6 @@ fn load_scene(
     Ok(scene)
 }
 
-/// Why `--first-hit raster` and `--device gpu` do not go together.
-const RASTER_FEEDS_THE_CPU: &str =
-    "--first-hit raster feeds the CPU tracer: leave out --device gpu";
-
 /// The GPU that draws the item buffer `flag` asks for; the error says that it needs one, and
 /// what to install.
 fn item_buffer_gpu(flag: &str) -> Result<Arc<GpuDevice>, String> {

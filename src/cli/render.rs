@@ -180,13 +180,16 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
                     args.view
                 )
             })?;
-            if args.first_hit == FirstHit::Raster {
-                return Err(super::RASTER_FEEDS_THE_CPU.into());
-            }
-            Some(GpuRenderer::new(Arc::new(GpuDevice::new()?), &assembled)?)
+            let mut renderer = GpuRenderer::new(Arc::new(GpuDevice::new()?), &assembled)?;
+            renderer.set_first_hit(args.first_hit);
+            Some(renderer)
         }
     };
-    let raster = item_raster(args.first_hit, args.view, &assembled)?;
+    // The GPU tracer draws its own item buffers.
+    let raster = match &gpu {
+        Some(_) => None,
+        None => item_raster(args.first_hit, args.view, &assembled)?,
+    };
     let mut raster_time = Duration::ZERO;
     let backend = match &gpu {
         Some(renderer) => Backend::Gpu(renderer),
@@ -292,14 +295,17 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
             )
         )?;
         if args.first_hit == FirstHit::Raster {
-            writeln!(
+            write!(
                 out,
-                "first hits: raster, {} of {} eye rays from the item buffer (raster pass and \
-                 read-back: {:.1} ms)",
-                stats.rays.from_item_buffer,
-                stats.rays.primary,
-                raster_time.as_secs_f64() * 1e3
+                "first hits: raster, {} of {} eye rays from the item buffer",
+                stats.rays.from_item_buffer, stats.rays.primary,
             )?;
+            // The GPU tracer's raster pass is part of its render.
+            if raster.is_some() {
+                let ms = raster_time.as_secs_f64() * 1e3;
+                write!(out, " (raster pass and read-back: {ms:.1} ms)")?;
+            }
+            writeln!(out)?;
         }
         if let Some(map) = &assembled.caustics {
             writeln!(

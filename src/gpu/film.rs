@@ -54,7 +54,7 @@ pub struct Tally {
     pub transmitted: u32,
     pub over_budget: u32,
     pub cut_short: u32,
-    pub pad: u32,
+    pub from_item_buffer: u32,
 }
 
 impl Tally {
@@ -67,7 +67,7 @@ impl Tally {
             reflected: self.reflected.into(),
             transmitted: self.transmitted.into(),
             over_budget: self.over_budget.into(),
-            from_item_buffer: 0,
+            from_item_buffer: self.from_item_buffer.into(),
         }
     }
 }

@@ -1,8 +1,9 @@
 //! The raster pass that draws the item buffer ([`crate::item_buffer`]) on the GPU
 //! (`shaders/item_buffer.wgsl`): the mesh triangles as themselves, every object as a proxy that
 //! covers it ([`proxy_box`]), each fragment intersecting the exact primitive along its pixel's eye
-//! ray, the depth test keeping the nearest ([`ItemRaster`]), then read back ([`GpuItems`]) for
-//! the CPU tracer's eye rays ([`CpuItems`]).
+//! ray, the depth test keeping the nearest ([`ItemRaster`]), then read back ([`GpuItems`]): for
+//! the CPU tracer's eye rays ([`CpuItems`]), or to give each of the GPU tracer's pixel samples
+//! its item's distance.
 
 use std::sync::Arc;
 

@@ -40,14 +40,16 @@ pub const TRACER_WGSL: &str = concat!(
 /// Invocations per workgroup of every entry point (`@workgroup_size`).
 pub const WORKGROUP: u32 = 64;
 
-/// WGSL's `PixelSample`: sample `k` of film pixel (x, y).
+/// WGSL's `PixelSample`: sample `k` of film pixel (x, y), and the distance `item_t` of its
+/// pixel's item in the item buffer, to which its eye ray's first search looks (0: none, all the
+/// way).
 #[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Pod, Zeroable)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct PixelSample {
     pub x: u32,
     pub y: u32,
     pub k: u32,
-    pub pad: u32,
+    pub item_t: f32,
 }
 
 /// WGSL's `SampleColor`: a sample's colour and the rays its tree traced, or that the driver
@@ -63,7 +65,8 @@ pub struct SampleColor {
     pub transmitted: u32,
     pub over_budget: u32,
     pub cut_short: u32,
-    pub pad0: u32,
+    /// 1 where the eye ray's first hit is its pixel's item in the item buffer.
+    pub from_item_buffer: u32,
     pub pad1: u32,
     pub pad2: u32,
 }

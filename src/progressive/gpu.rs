@@ -22,12 +22,14 @@ use crate::film::Film;
 use crate::gpu::bvh::NodeLayout;
 use crate::gpu::device::{ComputeEntry, GpuDevice};
 use crate::gpu::film::GpuFilm;
+use crate::gpu::item_raster::ItemRaster;
 use crate::gpu::scene::{GpuScene, GpuView};
 use crate::gpu::tracer::{
     PixelSample, SampleColor, WORKGROUP, dispatch_list, pipeline, upload_list,
 };
+use crate::item_buffer::ItemBuffer;
 use crate::photon_map::PhotonMap;
-use crate::render::Assembled;
+use crate::render::{Assembled, FirstHit};
 use crate::sampling::jitter;
 use crate::stats::RayCounts;
 use crate::whitted::Tracer;
@@ -47,6 +49,8 @@ pub struct GpuRenderer {
     gpu: Arc<GpuDevice>,
     scene: GpuScene,
     trace: Arc<ComputeEntry>,
+    /// The raster pass of the item buffer the eye rays start from (none: they search the BVH).
+    first_hits: Option<ItemRaster>,
     /// How long one dispatch should take at most.
     dispatch_time: Duration,
 }
@@ -69,8 +73,24 @@ impl GpuRenderer {
             gpu,
             scene,
             trace,
+            first_hits: None,
             dispatch_time: DISPATCH_TIME,
         })
+    }
+
+    /// Makes the eye rays find their first hits as `first_hit` says from the next render on:
+    /// by searching the BVH, or starting from the item buffer, drawn on the GPU before each
+    /// render (its raster pass compiled the first time).
+    pub fn set_first_hit(&mut self, first_hit: FirstHit) {
+        match first_hit {
+            FirstHit::Rays => self.first_hits = None,
+            FirstHit::Raster => {
+                let nodes = self.scene.node_layout;
+                let gpu = &self.gpu;
+                self.first_hits
+                    .get_or_insert_with(|| ItemRaster::new(gpu, nodes));
+            }
+        }
     }
 
     /// Makes each dispatch take about `time` at most (the default is [`DISPATCH_TIME`]): a
@@ -165,8 +185,18 @@ impl GpuRenderer {
         on_pass: impl FnMut(&PassStats),
     ) -> Result<Result<RenderStats, Cancelled>, String> {
         let scene = tracer.scene;
+        let origin = film.origin();
         self.scene
-            .update(&self.gpu, scene, &scene.camera, view, film.origin())?;
+            .update(&self.gpu, scene, &scene.camera, view, origin)?;
+        // The item buffer, read back to give each pixel sample its item's distance.
+        let items = match &self.first_hits {
+            Some(raster) => {
+                let size = (film.width(), film.height());
+                let on_gpu = raster.draw(&self.gpu, &self.scene, scene, size)?;
+                Some(on_gpu.read_back(&self.gpu, film.image_size(), origin)?)
+            }
+            None => None,
+        };
         let mut shown = Vec::new();
         let mut failure = None;
         let mut batch_bands = 1;
@@ -176,6 +206,7 @@ impl GpuRenderer {
                 shader,
                 film,
                 on_gpu,
+                items: items.as_ref(),
                 control,
             };
             let result = self.run_pass(&sweep, pass, &mut shown, &mut batch_bands);
@@ -234,7 +265,11 @@ impl GpuRenderer {
                     let (x, y) = (column * step, row * step);
                     let taken = grid.samples_at(x, y);
                     pixels += u64::from(!taken.is_empty());
-                    samples.extend(taken.map(|k| PixelSample { x, y, k, pad: 0 }));
+                    let item_t = sweep
+                        .items
+                        .and_then(|items| items.at(x, y))
+                        .map_or(0.0, |item| item.t);
+                    samples.extend(taken.map(|k| PixelSample { x, y, k, item_t }));
                 }
             }
             let dispatched = Instant::now();
@@ -285,12 +320,14 @@ impl GpuRenderer {
 }
 
 /// What a pass sweeps: the tracer and the CPU's shader of the view (for the samples the GPU's
-/// driver cuts short), the film on the GPU and its copy, and the control.
+/// driver cuts short), the film on the GPU and its copy, the item buffer the eye rays start
+/// from, and the control.
 struct Sweep<'a> {
     tracer: &'a Tracer<'a>,
     shader: &'a dyn Shader,
     film: &'a Film,
     on_gpu: &'a GpuFilm,
+    items: Option<&'a ItemBuffer>,
     control: &'a RenderControl,
 }
 
@@ -308,8 +345,9 @@ impl Sweep<'_> {
         };
         let ray = self.tracer.scene.camera.eye_ray(pixel, offset, size);
         let mut color = [Color::ZERO];
+        let item = self.items.and_then(|items| items.at(s.x, s.y));
         self.shader
-            .shade(self.tracer, &[ray], &[None], &mut color, counts);
+            .shade(self.tracer, &[ray], &[item], &mut color, counts);
         color[0]
     }
 }

@@ -228,20 +228,16 @@ fn run(
             let view = job.setup.debug_view.on_gpu(&tracer);
             let gpu = gpu.get_or_insert_with(|| GpuDevice::new().map(Arc::new));
             let on_gpu = match (gpu, view) {
-                (Ok(gpu), Ok(view)) => working.on_gpu(gpu).map(|on_gpu| (on_gpu, view)),
+                (Ok(gpu), Ok(view)) => working
+                    .on_gpu(gpu, job.setup.first_hit)
+                    .map(|on_gpu| (on_gpu, view)),
                 (Err(e), _) => Err(e.clone()),
                 (_, Err(why)) => Err(why),
             };
             match on_gpu {
                 Ok(((copy, renderer), view)) => {
-                    let from_rays = match job.setup.first_hit {
-                        FirstHit::Raster => {
-                            " (first hits from the rays: the item buffer feeds the CPU tracer)"
-                        }
-                        FirstHit::Rays => "",
-                    };
-                    let name = renderer.gpu().name();
-                    job.report.set_device(format!("gpu: {name}{from_rays}"));
+                    job.report
+                        .set_device(format!("gpu: {}", renderer.gpu().name()));
                     let cpu_view = &job.setup.debug_view;
                     let rendered = std::panic::catch_unwind(AssertUnwindSafe(|| {
                         let (tracer, film) = (&copy.tracer(), &job.film);

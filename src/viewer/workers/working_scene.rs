@@ -15,7 +15,7 @@ use raylab::gpu::item_raster::CpuItems;
 use raylab::item_buffer::ItemBuffer;
 use raylab::photon::PhotonMap;
 use raylab::progressive::gpu::GpuRenderer;
-use raylab::render::Assembled;
+use raylab::render::{Assembled, FirstHit};
 use raylab::whitted::Tracer;
 
 use crate::viewer::scene::controls::TraceSetup;
@@ -88,9 +88,14 @@ impl WorkingScene {
     }
 
     /// The copy (as the last [`Self::tracer`] made it) and the renderer of its scene on `gpu`,
-    /// uploaded the first time it is asked for, with the copy's caustic photon map; the error
-    /// says why the GPU does not render it.
-    pub fn on_gpu(&mut self, gpu: &Arc<GpuDevice>) -> Result<(&Assembled, &GpuRenderer), String> {
+    /// uploaded the first time it is asked for, with the copy's caustic photon map, its eye
+    /// rays finding their first hits as `first_hit` says; the error says why the GPU does not
+    /// render it.
+    pub fn on_gpu(
+        &mut self,
+        gpu: &Arc<GpuDevice>,
+        first_hit: FirstHit,
+    ) -> Result<(&Assembled, &GpuRenderer), String> {
         let (_, copy) = self.copy.as_ref().ok_or("no scene to upload to the GPU")?;
         let renderer = self
             .on_gpu
@@ -102,6 +107,7 @@ impl WorkingScene {
             .as_mut()
             .map_err(|e| e.clone())?;
         renderer.set_caustics(copy.caustics.as_ref())?;
+        renderer.set_first_hit(first_hit);
         Ok((copy, renderer))
     }
 }
