@@ -13,8 +13,9 @@
 //!   [`tone`] (exposure and tone curves), [`transform`], [`limits`], [`memory`], [`output`]
 //!   (writing files safely), [`camera`] (the one place a pixel becomes an eye ray), [`views`]
 //!   (bookmarked cameras, and the cameras of a turntable or a path through them), [`sampling`]
-//!   (where a pixel's samples lie) and [`tiles`] (an image cut into rectangles rendered apart,
-//!   and checking that parts cover it once).
+//!   (where a pixel's samples lie), [`tiles`] (an image cut into rectangles rendered apart,
+//!   and checking that parts cover it once) and [`srgb_image`] (any image file read as 8-bit
+//!   sRGB pixels, for textures and for comparing images).
 //! - The scene: [`shapes`], [`mesh`], [`primitive`], [`light`], [`medium`] (fog), [`material`],
 //!   [`noise`] and the [`texture`]s made of it, [`settings`] and [`scene::Scene`], which
 //!   [`formats`] reads from TOML, OBJ, NFF, SPD and SDL files (or [`large_mesh`] generates, for
@@ -33,7 +34,8 @@
 //!   CPU pixel sample coloured by a [`progressive::Shader`] (the shaded image is
 //!   [`progressive::Shaded`]); [`formats::image`] saves it.
 //! - Looking inside: [`inspect`] records one pixel's ray tree with a tree observer and renders
-//!   debug views as shaders of the same renderer. Nothing above depends on it.
+//!   debug views as shaders of the same renderer; [`compare`] measures how another image
+//!   differs from raylab's. Nothing above depends on them.
 //!
 //! Nothing here knows about windows, and only [`gpu`] about GPUs.
 
@@ -41,6 +43,7 @@ pub mod aabb;
 pub mod bvh;
 pub mod camera;
 pub mod color;
+pub mod compare;
 pub mod film;
 pub mod formats;
 #[cfg(feature = "gpu")]
@@ -66,6 +69,7 @@ pub mod sampling;
 pub mod scene;
 pub mod settings;
 pub mod shapes;
+pub mod srgb_image;
 pub mod stats;
 pub mod texture;
 pub mod tiles;

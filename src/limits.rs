@@ -1,4 +1,5 @@
-//! How large the numbers of a scene may be. raylab computes in single precision, whose largest
+//! How large the numbers of a scene and its images may be: images of at most
+//! [`MAX_IMAGE_SIDE`] pixels a side ([`check_image_size`]). raylab computes in single precision, whose largest
 //! number is about 3.4·10³⁸, and its intersection tests square and multiply coordinates: a
 //! sphere 10¹⁹ across would overflow to infinity and silently draw nothing. So coordinates and
 //! sizes are held to ±[`MAX_COORDINATE`] and the near distance to [`NEAR_RANGE`], and the
@@ -52,6 +53,25 @@ pub fn check_bounds(what: &str, bounds: &Aabb) -> Result<(), String> {
         if !within_range(corner) {
             return Err(out_of_range_message(what, corner));
         }
+    }
+    Ok(())
+}
+
+/// Largest image side, to keep an absurd setting from allocating gigabytes.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+/// Checks that raylab renders images of `width` × `height` pixels: at least 1×1, sides at most
+/// [`MAX_IMAGE_SIDE`]. The message says what is allowed.
+pub fn check_image_size(width: u32, height: u32) -> Result<(), String> {
+    if width == 0 || height == 0 {
+        return Err(format!(
+            "image size must be at least 1×1, got {width}×{height}"
+        ));
+    }
+    if width > MAX_IMAGE_SIDE || height > MAX_IMAGE_SIDE {
+        return Err(format!(
+            "image sides must be at most {MAX_IMAGE_SIDE}, got {width}×{height}"
+        ));
     }
     Ok(())
 }

@@ -10,8 +10,6 @@ use crate::limits;
 
 /// Largest starting block size.
 pub const MAX_BLOCK_SIZE: u32 = 64;
-/// Largest image side, to keep an absurd setting from allocating gigabytes.
-pub const MAX_IMAGE_SIDE: u32 = 16384;
 /// Deepest ray tree allowed.
 pub const MAX_DEPTH_LIMIT: u32 = 64;
 /// Most samples per pixel.
@@ -22,22 +20,6 @@ pub const MAX_FOG_STEPS: u32 = 1024;
 pub const MAX_CAUSTIC_PHOTONS: u32 = 100_000_000;
 /// Most photons one caustic estimate gathers.
 pub const MAX_CAUSTIC_GATHER: u32 = 512;
-
-/// Checks that raylab renders images of `width` × `height` pixels: at least 1×1, sides at most
-/// [`MAX_IMAGE_SIDE`]. The message says what is allowed.
-pub fn check_image_size(width: u32, height: u32) -> Result<(), String> {
-    if width == 0 || height == 0 {
-        return Err(format!(
-            "image size must be at least 1×1, got {width}×{height}"
-        ));
-    }
-    if width > MAX_IMAGE_SIDE || height > MAX_IMAGE_SIDE {
-        return Err(format!(
-            "image sides must be at most {MAX_IMAGE_SIDE}, got {width}×{height}"
-        ));
-    }
-    Ok(())
-}
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderSettings {
@@ -101,7 +83,7 @@ impl Default for RenderSettings {
 impl RenderSettings {
     /// Checks every setting; the message says what is wrong and what is allowed.
     pub fn validate(&self) -> Result<(), String> {
-        check_image_size(self.width, self.height)?;
+        limits::check_image_size(self.width, self.height)?;
         if self.max_depth == 0 || self.max_depth > MAX_DEPTH_LIMIT {
             return Err(format!(
                 "max_depth must be between 1 and {MAX_DEPTH_LIMIT}, got {}",

@@ -1,31 +1,22 @@
 //! Textures: colours that vary over a surface. Solid textures carved out of the object's space
 //! (so they follow the object): a 3D checkerboard and Hill & Kelley's wood grain and marble;
-//! checkerboards in texture coordinates; and images (PNG, JPEG, BMP) sampled with bilinear
-//! filtering. Images keep their 8-bit sRGB texels, three bytes each, and turn
-//! them into linear colours as they are sampled.
+//! checkerboards in texture coordinates; and images ([`SrgbImage`]s, any file raylab reads)
+//! sampled with bilinear filtering. Images keep their 8-bit sRGB texels, three bytes each, and
+//! turn them into linear colours as they are sampled.
 
-use std::io::Cursor;
 use std::sync::{Arc, LazyLock};
 
 use glam::{Vec2, Vec3};
 
 use crate::color::{Color, srgb_to_linear};
 use crate::noise::turbulence;
+use crate::srgb_image::SrgbImage;
 
 /// What happens to texture coordinates outside [0, 1].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Wrap {
     Repeat,
     Clamp,
-}
-
-/// An image of 8-bit sRGB texels, row 0 at the top.
-#[derive(Clone, Debug, PartialEq)]
-pub struct TextureImage {
-    pub width: u32,
-    pub height: u32,
-    /// `width × height` texels, row by row.
-    pub texels: Vec<[u8; 3]>,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -48,7 +39,7 @@ pub enum Texture {
     /// An image at texture coordinates `uv · scale + offset` (so repeated `scale` times over
     /// the unit square of texture space).
     Image {
-        image: Arc<TextureImage>,
+        image: Arc<SrgbImage>,
         wrap: Wrap,
         scale: Vec2,
         offset: Vec2,
@@ -124,31 +115,7 @@ pub fn marble_spline(x: f32) -> f32 {
     }
 }
 
-impl TextureImage {
-    /// Decodes a PNG, JPEG or BMP file's bytes. The image's size is read first: an image with
-    /// no pixels, or one that would not fit in memory ([`crate::memory::check`]), is refused
-    /// before it is decoded.
-    pub fn from_bytes(bytes: &[u8]) -> Result<TextureImage, String> {
-        let reader = image::ImageReader::new(Cursor::new(bytes))
-            .with_guessed_format()
-            .map_err(|e| e.to_string())?;
-        let decoder = reader.into_decoder().map_err(|e| e.to_string())?;
-        let (width, height) = image::ImageDecoder::dimensions(&decoder);
-        if width == 0 || height == 0 {
-            return Err("the image has no pixels".to_string());
-        }
-        let texels = u64::from(width) * u64::from(height);
-        let decoded = image::ImageDecoder::total_bytes(&decoder);
-        crate::memory::check(&format!("the {width}×{height} image"), decoded + texels * 3)?;
-        let image = image::DynamicImage::from_decoder(decoder).map_err(|e| e.to_string())?;
-        let rgb = image.into_rgb8();
-        Ok(TextureImage {
-            width,
-            height,
-            texels: rgb.pixels().map(|p| p.0).collect(),
-        })
-    }
-
+impl SrgbImage {
     /// The linear colour of texel (x, y), wrapped into the image.
     fn texel(&self, x: i64, y: i64, wrap: Wrap) -> Color {
         let (w, h) = (self.width as i64, self.height as i64);
@@ -157,7 +124,7 @@ impl TextureImage {
             Wrap::Clamp => (x.clamp(0, w - 1), y.clamp(0, h - 1)),
         };
         let linear = &*SRGB8_TO_LINEAR;
-        Color::from_array(self.texels[(y * w + x) as usize].map(|c| linear[c as usize]))
+        Color::from_array(self.pixels[(y * w + x) as usize].map(|c| linear[c as usize]))
     }
 
     /// Bilinear sample at `uv`; `v = 0` is the bottom of the image.
@@ -185,11 +152,11 @@ pub static SRGB8_TO_LINEAR: LazyLock<[f32; 256]> =
 mod tests {
     use super::*;
 
-    fn two_by_two() -> TextureImage {
-        TextureImage {
+    fn two_by_two() -> SrgbImage {
+        SrgbImage {
             width: 2,
             height: 2,
-            texels: vec![[255, 0, 0], [0, 255, 0], [0, 0, 255], [255, 255, 255]],
+            pixels: vec![[255, 0, 0], [0, 255, 0], [0, 0, 255], [255, 255, 255]],
         }
     }
 
@@ -238,10 +205,10 @@ mod tests {
 
     #[test]
     fn texels_decode_to_the_linear_value_of_their_srgb_byte() {
-        let img = TextureImage {
+        let img = SrgbImage {
             width: 1,
             height: 1,
-            texels: vec![[0, 128, 255]],
+            pixels: vec![[0, 128, 255]],
         };
         let c = img.sample(Vec2::splat(0.5), Wrap::Clamp);
         assert_eq!(c, Color::new(0.0, srgb_to_linear(128.0 / 255.0), 1.0));
@@ -311,27 +278,5 @@ mod tests {
         };
         // (0.5, 0.5) → (0.75, 0.25): the bottom-right texel.
         assert_eq!(t.color(Vec2::splat(0.5), Vec3::ZERO), Color::ONE);
-    }
-
-    #[test]
-    fn bmp_images_decode() {
-        let mut bmp = Vec::new();
-        image::RgbImage::from_pixel(2, 3, image::Rgb([200, 100, 50]))
-            .write_to(&mut Cursor::new(&mut bmp), image::ImageFormat::Bmp)
-            .unwrap();
-        let img = TextureImage::from_bytes(&bmp).unwrap();
-        assert_eq!((img.width, img.height), (2, 3));
-        assert_eq!(img.texels, vec![[200, 100, 50]; 6]);
-    }
-
-    #[test]
-    fn images_are_decoded_to_three_bytes_a_texel() {
-        let mut png = Vec::new();
-        image::RgbImage::from_pixel(3, 2, image::Rgb([10, 20, 30]))
-            .write_to(&mut Cursor::new(&mut png), image::ImageFormat::Png)
-            .unwrap();
-        let img = TextureImage::from_bytes(&png).unwrap();
-        assert_eq!((img.width, img.height), (3, 2));
-        assert_eq!(img.texels, vec![[10, 20, 30]; 6]);
     }
 }

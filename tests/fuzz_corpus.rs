@@ -132,3 +132,46 @@ fn a_broken_input_is_an_error_with_its_place() {
     let message = harness::obj(b"f 1 2 3\n").unwrap_err();
     assert!(message.contains("model.obj"), "{message}");
 }
+
+#[test]
+fn the_kept_images_read_or_fail_cleanly() {
+    replay("image", harness::image);
+    let kept = |name: &str| {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/regressions/image");
+        std::fs::read(path.join(name)).unwrap()
+    };
+    // The seeds, in every format `raylab diff` reads, read.
+    for seed in [
+        "seed_plain.ppm",
+        "seed_small_max.ppm",
+        "seed_binary.ppm",
+        "seed_raylab.png",
+        "seed_raylab.bmp",
+        "seed_raylab.jpg",
+        "seed_raylab.exr",
+        "seed_raylab.hdr",
+    ] {
+        assert_eq!(harness::image(&kept(seed)), Ok(()), "{seed}");
+    }
+    // OpenEXR's B44 compression (whose decompressor overflows on this file) and tiles as large
+    // as the image are refused from the header, before any block is read.
+    let message = harness::image(&kept("b44_crash.exr")).unwrap_err();
+    assert!(message.contains("b44 compression"), "{message}");
+    let message = harness::image(&kept("oom_tile_16515136x64.exr")).unwrap_err();
+    assert!(message.contains("tiles of at most 256 pixels"), "{message}");
+    // An 8 × 6 OpenEXR image in a display window 33554440 pixels wide, for which the `image`
+    // crate allocated the whole window (16 GB), reads as its 8 × 6 pixels.
+    assert_eq!(
+        harness::image(&kept("oom_display_window_33554440x6.exr")),
+        Ok(())
+    );
+    // Ten billion pixels are refused, not allocated; no pixels and too few are errors.
+    for name in [
+        "huge_100000x100000.ppm",
+        "huge_window_1000000x1000000.exr",
+        "no_pixels.ppm",
+        "truncated.ppm",
+    ] {
+        assert!(harness::image(&kept(name)).is_err(), "{name}");
+    }
+}

@@ -33,7 +33,8 @@ use raylab::shapes::{
     Csg, CsgOperation, Cuboid, Ellipsoid, Operand, Paraboloid, Plane, Polygon, Shape, Sphere,
     TaperedCylinder, Torus,
 };
-use raylab::texture::{Texture, TextureImage, WOOD_COLORS, Wrap};
+use raylab::srgb_image::SrgbImage;
+use raylab::texture::{Texture, WOOD_COLORS, Wrap};
 use raylab::transform::{Transform, TransformStep};
 use raylab::whitted::EYE_RAY_T_MIN;
 use strum::IntoEnumIterator;
@@ -923,14 +924,14 @@ fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
 }
 
 /// A `width × height` image of random texels.
-fn random_image(rng: &mut Rng, width: u32, height: u32) -> Arc<TextureImage> {
-    let texels = (0..width * height)
+fn random_image(rng: &mut Rng, width: u32, height: u32) -> Arc<SrgbImage> {
+    let pixels = (0..width * height)
         .map(|_| [rng.u8(..), rng.u8(..), rng.u8(..)])
         .collect();
-    Arc::new(TextureImage {
+    Arc::new(SrgbImage {
         width,
         height,
-        texels,
+        pixels,
     })
 }
 

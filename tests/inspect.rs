@@ -1,5 +1,6 @@
 //! The ray tree of a pixel (`raylab::inspect`), checked node by node on scenes built by hand.
-//! (`tests/inspect_image.rs` checks it against rendered images.)
+//! (`tests/inspect_image.rs` checks it against rendered images.) And a pixel's difference from
+//! another image explained from it (`raylab::compare::explain`).
 
 mod common;
 
@@ -7,6 +8,7 @@ use glam::Vec3;
 use raylab::bvh::Bvh;
 use raylab::camera::{Camera, CameraSpec};
 use raylab::color::Color;
+use raylab::compare::explain::explain_pixel;
 use raylab::inspect::{RayTree, trace_ray_tree};
 use raylab::light::Light;
 use raylab::material::Material;
@@ -250,6 +252,55 @@ fn a_shadow_ray_is_blocked_by_the_ball_between_the_floor_and_the_light() {
 }
 
 #[test]
+fn a_blocked_light_adds_nothing_but_shows_the_diffuse_term_it_would_add() {
+    let scene = ball_over_floor(Material::default());
+    let tree = centre_tree(&scene);
+    let eye = &tree.nodes[0];
+    let share = &eye.lights[0];
+    assert_eq!((share.diffuse, share.specular), (Color::ZERO, Color::ZERO));
+    // Lambert's term under a light straight above the floor, at the floor's point seen by the
+    // centre pixel: diffuse × cos θ × colour, cos θ = 6 / distance.
+    let m = Material::default();
+    let point = eye.hit.as_ref().unwrap().point;
+    let cos = (Vec3::new(0.0, 6.0, 0.0) - point).normalize().y;
+    let expected = m.diffuse * cos * m.color;
+    assert!(close(share.unshadowed_diffuse, expected, 1e-5), "{share:?}");
+    assert!(
+        tree.to_text().contains("(unshadowed: diffuse"),
+        "{}",
+        tree.to_text()
+    );
+}
+
+#[test]
+fn every_hits_terms_add_up_to_its_local_colour() {
+    for name in ["default", "glass", "shadows", "mirrors", "textures"] {
+        let path = format!("{}/assets/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+        let mut scene = raylab::formats::load_any(&path).unwrap();
+        (scene.settings.width, scene.settings.height) = (24, 18);
+        let bvh = Bvh::build(&scene.geometry);
+        let tracer = Tracer::new(&scene, &bvh);
+        for (x, y) in (0..24)
+            .step_by(3)
+            .flat_map(|x| (0..18).step_by(3).map(move |y| (x, y)))
+        {
+            let tree = trace_ray_tree(&tracer, x, y);
+            for node in &tree.nodes {
+                let Some(hit) = &node.hit else { continue };
+                let lights: Color = node.lights.iter().map(|l| l.diffuse + l.specular).sum();
+                let sum = hit.emission + hit.ambient + lights;
+                assert!(
+                    close(sum, node.local_color, 1e-5),
+                    "{name} ({x}, {y}): {sum} against {}\n{}",
+                    node.local_color,
+                    tree.to_text()
+                );
+            }
+        }
+    }
+}
+
+#[test]
 fn a_transparent_ball_tints_the_shadow_ray_instead_of_blocking_it() {
     let tint = Color::new(1.0, 0.5, 0.25);
     let scene = ball_over_floor(Material {
@@ -408,4 +459,60 @@ fn a_wall_alone_in_fog_shows_the_transmittance_of_its_distance() {
         "{}",
         tree.to_text()
     );
+}
+
+/// The levels raylab would write for the linear colour `c`.
+fn levels(c: Color) -> [u8; 3] {
+    c.to_array().map(raylab::color::srgb8)
+}
+
+#[test]
+fn a_brighter_pixel_where_raylabs_shadow_ray_is_blocked_is_put_down_to_that_shadow_ray() {
+    let scene = ball_over_floor(Material::default());
+    let tree = centre_tree(&scene);
+    let share = &tree.nodes[0].lights[0];
+    let yours = levels(tree.color + share.unshadowed_diffuse);
+    let e = explain_pixel(&tree, yours, levels(tree.color));
+    let removed = share.unshadowed_diffuse.element_sum() / 3.0;
+    let expected = format!(
+        "raylab's shadow ray to light 0 is blocked by sphere #1, and the diffuse term it \
+         removes is {removed:.2}"
+    );
+    let sentence = e.accounted_for.unwrap();
+    assert!(
+        sentence.starts_with("your pixel is brighter by"),
+        "{sentence}"
+    );
+    assert!(sentence.ends_with(&expected), "{sentence}");
+    assert!(e.first_hit.starts_with("plane #0"), "{}", e.first_hit);
+}
+
+#[test]
+fn a_darker_pixel_on_a_mirror_is_put_down_to_the_reflected_ray() {
+    let scene = mirror_facing_a_wall();
+    let tree = centre_tree(&scene);
+    let eye = &tree.nodes[0];
+    let e = explain_pixel(&tree, levels(eye.contribution), levels(tree.color));
+    let sentence = e.accounted_for.unwrap();
+    assert!(
+        sentence.starts_with("your pixel is darker by"),
+        "{sentence}"
+    );
+    assert!(
+        sentence.contains("raylab's reflected ray, which sees plane #1, adds"),
+        "{sentence}"
+    );
+    assert!(
+        e.terms.iter().any(|t| t.what == "reflected ray"),
+        "{:?}",
+        e.terms
+    );
+}
+
+#[test]
+fn an_equal_pixel_needs_no_explanation() {
+    let tree = centre_tree(&ball_over_floor(Material::default()));
+    let e = explain_pixel(&tree, levels(tree.color), levels(tree.color));
+    assert_eq!(e.accounted_for, None);
+    assert_eq!(e.brighter_by, 0.0);
 }

@@ -9,6 +9,7 @@ use std::path::Path;
 
 use raylab::bvh::Bvh;
 use raylab::camera::CameraSpec;
+use raylab::compare::difference::{DEFAULT_TOLERANCE, difference, heat_map};
 use raylab::formats::nff::{NffDocument, NffLighting, parse_nff_document};
 use raylab::formats::part::read_part_bytes;
 use raylab::formats::sdl::parse_sdl;
@@ -17,6 +18,7 @@ use raylab::formats::{SceneError, SceneFiles, ascii_text, utf8_text};
 use raylab::inspect::trace_ray_tree;
 use raylab::progressive::render_image;
 use raylab::scene::Scene;
+use raylab::srgb_image::SrgbImage;
 use raylab::views::{path, turntable};
 use raylab::whitted::Tracer;
 
@@ -193,4 +195,15 @@ fn render_tiny(mut scene: Scene) {
         !tree.nodes.is_empty(),
         "a ray tree holds at least the eye ray"
     );
+}
+
+/// Reads `data` as an image file that `raylab diff` compares (any format), compares it with
+/// itself and draws the heat map.
+pub fn image(data: &[u8]) -> Result<(), String> {
+    let image = SrgbImage::decode(data)?;
+    let figures = difference(&image, &image, DEFAULT_TOLERANCE)?;
+    assert!(figures.within_tolerance() && figures.largest == 0);
+    let (heat, _) = heat_map(&image, &image, &figures);
+    assert_eq!(heat.len(), image.pixels.len());
+    Ok(())
 }

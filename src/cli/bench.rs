@@ -34,6 +34,7 @@ use raylab::whitted::Tracer;
 
 use super::bench_first_hits::bench_first_hits;
 use super::bench_report::{self, BenchResult, CausticBench};
+use super::overrides::parse_size;
 
 #[derive(Args, Debug)]
 pub struct BenchArgs {
@@ -41,9 +42,9 @@ pub struct BenchArgs {
     /// N-triangle mesh, or any scene `render` takes (`spd:balls`, a .nff or .toml file).
     #[arg(long, value_delimiter = ',')]
     scenes: Vec<String>,
-    /// Image size (square).
-    #[arg(long, default_value_t = 512)]
-    size: u32,
+    /// Image size: N for N×N, or WxH.
+    #[arg(long, value_name = "N|WxH", default_value = "512", value_parser = parse_size)]
+    size: (u32, u32),
     /// Worker threads (default: one per core).
     #[arg(long)]
     threads: Option<usize>,
@@ -127,7 +128,7 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
         None => format!("{threads} threads"),
     };
     super::print_out(|out| {
-        writeln!(out, "{}×{} pixels, {device}", args.size, args.size)?;
+        writeln!(out, "{}×{} pixels, {device}", args.size.0, args.size.1)?;
         bench_report::write_header(out, args.scaling)
     })?;
     let mut results = Vec::new();
@@ -145,7 +146,7 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
     Ok(())
 }
 
-fn load(name: &str, size: u32) -> Result<Scene, String> {
+fn load(name: &str, (width, height): (u32, u32)) -> Result<Scene, String> {
     let mut scene = if name == "default" {
         default_scene().map_err(|e| e.to_string())?
     } else if let Some(n) = name.strip_prefix("bumpy:") {
@@ -153,12 +154,12 @@ fn load(name: &str, size: u32) -> Result<Scene, String> {
             .parse()
             .map_err(|_| format!("`{name}`: expected bumpy:N with N a number of triangles"))?;
         check_bumpy_triangles(n).map_err(|e| format!("`{name}`: {e}"))?;
-        bumpy_sphere_scene(n, size, size)
+        bumpy_sphere_scene(n, width, height)
     } else {
         load_any(name).map_err(|e| e.to_string())?
     };
-    scene.settings.width = size;
-    scene.settings.height = size;
+    scene.settings.width = width;
+    scene.settings.height = height;
     scene.settings.validate()?;
     Ok(scene)
 }

@@ -219,7 +219,7 @@ fn caustics_json(c: Option<&CausticBench>) -> String {
     )
 }
 
-pub fn to_json(results: &[BenchResult], size: u32, threads: usize) -> String {
+pub fn to_json(results: &[BenchResult], (width, height): (u32, u32), threads: usize) -> String {
     let null_or = |v: Option<String>| v.unwrap_or_else(|| "null".into());
     let scenes: Vec<String> = results
         .iter()
@@ -257,7 +257,7 @@ pub fn to_json(results: &[BenchResult], size: u32, threads: usize) -> String {
         })
         .collect();
     format!(
-        "{{\n  \"width\": {size},\n  \"height\": {size},\n  \"threads\": {threads},\n  \"scenes\": [\n{}\n  ]\n}}\n",
+        "{{\n  \"width\": {width},\n  \"height\": {height},\n  \"threads\": {threads},\n  \"scenes\": [\n{}\n  ]\n}}\n",
         scenes.join(",\n")
     )
 }

@@ -1,10 +1,13 @@
 //! The command line: its arguments (clap) and the subcommands, and what they share: loading
 //! a scene, the overrides of its settings (`overrides`), the `--threads` limit, writing to
-//! standard output, and removing unfinished files when a signal stops the program.
+//! standard output and legends, the exit status, and removing unfinished files when a signal
+//! stops the program.
 
 mod bench;
 mod bench_first_hits;
 mod bench_report;
+mod check;
+mod diff;
 mod generate;
 mod inspect;
 mod jobs;
@@ -15,13 +18,18 @@ mod sequence;
 mod view;
 
 use std::io::{self, BufWriter, StdoutLock, Write};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
 use std::sync::Arc;
 
 use clap::{Parser, Subcommand};
+use raylab::compare::difference::Difference;
+use raylab::formats::image::save_image;
 use raylab::formats::nff::NffLighting;
 use raylab::formats::toml::default_scene;
 use raylab::formats::{SceneFormat, camera_file_beside, load_any_as};
 use raylab::gpu::device::GpuDevice;
+use raylab::inspect::Legend;
 use raylab::scene::Scene;
 
 #[derive(Parser, Debug)]
@@ -57,19 +65,72 @@ enum Command {
     /// Print the ray tree of one pixel: every eye, reflected, transmitted and shadow ray, what
     /// it hit, the colours it carried and why each branch stopped.
     Inspect(inspect::InspectArgs),
+    /// Compare an image with a reference: mean and largest difference, RMSE, PSNR, FLIP, the
+    /// pixels over a tolerance, a heat map. Exits as `cmp` does: 0 within the tolerance, 1
+    /// different, 2 trouble.
+    Diff(diff::DiffArgs),
+    /// Render a scene at an image's size and say why the image differs from raylab's: the
+    /// common mistakes that account for it (shadows, specular, reflection or transmission
+    /// missing, a wrong index of refraction, pixel corners, a flipped image, gamma, clamping),
+    /// and raylab's ray tree at the worst pixels. Exits as `diff` does.
+    Check(check::CheckArgs),
 }
 
-/// Runs the command; the error is the message to print.
-pub fn run(cli: Cli) -> Result<(), String> {
-    remove_unfinished_files_on_signals()?;
-    match cli.command {
+/// Runs the command, printing its error, and gives the exit status: 0 when it succeeds, 1 when
+/// it fails; `diff` and `check` give `cmp`'s ([`Verdict`]).
+pub fn run(cli: Cli) -> ExitCode {
+    if let Err(message) = remove_unfinished_files_on_signals() {
+        return failed(&message, ExitCode::FAILURE);
+    }
+    let result = match cli.command {
         Some(Command::Render(args)) => render::run(args),
         Some(Command::Merge(args)) => merge::run(args),
         Some(Command::Gen(args)) => generate::run(args),
         Some(Command::Bench(args)) => bench::run(args),
         Some(Command::Inspect(args)) => inspect::run(args),
         Some(Command::View(args)) => view::run(args),
+        Some(Command::Diff(args)) => return compared(diff::run(args)),
+        Some(Command::Check(args)) => return compared(check::run(args)),
         None => view::run(cli.view),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => failed(&message, ExitCode::FAILURE),
+    }
+}
+
+/// The exit status of a comparison: its verdict, or trouble.
+fn compared(result: Result<Verdict, String>) -> ExitCode {
+    match result {
+        Ok(verdict) => ExitCode::from(verdict as u8),
+        Err(message) => failed(&message, ExitCode::from(Verdict::TROUBLE)),
+    }
+}
+
+fn failed(message: &str, code: ExitCode) -> ExitCode {
+    eprintln!("error: {message}");
+    code
+}
+
+/// What a comparison found, as its exit status (`cmp`'s): the images are the same within the
+/// tolerance (0), or they differ (1). Trouble (an unreadable file, images of different sizes)
+/// is [`Verdict::TROUBLE`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Verdict {
+    Same = 0,
+    Different = 1,
+}
+
+impl Verdict {
+    /// The exit status of a comparison that could not be made.
+    const TROUBLE: u8 = 2;
+
+    fn from_difference(difference: &Difference) -> Verdict {
+        if difference.within_tolerance() {
+            Verdict::Same
+        } else {
+            Verdict::Different
+        }
     }
 }
 
@@ -102,6 +163,23 @@ fn item_buffer_gpu(flag: &str) -> Result<Arc<GpuDevice>, String> {
     GpuDevice::new()
         .map(Arc::new)
         .map_err(|e| format!("{flag} draws the item buffer on the GPU: {e}"))
+}
+
+/// The size of a legend's colour bar image.
+const LEGEND_SIZE: (u32, u32) = (256, 24);
+
+/// Where the legend of the image at `image` goes: beside it, as NAME.legend.png.
+fn legend_path(image: &Path) -> PathBuf {
+    image.with_extension("legend.png")
+}
+
+/// Writes `legend`'s colour bar beside the image at `image` ([`legend_path`]) and gives its path.
+fn save_legend(legend: &Legend, image: &Path) -> Result<PathBuf, String> {
+    let path = legend_path(image);
+    let (width, height) = LEGEND_SIZE;
+    save_image(&path, width, height, &legend.bar_image(width, height))
+        .map_err(|e| e.to_string())?;
+    Ok(path)
 }
 
 /// A rayon pool of `threads` workers (default: one per core).

@@ -12,7 +12,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use raylab::film::Film;
 use raylab::formats::SceneFormat;
-use raylab::formats::image::{OutputFormat, check_image_path, save_image, save_toned_pixels};
+use raylab::formats::image::{OutputFormat, check_image_path, save_toned_pixels};
 use raylab::formats::nff::NffLighting;
 use raylab::formats::part::{PartInfo, scene_hash, write_part};
 use raylab::gpu::device::GpuDevice;
@@ -196,7 +196,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         None => Backend::Cpu(&pool),
     };
     let legend = args.view.legend(&assembled.tracer());
-    let legend_path = outputs[0].with_extension("legend.png");
+    let legend_path = super::legend_path(&outputs[0]);
     if legend.is_some() {
         check_image_path(&legend_path).map_err(|e| e.to_string())?;
     }
@@ -266,9 +266,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     bar.finish_and_clear();
 
     if let Some(legend) = &legend {
-        let (bar_width, bar_height) = LEGEND_SIZE;
-        let bar_image = legend.bar_image(bar_width, bar_height);
-        save_image(&legend_path, bar_width, bar_height, &bar_image).map_err(|e| e.to_string())?;
+        super::save_legend(legend, &outputs[0])?;
     }
     if stats.rays.over_budget > 0 {
         eprintln!(
@@ -395,9 +393,6 @@ fn render_frame(
     .map_err(|_| "the render was cancelled".to_string())?;
     Ok((film, stats))
 }
-
-/// Size of the colour bar image written beside a debug view's image.
-const LEGEND_SIZE: (u32, u32) = (256, 24);
 
 /// A bar on the terminal (hidden when stderr is not one).
 fn progress_bar(total: u64) -> ProgressBar {

@@ -16,22 +16,21 @@ use std::collections::{BTreeMap, HashMap};
 use std::fmt::{self, Write as _};
 use std::fs::File;
 use std::hash::Hasher;
-use std::io::{BufReader, Cursor, Read, Seek};
+use std::io::{BufRead, BufReader, Cursor, Read, Seek};
 use std::path::{Path, PathBuf};
 
 use exr::compression::Compression;
-use exr::meta::BlockDescription;
-use exr::meta::attribute::{AttributeValue, IntegerBounds, LevelMode, Text};
+use exr::meta::attribute::{AttributeValue, IntegerBounds, Text};
 use exr::prelude::{
-    Encoding, Image, ImageAttributes, Layer, LayerAttributes, ReadChannels, ReadLayers,
-    ReadSpecificChannel, SpecificChannels, Vec2, WritableImage, read,
+    Encoding, Image, ImageAttributes, Layer, LayerAttributes, SpecificChannels, Vec2, WritableImage,
 };
 
 use crate::color::Color;
+use crate::limits::check_image_size;
 use crate::memory;
 use crate::output::write_atomically;
 use crate::scene::Scene;
-use crate::settings::check_image_size;
+use crate::srgb_image::{MAX_EXR_TILE_SIDE, read_exr_rgb, small_exr_blocks};
 use crate::tiles::Rect;
 
 /// What a part says about itself.
@@ -76,9 +75,6 @@ impl std::error::Error for PartError {}
 
 /// The header attribute that makes an OpenEXR file a part.
 const ATTRIBUTE: &str = "raylabPart";
-
-/// Largest side of an OpenEXR tile in a part that is read (raylab writes 64).
-const MAX_TILE_SIDE: usize = 256;
 
 /// A hash of everything in `scene` that shapes its pixels (its settings, camera, lights, fog,
 /// materials, textures, background and geometry; not the names or warnings, which may hold
@@ -194,7 +190,7 @@ pub fn read_part_bytes(bytes: &[u8], origin: &Path) -> Result<Part, PartError> {
 
 /// Reads a part from `reader`: first its header, which must describe a part of an image that
 /// raylab renders and fit in memory, and only then its pixels.
-fn read_part_from(mut reader: impl Read + Seek, origin: &Path) -> Result<Part, PartError> {
+fn read_part_from(mut reader: impl BufRead + Seek, origin: &Path) -> Result<Part, PartError> {
     let error = |message: String| PartError {
         path: origin.into(),
         message,
@@ -211,39 +207,7 @@ fn read_part_from(mut reader: impl Read + Seek, origin: &Path) -> Result<Part, P
     )
     .map_err(error)?;
     reader.rewind().map_err(|e| error(e.to_string()))?;
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .specific_channels()
-        .required("R")
-        .required("G")
-        .required("B")
-        .collect_pixels(
-            // A row is allocated when its first pixel arrives, so that a file claiming many
-            // pixels it does not hold costs no more than it holds.
-            |size: Vec2<usize>, _| (size.x(), vec![Vec::new(); size.y()]),
-            |(width, rows): &mut (usize, Vec<Vec<Color>>),
-             at: Vec2<usize>,
-             (r, g, b): (f32, f32, f32)| {
-                let row = &mut rows[at.y()];
-                if row.is_empty() {
-                    *row = vec![Color::ZERO; *width];
-                }
-                row[at.x()] = Color::new(r, g, b);
-            },
-        )
-        .first_valid_layer()
-        .all_attributes()
-        .from_buffered(reader)
-        .map_err(|e| error(format!("not a readable OpenEXR file with R, G and B: {e}")))?;
-    let (_, rows) = image.layer_data.channel_data.pixels;
-    let mut pixels = Vec::with_capacity(rect.pixels() as usize);
-    for row in rows {
-        if row.len() != rect.width() as usize {
-            return Err(error("its pixels do not fill its data window".into()));
-        }
-        pixels.extend(row);
-    }
+    let (_, pixels) = read_exr_rgb(reader).map_err(error)?;
     Ok(Part { info, pixels })
 }
 
@@ -265,18 +229,10 @@ fn read_header(reader: impl Read) -> Result<PartInfo, String> {
     // Stored much as `write_part` stores parts (tiles of 64 × 64), so that the OpenEXR reader's
     // buffers for a block stay small: a tile size or a channel list in a header could ask for
     // any size.
-    let small_blocks = match header.blocks {
-        BlockDescription::ScanLines => true,
-        BlockDescription::Tiles(tiles) => {
-            tiles.level_mode == LevelMode::Singular
-                && tiles.tile_size.x() <= MAX_TILE_SIDE
-                && tiles.tile_size.y() <= MAX_TILE_SIDE
-        }
-    };
-    if header.deep || !small_blocks {
+    if header.deep || !small_exr_blocks(header.blocks) {
         return Err(format!(
             "a raylab part is a flat image of one resolution, in scan lines or in tiles of at \
-             most {MAX_TILE_SIDE} pixels a side; this one is not"
+             most {MAX_EXR_TILE_SIDE} pixels a side; this one is not"
         ));
     }
     // Nor is any other decompressor run on a part: OpenEXR's others are lossy or seldom used,

@@ -8,7 +8,8 @@ use glam::Vec2;
 
 use crate::color::Color;
 use crate::scene::Scene;
-use crate::texture::{SRGB8_TO_LINEAR, Texture, TextureImage, Wrap};
+use crate::srgb_image::SrgbImage;
+use crate::texture::{SRGB8_TO_LINEAR, Texture, Wrap};
 
 /// A material's [`super::scene::GpuMaterial::texture`] or the frame's background image when
 /// there is none.
@@ -117,11 +118,11 @@ impl TextureRecords {
     }
 
     /// The record of `image` seen at `uv · scale + offset`, its texels appended.
-    fn image(&mut self, image: &TextureImage, wrap: Wrap, scale: Vec2, offset: Vec2) -> GpuTexture {
+    fn image(&mut self, image: &SrgbImage, wrap: Wrap, scale: Vec2, offset: Vec2) -> GpuTexture {
         let first = self.texels.len() as u32;
         self.texels.extend(
             image
-                .texels
+                .pixels
                 .iter()
                 .map(|&[r, g, b]| u32::from(r) | u32::from(g) << 8 | u32::from(b) << 16),
         );

@@ -166,6 +166,11 @@ fn log_ticks(max: f32) -> Vec<(f32, String)> {
     ticks
 }
 
+/// The heat ramp sampled along a legend's bar.
+pub fn heat_bar() -> Vec<Color> {
+    bar(heat)
+}
+
 fn bar(ramp: fn(f32) -> Color) -> Vec<Color> {
     (0..BAR_SAMPLES)
         .map(|i| ramp(i as f32 / (BAR_SAMPLES - 1) as f32))

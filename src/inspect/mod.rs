@@ -14,8 +14,11 @@ mod view_color;
 
 pub use debug_view::{DebugView, max_rays};
 pub use legend::{
-    BVH_COST_MAX, Legend, depth_grey, depth_range, heat, log_position, tree_depth_position,
+    BVH_COST_MAX, Legend, depth_grey, depth_range, heat, heat_bar, log_position,
+    tree_depth_position,
 };
-pub use ray_tree::{Blocker, Cut, FirstHitSource, NodeHit, RayNode, RayTree, ShadowRay};
+pub use ray_tree::{
+    Blocker, Cut, FirstHitSource, LightShare, NodeHit, RayNode, RayTree, ShadowRay,
+};
 pub use recorder::{object_ids, trace_ray_tree};
 pub use view_color::{MISS_COLOR, id_color};

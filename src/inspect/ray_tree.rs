@@ -39,6 +39,22 @@ pub struct ShadowRay {
     pub light_color: Color,
 }
 
+/// One light's share of a hit's local colour: its diffuse (Lambert) and specular (Phong)
+/// terms, as added and as they would be with no shadowing.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LightShare {
+    /// Index of the light in the scene.
+    pub light: usize,
+    /// The diffuse light it added: the light that arrived times Lambert's term.
+    pub diffuse: Color,
+    /// The specular light it added: the light that arrived times Phong's term.
+    pub specular: Color,
+    /// The diffuse light with the light's whole colour, as if its shadow ray were clear.
+    pub unshadowed_diffuse: Color,
+    /// The specular light with the light's whole colour.
+    pub unshadowed_specular: Color,
+}
+
 /// What a ray hit.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct NodeHit {
@@ -57,6 +73,8 @@ pub struct NodeHit {
     pub entering: bool,
     /// The light the surface gives off of itself, part of the local colour.
     pub emission: Color,
+    /// The ambient term of the local colour.
+    pub ambient: Color,
 }
 
 /// What the fog did to a ray on its way back to its parent (only in scenes with fog).
@@ -95,6 +113,8 @@ pub struct RayNode {
     /// `None`: the ray missed (`stop` is `Miss`, `local_color` the background).
     pub hit: Option<NodeHit>,
     pub shadows: Vec<ShadowRay>,
+    /// Each light in front of the surface, with its diffuse and specular terms.
+    pub lights: Vec<LightShare>,
     /// Ambient, diffuse and specular light at the hit (or the background).
     pub local_color: Color,
     /// The colour this ray returns to its parent: local colour plus its children's, weighted.
@@ -145,6 +165,15 @@ pub enum FirstHitSource {
     /// The ray misses the pixel's item, `item` (or finds nothing up to it): it searched in
     /// full.
     ItemMissed { item: String },
+}
+
+impl RayNode {
+    /// How much of `term`, a part of this ray's local colour, reaches the pixel: times the
+    /// ray's factor and, in fog, the fog's transmittance along the ray.
+    pub fn pixel_share(&self, term: Color) -> Color {
+        let fog = self.fog.map_or(1.0, |fog| fog.transmittance);
+        self.factor * fog * term
+    }
 }
 
 impl RayTree {

@@ -5,7 +5,7 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
 use super::ray_tree::{
-    Blocker, Cut, FirstHitSource, NodeFog, NodeHit, RayNode, RayTree, ShadowRay,
+    Blocker, Cut, FirstHitSource, LightShare, NodeFog, NodeHit, RayNode, RayTree, ShadowRay,
 };
 use crate::bvh::cost::TraversalCost;
 use crate::camera::PIXEL_CENTRE;
@@ -15,7 +15,9 @@ use crate::primitive::{Hit, SurfacePoint};
 use crate::ray::Ray;
 use crate::scene::Scene;
 use crate::stats::RayCounts;
-use crate::whitted::{EYE_RAY_T_MIN, RayKind, ShadowEvent, StopReason, Tracer, TreeObserver};
+use crate::whitted::{
+    EYE_RAY_T_MIN, LightTerms, LocalTerms, RayKind, ShadowEvent, StopReason, Tracer, TreeObserver,
+};
 
 /// The ray tree of pixel (x, y) of the scene's `width × height` image (y from the top): the
 /// eye ray through the pixel's centre, as the first pass of [`crate::progressive::render`]
@@ -136,6 +138,7 @@ impl TraversalCost for Recorder<'_> {}
 impl TreeObserver for Recorder<'_> {
     const RECORDS_BLOCKERS: bool = true;
     const USES_SHADOW_CACHE: bool = false;
+    const RECORDS_TERMS: bool = true;
     const WANTS_UV: bool = true;
 
     fn ray(&mut self, kind: RayKind, depth: u32, ray: &Ray, weight: f32, scale: Color) {
@@ -154,6 +157,7 @@ impl TreeObserver for Recorder<'_> {
             factor,
             hit: None,
             shadows: Vec::new(),
+            lights: Vec::new(),
             local_color: Color::ZERO,
             color: Color::ZERO,
             contribution: Color::ZERO,
@@ -184,6 +188,7 @@ impl TreeObserver for Recorder<'_> {
             uv: surface.uv,
             entering,
             emission: scene.materials[surface.material as usize].emission,
+            ambient: Color::ZERO,
         });
     }
 
@@ -218,6 +223,22 @@ impl TreeObserver for Recorder<'_> {
             blockers,
             blocked: shadow.arrived == Color::ZERO,
             light_color: shadow.arrived,
+        });
+    }
+
+    fn local_terms(&mut self, terms: LocalTerms) {
+        if let Some(hit) = &mut self.current().hit {
+            hit.ambient = terms.ambient;
+        }
+    }
+
+    fn light(&mut self, terms: LightTerms) {
+        self.current().lights.push(LightShare {
+            light: terms.light,
+            diffuse: terms.arrived * terms.diffuse,
+            specular: terms.arrived * terms.specular,
+            unshadowed_diffuse: terms.unshadowed * terms.diffuse,
+            unshadowed_specular: terms.unshadowed * terms.specular,
         });
     }
 

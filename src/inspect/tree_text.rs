@@ -5,9 +5,9 @@ use std::fmt::Write;
 
 use glam::Vec3;
 
-use super::ray_tree::{FirstHitSource, RayNode, RayTree, ShadowRay};
+use super::ray_tree::{FirstHitSource, LightShare, RayNode, RayTree, ShadowRay};
 use crate::color::Color;
-use crate::whitted::{RayKind, StopReason};
+use crate::whitted::StopReason;
 
 impl RayTree {
     /// The tree as human-readable text.
@@ -49,11 +49,14 @@ impl RayTree {
         for shadow in &node.shadows {
             write_shadow(out, &pad, shadow);
         }
+        for share in &node.lights {
+            write_light_share(out, &pad, share);
+        }
         for cut in &node.cuts {
             let _ = writeln!(
                 out,
                 "{pad}  {} ray not traced: {} (weight {:.4})",
-                kind_name(cut.branch),
+                cut.branch.name(),
                 reason_text(cut.reason),
                 cut.weight
             );
@@ -73,7 +76,7 @@ fn write_ray(out: &mut String, pad: &str, index: usize, node: &RayNode) {
         out,
         "{pad}#{} {} ray, depth {}, weight {:.4}, from {} dir {}",
         index,
-        kind_name(node.kind),
+        node.kind.name(),
         node.depth,
         node.weight,
         vec3(node.origin),
@@ -105,6 +108,9 @@ fn write_ray(out: &mut String, pad: &str, index: usize, node: &RayNode) {
     }
     if let Some(hit) = node.hit.as_ref().filter(|hit| hit.emission != Color::ZERO) {
         let _ = writeln!(out, "{pad}  emission {}", vec3(hit.emission));
+    }
+    if let Some(hit) = &node.hit {
+        let _ = writeln!(out, "{pad}  ambient {}", vec3(hit.ambient));
     }
     if let Some(caustic) = node.caustic {
         let _ = writeln!(out, "{pad}  caustic irradiance {}", vec3(caustic));
@@ -157,12 +163,23 @@ fn write_shadow(out: &mut String, pad: &str, shadow: &ShadowRay) {
     out.push('\n');
 }
 
-fn kind_name(kind: RayKind) -> &'static str {
-    match kind {
-        RayKind::Eye => "eye",
-        RayKind::Reflected => "reflected",
-        RayKind::Transmitted => "transmitted",
+fn write_light_share(out: &mut String, pad: &str, share: &LightShare) {
+    let _ = write!(
+        out,
+        "{pad}  light {}: diffuse {}, specular {}",
+        share.light,
+        vec3(share.diffuse),
+        vec3(share.specular)
+    );
+    if (share.diffuse, share.specular) != (share.unshadowed_diffuse, share.unshadowed_specular) {
+        let _ = write!(
+            out,
+            " (unshadowed: diffuse {}, specular {})",
+            vec3(share.unshadowed_diffuse),
+            vec3(share.unshadowed_specular)
+        );
     }
+    out.push('\n');
 }
 
 fn reason_text(reason: StopReason) -> &'static str {

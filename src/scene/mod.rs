@@ -11,7 +11,8 @@ use crate::medium::Atmosphere;
 use crate::primitive::{Geometry, Object};
 use crate::settings::RenderSettings;
 use crate::shapes::Shape;
-use crate::texture::{Texture, TextureImage};
+use crate::srgb_image::SrgbImage;
+use crate::texture::Texture;
 use crate::transform::Transform;
 
 #[derive(Clone, Debug)]
@@ -30,7 +31,7 @@ pub struct Scene {
     /// `backgroundImage`): an image standing on the image plane, as tall as the view and
     /// centred, at its own aspect ratio; the background colour shows around it
     /// ([`Camera::backdrop_uv`]).
-    pub background_image: Option<Arc<TextureImage>>,
+    pub background_image: Option<Arc<SrgbImage>>,
     pub geometry: Geometry,
     /// What the reader accepted but a person should hear about (`file:line: message`): a
     /// material an OBJ file names but never defines, a face it dropped. The scene renders as

@@ -10,7 +10,7 @@ use std::ops::ControlFlow;
 use glam::Vec3;
 
 use super::shadow_cache;
-use super::{ShadowEvent, Tracer, TreeObserver, reflect};
+use super::{LightTerms, LocalTerms, ShadowEvent, Tracer, TreeObserver, reflect};
 use crate::color::Color;
 use crate::material::Material;
 use crate::primitive::{Hit, PrimId, SurfacePoint};
@@ -34,7 +34,12 @@ impl Tracer<'_> {
         observer: &mut O,
     ) -> Color {
         let settings = &self.scene.settings;
-        let mut color = material.emission + material.ambient * base * settings.ambient;
+        let terms = LocalTerms {
+            emission: material.emission,
+            ambient: material.ambient * base * settings.ambient,
+        };
+        observer.local_terms(terms);
+        let mut color = terms.emission + terms.ambient;
         let shadow_origin = offset_origin(surface.point, geometric_normal);
         for (light_index, light) in self.scene.lights.iter().enumerate() {
             let mut sample = light.sample(surface.point);
@@ -65,7 +70,7 @@ impl Tracer<'_> {
             } else {
                 sample.color
             };
-            if light_color == Color::ZERO {
+            if light_color == Color::ZERO && !O::RECORDS_TERMS {
                 continue;
             }
             let diffuse = material.diffuse * cos_l * base;
@@ -76,6 +81,13 @@ impl Tracer<'_> {
             } else {
                 Color::ZERO
             };
+            observer.light(LightTerms {
+                light: light_index,
+                diffuse,
+                specular,
+                unshadowed: sample.color,
+                arrived: light_color,
+            });
             color += light_color * (diffuse + specular);
         }
         if let Some(caustics) = self.caustics

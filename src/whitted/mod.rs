@@ -25,7 +25,7 @@ mod scattering;
 mod shadow_cache;
 mod within;
 
-pub use observer::{RayKind, ShadowEvent, StopReason, TreeObserver};
+pub use observer::{LightTerms, LocalTerms, RayKind, ShadowEvent, StopReason, TreeObserver};
 pub use scattering::{Scattering, reflect, refract, scattering};
 pub use within::Within;
 

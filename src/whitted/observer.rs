@@ -1,5 +1,6 @@
 //! What the Whitted tracer tells an observer while it builds a ray tree: each ray it starts
-//! ([`RayKind`]), what the ray hit, its shadow rays ([`ShadowEvent`]), its local colour, the
+//! ([`RayKind`]), what the ray hit, its shadow rays ([`ShadowEvent`]), the terms of its local
+//! colour ([`LocalTerms`], [`LightTerms`]), its local colour, the
 //! branches it cut and why ([`StopReason`]) and the colour it returned. The tracer is generic
 //! over the observer; the renderer's observer is `()`, whose methods are empty and
 //! `#[inline(always)]`, so the normal path compiles to the tracer without any of this. The
@@ -30,8 +31,32 @@ pub struct ShadowEvent<'a> {
     pub arrived: Color,
 }
 
+/// The terms of the shading model at a hit that do not depend on the lights.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LocalTerms {
+    /// The light the surface gives off of itself.
+    pub emission: Color,
+    /// The ambient term: `ambient × colour × the scene's ambient light`.
+    pub ambient: Color,
+}
+
+/// What one light adds to the local colour at a hit: `arrived × (diffuse + specular)`, where
+/// the two terms are the surface's reflectance towards the eye for this light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightTerms {
+    pub light: usize,
+    /// Lambert's term: `diffuse × cos θ × colour`.
+    pub diffuse: Color,
+    /// Phong's term: `specular × cos^shininess φ × specular colour`.
+    pub specular: Color,
+    /// The light that reaches the surface with no shadowing (its colour, after any fog).
+    pub unshadowed: Color,
+    /// The light that arrived: `unshadowed` times what the shadow ray let through.
+    pub arrived: Color,
+}
+
 /// Hears the ray tree as it is traced, depth first: `ray`, then `hit` or `miss`, the shadow
-/// rays, `local`, the children (each its own `ray` … `done`) or `cut`s, then `done`.
+/// rays and the local terms, `local`, the children (each its own `ray` … `done`) or `cut`s, then `done`.
 #[allow(unused_variables)]
 pub trait TreeObserver: TraversalCost {
     /// Whether shadow rays must report every blocker (the shadow cache must be off then).
@@ -41,6 +66,9 @@ pub trait TreeObserver: TraversalCost {
     /// The answer is the same either way, but what the search meets and costs then depends on
     /// the pixels traced before on the thread; observers that report those turn it off.
     const USES_SHADOW_CACHE: bool = true;
+    /// Whether the observer hears [`Self::light`] for lights whose shadow ray is blocked too
+    /// (what they would have added).
+    const RECORDS_TERMS: bool = false;
     /// Whether [`Self::hit`] needs the surface's texture coordinates even where no texture
     /// does (they cost trigonometry on curved shapes).
     const WANTS_UV: bool = false;
@@ -57,6 +85,13 @@ pub trait TreeObserver: TraversalCost {
     fn miss(&mut self, background: Color) {}
     #[inline(always)]
     fn shadow(&mut self, shadow: ShadowEvent) {}
+    /// The emission and ambient terms at the hit.
+    #[inline(always)]
+    fn local_terms(&mut self, terms: LocalTerms) {}
+    /// A light in front of the surface adds `terms.arrived × (terms.diffuse + terms.specular)`
+    /// (heard for blocked lights only when [`Self::RECORDS_TERMS`]).
+    #[inline(always)]
+    fn light(&mut self, terms: LightTerms) {}
     /// The local (ambient, diffuse and specular) colour at the hit.
     #[inline(always)]
     fn local(&mut self, color: Color) {}
@@ -90,6 +125,17 @@ pub enum RayKind {
     Eye,
     Reflected,
     Transmitted,
+}
+
+impl RayKind {
+    /// The kind as a word: "eye", "reflected" or "transmitted".
+    pub fn name(self) -> &'static str {
+        match self {
+            RayKind::Eye => "eye",
+            RayKind::Reflected => "reflected",
+            RayKind::Transmitted => "transmitted",
+        }
+    }
 }
 
 /// Why a branch of the tree ends.

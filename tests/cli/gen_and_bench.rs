@@ -158,7 +158,7 @@ fn bench_writes_json_with_the_scaling_factor() {
             "--scenes",
             "spd:tetra:1,default",
             "--size",
-            "16",
+            "24x16",
             "--threads",
             "2",
             "--repeat",
@@ -180,6 +180,8 @@ fn bench_writes_json_with_the_scaling_factor() {
         "\"scene\": \"default\"",
         "\"scaling\": ",
         "\"first_pass_ms\": ",
+        "\"width\": 24,",
+        "\"height\": 16,",
     ] {
         assert!(json.contains(key), "{key} missing: {json}");
     }

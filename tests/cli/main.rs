@@ -5,6 +5,8 @@ mod common;
 mod harness;
 
 mod camera;
+mod check;
+mod diff;
 mod first_hit;
 mod gen_and_bench;
 mod gpu;

@@ -10,7 +10,7 @@ use glam::DVec3;
 use super::document::{Fill, Item, NffDocument, NffLight, PatchVertex, View};
 use super::tokens::{Token, Tokens};
 use crate::formats::{SceneError, Source};
-use crate::settings::MAX_IMAGE_SIDE;
+use crate::limits::MAX_IMAGE_SIDE;
 
 /// Where the parts of a document were written, for errors found when it is built.
 #[derive(Clone, Debug, Default, PartialEq)]

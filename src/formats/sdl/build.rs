@@ -18,7 +18,8 @@ use crate::mesh::Mesh;
 use crate::scene::Scene;
 use crate::settings::RenderSettings;
 use crate::shapes::{Csg, CsgOperation, Operand, Shape};
-use crate::texture::{Texture, TextureImage, WOOD_COLORS, Wrap};
+use crate::srgb_image::SrgbImage;
+use crate::texture::{Texture, WOOD_COLORS, Wrap};
 use crate::transform::{Transform, TransformStep};
 
 /// How many pixmaps `makePixmap` can fill (numbers 0 to 15), as in the book's ray tracer.
@@ -115,7 +116,7 @@ pub(crate) struct Builder {
     pub scene: Scene,
     pub material: SdlMaterial,
     /// The images `makePixmap` read, by number.
-    pub pixmaps: [Option<Arc<TextureImage>>; PIXMAPS],
+    pub pixmaps: [Option<Arc<SrgbImage>>; PIXMAPS],
     /// The last material given to the scene, the mapping of its texture, and its index, shared
     /// by the shapes that follow while the material and the mapping stay the same.
     added: Option<(SdlMaterial, Mapping, u32)>,

@@ -20,7 +20,7 @@ use crate::light::Light;
 use crate::limits;
 use crate::scene::Scene;
 use crate::shapes::{Csg, CsgOperation, Operand, Shape};
-use crate::texture::TextureImage;
+use crate::srgb_image::SrgbImage;
 use crate::transform::TransformStep;
 
 /// Every keyword raylab's SDL reader knows but the polyhedra ([`POLYHEDRA`]), for suggestions.
@@ -412,9 +412,9 @@ impl<'a> Parser<'a> {
 
     /// The image file `name` names, beside the scene file, decoded; a warning, once, and
     /// `None` if it cannot be read or decoded.
-    fn image_beside(&mut self, name: &Word, what: &str) -> Option<Arc<TextureImage>> {
+    fn image_beside(&mut self, name: &Word, what: &str) -> Option<Arc<SrgbImage>> {
         let (bytes, path) = self.read_beside(name, what)?;
-        match TextureImage::from_bytes(&bytes) {
+        match SrgbImage::decode(&bytes) {
             Ok(image) => Some(Arc::new(image)),
             Err(why) => {
                 let message = format!("cannot decode {what} {}: {why}; left out", path.display());

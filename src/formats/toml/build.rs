@@ -31,7 +31,8 @@ use crate::shapes::{
     Csg, CsgOperation, Cuboid, Ellipsoid, Operand, Paraboloid, Plane, Polygon, Shape, Sphere,
     TaperedCylinder, Torus, Triangle,
 };
-use crate::texture::{Texture, TextureImage, WOOD_COLORS, Wrap};
+use crate::srgb_image::SrgbImage;
+use crate::texture::{Texture, WOOD_COLORS, Wrap};
 use crate::transform::{Transform, TransformStep};
 
 /// Index of the material of objects that name none: `Material::default()`. The named materials
@@ -338,7 +339,7 @@ fn load_image(
     what: &str,
     source: Source,
     files: SceneFiles,
-) -> Result<Arc<TextureImage>, SceneError> {
+) -> Result<Arc<SrgbImage>, SceneError> {
     let path = files.path(file.get_ref());
     let fail = |message: String| {
         let path = path.display();
@@ -348,7 +349,7 @@ fn load_image(
         )
     };
     let bytes = files.read(&path).map_err(fail)?;
-    Ok(Arc::new(TextureImage::from_bytes(&bytes).map_err(fail)?))
+    Ok(Arc::new(SrgbImage::decode(&bytes).map_err(fail)?))
 }
 
 fn build_texture(

@@ -1,0 +1,265 @@
+//! An image as 8-bit sRGB pixels ([`SrgbImage`]), the form textures are sampled from and images
+//! are compared in. It decodes any image file raylab reads (PNG, PPM, BMP, JPEG, OpenEXR,
+//! Radiance HDR): 8- and 16-bit images keep their values, scaled to 8 bits; the linear floats
+//! of OpenEXR and Radiance HDR go through the sRGB curve, clamped to [0, 1] as raylab's own
+//! 8-bit images are. Alpha is dropped. An image's sides are held to
+//! [`crate::limits::MAX_IMAGE_SIDE`] and its size checked against the memory available before
+//! its pixels are decoded. An OpenEXR file's header is checked before its blocks
+//! ([`small_exr_blocks`]), and its pixels are read by [`read_exr_rgb`], which holds no more
+//! memory than the file holds pixels (an OpenEXR image is its data window: the pixels it has).
+
+use std::io::{BufRead, Cursor, Seek};
+use std::path::Path;
+
+use exr::compression::Compression;
+use exr::meta::attribute::LevelMode;
+use exr::meta::{BlockDescription, MetaData};
+use exr::prelude::{ReadChannels, ReadLayers, ReadSpecificChannel, Vec2, read};
+use image::{DynamicImage, ImageDecoder, ImageFormat, ImageReader};
+
+use crate::color::{Color, srgb8};
+use crate::limits::check_image_size;
+
+/// An image of 8-bit sRGB pixels, row 0 at the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SrgbImage {
+    pub width: u32,
+    pub height: u32,
+    /// `width × height` pixels, row by row.
+    pub pixels: Vec<[u8; 3]>,
+}
+
+impl SrgbImage {
+    /// Decodes an image file's bytes, its format told by its first bytes. An image with no
+    /// pixels, sides over [`crate::limits::MAX_IMAGE_SIDE`], or one that would not fit in
+    /// memory ([`crate::memory::check`]) is refused before it is decoded.
+    pub fn decode(bytes: &[u8]) -> Result<SrgbImage, String> {
+        let reader = ImageReader::new(Cursor::new(bytes))
+            .with_guessed_format()
+            .map_err(|e| e.to_string())?;
+        match reader.format() {
+            None => Err(
+                "not an image raylab reads (PNG, PPM, BMP, JPEG, OpenEXR or Radiance HDR)".into(),
+            ),
+            Some(ImageFormat::OpenExr) => {
+                check_exr_header(bytes)?;
+                let ((width, height), colors) = read_exr_rgb(Cursor::new(bytes))?;
+                Ok(SrgbImage::from_linear(width, height, &colors))
+            }
+            Some(_) => decode_with(reader),
+        }
+    }
+
+    /// Reads and decodes the image file at `path`; the error names the file.
+    pub fn read(path: &Path) -> Result<SrgbImage, String> {
+        let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        SrgbImage::decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    /// The image of `width × height` linear colours, row by row, encoded as raylab writes
+    /// 8-bit files.
+    pub fn from_linear(width: u32, height: u32, colors: &[Color]) -> SrgbImage {
+        SrgbImage {
+            width,
+            height,
+            pixels: colors.iter().map(|c| c.to_array().map(srgb8)).collect(),
+        }
+    }
+
+    /// The pixel at column `x`, row `y` (row 0 at the top).
+    pub fn at(&self, x: u32, y: u32) -> [u8; 3] {
+        self.pixels[(y as usize) * self.width as usize + x as usize]
+    }
+}
+
+/// Decodes an image of any format but OpenEXR with the `image` crate: its size checked first.
+fn decode_with(reader: ImageReader<Cursor<&[u8]>>) -> Result<SrgbImage, String> {
+    let decoder = reader.into_decoder().map_err(|e| e.to_string())?;
+    let (width, height) = decoder.dimensions();
+    check_image_size(width, height)?;
+    let pixels = u64::from(width) * u64::from(height);
+    let decoded = decoder.total_bytes();
+    crate::memory::check(&format!("the {width}×{height} image"), decoded + pixels * 3)?;
+    let image = DynamicImage::from_decoder(decoder).map_err(|e| e.to_string())?;
+    let pixels = match image {
+        DynamicImage::ImageRgb32F(_) | DynamicImage::ImageRgba32F(_) => image
+            .into_rgb32f()
+            .pixels()
+            .map(|p| p.0.map(srgb8))
+            .collect(),
+        _ => image.into_rgb8().pixels().map(|p| p.0).collect(),
+    };
+    Ok(SrgbImage {
+        width,
+        height,
+        pixels,
+    })
+}
+
+/// Reads the R, G and B channels of an OpenEXR file's first valid layer: its size (its data
+/// window's) and its linear colours, row by row. A row is allocated when its first pixel
+/// arrives, so that a file claiming many pixels it does not hold costs no more than it holds;
+/// a row it leaves out is an error. Check the header first ([`small_exr_blocks`]).
+pub fn read_exr_rgb(reader: impl BufRead + Seek) -> Result<((u32, u32), Vec<Color>), String> {
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .specific_channels()
+        .required("R")
+        .required("G")
+        .required("B")
+        .collect_pixels(
+            |size: Vec2<usize>, _| (size.x(), vec![Vec::new(); size.y()]),
+            |(width, rows): &mut (usize, Vec<Vec<Color>>),
+             at: Vec2<usize>,
+             (r, g, b): (f32, f32, f32)| {
+                let row = &mut rows[at.y()];
+                if row.is_empty() {
+                    *row = vec![Color::ZERO; *width];
+                }
+                row[at.x()] = Color::new(r, g, b);
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(reader)
+        .map_err(|e| format!("not a readable OpenEXR file with R, G and B: {e}"))?;
+    let size = image.layer_data.size;
+    let (width, height) = (size.x() as u32, size.y() as u32);
+    check_image_size(width, height)?;
+    let (_, rows) = image.layer_data.channel_data.pixels;
+    let mut colors = Vec::with_capacity(size.area());
+    for row in rows {
+        if row.len() != size.x() {
+            return Err("its pixels do not fill its data window".into());
+        }
+        colors.extend(row);
+    }
+    Ok(((width, height), colors))
+}
+
+/// The largest OpenEXR tile side raylab reads: a tile size in a header could ask the reader for
+/// buffers of any size.
+pub const MAX_EXR_TILE_SIDE: usize = 256;
+
+/// Whether an OpenEXR layer's blocks are small: scan lines, or tiles of one resolution at most
+/// [`MAX_EXR_TILE_SIDE`] pixels a side.
+pub fn small_exr_blocks(blocks: BlockDescription) -> bool {
+    match blocks {
+        BlockDescription::ScanLines => true,
+        BlockDescription::Tiles(tiles) => {
+            tiles.level_mode == LevelMode::Singular
+                && tiles.tile_size.x() <= MAX_EXR_TILE_SIDE
+                && tiles.tile_size.y() <= MAX_EXR_TILE_SIDE
+        }
+    }
+}
+
+/// Refuses an OpenEXR file with a layer larger than raylab reads or than fits in memory, whose
+/// blocks are not small ([`small_exr_blocks`]), with deep data, or with B44 compression (lossy, seldom used, and its decompressor overflows on a crafted block:
+/// fuzz/regressions/part/crash-2df55c…).
+fn check_exr_header(bytes: &[u8]) -> Result<(), String> {
+    let meta = MetaData::read_from_buffered(Cursor::new(bytes), false)
+        .map_err(|e| format!("not a readable OpenEXR file: {e}"))?;
+    for header in &meta.headers {
+        let size = header.layer_size;
+        let (width, height) = (size.x() as u32, size.y() as u32);
+        check_image_size(width, height)?;
+        let pixels = size.area() as u64;
+        crate::memory::check(
+            &format!("the {width}×{height} image"),
+            pixels * (std::mem::size_of::<Color>() as u64 + 3),
+        )?;
+        if header.deep || !small_exr_blocks(header.blocks) {
+            return Err(format!(
+                "raylab reads flat OpenEXR images of one resolution, in scan lines or in tiles \
+                 of at most {MAX_EXR_TILE_SIDE} pixels a side; this one is not"
+            ));
+        }
+        if matches!(header.compression, Compression::B44 | Compression::B44A) {
+            return Err(format!(
+                "raylab does not read OpenEXR's {} compression",
+                header.compression
+            ));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn encoded(image: impl Into<DynamicImage>, format: image::ImageFormat) -> Vec<u8> {
+        let mut bytes = Vec::new();
+        image
+            .into()
+            .write_to(&mut Cursor::new(&mut bytes), format)
+            .unwrap();
+        bytes
+    }
+
+    #[test]
+    fn eight_bit_files_keep_their_values() {
+        let rgb = image::RgbImage::from_pixel(3, 2, image::Rgb([200, 100, 50]));
+        for format in [
+            image::ImageFormat::Png,
+            image::ImageFormat::Bmp,
+            image::ImageFormat::Pnm,
+        ] {
+            let img = SrgbImage::decode(&encoded(rgb.clone(), format)).unwrap();
+            assert_eq!((img.width, img.height), (3, 2), "{format:?}");
+            assert_eq!(img.pixels, vec![[200, 100, 50]; 6], "{format:?}");
+        }
+    }
+
+    #[test]
+    fn a_plain_ppm_with_a_small_maximum_is_scaled_to_eight_bits() {
+        let img = SrgbImage::decode(b"P3\n2 1\n15\n15 0 5  0 15 0\n").unwrap();
+        assert_eq!(img.pixels, vec![[255, 0, 85], [0, 255, 0]]);
+    }
+
+    #[test]
+    fn sixteen_bit_files_are_scaled_to_eight_bits() {
+        let rgb = image::ImageBuffer::<image::Rgb<u16>, _>::from_pixel(
+            1,
+            1,
+            image::Rgb([65535, 0, 32896]),
+        );
+        let img = SrgbImage::decode(&encoded(rgb, image::ImageFormat::Png)).unwrap();
+        assert_eq!(img.pixels, vec![[255, 0, 128]]);
+    }
+
+    #[test]
+    fn float_files_go_through_the_srgb_curve_clamped() {
+        // Linear 0.214 is sRGB 128; 2 is past white; a negative value is below black (the
+        // Radiance format stores none, and writes 0).
+        let rgb = image::Rgb32FImage::from_fn(3, 1, |x, _| {
+            image::Rgb([[0.214, 0.214, 0.214], [2.0, 2.0, 2.0], [-1.0, 0.0, 0.0]][x as usize])
+        });
+        for format in [image::ImageFormat::OpenExr, image::ImageFormat::Hdr] {
+            let img = SrgbImage::decode(&encoded(rgb.clone(), format)).unwrap();
+            let [grey, white, black] = [0, 1, 2].map(|x| img.at(x, 0));
+            assert!(
+                grey.iter().all(|c| c.abs_diff(128) <= 1),
+                "{format:?}: {grey:?}"
+            );
+            assert_eq!((white, black), ([255; 3], [0; 3]), "{format:?}");
+        }
+    }
+
+    #[test]
+    fn what_is_no_image_is_refused_with_the_formats_read() {
+        let err = SrgbImage::decode(b"hello, world").unwrap_err();
+        assert!(err.contains("PNG, PPM"), "{err}");
+        let err = SrgbImage::decode(b"P6\n0 0\n255\n").unwrap_err();
+        assert!(!err.is_empty());
+    }
+
+    #[test]
+    fn from_linear_encodes_as_raylab_writes() {
+        let img = SrgbImage::from_linear(2, 1, &[Color::new(0.5, 0.0, 1.0), Color::ONE]);
+        assert_eq!(img.pixels, vec![[srgb8(0.5), 0, 255], [255; 3]]);
+        assert_eq!(img.at(1, 0), [255; 3]);
+    }
+}
