@@ -1,6 +1,7 @@
 //! `raylab view` (and `raylab` with no subcommand): the viewer's command-line options.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use clap::Args;
 use raylab::formats::SceneFormat;
@@ -8,6 +9,7 @@ use raylab::inspect::DebugView;
 use raylab::output::check_writable;
 use raylab::render::{Device, FirstHit};
 use raylab::settings::{RenderSettings, SettingsOverrides};
+use raylab::srgb_image::SrgbImage;
 
 use super::overrides::{OverrideArgs, parse_size};
 
@@ -63,6 +65,12 @@ pub struct ViewArgs {
     /// Most frames per second while refining.
     #[arg(long, default_value_t = 60.0)]
     max_fps: f32,
+    /// An image to compare with (PNG, PPM, BMP, JPEG, OpenEXR or Radiance HDR): shown as the
+    /// snapshot, left of the split view's divider, with the scene rendered at its size. X (or
+    /// the script step `compare diff`) shows the heat map of the difference; a picked pixel
+    /// shows both colours beside its ray tree.
+    #[arg(long, value_name = "IMAGE")]
+    compare: Option<PathBuf>,
 }
 
 pub fn run(args: ViewArgs) -> Result<(), String> {
@@ -73,7 +81,26 @@ pub fn run(args: ViewArgs) -> Result<(), String> {
         }
         check_writable(path).map_err(|e| format!("{}: {e}", path.display()))?;
     }
-    let overrides = SettingsOverrides::from(args.overrides);
+    let mut overrides = SettingsOverrides::from(args.overrides);
+    let compare = match &args.compare {
+        Some(path) => {
+            let image = SrgbImage::read(path)?;
+            let size = (image.width, image.height);
+            let given = (overrides.width, overrides.height);
+            if given.0.is_some_and(|w| w != size.0) || given.1.is_some_and(|h| h != size.1) {
+                return Err(format!(
+                    "{} is {}×{}: the scene is rendered at the size of the image compared with, \
+                     so leave out --size, --width and --height",
+                    path.display(),
+                    size.0,
+                    size.1
+                ));
+            }
+            (overrides.width, overrides.height) = (Some(size.0), Some(size.1));
+            Some(Arc::new(image))
+        }
+        None => None,
+    };
     // Checked before the window opens: each setting's range is its own, so overrides that are
     // right on the default settings are right on any scene's; the camera's as far as they can be
     // without the scene's camera.
@@ -94,5 +121,6 @@ pub fn run(args: ViewArgs) -> Result<(), String> {
         stats: args.stats,
         script: args.script.unwrap_or_default(),
         max_fps: args.max_fps,
+        compare,
     })
 }

@@ -30,11 +30,13 @@ mod ui;
 mod workers;
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use raylab::formats::SceneFormat;
 use raylab::inspect::DebugView;
 use raylab::render::{Device, FirstHit};
 use raylab::settings::SettingsOverrides;
+use raylab::srgb_image::SrgbImage;
 use winit::event_loop::EventLoop;
 
 pub use input::script::Script;
@@ -70,6 +72,9 @@ pub struct Options {
     pub script: Script,
     /// Most frames per second while refining.
     pub max_fps: f32,
+    /// An image to compare with, shown from the start as the snapshot, in the split view (the
+    /// image is rendered at its size).
+    pub compare: Option<Arc<SrgbImage>>,
 }
 
 /// Opens the window and runs until it is closed; the error is the message to print.

@@ -1,12 +1,12 @@
 //! The viewer's tools, each checked against the CPU: a clicked pixel's ray tree in the panel and
-//! over the image, debug views, exposure and tone curves (shown and saved alike), and a snapshot
-//! beside the live image.
+//! over the image, debug views, exposure and tone curves (shown and saved alike), a snapshot
+//! beside the live image, and an image compared with (`--compare`) beside its difference.
 
 use std::path::Path;
 
-use raylab::color::to_srgb8;
+use raylab::color::{srgb8, to_srgb8};
 use raylab::formats::toml::default_scene;
-use raylab::inspect::{DebugView, RayTree, trace_ray_tree};
+use raylab::inspect::{DebugView, RayTree, heat, trace_ray_tree};
 use raylab::progressive;
 use raylab::render::Assembled;
 use raylab::whitted::RayKind;
@@ -266,4 +266,107 @@ fn a_snapshot_shows_left_of_the_divider_and_the_live_image_right_of_it() {
     let rect = (x0, y0, w, h);
     assert!(mismatches(&shot, rect, size, &shaded) > (size * size / 8) as usize);
     assert!(mismatches(&shot, rect, size, &normals) > (size * size / 8) as usize);
+}
+
+#[test]
+fn an_image_to_compare_shows_left_of_the_divider_its_difference_right_and_beside_a_pixel() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = 64u32;
+    let scene = default_scene().unwrap();
+    let shaded = cpu_render(&scene, size, scene.camera.spec);
+    // "Their" image: raylab's with a black square right of the middle.
+    let mut theirs = shaded.clone();
+    for y in 20..40 {
+        for x in 36..56 {
+            let k = ((y * size + x) * 3) as usize;
+            theirs[k..k + 3].copy_from_slice(&[0, 0, 0]);
+        }
+    }
+    let path = dir.path().join("theirs.png");
+    image::RgbImage::from_raw(size, size, theirs.clone())
+        .unwrap()
+        .save(&path)
+        .unwrap();
+    let path = path.to_str().unwrap();
+    let Some((run, shot)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--compare",
+            path,
+            "--samples",
+            "1",
+            "--script",
+            "wait; compare diff; divider 0.5; wait",
+        ],
+    ) else {
+        return;
+    };
+    // Left half their image; right half the heat map of each pixel's largest channel
+    // difference from it, 32 levels at the top of the ramp (dark where equal).
+    let heat_bytes = |levels: u8| heat(f32::from(levels) / 32.0).to_array().map(srgb8);
+    let half = (size / 2) as usize;
+    let expected: Vec<u8> = shaded
+        .chunks_exact(3)
+        .zip(theirs.chunks_exact(3))
+        .enumerate()
+        .flat_map(|(i, (ours, theirs))| {
+            if i % size as usize >= half {
+                let d = (0..3).map(|c| ours[c].abs_diff(theirs[c])).max().unwrap();
+                heat_bytes(d)
+            } else {
+                [theirs[0], theirs[1], theirs[2]]
+            }
+        })
+        .collect();
+    let shot_image = image::open(&shot).unwrap().to_rgb8();
+    let (x0, y0, w, h) = image_rect(&run.stdout);
+    let mut bad = 0;
+    for j in 4..size {
+        for i in 0..size {
+            let sx = (x0 + (i as f32 + 0.5) * w / size as f32) as u32;
+            let sy = (y0 + (j as f32 + 0.5) * h / size as f32) as u32;
+            let got = shot_image.get_pixel(sx, sy).0;
+            let k = ((j * size + i) * 3) as usize;
+            if (0..3).any(|c| got[c].abs_diff(expected[k + c]) > 2) {
+                bad += 1;
+            }
+        }
+    }
+    assert_eq!(bad, 0, "their image | the difference");
+    // The square shows bright on the right, the rest dark.
+    let at = |i: u32, j: u32| {
+        let sx = (x0 + (i as f32 + 0.5) * w / size as f32) as u32;
+        let sy = (y0 + (j as f32 + 0.5) * h / size as f32) as u32;
+        shot_image.get_pixel(sx, sy).0
+    };
+    assert!(at(45, 30).iter().map(|&c| u32::from(c)).sum::<u32>() > 300);
+    assert_eq!(at(45, 10), heat_bytes(0));
+
+    // A picked pixel in the square: both colours, and why they differ.
+    let Some((run, _)) = run_to_screenshot(
+        dir.path(),
+        &[
+            "--compare",
+            path,
+            "--samples",
+            "1",
+            "--script",
+            "wait; click 45 30; wait; print-tree",
+        ],
+    ) else {
+        return;
+    };
+    let k = ((30 * size + 45) * 3) as usize;
+    let colours = format!(
+        "tree: compared image (0, 0, 0), raylab ({}, {}, {})",
+        shaded[k],
+        shaded[k + 1],
+        shaded[k + 2]
+    );
+    assert!(run.stdout.contains(&colours), "{colours}: {}", run.stdout);
+    assert!(
+        run.stdout.contains("tree: your pixel is darker by"),
+        "{}",
+        run.stdout
+    );
 }

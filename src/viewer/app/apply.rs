@@ -5,8 +5,10 @@
 //! actions do what they say.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use raylab::camera::Camera;
+use raylab::srgb_image::SrgbImage;
 
 use super::App;
 use crate::viewer::input::action::Action;
@@ -76,6 +78,8 @@ impl App {
             }
             display @ (Action::Compare(_)
             | Action::ToggleCompare
+            | Action::CompareDifference
+            | Action::ToggleDifference
             | Action::Divider(_)
             | Action::Exposure(_)
             | Action::ToneCurve(_)) => self.ui.panel.display.apply(display),
@@ -191,8 +195,17 @@ impl App {
         match (&picked.tree, &picked.error) {
             (_, Some(e)) => println!("tree: error: {e}"),
             (Some(traced), None) => {
-                for line in ray_tree_panel::heading_lines(&traced.tree) {
+                let tree = &traced.tree;
+                for line in ray_tree_panel::heading_lines(tree) {
                     println!("tree: {line}");
+                }
+                let (x, y) = tree.pixel;
+                let compared = self.ui.panel.compared.as_deref();
+                if let Some(image) = compared.filter(|i| x < i.width && y < i.height) {
+                    let tone = self.ui.panel.display.tone;
+                    for line in ray_tree_panel::compared_lines(tree, image.at(x, y), tone) {
+                        println!("tree: {line}");
+                    }
                 }
             }
             (None, None) => println!("tree: none"),
@@ -212,12 +225,26 @@ impl App {
         self.ui.panel.message = Some(message);
     }
 
-    /// Keeps the image on screen as the snapshot and shows the split view.
+    /// Keeps the image on screen as the snapshot (its pixels too, through the tone shown) and
+    /// shows the split view.
     fn snapshot(&mut self) {
         let Some(gfx) = &mut self.gpu else { return };
-        let display = &mut self.ui.panel.display;
+        let panel = &mut self.ui.panel;
+        let display = &mut panel.display;
         display.snapshot = gfx.snapshot();
         display.compare = display.snapshot.is_some();
+        panel.compared = self.tracing.rendering.as_ref().map(|r| {
+            let (width, height) = (r.film.width(), r.film.height());
+            let pixels = (0..height)
+                .flat_map(|y| (0..width).map(move |x| (x, y)))
+                .map(|(x, y)| display.tone.map(r.film.get(x, y)))
+                .collect();
+            Arc::new(SrgbImage {
+                width,
+                height,
+                pixels,
+            })
+        });
         let message = match display.snapshot {
             Some(_) => "snapshot kept: it shows left of the divider (V: split on or off)",
             None => "no image to keep yet",

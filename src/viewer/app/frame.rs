@@ -99,6 +99,7 @@ impl App {
         };
         let screenshot = self.input.screenshot().filter(|_| frame.finishing);
         gfx.set_display(self.ui.panel.display.settings());
+        gfx.set_compared(self.ui.panel.compared.clone());
         // How far the render was before its film is read: the film is at least that far.
         let progress = self.tracing.progress();
         let rendering = self.tracing.rendering.as_ref();

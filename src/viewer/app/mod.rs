@@ -28,6 +28,7 @@ use crate::viewer::layout::{PixelRect, Resolution};
 use crate::viewer::scene::source::LoadedScene;
 use crate::viewer::scene::{SceneNews, SceneSlot};
 use crate::viewer::ui::Ui;
+use crate::viewer::ui::display::DisplayControls;
 use crate::viewer::ui::panels::PanelState;
 use crate::viewer::workers::Tracing;
 
@@ -77,6 +78,7 @@ impl App {
             stats,
             script,
             max_fps,
+            compare,
         } = options;
         let (device, tracer_gpu) = pick_device(device, display)?;
         let wake = proxy.clone();
@@ -93,7 +95,12 @@ impl App {
             message: None,
             resolution: Resolution::at_start(overrides.width, overrides.height),
             max_side: 2048,
-            display: Default::default(),
+            display: DisplayControls {
+                snapshot: compare.as_ref().map(|image| (image.width, image.height)),
+                compare: compare.is_some(),
+                ..Default::default()
+            },
+            compared: compare,
         };
         Ok(App {
             gpu: None,

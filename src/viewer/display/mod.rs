@@ -17,6 +17,7 @@ use std::time::{Duration, Instant};
 use raylab::film::Film;
 use raylab::gpu::device::GpuDevice;
 use raylab::gpu::film::{FilmShow, GpuFilm};
+use raylab::srgb_image::SrgbImage;
 use winit::event::WindowEvent;
 use winit::event_loop::ActiveEventLoop;
 use winit::window::Window;
@@ -39,8 +40,11 @@ pub struct Graphics {
     uploader: Uploader,
     /// The tracer's GPU, when the window draws with it, and what shows its films on it.
     shared: Option<(Arc<GpuDevice>, FilmShow)>,
-    /// How the image is shown (exposure, tone curve, split).
+    /// How the image is shown (exposure, tone curve, split, difference).
     display: Display,
+    /// The pixels of the image compared with (the snapshot's): made the snapshot when an image
+    /// texture of its size is made, and what the difference display measures against.
+    compared: Option<Arc<SrgbImage>>,
 }
 
 /// What painting a frame did.
@@ -102,6 +106,7 @@ impl Graphics {
             uploader: Uploader::new(),
             shared,
             display: Display::default(),
+            compared: None,
         })
     }
 
@@ -212,21 +217,33 @@ impl Graphics {
             .take_snapshot(&self.gpu.device, &self.gpu.queue)
     }
 
+    /// Sets the pixels of the image compared with (see [`Graphics::compared`]'s field).
+    pub fn set_compared(&mut self, compared: Option<Arc<SrgbImage>>) {
+        self.compared = compared;
+    }
+
     /// Puts the rows of `film` that changed since the last time into the texture, from
     /// `on_gpu` on the GPU where the window shares the tracer's device, else uploaded from the
     /// CPU; returns the time it took, if any had changed, and whether it was on the GPU.
     fn upload(&mut self, film: &Arc<Film>, on_gpu: Option<&GpuFilm>) -> Option<(Duration, bool)> {
-        let (texture, created) =
-            self.painter
-                .quad
-                .image_texture(&self.gpu.device, film.width(), film.height());
-        if created {
+        let (device, queue) = (&self.gpu.device, &self.gpu.queue);
+        let quad = &mut self.painter.quad;
+        if quad.image_texture(device, film.width(), film.height()).1 {
             self.uploader.invalidate();
+            if let Some(compared) = &self.compared {
+                quad.put_snapshot(device, queue, compared);
+            }
         }
+        let texture = quad.image_texture(device, film.width(), film.height()).0;
         let start = Instant::now();
         let tone = self.display.tone;
+        let against = self.compared.clone().filter(|_| self.display.difference);
+        self.uploader.show_difference(against);
         let same_size = |g: &&GpuFilm| (g.width(), g.height()) == (film.width(), film.height());
-        match (&mut self.shared, on_gpu.filter(same_size)) {
+        let on_gpu = on_gpu
+            .filter(same_size)
+            .filter(|_| !self.uploader.shows_difference());
+        match (&mut self.shared, on_gpu) {
             (Some((tracer, show)), Some(on_gpu)) => {
                 let rows = self.uploader.changed_rows(film, tone)?;
                 let span = rows.first()?.start..rows.last()?.end;

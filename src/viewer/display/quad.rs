@@ -4,6 +4,7 @@
 //! pass's viewport. The shader shows each screen pixel's nearest texel (so coarse passes show as
 //! fat pixels), and the snapshot left of the divider when comparing.
 
+use raylab::srgb_image::SrgbImage;
 use raylab::tone::Tone;
 
 use crate::viewer::layout::PixelRect;
@@ -15,12 +16,16 @@ pub const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 /// Bytes of the shader's uniforms: the divider and three unused.
 const DISPLAY_BYTES: usize = 16;
 
-/// How the image is shown: the tone its texels are made with, and the split view.
+/// How the image is shown: the tone its texels are made with, the split view, and whether the
+/// texels show the image's difference from the snapshot instead of its colours.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Display {
     pub tone: Tone,
     /// Image x (0 left, 1 right) left of which the snapshot is shown; 0 shows none of it.
     pub divider: f32,
+    /// Show the heat map of each pixel's difference from the snapshot (see
+    /// [`super::upload`]).
+    pub difference: bool,
 }
 
 /// The image texture, the snapshot (if any, of the same size) and the bind group that reads
@@ -176,6 +181,44 @@ impl QuadRenderer {
         image.snapshot = Some(snapshot);
         image.bind_group = bind_group;
         Some((size.width, size.height))
+    }
+
+    /// Makes `image` the snapshot, if the image texture has its size; returns whether it did.
+    pub fn put_snapshot(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        image: &SrgbImage,
+    ) -> bool {
+        let Some(live) = self.image.as_ref() else {
+            return false;
+        };
+        let size = live.texture.size();
+        if (size.width, size.height) != (image.width, image.height) {
+            return false;
+        }
+        let snapshot = image_texture(device, "snapshot", size.width, size.height);
+        let texels: Vec<u8> = image
+            .pixels
+            .iter()
+            .flat_map(|&[r, g, b]| [r, g, b, 255])
+            .collect();
+        queue.write_texture(
+            snapshot.as_image_copy(),
+            &texels,
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(size.width * 4),
+                rows_per_image: None,
+            },
+            size,
+        );
+        let bind_group = self.bind_group(device, &live.texture, Some(&snapshot));
+        if let Some(live) = self.image.as_mut() {
+            live.snapshot = Some(snapshot);
+            live.bind_group = bind_group;
+        }
+        true
     }
 
     /// The size of the snapshot, if there is one (the image has the same).

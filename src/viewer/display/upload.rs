@@ -4,7 +4,10 @@
 //! whole image for a new film, a new texture or a new [`Tone`]). Each pixel goes up as the bytes
 //! the display shows: its linear colour through the exposure and tone curve, then sRGB through
 //! the library's table ([`SrgbEncoder`]), which gives exactly [`Tone::map`]'s bytes without a
-//! `powf` per channel, as a saved image does. Done here, on the rows that changed, rather than in
+//! `powf` per channel, as a saved image does. In the difference display each pixel goes up
+//! instead as the heat-map colour of its largest channel difference from the image compared with
+//! ([`Uploader::show_difference`]), from black (equal) to light yellow ([`DIFFERENCE_TOP`] levels
+//! or more). Done here, on the rows that changed, rather than in
 //! the quad's shader for every screen pixel of every frame, it spares a software GPU (lavapipe)
 //! that work on every frame, and what is saved is what is shown by construction.
 
@@ -12,7 +15,10 @@ use std::ops::Range;
 use std::sync::Arc;
 
 use raylab::color::{Color, SrgbEncoder};
+use raylab::compare::difference::pixel_difference;
 use raylab::film::Film;
+use raylab::inspect::heat;
+use raylab::srgb_image::SrgbImage;
 use raylab::tone::{Tone, ToneCurve};
 
 /// Bytes of one texel of [`IMAGE_FORMAT`](super::quad::IMAGE_FORMAT): red, green, blue, alpha.
@@ -27,10 +33,15 @@ pub fn texel(encoder: &SrgbEncoder, c: Color, scale: f32, curve: ToneCurve, out:
     out[3] = 255;
 }
 
+/// The difference, in levels, that the difference display shows at the top of its heat ramp.
+pub const DIFFERENCE_TOP: f32 = 32.0;
+
 /// Keeps the texture in step with a film.
 pub struct Uploader {
     /// The film last uploaded, its version then and the tone its bytes were made with.
     uploaded: Option<(Arc<Film>, u64, Tone)>,
+    /// The image whose difference from the film the texels show, in the difference display.
+    against: Option<Arc<SrgbImage>>,
     bytes: Vec<u8>,
 }
 
@@ -38,8 +49,27 @@ impl Uploader {
     pub fn new() -> Uploader {
         Uploader {
             uploaded: None,
+            against: None,
             bytes: Vec::new(),
         }
+    }
+
+    /// Shows the film's difference from `against` (of the film's size) from now on, or its
+    /// colours (`None`); a change uploads the whole film again.
+    pub fn show_difference(&mut self, against: Option<Arc<SrgbImage>>) {
+        let same = match (&self.against, &against) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (a, b) => a.is_none() && b.is_none(),
+        };
+        if !same {
+            self.against = against;
+            self.invalidate();
+        }
+    }
+
+    /// Whether the texels show a difference (which only [`Self::changed_pixels`] makes).
+    pub fn shows_difference(&self) -> bool {
+        self.against.is_some()
     }
 
     /// Whether the texture does not show `film` through `tone` yet.
@@ -89,10 +119,21 @@ impl Uploader {
         self.bytes.resize(w * h as usize * TEXEL_BYTES, 0);
         let row_bytes = w * TEXEL_BYTES;
         let (encoder, scale) = (SrgbEncoder::shared(), tone.scale());
+        let size = (film.width(), film.height());
+        let against = self
+            .against
+            .as_deref()
+            .filter(|a| (a.width, a.height) == size);
         for y in rows.iter().flat_map(|run| run.clone()) {
             let row = &mut self.bytes[y as usize * row_bytes..(y as usize + 1) * row_bytes];
             for (x, out) in row.chunks_exact_mut(TEXEL_BYTES).enumerate() {
                 texel(encoder, film.get(x as u32, y), scale, tone.curve, out);
+                if let Some(against) = against {
+                    let shown = [out[0], out[1], out[2]];
+                    let levels = pixel_difference(shown, against.at(x as u32, y));
+                    let color = heat(f32::from(levels) / DIFFERENCE_TOP);
+                    texel(encoder, color, 1.0, ToneCurve::Clamp, out);
+                }
             }
         }
         Some((&self.bytes, rows))

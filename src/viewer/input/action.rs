@@ -62,10 +62,16 @@ pub enum Action {
     PrintStatus,
     /// Keep the image as it is now, to compare with (and show the split view).
     Snapshot,
-    /// Show the split view (snapshot left, live image right) or not.
+    /// Show the split view (snapshot left, live image right) or not; either way the live side
+    /// shows the image, not its difference.
     Compare(bool),
     /// Turn the split view on or off.
     ToggleCompare,
+    /// Show the split view with the live side as the heat map of its difference from the
+    /// snapshot.
+    CompareDifference,
+    /// Turn the difference display on (with the split view) or off.
+    ToggleDifference,
     /// Put the split view's divider at this fraction of the image's width.
     Divider(f32),
     /// Show the image at this exposure, in stops.

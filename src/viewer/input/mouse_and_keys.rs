@@ -2,7 +2,8 @@
 //! right- or middle-drag pans, the wheel dollies, W/A/S/D/Q/E fly, F frames the scene,
 //! double-click sets the orbit centre; Ctrl+S saves and C prints the camera. A click that is not
 //! a drag (or the key I) picks the pixel under the cursor (its ray tree is shown), Esc closes the
-//! tree. B keeps a snapshot to compare with, V turns the split view on and off. Enter skips the
+//! tree. B keeps a snapshot to compare with, V turns the split view on and off, X the difference
+//! display (the live side as a heat map of its difference from the snapshot). Enter skips the
 //! coarse passes (block size 1 at once), Space pauses and resumes refinement.
 //! Ctrl+1…9 stores the camera as a view, 1…9 recalls it; T previews a turntable and P the path
 //! through the views (again: stop). Turns one frame's egui input into [`Action`]s.
@@ -175,6 +176,9 @@ fn key_actions(ctx: &egui::Context, seconds: f32) -> Vec<Action> {
         }
         if i.consume_key(Modifiers::NONE, Key::V) {
             actions.push(Action::ToggleCompare);
+        }
+        if i.consume_key(Modifiers::NONE, Key::X) {
+            actions.push(Action::ToggleDifference);
         }
         for (number, key) in (1..).zip(VIEW_KEYS) {
             if i.consume_key(Modifiers::COMMAND, key) {
@@ -372,7 +376,7 @@ mod tests {
     }
 
     #[test]
-    fn b_keeps_a_snapshot_and_v_turns_the_split_on_and_off() {
+    fn b_keeps_a_snapshot_v_turns_the_split_on_and_off_and_x_the_difference() {
         let mut h = Harness::new();
         let actions = h.frame(vec![key(Key::B, true, Modifiers::NONE)]);
         assert_eq!(actions, vec![Action::Snapshot]);
@@ -381,6 +385,11 @@ mod tests {
             key(Key::V, true, Modifiers::NONE),
         ]);
         assert_eq!(actions, vec![Action::ToggleCompare]);
+        let actions = h.frame(vec![
+            key(Key::V, false, Modifiers::NONE),
+            key(Key::X, true, Modifiers::NONE),
+        ]);
+        assert_eq!(actions, vec![Action::ToggleDifference]);
     }
 
     #[test]

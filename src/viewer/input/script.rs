@@ -176,7 +176,8 @@ fn parse_step(step: &str) -> Result<Step, String> {
         "compare" => match args[..] {
             ["on"] => once(Action::Compare(true)),
             ["off"] => once(Action::Compare(false)),
-            _ => return Err("takes `on` or `off`".into()),
+            ["diff"] => once(Action::CompareDifference),
+            _ => return Err("takes `on`, `off` or `diff`".into()),
         },
         "divider" => {
             let n = count(numbers()?, 1, 0)?[0];
@@ -424,7 +425,8 @@ mod tests {
     #[test]
     fn display_steps_parse_and_say_what_is_wrong() {
         let mut script = Script::parse(
-            "exposure -1.5; tonemap filmic; snapshot; compare off; compare on; divider 0.25",
+            "exposure -1.5; tonemap filmic; snapshot; compare off; compare on; divider 0.25; \
+             compare diff",
         )
         .unwrap();
         let all: Vec<_> = std::iter::from_fn(|| script.next(true, 0)).collect();
@@ -437,6 +439,7 @@ mod tests {
                 Action::Compare(false),
                 Action::Compare(true),
                 Action::Divider(0.25),
+                Action::CompareDifference,
             ]
         );
         for (text, expected) in [
@@ -445,8 +448,8 @@ mod tests {
             ("tonemap aces", "unknown tone curve `aces`"),
             ("tonemap", "takes one tone curve name"),
             ("snapshot now", "takes no arguments"),
-            ("compare", "takes `on` or `off`"),
-            ("compare yes", "takes `on` or `off`"),
+            ("compare", "takes `on`, `off` or `diff`"),
+            ("compare yes", "takes `on`, `off` or `diff`"),
             ("divider 1.5", "from 0 to 1"),
         ] {
             let err = Script::parse(text).unwrap_err();

@@ -80,7 +80,7 @@ pub const STEPS: &[StepHelp] = &[
     },
     StepHelp {
         syntax: "print-tree",
-        does: "prints the ray tree panel's node headings on the terminal",
+        does: "prints the ray tree panel's node headings on the terminal, and with an image compared with, the pixel's colour in it and raylab's and what accounts for the difference",
     },
     StepHelp {
         syntax: "view NAME",
@@ -108,7 +108,7 @@ pub const STEPS: &[StepHelp] = &[
     },
     StepHelp {
         syntax: "compare MODE",
-        does: "the split view (snapshot left, live right): MODE is `on` or `off`",
+        does: "the split view (snapshot left, live right): MODE is `on`, `off`, or `diff` (the live side as the heat map of its difference from the snapshot, as X)",
     },
     StepHelp {
         syntax: "divider FRACTION",

@@ -1,13 +1,16 @@
 //! How the image is shown, apart from how it is traced: the exposure and tone curve, and the
-//! comparison with a snapshot (`B` keeps one; the split view shows it left of a draggable
-//! divider and the live image right of it). Owns their state, their side panel section, and the
-//! divider and labels drawn over the image. Changing any of it never restarts refinement.
+//! comparison with a snapshot (`B` keeps one, or `raylab view --compare IMAGE` gives one; the
+//! split view shows it left of a draggable divider and the live image right of it, or with `X`
+//! the heat map of the live image's difference from it). Owns their state, their side panel
+//! section, and the divider and labels drawn over the image. Changing any of it never restarts
+//! refinement.
 
 use egui::{Color32, Slider, Stroke};
 use raylab::tone::{Tone, ToneCurve};
 use strum::IntoEnumIterator;
 
 use crate::viewer::display::quad::Display;
+use crate::viewer::display::upload::DIFFERENCE_TOP;
 use crate::viewer::input::action::Action;
 
 /// Points either side of the divider where a drag moves it.
@@ -18,6 +21,9 @@ pub struct DisplayControls {
     pub tone: Tone,
     /// Split the image: the snapshot left of the divider, the live image right of it.
     pub compare: bool,
+    /// While splitting, show the live image's difference from the snapshot instead of its
+    /// colours.
+    pub difference: bool,
     /// Where the divider is, as a fraction of the image's width from its left edge.
     pub divider: f32,
     /// The size of the image the snapshot was taken of, if one was; it is dropped when the
@@ -30,6 +36,7 @@ impl Default for DisplayControls {
         DisplayControls {
             tone: Tone::default(),
             compare: false,
+            difference: false,
             divider: 0.5,
             snapshot: None,
         }
@@ -42,6 +49,7 @@ impl DisplayControls {
         Display {
             tone: self.tone,
             divider: if self.splits() { self.divider } else { 0.0 },
+            difference: self.splits() && self.difference,
         }
     }
 
@@ -53,8 +61,13 @@ impl DisplayControls {
     /// Carries out a display action (others do nothing here).
     pub fn apply(&mut self, action: Action) {
         match action {
-            Action::Compare(on) => self.compare = on,
+            Action::Compare(on) => (self.compare, self.difference) = (on, false),
             Action::ToggleCompare => self.compare = !self.compare,
+            Action::CompareDifference => (self.compare, self.difference) = (true, true),
+            Action::ToggleDifference => {
+                self.difference = !self.difference;
+                self.compare |= self.difference;
+            }
             Action::Divider(fraction) => self.divider = fraction.clamp(0.0, 1.0),
             Action::Exposure(stops) => {
                 self.tone.exposure =
@@ -106,6 +119,14 @@ pub fn section(ui: &mut egui::Ui, display: &mut DisplayControls, actions: &mut V
                     display.snapshot.is_some(),
                     egui::Checkbox::new(&mut display.compare, "compare (V)"),
                 );
+                ui.add_enabled(
+                    display.compare && display.snapshot.is_some(),
+                    egui::Checkbox::new(&mut display.difference, "difference (X)"),
+                )
+                .on_hover_text(format!(
+                    "the live side as the heat map of each pixel's largest channel difference \
+                     from the snapshot: black equal, light yellow {DIFFERENCE_TOP} levels or more"
+                ));
             });
             if display.snapshot.is_some() {
                 ui.add(Slider::new(&mut display.divider, 0.0..=1.0).text("divider"));
@@ -150,7 +171,12 @@ pub fn split_view(ui: &mut egui::Ui, display: &mut DisplayControls, image: egui:
         egui::Align2::RIGHT_TOP,
         "snapshot",
     );
-    label(egui::pos2(x + 6.0, top), egui::Align2::LEFT_TOP, "live");
+    let live = if display.difference {
+        "difference"
+    } else {
+        "live"
+    };
+    label(egui::pos2(x + 6.0, top), egui::Align2::LEFT_TOP, live);
 }
 
 #[cfg(test)]
@@ -169,6 +195,26 @@ mod tests {
         assert_eq!(d.settings().divider, 0.0);
         d.apply(Action::Divider(7.0));
         assert_eq!(d.divider, 1.0);
+    }
+
+    #[test]
+    fn the_difference_shows_only_in_the_split_and_compare_on_shows_the_image_again() {
+        let mut d = DisplayControls {
+            snapshot: Some((4, 3)),
+            ..DisplayControls::default()
+        };
+        d.apply(Action::CompareDifference);
+        assert!(d.settings().difference && d.settings().divider > 0.0);
+        d.apply(Action::Compare(true));
+        assert!(!d.settings().difference, "compare on: the live image");
+        d.apply(Action::Compare(false));
+        d.apply(Action::ToggleDifference);
+        assert!(d.settings().difference, "X turns the split on too");
+        d.apply(Action::ToggleCompare);
+        assert!(!d.settings().difference, "no split, no difference");
+        d.snapshot = None;
+        d.apply(Action::CompareDifference);
+        assert!(!d.settings().difference, "nothing to compare with");
     }
 
     #[test]

@@ -66,7 +66,9 @@ impl Ui {
             ));
         }
         let picked = &mut tracing.picked;
-        actions.extend(ray_tree_panel::show(ui, picked));
+        let tone = self.panel.display.tone;
+        let compared = self.panel.compared.as_deref().map(|image| (image, tone));
+        actions.extend(ray_tree_panel::show(ui, picked, compared));
         if picked.hovered.is_some() {
             picked.want_object_ids();
         }
@@ -100,6 +102,7 @@ impl Ui {
             );
             self.overlay.paint(ui, picked, image, image_size, far);
             if self.panel.display.drop_stale_snapshot(image_size) {
+                self.panel.compared = None;
                 self.panel.message =
                     Some("the snapshot was dropped: the image's size changed".into());
             }

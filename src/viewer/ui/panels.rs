@@ -2,11 +2,13 @@
 //! the status line at the bottom. Controls are edited in place; buttons become [`Action`]s.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use egui::{Color32, DragValue, Slider};
 use raylab::inspect::{DebugView, Legend};
 use raylab::render::{Device, FirstHit};
 use raylab::settings::{MAX_BLOCK_SIZE, MAX_CAUSTIC_GATHER, MAX_DEPTH_LIMIT, MAX_SAMPLES};
+use raylab::srgb_image::SrgbImage;
 use strum::IntoEnumIterator;
 
 use super::display::{self, DisplayControls};
@@ -31,6 +33,10 @@ pub struct PanelState {
     pub max_side: u32,
     /// Exposure, tone curve and the comparison with a snapshot.
     pub display: DisplayControls,
+    /// The snapshot's pixels as shown: the image given with `--compare`, or the image as it was
+    /// when B kept it. The difference display measures against them, and the ray tree panel
+    /// shows the picked pixel's.
+    pub compared: Option<Arc<SrgbImage>>,
 }
 
 /// Shows the side panel for `scene` (with the colour bar of the debug view being rendered, if it has

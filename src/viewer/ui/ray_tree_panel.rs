@@ -1,12 +1,17 @@
 //! The ray tree panel: the ray tree of the picked pixel as nested collapsing headings, one per
 //! ray (its kind, depth and what it hit), each with the ray's numbers, its shadow rays, the
-//! colours it gathered and where and why its branch stopped. Hovering a heading highlights the
+//! colours it gathered and where and why its branch stopped. While an image is compared with,
+//! the pixel's colour there beside raylab's, and what in the tree accounts for the difference. Hovering a heading highlights the
 //! object it hit in the image. `print-tree` prints the same headings.
 
 use egui::{Color32, RichText};
 use glam::{Vec2, Vec3};
-use raylab::color::Color;
+use raylab::color::{Color, srgb_to_linear};
+use raylab::compare::difference::pixel_difference;
+use raylab::compare::explain::explain_pixel;
 use raylab::inspect::{RayNode, RayTree, ShadowRay};
+use raylab::srgb_image::SrgbImage;
+use raylab::tone::Tone;
 use raylab::whitted::{RayKind, StopReason};
 
 use super::swatch::swatch;
@@ -32,6 +37,36 @@ fn stop_text(reason: StopReason) -> &'static str {
         StopReason::Disabled => "switched off in the settings",
         StopReason::RayBudget => "ray budget of the pixel used up",
     }
+}
+
+/// The compared image's colour at the tree's pixel (`theirs`, its levels) beside raylab's as
+/// shown through `tone`, with swatches, and what accounts for the difference
+/// ([`compared_lines`]).
+fn compared_ui(ui: &mut egui::Ui, tree: &RayTree, theirs: [u8; 3], tone: Tone) {
+    let ours = tone.map(tree.color);
+    let linear = |c: [u8; 3]| Color::from_array(c.map(|l| srgb_to_linear(f32::from(l) / 255.0)));
+    let [colours, why] = compared_lines(tree, theirs, tone);
+    ui.horizontal(|ui| {
+        swatch(ui, linear(theirs));
+        swatch(ui, linear(ours));
+        ui.label(colours);
+    });
+    ui.label(RichText::new(why).small());
+}
+
+/// Two lines: the compared image's levels at the tree's pixel (`theirs`) and raylab's as shown
+/// through `tone`; and the term of the tree that accounts for the difference, if one does.
+pub fn compared_lines(tree: &RayTree, theirs: [u8; 3], tone: Tone) -> [String; 2] {
+    let ours = tone.map(tree.color);
+    let levels = |c: [u8; 3]| format!("({}, {}, {})", c[0], c[1], c[2]);
+    let colours = format!("compared image {}, raylab {}", levels(theirs), levels(ours));
+    let why = explain_pixel(tree, theirs, ours)
+        .accounted_for
+        .unwrap_or_else(|| match pixel_difference(theirs, ours) {
+            0 => "the same".to_string(),
+            d => format!("{d} levels apart; no single term of the tree accounts for it"),
+        });
+    [colours, why]
 }
 
 /// A ray's heading: its kind, its depth and what it hit.
@@ -60,7 +95,11 @@ pub fn heading_lines(tree: &RayTree) -> Vec<String> {
 }
 
 /// Shows the panel (when a pixel is picked); returns what its buttons asked for.
-pub fn show(ui: &mut egui::Ui, picked: &mut PickedPixel) -> Vec<Action> {
+pub fn show(
+    ui: &mut egui::Ui,
+    picked: &mut PickedPixel,
+    compared: Option<(&SrgbImage, Tone)>,
+) -> Vec<Action> {
     let mut actions = Vec::new();
     picked.hovered = None;
     let Some((x, y)) = picked.pixel else {
@@ -89,6 +128,9 @@ pub fn show(ui: &mut egui::Ui, picked: &mut PickedPixel) -> Vec<Action> {
                 ui.label("pixel colour");
                 swatch(ui, tree.color);
             });
+            if let Some((image, tone)) = compared.filter(|(i, _)| x < i.width && y < i.height) {
+                compared_ui(ui, tree, image.at(x, y), tone);
+            }
             let mut timing = format!(
                 "{} rays, traced in {:.2} ms",
                 tree.nodes.len(),
