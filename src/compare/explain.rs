@@ -144,28 +144,19 @@ fn candidates(tree: &RayTree) -> Vec<Candidate> {
                     change: lost_diffuse + lost_specular,
                 });
             }
-            let specular = node.pixel_share(share.specular);
-            if specular != Color::ZERO {
-                speculars += specular;
-                found.push(Candidate {
-                    words: format!(
-                        "{at}raylab's specular term from light {} adds {:.2}",
-                        share.light,
-                        mean(specular)
-                    ),
-                    change: -specular,
-                });
-            }
-            let diffuse = node.pixel_share(share.diffuse);
-            if diffuse != Color::ZERO {
-                found.push(Candidate {
-                    words: format!(
-                        "{at}raylab's diffuse term from light {} adds {:.2}",
-                        share.light,
-                        mean(diffuse)
-                    ),
-                    change: -diffuse,
-                });
+            speculars += node.pixel_share(share.specular);
+            for (name, term) in [("specular", share.specular), ("diffuse", share.diffuse)] {
+                let term = node.pixel_share(term);
+                if term != Color::ZERO {
+                    found.push(Candidate {
+                        words: format!(
+                            "{at}raylab's {name} term from light {} adds {:.2}",
+                            share.light,
+                            mean(term)
+                        ),
+                        change: -term,
+                    });
+                }
             }
         }
         let ambient = node.pixel_share(hit.ambient);

@@ -12,8 +12,12 @@ use raylab::render::Assembled;
 use raylab::whitted::RayKind;
 
 use crate::harness::{
-    cpu_render, cpu_render_view, image_rect, mismatches, run_to_screenshot, sized,
+    cpu_render, cpu_render_view, differing, image_rect, mismatches, run_to_screenshot,
+    shown_pixels, sized,
 };
+
+/// The image rows the split view's labels cover.
+const LABEL_ROWS: u32 = 4;
 
 /// The screenshot's pixels inside the image area that differ (by more than 2 levels) from the
 /// CPU's image shown there at the same scale (nearest pixel), in window coordinates.
@@ -247,23 +251,15 @@ fn a_snapshot_shows_left_of_the_divider_and_the_live_image_right_of_it() {
         .enumerate()
         .flat_map(|(i, (s, n))| if i % size as usize >= half { n } else { s }.to_vec())
         .collect();
-    let shot_image = image::open(&shot).unwrap().to_rgb8();
-    let (x0, y0, w, h) = image_rect(&run.stdout);
-    let mut bad = 0;
-    for j in 4..size {
-        for i in 0..size {
-            let sx = (x0 + (i as f32 + 0.5) * w / size as f32) as u32;
-            let sy = (y0 + (j as f32 + 0.5) * h / size as f32) as u32;
-            let got = shot_image.get_pixel(sx, sy).0;
-            let k = ((j * size + i) * 3) as usize;
-            if (0..3).any(|c| got[c].abs_diff(split[k + c]) > 2) {
-                bad += 1;
-            }
-        }
-    }
-    assert_eq!(bad, 0, "the split view shows snapshot | live");
+    let rect = image_rect(&run.stdout);
+    let shown = shown_pixels(&shot, rect, (size, size));
+    let below_labels = (LABEL_ROWS * size * 3) as usize;
+    assert_eq!(
+        differing(&shown[below_labels..], &split[below_labels..]),
+        0,
+        "the split view shows snapshot | live"
+    );
     // Both halves are really there: the picture is neither all shaded nor all normals.
-    let rect = (x0, y0, w, h);
     assert!(mismatches(&shot, rect, size, &shaded) > (size * size / 8) as usize);
     assert!(mismatches(&shot, rect, size, &normals) > (size * size / 8) as usize);
 }
@@ -318,26 +314,17 @@ fn an_image_to_compare_shows_left_of_the_divider_its_difference_right_and_beside
             }
         })
         .collect();
-    let shot_image = image::open(&shot).unwrap().to_rgb8();
-    let (x0, y0, w, h) = image_rect(&run.stdout);
-    let mut bad = 0;
-    for j in 4..size {
-        for i in 0..size {
-            let sx = (x0 + (i as f32 + 0.5) * w / size as f32) as u32;
-            let sy = (y0 + (j as f32 + 0.5) * h / size as f32) as u32;
-            let got = shot_image.get_pixel(sx, sy).0;
-            let k = ((j * size + i) * 3) as usize;
-            if (0..3).any(|c| got[c].abs_diff(expected[k + c]) > 2) {
-                bad += 1;
-            }
-        }
-    }
-    assert_eq!(bad, 0, "their image | the difference");
+    let shown = shown_pixels(&shot, image_rect(&run.stdout), (size, size));
+    let below_labels = (LABEL_ROWS * size * 3) as usize;
+    assert_eq!(
+        differing(&shown[below_labels..], &expected[below_labels..]),
+        0,
+        "their image | the difference"
+    );
     // The square shows bright on the right, the rest dark.
     let at = |i: u32, j: u32| {
-        let sx = (x0 + (i as f32 + 0.5) * w / size as f32) as u32;
-        let sy = (y0 + (j as f32 + 0.5) * h / size as f32) as u32;
-        shot_image.get_pixel(sx, sy).0
+        let k = ((j * size + i) * 3) as usize;
+        [shown[k], shown[k + 1], shown[k + 2]]
     };
     assert!(at(45, 30).iter().map(|&c| u32::from(c)).sum::<u32>() > 300);
     assert_eq!(at(45, 10), heat_bytes(0));
@@ -351,7 +338,7 @@ fn an_image_to_compare_shows_left_of_the_divider_its_difference_right_and_beside
             "--samples",
             "1",
             "--script",
-            "wait; click 45 30; wait; print-tree",
+            "wait; pick 45 30; wait; print-tree",
         ],
     ) else {
         return;
