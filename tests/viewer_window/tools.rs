@@ -284,17 +284,11 @@ fn an_image_to_compare_shows_left_of_the_divider_its_difference_right_and_beside
         .save(&path)
         .unwrap();
     let path = path.to_str().unwrap();
-    let Some((run, shot)) = run_to_screenshot(
-        dir.path(),
-        &[
-            "--compare",
-            path,
-            "--samples",
-            "1",
-            "--script",
-            "wait; compare diff; divider 0.5; wait",
-        ],
-    ) else {
+    let compare_with = |script: &str| {
+        let args = ["--compare", path, "--samples", "1", "--script", script];
+        run_to_screenshot(dir.path(), &args)
+    };
+    let Some((run, shot)) = compare_with("wait; compare diff; divider 0.5; wait") else {
         return;
     };
     // Left half their image; right half the heat map of each pixel's largest channel
@@ -330,17 +324,7 @@ fn an_image_to_compare_shows_left_of_the_divider_its_difference_right_and_beside
     assert_eq!(at(45, 10), heat_bytes(0));
 
     // A picked pixel in the square: both colours, and why they differ.
-    let Some((run, _)) = run_to_screenshot(
-        dir.path(),
-        &[
-            "--compare",
-            path,
-            "--samples",
-            "1",
-            "--script",
-            "wait; pick 45 30; wait; print-tree",
-        ],
-    ) else {
+    let Some((run, _)) = compare_with("wait; pick 45 30; wait; print-tree") else {
         return;
     };
     let k = ((30 * size + 45) * 3) as usize;
