@@ -1,5 +1,6 @@
-//! `raylab check`: "student" images made by raylab's library with one thing changed, each of
-//! which `check` must name; an identical image exits 0; its exit codes are `diff`'s.
+//! `raylab check`: "student" images made by raylab's library with one thing changed (each made
+//! here its own way, not with `check`'s), each of which `check` must name; an identical image
+//! exits 0; its exit codes are `diff`'s.
 
 use std::path::Path;
 
@@ -78,7 +79,8 @@ fn each_mistake_of_a_students_tracer_is_named() {
             }
         }
     };
-    let reference = levels(&rendered(&scene(|_| {})));
+    let colors = rendered(&scene(|_| {}));
+    let reference = levels(&colors);
     let flipped: Vec<[u8; 3]> = reference
         .chunks(SIZE.0 as usize)
         .rev()
@@ -90,7 +92,25 @@ fn each_mistake_of_a_students_tracer_is_named() {
         .iter()
         .map(|p| p.map(|l| (255.0 * (f32::from(l) / 255.0).powf(1.0 / 2.2)).round() as u8))
         .collect();
-    let students: [(&str, Vec<[u8; 3]>, &str); 8] = [
+    // Linear values written as levels.
+    let no_gamma: Vec<[u8; 3]> = colors
+        .iter()
+        .map(|c| {
+            c.to_array()
+                .map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
+        })
+        .collect();
+    // The sRGB curve past 1, the level cast to a byte as C does: it wraps around.
+    let wrapped = |v: f32| {
+        let encoded = if v <= 0.0031308 {
+            12.92 * v
+        } else {
+            1.055 * v.powf(1.0 / 2.4) - 0.055
+        };
+        ((encoded.max(0.0) * 255.0).round() as i64).rem_euclid(256) as u8
+    };
+    let no_clamping: Vec<[u8; 3]> = colors.iter().map(|c| c.to_array().map(wrapped)).collect();
+    let students: [(&str, Vec<[u8; 3]>, &str); 10] = [
         (
             "no-shadows.png",
             levels(&rendered(&scene(|s| s.settings.shadows = false))),
@@ -132,6 +152,12 @@ fn each_mistake_of_a_students_tracer_is_named() {
             "gamma-twice.png",
             gamma_twice,
             "likely cause: gamma applied twice",
+        ),
+        ("no-gamma.png", no_gamma, "likely cause: gamma not applied"),
+        (
+            "no-clamping.png",
+            no_clamping,
+            "likely cause: colours over 1 are not clamped",
         ),
     ];
     for (name, pixels, cause) in students {
