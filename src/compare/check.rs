@@ -37,6 +37,8 @@ pub struct CheckReport {
     pub causes: Vec<Cause>,
     /// The largest regions, each with its worst pixel explained.
     pub regions: Vec<ExplainedRegion>,
+    /// The samples per pixel of raylab's render (more than one: anti-aliased).
+    pub samples: u32,
 }
 
 /// A mistake that accounts for (part of) the difference.
@@ -75,6 +77,7 @@ pub fn check(
             region_count: 0,
             causes: Vec::new(),
             regions: Vec::new(),
+            samples: settings.samples,
         });
     }
     let found = regions(&reference, image, tolerance)?;
@@ -97,6 +100,7 @@ pub fn check(
         region_count: found.len(),
         causes,
         regions: explained,
+        samples: settings.samples,
     })
 }
 
@@ -194,6 +198,14 @@ impl CheckReport {
         }
         if self.causes.is_empty() {
             let _ = writeln!(out, "no common mistake accounts for it");
+        }
+        if self.samples > 1 {
+            let _ = writeln!(
+                out,
+                "note: raylab's render takes up to {} samples per pixel (anti-aliased); a tracer \
+                 with one ray per pixel differs at every edge: add --samples 1",
+                self.samples
+            );
         }
         for (i, explained) in self.regions.iter().enumerate() {
             write_region(&mut out, i, self.region_count, explained);

@@ -241,3 +241,19 @@ fn trouble_exits_2() {
         );
     }
 }
+
+#[test]
+fn an_anti_aliased_reference_says_to_take_one_sample() {
+    let dir = tempfile::tempdir().unwrap();
+    save(dir.path(), "mine.png", &levels(&rendered(&scene(|_| {}))));
+    let out = raylab(
+        &["check", &default_scene_path(), "mine.png", "--samples", "4"],
+        dir.path(),
+    );
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("takes up to 4 samples per pixel") && text.contains("add --samples 1"),
+        "{text}"
+    );
+}
