@@ -120,6 +120,9 @@ fn find_mistakes(
     let mut causes = Vec::new();
     let mut over = figures.over_tolerance;
     while made.len() < MOST_MISTAKES && over > 0 {
+        // Only images traced with every mistake made so far can serve again: the others go, so
+        // that at most one round's images are held (a dozen at most).
+        traced.retain(|key, _| made.iter().all(|m| !m.retraces() || key.contains(m)));
         let mut best: Option<(u64, f64, Mistake)> = None;
         for mistake in Mistake::iter() {
             if made.contains(&mistake)
