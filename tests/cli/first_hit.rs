@@ -9,6 +9,7 @@ use std::path::Path;
 use std::process::Command;
 
 use crate::common::run::{raylab, stderr};
+use crate::harness::mean_level_difference;
 
 /// `raylab render` of the default scene at 64 × 48 with `extra` arguments into `name`: the
 /// file's bytes and the standard output.
@@ -62,12 +63,7 @@ fn the_gpu_tracer_from_the_item_buffer_writes_the_cpus_image_and_says_so() {
     );
     let pixels = |bytes: &[u8]| image::load_from_memory(bytes).unwrap().to_rgb8().into_raw();
     let (on_cpu, on_gpu) = (pixels(&on_cpu), pixels(&on_gpu));
-    let mean = on_gpu
-        .iter()
-        .zip(&on_cpu)
-        .map(|(a, b)| f64::from(a.abs_diff(*b)))
-        .sum::<f64>()
-        / on_cpu.len() as f64;
+    let mean = mean_level_difference(&on_gpu, &on_cpu);
     assert!(mean <= 0.5, "mean difference {mean} levels");
     let (from_items, eye_rays) = from_item_buffer(&report);
     assert_eq!(eye_rays, 64 * 48, "{report}");

@@ -6,6 +6,7 @@
 use std::process::Command;
 
 use crate::common::run::{raylab, stderr};
+use crate::harness::mean_level_difference;
 
 /// `raylab render` of the default scene at 64 × 48 on `device`, as 8-bit sRGB pixels, and its
 /// summary line.
@@ -34,12 +35,7 @@ fn render_on_the_gpu_writes_the_cpus_image_and_names_the_adapter() {
         cpu_summary.contains("(cpu: ") && cpu_summary.contains(" threads)"),
         "{cpu_summary}"
     );
-    let mean = on_gpu
-        .iter()
-        .zip(&on_cpu)
-        .map(|(a, b)| f64::from(a.abs_diff(*b)))
-        .sum::<f64>()
-        / on_cpu.len() as f64;
+    let mean = mean_level_difference(&on_gpu, &on_cpu);
     assert!(mean <= 0.5, "mean difference {mean} levels");
 }
 

@@ -1,6 +1,6 @@
 //! What several topics share beyond `common::run` (running `raylab` and reading its standard
-//! error): a tiny bench, the check that every command's help names some flags, and running
-//! `raylab` where no window can open.
+//! error): a tiny bench, the check that every command's help names some flags, the mean
+//! difference of two images, and running `raylab` where no window can open.
 
 use std::path::Path;
 use std::process::{Command, Output};
@@ -44,4 +44,15 @@ pub fn raylab_without_display(args: &[&str], dir: &Path) -> Output {
         .env_remove("WAYLAND_DISPLAY")
         .output()
         .unwrap()
+}
+
+/// The mean absolute difference of two images' bytes, in levels.
+pub fn mean_level_difference(a: &[u8], b: &[u8]) -> f64 {
+    assert_eq!(a.len(), b.len(), "images of the same size");
+    let sum: f64 = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| f64::from(x.abs_diff(*y)))
+        .sum();
+    sum / a.len() as f64
 }
