@@ -3,11 +3,16 @@
 //! and call [`check`] first, so that a small file that asks for too much gets a message saying
 //! how much it would take instead of exhausting the machine.
 //!
+//! Every file raylab reads comes through [`read_file`]: only a regular file (not `/dev/zero`,
+//! a pipe or a folder), its size checked against the limit before a byte is read.
+//!
 //! The limit is the memory the machine has available (Linux: `MemAvailable`, and the cgroup's
 //! `memory.max` when a scheduler set one), or the environment variable `RAYLAB_MAX_MEMORY`
 //! (bytes, or with a `K`, `M`, `G` or `T` suffix) when it is set.
 
 use std::fmt;
+use std::io::Read;
+use std::path::Path;
 
 /// The environment variable that sets the limit.
 pub const LIMIT_VARIABLE: &str = "RAYLAB_MAX_MEMORY";
@@ -54,6 +59,39 @@ pub fn check(what: &str, needed: u64) -> Result<(), String> {
         )),
         _ => Ok(()),
     }
+}
+
+/// The bytes of the file at `path`, if it is a regular file (links followed) whose size fits in
+/// memory: a device such as `/dev/zero`, a pipe or a folder is refused before reading, and so is
+/// a file larger than [`available`] allows. The error says which (without the path: the caller
+/// names the file).
+pub fn read_file(path: &Path) -> Result<Vec<u8>, String> {
+    let (file, size) = open_file(path)?;
+    check(&format!("reading this {} file", Bytes(size)), size)?;
+    let mut bytes = Vec::with_capacity(size as usize);
+    // A file that grows while it is read is read only as far as its size was.
+    file.take(size)
+        .read_to_end(&mut bytes)
+        .map_err(|e| e.to_string())?;
+    Ok(bytes)
+}
+
+/// The regular file at `path` (links followed), opened for reading, and its size; anything else
+/// (a device, a pipe, a folder) is refused, as [`read_file`] refuses it.
+pub fn open_file(path: &Path) -> Result<(std::fs::File, u64), String> {
+    let metadata = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if !metadata.is_file() {
+        let kind = if metadata.is_dir() {
+            "a folder"
+        } else {
+            "a device, a pipe or a socket"
+        };
+        return Err(format!(
+            "it is {kind}, not a regular file; raylab reads only regular files"
+        ));
+    }
+    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    Ok((file, metadata.len()))
 }
 
 /// `512M`, `8G`, `1.5G`, `1000000`: a size in bytes with an optional binary suffix.
@@ -115,6 +153,21 @@ mod tests {
         assert_eq!(Bytes(999).to_string(), "999 bytes");
         assert_eq!(Bytes(7_200_000_000).to_string(), "7.2 GB");
         assert_eq!(Bytes(1_500).to_string(), "1.5 KB");
+    }
+
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn only_regular_files_are_read() {
+        for special in ["/dev/zero", "/dev/urandom"] {
+            let error = read_file(Path::new(special)).unwrap_err();
+            assert!(error.contains("not a regular file"), "{special}: {error}");
+        }
+        let error = read_file(Path::new("/")).unwrap_err();
+        assert!(error.contains("a folder"), "{error}");
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.txt");
+        std::fs::write(&path, b"abc").unwrap();
+        assert_eq!(read_file(&path).unwrap(), b"abc");
     }
 
     #[cfg(target_os = "linux")]

@@ -8,14 +8,14 @@
 //! ([`small_exr_blocks`]), and its pixels are read by [`read_exr_rgb`], which holds no more
 //! memory than the file holds pixels (an OpenEXR image is its data window: the pixels it has).
 
-use std::io::{BufRead, Cursor, Seek};
+use std::io::{BufRead, BufReader, Cursor, Read, Seek};
 use std::path::Path;
 
 use exr::compression::Compression;
 use exr::meta::attribute::LevelMode;
 use exr::meta::{BlockDescription, MetaData};
 use exr::prelude::{ReadChannels, ReadLayers, ReadSpecificChannel, Vec2, read};
-use image::{DynamicImage, ImageDecoder, ImageFormat, ImageReader};
+use image::{DynamicImage, ImageDecoder, ImageReader};
 
 use crate::color::{Color, srgb8};
 use crate::limits::check_image_size;
@@ -34,26 +34,59 @@ impl SrgbImage {
     /// pixels, sides over [`crate::limits::MAX_IMAGE_SIDE`], or one that would not fit in
     /// memory ([`crate::memory::check`]) is refused before it is decoded.
     pub fn decode(bytes: &[u8]) -> Result<SrgbImage, String> {
-        let reader = ImageReader::new(Cursor::new(bytes))
+        SrgbImage::decode_from(Cursor::new(bytes))
+    }
+
+    /// [`Self::decode`] of the image `reader` reads, which is read as far as it is needed: a
+    /// file's bytes are not held beside its pixels.
+    pub fn decode_from(mut reader: impl BufRead + Seek) -> Result<SrgbImage, String> {
+        if is_exr(&mut reader)? {
+            check_exr_header(&mut reader)?;
+            reader.rewind().map_err(|e| e.to_string())?;
+            let ((width, height), pixels) = read_exr_rgb(reader, |c| c.to_array().map(srgb8))?;
+            return Ok(SrgbImage {
+                width,
+                height,
+                pixels,
+            });
+        }
+        let reader = ImageReader::new(reader)
             .with_guessed_format()
             .map_err(|e| e.to_string())?;
         match reader.format() {
             None => Err(
                 "not an image raylab reads (PNG, PPM, BMP, JPEG, OpenEXR or Radiance HDR)".into(),
             ),
-            Some(ImageFormat::OpenExr) => {
-                check_exr_header(bytes)?;
-                let ((width, height), colors) = read_exr_rgb(Cursor::new(bytes))?;
-                Ok(SrgbImage::from_linear(width, height, &colors))
-            }
             Some(_) => decode_with(reader),
         }
     }
 
-    /// Reads and decodes the image file at `path`; the error names the file.
+    /// The size of the image in the file at `path` and the memory decoding it takes at most
+    /// beyond its 3 bytes a pixel (the decoder's own buffer), read from its header alone.
+    pub fn probe(path: &Path) -> Result<((u32, u32), u64), String> {
+        let named = |e: String| format!("{}: {e}", path.display());
+        let (file, _) = crate::memory::open_file(path).map_err(named)?;
+        let mut reader = BufReader::new(file);
+        if is_exr(&mut reader).map_err(named)? {
+            let size = check_exr_header(&mut reader).map_err(named)?;
+            return Ok((size, 0));
+        }
+        let decoder = ImageReader::new(reader)
+            .with_guessed_format()
+            .map_err(|e| named(e.to_string()))?
+            .into_decoder()
+            .map_err(|e| named(e.to_string()))?;
+        let (width, height) = decoder.dimensions();
+        check_image_size(width, height).map_err(named)?;
+        Ok(((width, height), decoder.total_bytes()))
+    }
+
+    /// Reads and decodes the image file at `path` (a regular file), as it is read: its bytes are
+    /// not held beside its pixels. The error names the file.
     pub fn read(path: &Path) -> Result<SrgbImage, String> {
-        let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        SrgbImage::decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))
+        let named = |e: String| format!("{}: {e}", path.display());
+        let (file, _) = crate::memory::open_file(path).map_err(named)?;
+        SrgbImage::decode_from(BufReader::new(file)).map_err(named)
     }
 
     /// The image of `width × height` linear colours, row by row, encoded as raylab writes
@@ -72,8 +105,17 @@ impl SrgbImage {
     }
 }
 
+/// The first bytes of every OpenEXR file.
+const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
+
+/// Whether `reader` holds an OpenEXR file, told from its first bytes without consuming them.
+fn is_exr(reader: &mut impl BufRead) -> Result<bool, String> {
+    let start = reader.fill_buf().map_err(|e| e.to_string())?;
+    Ok(start.starts_with(&EXR_MAGIC))
+}
+
 /// Decodes an image of any format but OpenEXR with the `image` crate: its size checked first.
-fn decode_with(reader: ImageReader<Cursor<&[u8]>>) -> Result<SrgbImage, String> {
+fn decode_with(reader: ImageReader<impl BufRead + Seek>) -> Result<SrgbImage, String> {
     let decoder = reader.into_decoder().map_err(|e| e.to_string())?;
     let (width, height) = decoder.dimensions();
     check_image_size(width, height)?;
@@ -87,7 +129,13 @@ fn decode_with(reader: ImageReader<Cursor<&[u8]>>) -> Result<SrgbImage, String> 
             .pixels()
             .map(|p| p.0.map(srgb8))
             .collect(),
-        _ => image.into_rgb8().pixels().map(|p| p.0).collect(),
+        // The decoder's buffer is dropped pixel by pixel as ours fills.
+        _ => image
+            .into_rgb8()
+            .into_raw()
+            .chunks_exact(3)
+            .map(|p| [p[0], p[1], p[2]])
+            .collect(),
     };
     Ok(SrgbImage {
         width,
@@ -97,10 +145,14 @@ fn decode_with(reader: ImageReader<Cursor<&[u8]>>) -> Result<SrgbImage, String> 
 }
 
 /// Reads the R, G and B channels of an OpenEXR file's first valid layer: its size (its data
-/// window's) and its linear colours, row by row. A row is allocated when its first pixel
-/// arrives, so that a file claiming many pixels it does not hold costs no more than it holds;
-/// a row it leaves out is an error. Check the header first ([`small_exr_blocks`]).
-pub fn read_exr_rgb(reader: impl BufRead + Seek) -> Result<((u32, u32), Vec<Color>), String> {
+/// window's) and its pixels, row by row, each linear colour made a `T` by `pixel` as it
+/// arrives. A row is allocated when its first pixel arrives, so that a file claiming many
+/// pixels it does not hold costs no more than it holds; a row it leaves out is an error. Check
+/// the header first ([`small_exr_blocks`]).
+pub fn read_exr_rgb<T: Copy + Default + 'static>(
+    reader: impl BufRead + Seek,
+    pixel: fn(Color) -> T,
+) -> Result<((u32, u32), Vec<T>), String> {
     let image = read()
         .no_deep_data()
         .largest_resolution_level()
@@ -110,14 +162,14 @@ pub fn read_exr_rgb(reader: impl BufRead + Seek) -> Result<((u32, u32), Vec<Colo
         .required("B")
         .collect_pixels(
             |size: Vec2<usize>, _| (size.x(), vec![Vec::new(); size.y()]),
-            |(width, rows): &mut (usize, Vec<Vec<Color>>),
-             at: Vec2<usize>,
-             (r, g, b): (f32, f32, f32)| {
+            move |(width, rows): &mut (usize, Vec<Vec<T>>),
+                  at: Vec2<usize>,
+                  (r, g, b): (f32, f32, f32)| {
                 let row = &mut rows[at.y()];
                 if row.is_empty() {
-                    *row = vec![Color::ZERO; *width];
+                    *row = vec![T::default(); *width];
                 }
-                row[at.x()] = Color::new(r, g, b);
+                row[at.x()] = pixel(Color::new(r, g, b));
             },
         )
         .first_valid_layer()
@@ -156,20 +208,18 @@ pub fn small_exr_blocks(blocks: BlockDescription) -> bool {
 }
 
 /// Refuses an OpenEXR file with a layer larger than raylab reads or than fits in memory, whose
-/// blocks are not small ([`small_exr_blocks`]), with deep data, or with B44 compression (lossy, seldom used, and its decompressor overflows on a crafted block:
-/// fuzz/regressions/part/crash-2df55c…).
-fn check_exr_header(bytes: &[u8]) -> Result<(), String> {
-    let meta = MetaData::read_from_buffered(Cursor::new(bytes), false)
+/// blocks are not small ([`small_exr_blocks`]), with deep data, or with B44 compression (lossy,
+/// seldom used, and its decompressor overflows on a crafted block:
+/// fuzz/regressions/part/crash-2df55c…). Returns the first layer's size.
+fn check_exr_header(reader: impl Read) -> Result<(u32, u32), String> {
+    let meta = MetaData::read_from_buffered(reader, false)
         .map_err(|e| format!("not a readable OpenEXR file: {e}"))?;
     for header in &meta.headers {
         let size = header.layer_size;
         let (width, height) = (size.x() as u32, size.y() as u32);
         check_image_size(width, height)?;
         let pixels = size.area() as u64;
-        crate::memory::check(
-            &format!("the {width}×{height} image"),
-            pixels * (std::mem::size_of::<Color>() as u64 + 3),
-        )?;
+        crate::memory::check(&format!("the {width}×{height} image"), pixels * 3)?;
         if header.deep || !small_exr_blocks(header.blocks) {
             return Err(format!(
                 "raylab reads flat OpenEXR images of one resolution, in scan lines or in tiles \
@@ -183,7 +233,11 @@ fn check_exr_header(bytes: &[u8]) -> Result<(), String> {
             ));
         }
     }
-    Ok(())
+    let first = meta
+        .headers
+        .first()
+        .ok_or("an OpenEXR file with no layer")?;
+    Ok((first.layer_size.x() as u32, first.layer_size.y() as u32))
 }
 
 #[cfg(test)]

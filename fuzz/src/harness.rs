@@ -9,7 +9,7 @@ use std::path::Path;
 
 use raylab::bvh::Bvh;
 use raylab::camera::CameraSpec;
-use raylab::compare::difference::{DEFAULT_TOLERANCE, difference, heat_map};
+use raylab::compare::difference::{DEFAULT_TOLERANCE, HeatMap, difference};
 use raylab::formats::nff::{NffDocument, NffLighting, parse_nff_document};
 use raylab::formats::part::read_part_bytes;
 use raylab::formats::sdl::parse_sdl;
@@ -203,7 +203,13 @@ pub fn image(data: &[u8]) -> Result<(), String> {
     let image = SrgbImage::decode(data)?;
     let figures = difference(&image, &image, DEFAULT_TOLERANCE)?;
     assert!(figures.within_tolerance() && figures.largest == 0);
-    let (heat, _) = heat_map(&image, &image, &figures);
-    assert_eq!(heat.len(), image.pixels.len());
+    let map = HeatMap::new(&image, &image, &figures);
+    let dark = map.color(0, 0);
+    let last = (image.width - 1, image.height - 1);
+    assert_eq!(
+        map.color(last.0, last.1),
+        dark,
+        "equal pixels are all one colour"
+    );
     Ok(())
 }

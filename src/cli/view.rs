@@ -13,14 +13,15 @@ use raylab::srgb_image::SrgbImage;
 
 use super::overrides::{OverrideArgs, parse_size};
 
+use crate::viewer::layout::{MAX_WINDOW_SIDE, check_window_size};
 use crate::viewer::{self, Options, Script, script_steps};
 
 #[derive(Args, Debug)]
 pub struct ViewArgs {
-    /// Scene to open: a .toml, .nff or SDL (.dat, .sdl) file, or spd:NAME[:SIZE]; the built-in
+    /// Scene to open: a .toml, .nff, SDL (.dat, .sdl) or .obj file, or spd:NAME[:SIZE]; the built-in
     /// default scene when left out.
     scene: Option<PathBuf>,
-    /// The scene file's format, whatever its name ends in: toml, nff or sdl.
+    /// The scene file's format, whatever its name ends in: toml, nff, sdl or obj.
     #[arg(long)]
     format: Option<SceneFormat>,
     /// Overrides of the scene's render settings.
@@ -44,7 +45,7 @@ pub struct ViewArgs {
     #[arg(long, default_value_t = FirstHit::Rays)]
     first_hit: FirstHit,
     /// Window size in logical pixels.
-    #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "1100x720")]
+    #[arg(long, value_name = "WxH", value_parser = parse_window_size, default_value = "1100x720")]
     window: Option<(u32, u32)>,
     /// Where "Save image" (Ctrl+S) writes; the camera snippet goes beside it as NAME.camera.toml.
     #[arg(long, value_name = "PATH", default_value = "raylab.png")]
@@ -73,6 +74,13 @@ pub struct ViewArgs {
     compare: Option<PathBuf>,
 }
 
+/// `WxH` (or `N`), each side from 1 to [`MAX_WINDOW_SIDE`].
+fn parse_window_size(text: &str) -> Result<(u32, u32), String> {
+    let (width, height) = parse_size(text)?;
+    check_window_size(width, height, MAX_WINDOW_SIDE, "raylab's largest window")?;
+    Ok((width, height))
+}
+
 pub fn run(args: ViewArgs) -> Result<(), String> {
     let threads = super::thread_count(args.threads)?;
     if let Some(path) = &args.screenshot {
@@ -97,6 +105,9 @@ pub fn run(args: ViewArgs) -> Result<(), String> {
                 ));
             }
             (overrides.width, overrides.height) = (Some(size.0), Some(size.1));
+            // As `raylab check` does: a tracer of one ray per pixel is compared with one
+            // sample a pixel, unless --samples says otherwise.
+            overrides.samples.get_or_insert(1);
             Some(Arc::new(image))
         }
         None => None,

@@ -1,5 +1,5 @@
 //! The figures of how an image differs from its reference ([`Difference`]), in 8-bit levels,
-//! and the heat map of where ([`heat_map`]).
+//! and the heat map of where ([`HeatMap`]).
 
 use serde::Serialize;
 
@@ -44,12 +44,20 @@ impl Difference {
 
 /// Checks that two images have the same size; the error gives both.
 pub fn check_same_size(reference: &SrgbImage, image: &SrgbImage) -> Result<(), String> {
-    if (reference.width, reference.height) == (image.width, image.height) {
+    check_sizes(
+        (reference.width, reference.height),
+        (image.width, image.height),
+    )
+}
+
+/// Checks that images of the sizes `reference` and `image` (width, height) can be compared.
+pub fn check_sizes(reference: (u32, u32), image: (u32, u32)) -> Result<(), String> {
+    if reference == image {
         Ok(())
     } else {
         Err(format!(
             "the images differ in size: the reference is {}×{}, the image {}×{}",
-            reference.width, reference.height, image.width, image.height
+            reference.0, reference.1, image.0, image.1
         ))
     }
 }
@@ -100,38 +108,54 @@ pub fn difference(
     })
 }
 
-/// The heat map of where `image` differs from `reference` (linear colours, row by row): each
-/// pixel's largest channel difference on the heat ramp, from 0 to the largest difference in
-/// the image (at least one level past the tolerance, so equal images stay dark), and its
-/// legend. The images must be the same size.
-pub fn heat_map(
-    reference: &SrgbImage,
-    image: &SrgbImage,
-    difference: &Difference,
-) -> (Vec<Color>, Legend) {
-    let top = difference
-        .largest
-        .max(difference.tolerance.saturating_add(1));
-    let pixels = reference
-        .pixels
-        .iter()
-        .zip(&image.pixels)
-        .map(|(a, b)| heat(f32::from(pixel_difference(*a, *b)) / f32::from(top)))
-        .collect();
-    let tolerance = f32::from(difference.tolerance) / f32::from(top);
-    let legend = Legend {
-        label: "largest channel difference, 8-bit levels".into(),
-        ticks: vec![
-            (0.0, "0".into()),
-            (
-                tolerance.min(1.0),
-                format!("{} (tolerance)", difference.tolerance),
-            ),
-            (1.0, top.to_string()),
-        ],
-        colors: heat_bar(),
-    };
-    (pixels, legend)
+/// The heat map of where an image differs from its reference: each pixel's largest channel
+/// difference on the heat ramp, from 0 to the largest difference in the image (at least one
+/// level past the tolerance, so equal images stay dark). Its colours are made pixel by pixel
+/// ([`HeatMap::color`]), so that writing it takes no image-sized buffer.
+pub struct HeatMap<'a> {
+    reference: &'a SrgbImage,
+    image: &'a SrgbImage,
+    tolerance: u8,
+    /// The difference shown brightest.
+    top: u8,
+}
+
+impl<'a> HeatMap<'a> {
+    /// The heat map of `image` against `reference`, whose figures are `difference`. The images
+    /// must be the same size.
+    pub fn new(reference: &'a SrgbImage, image: &'a SrgbImage, difference: &Difference) -> Self {
+        HeatMap {
+            reference,
+            image,
+            tolerance: difference.tolerance,
+            top: difference
+                .largest
+                .max(difference.tolerance.saturating_add(1)),
+        }
+    }
+
+    /// The linear colour of pixel `(x, y)`.
+    pub fn color(&self, x: u32, y: u32) -> Color {
+        let d = pixel_difference(self.reference.at(x, y), self.image.at(x, y));
+        heat(f32::from(d) / f32::from(self.top))
+    }
+
+    /// The legend: the ramp from 0 to the top, the tolerance marked.
+    pub fn legend(&self) -> Legend {
+        let tolerance = f32::from(self.tolerance) / f32::from(self.top);
+        Legend {
+            label: "largest channel difference, 8-bit levels".into(),
+            ticks: vec![
+                (0.0, "0".into()),
+                (
+                    tolerance.min(1.0),
+                    format!("{} (tolerance)", self.tolerance),
+                ),
+                (1.0, self.top.to_string()),
+            ],
+            colors: heat_bar(),
+        }
+    }
 }
 
 #[cfg(test)]
@@ -186,8 +210,9 @@ mod tests {
         let reference = image(3, &[[0; 3], [0; 3], [0; 3]]);
         let student = image(3, &[[0; 3], [0, 4, 0], [0, 0, 8]]);
         let d = difference(&reference, &student, 2).unwrap();
-        let (pixels, legend) = heat_map(&reference, &student, &d);
+        let map = HeatMap::new(&reference, &student, &d);
+        let pixels: Vec<Color> = (0..3).map(|x| map.color(x, 0)).collect();
         assert_eq!(pixels, vec![heat(0.0), heat(0.5), heat(1.0)]);
-        assert_eq!(legend.ticks.last().unwrap().1, "8");
+        assert_eq!(map.legend().ticks.last().unwrap().1, "8");
     }
 }

@@ -1,5 +1,7 @@
 //! [`SceneError`]: what is wrong with a scene file and where, printed the way a compiler prints
 //! its messages (`file:line:column: message`, then the offending line with a caret under it).
+//! What it prints is text a terminal shows as it is: a control character from a binary file
+//! is printed escaped (`\u{1b}`), never as itself.
 
 use std::fmt;
 use std::ops::Range;
@@ -38,27 +40,39 @@ impl SceneError {
 
 impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let message: String = self
+            .message
+            .split('\n')
+            .map(printable)
+            .collect::<Vec<_>>()
+            .join("\n");
         write!(
             f,
-            "{}:{}:{}: {}",
-            self.file.display(),
+            "{}:{}:{}: {message}",
+            printable(&self.file.display().to_string()),
             self.line,
             self.column,
-            self.message
         )?;
         if let Some(source_line) = &self.source_line {
             let number = self.line.to_string();
             let gutter = " ".repeat(number.len());
-            // Tabs stay tabs under the line so that the caret lines up in any terminal.
-            let indent: String = source_line
+            let before: String = source_line.chars().take(self.column - 1).collect();
+            let marked: String = source_line
                 .chars()
-                .take(self.column - 1)
+                .skip(self.column - 1)
+                .take(self.underline)
+                .collect();
+            // Tabs stay tabs under the line so that the caret lines up in any terminal.
+            let indent: String = printable(&before)
+                .chars()
                 .map(|c| if c == '\t' { '\t' } else { ' ' })
                 .collect();
+            let underline = printable(&marked).chars().count().max(1);
             write!(
                 f,
-                "\n{gutter} |\n{number} | {source_line}\n{gutter} | {indent}{}",
-                "^".repeat(self.underline)
+                "\n{gutter} |\n{number} | {}\n{gutter} | {indent}{}",
+                printable(source_line),
+                "^".repeat(underline)
             )?;
         }
         Ok(())
@@ -66,6 +80,20 @@ impl fmt::Display for SceneError {
 }
 
 impl std::error::Error for SceneError {}
+
+/// `text` with each control character but the tab escaped as Rust writes it (`\u{0}`, `\r`),
+/// so that bytes read from a binary file cannot move a terminal's cursor or change its colours.
+pub fn printable(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() && c != '\t' {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
 
 /// A scene file's text and the name it goes by: what byte spans are turned into lines and
 /// columns against.
@@ -148,6 +176,21 @@ mod tests {
         assert_eq!((error.line, error.column), (1, 1));
         let error = source(text).error(50..60, "past the end");
         assert_eq!((error.line, error.column), (1, 2));
+    }
+
+    #[test]
+    fn control_characters_are_printed_escaped_and_the_caret_still_lines_up() {
+        let error = source("a = \u{1b}[31m\u{0}x\n").error(9..10, "stray");
+        let printed = error.to_string();
+        assert!(
+            !printed.contains('\u{1b}') && !printed.contains('\u{0}'),
+            "{printed}"
+        );
+        let lines: Vec<&str> = printed.lines().collect();
+        assert_eq!(lines[2], "1 | a = \\u{1b}[31m\\u{0}x");
+        let caret = lines[3].find('^').unwrap();
+        assert_eq!(caret, lines[2].find("\\u{0}").unwrap(), "{printed}");
+        assert_eq!(lines[3][caret..].trim_end(), "^^^^^");
     }
 
     #[test]

@@ -29,9 +29,7 @@ impl<'a> SceneFiles<'a> {
     /// The bytes of the file at `path` (as returned by [`Self::path`] or a path beside it).
     pub fn read(&self, path: &Path) -> Result<Cow<'a, [u8]>, String> {
         match self {
-            SceneFiles::Folder(_) => std::fs::read(path)
-                .map(Cow::Owned)
-                .map_err(|e| e.to_string()),
+            SceneFiles::Folder(_) => crate::memory::read_file(path).map(Cow::Owned),
             SceneFiles::Builtin(files) => files
                 .iter()
                 .find(|(name, _)| Path::new(name) == path)

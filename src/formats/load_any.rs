@@ -1,6 +1,7 @@
 //! The one entry point for every scene raylab reads, for the command line and the viewer alike:
 //! a built-in SPD scene by name (`spd:balls`, `spd:tree:6`), an NFF file (by its `.nff`
-//! extension), an SDL file (`.dat` or `.sdl`), or a TOML scene file; with the camera of a
+//! extension), an SDL file (`.dat` or `.sdl`), an OBJ model (`.obj`, framed and lit by a light
+//! at the eye), or a TOML scene file; with the camera of a
 //! `NAME.camera.toml` beside the file, and the default framing ([`with_framing_camera`]) for a
 //! format that has no camera (SDL).
 
@@ -12,8 +13,7 @@ use super::SceneError;
 use super::nff::{NffLighting, load_nff};
 use super::sdl::load_sdl;
 use super::spd::{SCENE_PREFIX, load_spd};
-use super::toml::{load_camera, load_scene};
-use crate::camera;
+use super::toml::{load_camera, load_obj_scene, load_scene};
 use crate::scene::Scene;
 
 /// Reads the scene `name` names, NFF lights as bright as the SPD readme suggests.
@@ -61,10 +61,13 @@ pub enum SceneFormat {
     Nff,
     /// Hill & Kelley's SDL.
     Sdl,
+    /// A Wavefront OBJ model on its own.
+    Obj,
 }
 
 impl SceneFormat {
-    /// The format a file's extension names: `.nff`, `.dat` and `.sdl`; TOML for any other.
+    /// The format a file's extension names: `.nff`, `.dat`, `.sdl` and `.obj`; TOML for any
+    /// other.
     pub fn of(path: &Path) -> SceneFormat {
         let extension = path.extension().and_then(|ext| ext.to_str());
         let is = |wanted: &str| extension.is_some_and(|ext| ext.eq_ignore_ascii_case(wanted));
@@ -72,6 +75,8 @@ impl SceneFormat {
             SceneFormat::Nff
         } else if is("dat") || is("sdl") {
             SceneFormat::Sdl
+        } else if is("obj") {
+            SceneFormat::Obj
         } else {
             SceneFormat::Toml
         }
@@ -104,6 +109,7 @@ pub fn load_any_as(
         SceneFormat::Nff => load_nff(path, lighting),
         SceneFormat::Sdl => load_sdl(path).map(with_framing_camera),
         SceneFormat::Toml => load_scene(path),
+        SceneFormat::Obj => load_obj_scene(path),
     }?;
     if let Some(camera_file) = camera_file_beside(name) {
         scene.camera = load_camera(&camera_file, scene.camera.spec)?;
@@ -138,8 +144,7 @@ pub fn views_path(file: &Path) -> PathBuf {
 /// finite objects at its image's aspect. The reader of a format without a camera ends with it:
 /// `load_sdl(path).map(with_framing_camera)`.
 pub fn with_framing_camera(mut scene: Scene) -> Scene {
-    let aspect = scene.settings.width as f32 / scene.settings.height as f32;
-    scene.camera = camera::frame(&scene.geometry.finite_bounds(), aspect);
+    scene.camera = scene.framing_camera();
     scene
 }
 
@@ -153,10 +158,10 @@ mod tests {
         for format in SceneFormat::iter() {
             assert_eq!(format.to_string().parse::<SceneFormat>(), Ok(format));
         }
-        assert_eq!(SceneFormat::VARIANTS, ["toml", "nff", "sdl"]);
+        assert_eq!(SceneFormat::VARIANTS, ["toml", "nff", "sdl", "obj"]);
         assert_eq!(
-            "obj".parse::<SceneFormat>(),
-            Err("unknown scene format `obj` (expected toml, nff or sdl)".to_string())
+            "ply".parse::<SceneFormat>(),
+            Err("unknown scene format `ply` (expected toml, nff, sdl or obj)".to_string())
         );
     }
 }

@@ -13,13 +13,15 @@ pub mod nff;
 mod obj;
 pub mod part;
 pub mod sdl;
+mod sniff;
 pub mod spd;
 pub mod toml;
 
-pub use error::SceneError;
 pub(crate) use error::Source;
+pub use error::{SceneError, printable};
 pub use files::{SceneFiles, ascii_text, utf8_text};
 pub use load_any::{
     SceneFormat, camera_file_beside, camera_path, load_any, load_any_as, load_any_with, views_path,
     with_framing_camera,
 };
+pub use sniff::{known_format, not_the_format};

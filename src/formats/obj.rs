@@ -13,6 +13,7 @@ use glam::{Vec2, Vec3};
 
 use super::error::{SceneError, Source};
 use super::files::{SceneFiles, ascii_text};
+use super::sniff::{known_format, not_the_format};
 use crate::color::Color;
 use crate::material::Material;
 use crate::mesh::Mesh;
@@ -53,6 +54,9 @@ pub enum ObjError {
 /// about MTL files that cannot be read and materials that no MTL file defines.
 pub fn load_obj(path: &Path, files: SceneFiles, uses_mtl: bool) -> Result<ObjContents, ObjError> {
     let bytes = files.read(path).map_err(ObjError::Whole)?;
+    if let Some(what) = known_format(&bytes) {
+        return Err(ObjError::Whole(not_the_format(path, what, "OBJ")));
+    }
     let text = ascii_text(&bytes);
     let lines = read_lines(Source {
         origin: path,
@@ -92,6 +96,16 @@ pub fn load_obj(path: &Path, files: SceneFiles, uses_mtl: bool) -> Result<ObjCon
     };
     warnings.extend(lines.warnings);
     warnings.sort_by_key(|&(line, _)| line);
+    if models.iter().all(|model| model.mesh.indices.is_empty()) {
+        let vertices = text
+            .split('\n')
+            .filter(|line| line.split_whitespace().next() == Some("v"))
+            .count();
+        return Err(ObjError::Whole(format!(
+            "it has no faces: {vertices} vertices (`v` lines) and no `f` line of three or more \
+             vertices, so there is nothing to draw"
+        )));
+    }
     let parts = models
         .into_iter()
         .map(|model| {

@@ -14,7 +14,6 @@
 
 use std::collections::{BTreeMap, HashMap};
 use std::fmt::{self, Write as _};
-use std::fs::File;
 use std::hash::Hasher;
 use std::io::{BufRead, BufReader, Cursor, Read, Seek};
 use std::path::{Path, PathBuf};
@@ -170,15 +169,15 @@ pub fn read_part_info(path: &Path) -> Result<PartInfo, PartError> {
         path: path.into(),
         message,
     };
-    let file = File::open(path).map_err(|e| error(e.to_string()))?;
+    let (file, _) = crate::memory::open_file(path).map_err(error)?;
     read_header(BufReader::new(file)).map_err(error)
 }
 
 /// Reads the part at `path`: what it says and its pixels.
 pub fn read_part(path: &Path) -> Result<Part, PartError> {
-    let file = File::open(path).map_err(|e| PartError {
+    let (file, _) = crate::memory::open_file(path).map_err(|message| PartError {
         path: path.into(),
-        message: e.to_string(),
+        message,
     })?;
     read_part_from(BufReader::new(file), path)
 }
@@ -207,7 +206,7 @@ fn read_part_from(mut reader: impl BufRead + Seek, origin: &Path) -> Result<Part
     )
     .map_err(error)?;
     reader.rewind().map_err(|e| error(e.to_string()))?;
-    let (_, pixels) = read_exr_rgb(reader).map_err(error)?;
+    let (_, pixels) = read_exr_rgb(reader, |c| c).map_err(error)?;
     Ok(Part { info, pixels })
 }
 

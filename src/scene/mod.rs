@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use crate::camera::Camera;
+use crate::camera::{self, Camera};
 use crate::light::Light;
 use crate::material::Material;
 use crate::medium::Atmosphere;
@@ -54,6 +54,13 @@ impl Scene {
             geometry: Geometry::default(),
             warnings: Vec::new(),
         }
+    }
+
+    /// The default framing camera ([`camera::frame`]): a three-quarter view of the finite
+    /// objects at the image's aspect, as the viewer's F frames them.
+    pub fn framing_camera(&self) -> Camera {
+        let aspect = self.settings.width as f32 / self.settings.height as f32;
+        camera::frame(&self.geometry.finite_bounds(), aspect)
     }
 
     /// Adds a material, named "#k" after its index k, and returns its index.

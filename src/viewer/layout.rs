@@ -3,6 +3,29 @@
 //! free area (letterboxing), in whole physical pixels; the way back from a cursor position to
 //! a point or a pixel of the image, and the way from a point of the image to the window.
 
+/// Largest side of the window, in logical pixels, that the viewer asks the window system for:
+/// X11 holds sizes in 16 bits, and no GPU draws into a surface much larger. The window's
+/// physical pixels are checked against the GPU's own limit once it is known
+/// ([`check_window_size`]).
+pub const MAX_WINDOW_SIDE: u32 = 16384;
+
+/// Checks a window of `width × height` pixels against the largest side `max_side` (logical
+/// pixels against [`MAX_WINDOW_SIDE`], or physical ones against a GPU's largest surface); the
+/// message says what is allowed, naming `whose` limit it is.
+pub fn check_window_size(
+    width: u32,
+    height: u32,
+    max_side: u32,
+    whose: &str,
+) -> Result<(), String> {
+    if width == 0 || height == 0 || width > max_side || height > max_side {
+        return Err(format!(
+            "a window of {width}×{height} pixels: sides must be from 1 to {max_side} ({whose})"
+        ));
+    }
+    Ok(())
+}
+
 /// How the viewer chooses the image's size (the resolution control).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Resolution {
@@ -185,6 +208,18 @@ mod tests {
         assert_eq!(fitted, rect(300.0, 0.0, 800.0, 691.0));
         assert!(whole_pixels(rect(5.0, 5.0, 0.2, 10.0)).is_empty());
         assert_eq!(Resolution::at_start(None, None), Resolution::Fit);
+    }
+
+    #[test]
+    fn window_sizes_are_checked_against_the_limit_named() {
+        assert!(check_window_size(1100, 720, MAX_WINDOW_SIDE, "raylab's limit").is_ok());
+        let error = check_window_size(16385, 100, 16384, "this GPU's largest surface").unwrap_err();
+        assert_eq!(
+            error,
+            "a window of 16385×100 pixels: sides must be from 1 to 16384 (this GPU's largest \
+             surface)"
+        );
+        assert!(check_window_size(0, 100, 16384, "x").is_err());
         assert_eq!(Resolution::at_start(Some(64), Some(64)), Resolution::Square);
         assert_eq!(Resolution::at_start(Some(64), None), Resolution::Free);
         assert_eq!(Resolution::at_start(None, Some(48)), Resolution::Free);

@@ -22,7 +22,7 @@
 mod app;
 mod display;
 mod input;
-mod layout;
+pub mod layout;
 mod save;
 mod scene;
 mod timing;

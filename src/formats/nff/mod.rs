@@ -25,7 +25,7 @@ use parse::Locations;
 /// Reads the NFF file at `path`. NFF is ASCII: a comment may hold any byte, and a byte-order
 /// mark at the start or a DOS end-of-file mark (^Z) at the end is skipped.
 pub fn load_nff(path: &Path, lighting: NffLighting) -> Result<Scene, SceneError> {
-    let bytes = std::fs::read(path)
+    let bytes = crate::memory::read_file(path)
         .map_err(|e| SceneError::whole_file(path, format!("cannot read the scene file: {e}")))?;
     parse_nff(&ascii_text(&bytes), path, lighting)
 }

@@ -63,7 +63,7 @@ use crate::scene::Scene;
 
 /// Reads the SDL file at `path`; its meshes are read from beside it.
 pub fn load_sdl(path: &Path) -> Result<Scene, SceneError> {
-    let bytes = std::fs::read(path)
+    let bytes = crate::memory::read_file(path)
         .map_err(|e| SceneError::whole_file(path, format!("cannot read the scene file: {e}")))?;
     let folder = path.parent().unwrap_or(Path::new(""));
     parse_sdl(&ascii_text(&bytes), path, SceneFiles::Folder(folder))

@@ -4,6 +4,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::ops::Range;
+use std::path::Path;
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
@@ -58,6 +59,7 @@ pub(crate) fn build_scene(
         None => None,
     };
     let settings = build_settings(file.render, source)?;
+    let has_camera = file.camera.is_some();
     let camera = build_camera(file.camera, CameraSpec::default(), source)?;
     let lights = file
         .lights
@@ -118,7 +120,7 @@ pub(crate) fn build_scene(
     for object in file.objects {
         builder.add_object(object)?;
     }
-    Ok(Scene {
+    let mut scene = Scene {
         settings,
         camera,
         lights,
@@ -129,7 +131,60 @@ pub(crate) fn build_scene(
         background_image,
         geometry: builder.geometry,
         warnings: builder.warnings,
-    })
+    };
+    // A file without a camera is seen as the viewer's F frames it.
+    if !has_camera {
+        scene.camera = scene.framing_camera();
+    }
+    Ok(scene)
+}
+
+/// The colour of the light an OBJ file opened as a scene is lit by: white, at the eye.
+const OBJ_LIGHT: Color = Color::splat(1.0);
+
+/// The OBJ file at `path` as a scene of its own: its meshes with their MTL materials (the
+/// default material where they name none), the default render settings, the camera framing the
+/// model as the viewer's F does, and a white point light at the eye (OBJ has no lights), which a
+/// warning tells of.
+pub(crate) fn build_obj_scene(path: &Path, files: SceneFiles) -> Result<Scene, SceneError> {
+    let source = Source {
+        origin: path,
+        text: "",
+    };
+    let mut builder = GeometryBuilder {
+        source,
+        files,
+        material_names: Names::new("material", std::iter::empty(), DEFAULT_MATERIAL + 1),
+        materials: vec![Material::default()],
+        names: vec!["default".to_string()],
+        geometry: Geometry::default(),
+        warnings: Vec::new(),
+    };
+    let name = path.file_name().unwrap_or(path.as_os_str());
+    let name = Spanned::new(0..0, name.to_string_lossy().into_owned());
+    builder.add_obj(name, None, None).map_err(|error| {
+        // An error about the whole file has no line of its own to show.
+        match error.source_line.as_deref() {
+            Some("") => SceneError::whole_file(path, error.message),
+            _ => error,
+        }
+    })?;
+    let mut scene = Scene::new(RenderSettings::default(), Camera::default());
+    scene.materials = builder.materials;
+    scene.material_names = builder.names;
+    scene.geometry = builder.geometry;
+    scene.warnings = builder.warnings;
+    scene.camera = scene.framing_camera();
+    scene.lights.push(Light::Point {
+        position: scene.camera.eye,
+        color: OBJ_LIGHT,
+    });
+    scene.warnings.push(format!(
+        "{}: an OBJ file has no lights or camera: raylab framed the model and lit it with a \
+         white point light at the eye",
+        path.display()
+    ));
+    Ok(scene)
 }
 
 /// The names a file gives textures or materials, and the indices they stand for.

@@ -51,7 +51,8 @@ pub struct SavedEdits {
 /// that differ from `before`'s, atomically. The error says what went wrong, naming the file.
 pub fn save_edits(path: &Path, before: Looks, after: Looks) -> Result<SavedEdits, String> {
     let named = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
-    let text = std::fs::read_to_string(path).map_err(|e| named(&e))?;
+    let bytes = crate::memory::read_file(path).map_err(|e| named(&e))?;
+    let text = String::from_utf8(bytes).map_err(|e| named(&e))?;
     let saved = edit_text(&text, before, after).map_err(|e| named(&e))?;
     write_atomically(
         path,

@@ -8,28 +8,44 @@ use serde::Deserialize;
 use toml::Spanned;
 use toml::de::DeTable;
 
-use super::build::{build_camera, build_scene};
+use super::build::{build_camera, build_obj_scene, build_scene};
 use super::file::{CameraSnippetFile, OBJECT_KEYS, SceneFile};
 use super::retag::retag_document;
 use crate::camera::{Camera, CameraSpec};
 use crate::formats::{SceneError, Source};
-use crate::formats::{SceneFiles, utf8_text};
+use crate::formats::{SceneFiles, known_format, not_the_format, utf8_text};
 use crate::memory::{self, Bytes};
 use crate::scene::Scene;
 
 /// Reads the scene file at `path`, UTF-8 text (a byte-order mark or a DOS end-of-file mark is
 /// skipped). Texture and OBJ file names are relative to its folder.
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
-    let bytes = std::fs::read(path)
+    let bytes = memory::read_file(path)
         .map_err(|e| SceneError::whole_file(path, format!("cannot read the scene file: {e}")))?;
+    if let Some(what) = known_format(&bytes) {
+        let message = not_the_format(path, what, "a scene raylab reads");
+        return Err(SceneError::whole_file(
+            path,
+            format!("{message} (TOML, NFF, SDL or OBJ: convert the model to OBJ)"),
+        ));
+    }
     let text = utf8_text(&bytes, path)?;
     parse_scene(text, path, path.parent().unwrap_or(Path::new("")))
+}
+
+/// Reads the OBJ file at `path` as a scene of its own: the model framed by the camera and lit
+/// by a white point light at the eye, which a warning in the scene tells of.
+pub fn load_obj_scene(path: &Path) -> Result<Scene, SceneError> {
+    build_obj_scene(
+        path,
+        SceneFiles::Folder(path.parent().unwrap_or(Path::new(""))),
+    )
 }
 
 /// Reads the `[camera]` table of the file at `path` (a `NAME.camera.toml`, as the viewer saves
 /// it); the keys it leaves out are `base`'s. Errors are at the file's line and column.
 pub fn load_camera(path: &Path, base: CameraSpec) -> Result<Camera, SceneError> {
-    let bytes = std::fs::read(path)
+    let bytes = memory::read_file(path)
         .map_err(|e| SceneError::whole_file(path, format!("cannot read the camera file: {e}")))?;
     let text = utf8_text(&bytes, path)?;
     let source = Source { origin: path, text };

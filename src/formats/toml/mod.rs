@@ -1,4 +1,5 @@
-//! raylab's own scene files, in TOML ([`load_scene`], [`parse_scene`]), the camera files saved
+//! raylab's own scene files, in TOML ([`load_scene`], [`parse_scene`]), and an OBJ model opened as
+//! a scene of its own ([`load_obj_scene`]); the camera files saved
 //! beside them ([`load_camera`]), the views files saved beside them ([`load_views`],
 //! [`views_text`]), and the built-in default scene written in one
 //! ([`default_scene`]). `load` reads a file in four steps: the
@@ -19,5 +20,5 @@ mod views;
 pub use build::DEFAULT_MATERIAL;
 pub use builtin::{DEFAULT_SCENE_TEXT, default_scene};
 pub use edit::{Looks, SavedEdits, edit_text, save_edits};
-pub use load::{load_camera, load_scene, parse_scene, parse_scene_with};
+pub use load::{load_camera, load_obj_scene, load_scene, parse_scene, parse_scene_with};
 pub use views::{camera_table, load_views, parse_views, views_text};

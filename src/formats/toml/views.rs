@@ -52,7 +52,7 @@ pub fn views_text(views: &Views) -> String {
 
 /// Reads the views file at `path`; the keys a view leaves out are `base`'s.
 pub fn load_views(path: &Path, base: CameraSpec) -> Result<Views, SceneError> {
-    let bytes = std::fs::read(path)
+    let bytes = crate::memory::read_file(path)
         .map_err(|e| SceneError::whole_file(path, format!("cannot read the views file: {e}")))?;
     parse_views(utf8_text(&bytes, path)?, path, base)
 }

@@ -13,7 +13,7 @@ use raylab::srgb_image::SrgbImage;
 use super::App;
 use crate::viewer::input::action::Action;
 use crate::viewer::input::{navigation, pick};
-use crate::viewer::layout::{PixelRect, window_point};
+use crate::viewer::layout::{PixelRect, check_window_size, window_point};
 use crate::viewer::save;
 use crate::viewer::scene::ShownScene;
 use crate::viewer::scene::edits::{LightEdit, MaterialEdit};
@@ -33,8 +33,16 @@ impl App {
             Action::ResizeWindow { width, height } => {
                 if let Some(gfx) = &self.gpu {
                     let size = winit::dpi::LogicalSize::new(width, height);
-                    // The new size, if granted, arrives as a Resized event.
-                    let _ = gfx.window().request_inner_size(size);
+                    let physical = size.to_physical::<u32>(gfx.window().scale_factor());
+                    let max = gfx.max_side();
+                    match check_window_size(physical.width, physical.height, max, "this GPU") {
+                        // The new size, if granted, arrives as a Resized event.
+                        Ok(()) => _ = gfx.window().request_inner_size(size),
+                        Err(e) => {
+                            eprintln!("warning: the window is not resized: {e}");
+                            self.ui.panel.message = Some(format!("not resized: {e}"));
+                        }
+                    }
                 }
             }
             Action::PrintCamera => {
@@ -232,6 +240,7 @@ impl App {
         let panel = &mut self.ui.panel;
         let display = &mut panel.display;
         display.snapshot = gfx.snapshot();
+        display.snapshot_is_yours = false;
         display.compare = display.snapshot.is_some();
         panel.compared = self.tracing.rendering.as_ref().map(|r| {
             let (width, height) = (r.film.width(), r.film.height());

@@ -98,6 +98,7 @@ impl App {
             display: DisplayControls {
                 snapshot: compare.as_ref().map(|image| (image.width, image.height)),
                 compare: compare.is_some(),
+                snapshot_is_yours: compare.is_some(),
                 ..Default::default()
             },
             compared: compare,

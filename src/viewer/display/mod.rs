@@ -27,7 +27,7 @@ use self::painter::{FrameContent, Painter};
 use self::quad::Display;
 use self::surface::{Acquired, WindowSurface};
 use self::upload::{Uploader, write_rows};
-use crate::viewer::layout::PixelRect;
+use crate::viewer::layout::{PixelRect, check_window_size};
 
 /// The window and what draws into it.
 pub struct Graphics {
@@ -87,6 +87,13 @@ impl Graphics {
             Some(both) => both,
             None => Gpu::for_window(event_loop, window.clone())?,
         };
+        let physical = window.inner_size();
+        check_window_size(
+            physical.width,
+            physical.height,
+            gpu.max_texture_side(),
+            "the largest surface this GPU draws; choose a smaller --window",
+        )?;
         let surface = WindowSurface::new(&gpu, surface, window.clone())?;
         let painter = Painter::new(&gpu, surface.format());
         let egui_state = egui_winit::State::new(
@@ -141,7 +148,8 @@ impl Graphics {
     /// The window system resized the window and the surface has not caught up yet.
     pub fn resizing(&self) -> bool {
         let size = self.window.inner_size();
-        self.surface.size() != (size.width, size.height)
+        let max = self.max_side();
+        self.surface.size() != (size.width.min(max), size.height.min(max))
     }
 
     /// Shows the image through `display` from the next frame on (the split only while there is

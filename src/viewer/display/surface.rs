@@ -1,6 +1,7 @@
 //! The window's surface: configured for the window's size in physical pixels, reconfigured after
 //! a resize or when outdated, recreated when lost, and left alone while the window has no area
-//! (minimised), so none of these stops the viewer.
+//! (minimised), so none of these stops the viewer. Its sides never pass the GPU's largest
+//! texture side: a window the window system made larger is drawn into its top-left part.
 
 use std::sync::Arc;
 
@@ -31,6 +32,8 @@ pub struct WindowSurface {
     config: wgpu::SurfaceConfiguration,
     window: Arc<Window>,
     needs_configure: bool,
+    /// The GPU's largest texture side: the most either side of the surface may be.
+    max_side: u32,
 }
 
 impl WindowSurface {
@@ -43,12 +46,13 @@ impl WindowSurface {
         // egui wants a target that is not sRGB; the image's texture holds sRGB bytes too.
         let format = egui_wgpu::preferred_framebuffer_format(&caps.formats)
             .map_err(|e| format!("the window's surface offers no usable format: {e}"))?;
+        let max_side = gpu.max_texture_side();
         let size = window.inner_size();
         let config = wgpu::SurfaceConfiguration {
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
             format,
-            width: size.width,
-            height: size.height,
+            width: size.width.min(max_side),
+            height: size.height.min(max_side),
             present_mode: present_mode(&caps.present_modes),
             alpha_mode: caps
                 .alpha_modes
@@ -66,6 +70,7 @@ impl WindowSurface {
             config,
             window,
             needs_configure: true,
+            max_side,
         })
     }
 
@@ -78,7 +83,9 @@ impl WindowSurface {
         (self.config.width, self.config.height)
     }
 
+    /// Follows the window to `width × height` physical pixels, at most the GPU's largest side.
     pub fn resize(&mut self, width: u32, height: u32) {
+        let (width, height) = (width.min(self.max_side), height.min(self.max_side));
         if (width, height) != self.size() {
             self.config.width = width;
             self.config.height = height;

@@ -13,6 +13,7 @@ use raylab::tone::{Tone, ToneCurve};
 
 use super::action::Action;
 use super::script_steps::keywords;
+use crate::viewer::layout::MAX_WINDOW_SIDE;
 use crate::viewer::scene::edits::{LightEdit, MaterialEdit};
 
 #[derive(Clone, Debug, PartialEq)]
@@ -199,10 +200,11 @@ fn parse_step(step: &str) -> Result<Step, String> {
         "dolly" => once(Action::Dolly(count(numbers()?, 1, 0)?[0])),
         "resize" => {
             let n = count(numbers()?, 2, 0)?;
+            let most = MAX_WINDOW_SIDE as f32;
             if n.iter()
-                .any(|&v| !(1.0..=16384.0).contains(&v) || v.fract() != 0.0)
+                .any(|&v| !(1.0..=most).contains(&v) || v.fract() != 0.0)
             {
-                return Err("sizes must be whole numbers from 1 to 16384".into());
+                return Err(format!("sizes must be whole numbers from 1 to {most}"));
             }
             once(Action::ResizeWindow {
                 width: n[0] as u32,

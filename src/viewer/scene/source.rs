@@ -90,10 +90,10 @@ pub fn spawn_load(
     }
 }
 
-/// The scene files (`*.toml`, `*.nff` and SDL's `*.dat` and `*.sdl`, sorted by name, leaving out
-/// the cameras and views saved beside scenes, `NAME.camera.toml` and `NAME.views.toml`) in the
-/// folder of `path`; for the built-in scene (`None`), those in `assets/scenes` under the current
-/// folder, if there is one.
+/// The scene files (`*.toml`, `*.nff`, SDL's `*.dat` and `*.sdl`, and `*.obj` models, sorted
+/// by name, leaving out the cameras and views saved beside scenes, `NAME.camera.toml` and
+/// `NAME.views.toml`) in the folder of `path`; for the built-in scene (`None`), those in
+/// `assets/scenes` under the current folder, if there is one.
 pub fn scene_files_beside(path: Option<&Path>) -> Vec<PathBuf> {
     let folder = match path {
         Some(p) => p.parent().map(Path::to_path_buf).unwrap_or_default(),
@@ -114,7 +114,7 @@ pub fn scene_files_beside(path: Option<&Path>) -> Vec<PathBuf> {
                 .extension()
                 .and_then(|x| x.to_str())
                 .map(str::to_ascii_lowercase);
-            p.is_file() && matches!(ext.as_deref(), Some("toml" | "nff" | "dat" | "sdl"))
+            p.is_file() && matches!(ext.as_deref(), Some("toml" | "nff" | "dat" | "sdl" | "obj"))
         })
         .filter(|p| {
             p.file_name().and_then(|n| n.to_str()).is_some_and(|n| {

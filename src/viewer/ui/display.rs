@@ -29,6 +29,9 @@ pub struct DisplayControls {
     /// The size of the image the snapshot was taken of, if one was; it is dropped when the
     /// image's size changes.
     pub snapshot: Option<(u32, u32)>,
+    /// The snapshot is the user's own image (`--compare`), not one B kept: the split view's
+    /// sides read "your image" and "raylab".
+    pub snapshot_is_yours: bool,
 }
 
 impl Default for DisplayControls {
@@ -39,6 +42,7 @@ impl Default for DisplayControls {
             difference: false,
             divider: 0.5,
             snapshot: None,
+            snapshot_is_yours: false,
         }
     }
 }
@@ -158,30 +162,57 @@ pub fn split_view(ui: &mut egui::Ui, display: &mut DisplayControls, image: egui:
     let x = image.left() + display.divider * image.width();
     let painter = ui.painter_at(image);
     painter.vline(x, image.y_range(), Stroke::new(2.0, Color32::WHITE));
-    // White on a dark shadow, readable over any image.
-    let label = |pos: egui::Pos2, align, text: &str| {
-        for (offset, color) in [(1.0, Color32::BLACK), (0.0, Color32::WHITE)] {
-            let at = pos + egui::vec2(offset, offset);
-            painter.text(at, align, text, egui::FontId::proportional(14.0), color);
-        }
-    };
+    let (left, right) = split_labels(display);
+    // White on a dark shadow, readable over any image; each label stays whole inside the
+    // image, on its side of the divider where there is room.
+    let font = egui::FontId::proportional(14.0);
     let top = image.top() + 4.0;
-    label(
-        egui::pos2(x - 6.0, top),
-        egui::Align2::RIGHT_TOP,
-        "snapshot",
-    );
-    let live = if display.difference {
-        "difference"
+    for (text, left_side) in [(left, true), (right, false)] {
+        let galley = painter.layout_no_wrap(text.to_string(), font.clone(), Color32::WHITE);
+        let width = galley.size().x;
+        let wanted = if left_side { x - 6.0 - width } else { x + 6.0 };
+        let most = (image.right() - 4.0 - width).max(image.left() + 4.0);
+        let left_edge = wanted.clamp(image.left() + 4.0, most);
+        for (offset, color) in [(1.0, Color32::BLACK), (0.0, Color32::WHITE)] {
+            let at = egui::pos2(left_edge + offset, top + offset);
+            painter.text(at, egui::Align2::LEFT_TOP, text, font.clone(), color);
+        }
+    }
+}
+
+/// The split view's labels, left and right of the divider: the user's image and raylab's, or a
+/// snapshot B kept and the live image; the right side is the difference while it is shown.
+pub fn split_labels(display: &DisplayControls) -> (&'static str, &'static str) {
+    let left = if display.snapshot_is_yours {
+        "your image"
     } else {
-        "live"
+        "snapshot"
     };
-    label(egui::pos2(x + 6.0, top), egui::Align2::LEFT_TOP, live);
+    let right = match (display.difference, display.snapshot_is_yours) {
+        (true, _) => "difference",
+        (false, true) => "raylab",
+        (false, false) => "live",
+    };
+    (left, right)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_sides_name_the_users_image_and_raylabs() {
+        let mut d = DisplayControls {
+            snapshot_is_yours: true,
+            ..Default::default()
+        };
+        assert_eq!(split_labels(&d), ("your image", "raylab"));
+        d.difference = true;
+        assert_eq!(split_labels(&d), ("your image", "difference"));
+        d.snapshot_is_yours = false;
+        d.difference = false;
+        assert_eq!(split_labels(&d), ("snapshot", "live"));
+    }
 
     #[test]
     fn the_split_shows_only_with_a_snapshot_and_compare_on() {

@@ -78,6 +78,9 @@ impl Ui {
             .as_ref()
             .map_or((0, 0), |r| (r.film.width(), r.film.height()));
         let far = scene.shown().map_or(1.0, |s| overlay::far(s.scene.bounds));
+        // Inspecting does not change what is inspected: while a pixel is picked, the image keeps
+        // the size it was clicked at (the ray tree panel narrows the area it is shown in).
+        let fit = self.panel.resolution == Resolution::Fit && picked.pixel.is_none();
         let mut image_rect = PixelRect::ZERO;
         egui::CentralPanel::no_frame().show(ui, |ui| {
             let rect = ui.available_rect_before_wrap();
@@ -88,7 +91,7 @@ impl Ui {
                 width: rect.width() * ppp,
                 height: rect.height() * ppp,
             };
-            image_rect = if self.panel.resolution == Resolution::Fit {
+            image_rect = if fit {
                 fit_to(whole_pixels(area), scene, self.panel.max_side);
                 // The image fills the area; until the render of its new size comes, the last
                 // image is stretched over it.
