@@ -4,12 +4,15 @@
 
 use std::io::Write;
 use std::path::PathBuf;
+use std::time::Duration;
 
 use clap::Args;
-use raylab::compare::check::check;
+use indicatif::{ProgressBar, ProgressStyle};
+use raylab::compare::check::{check, memory_bytes};
 use raylab::compare::difference::DEFAULT_TOLERANCE;
 use raylab::formats::SceneFormat;
 use raylab::formats::nff::NffLighting;
+use raylab::memory;
 use raylab::render::assemble;
 use raylab::settings::SettingsOverrides;
 use raylab::srgb_image::SrgbImage;
@@ -42,10 +45,9 @@ pub struct CheckArgs {
 }
 
 pub fn run(args: CheckArgs) -> Result<Verdict, String> {
-    let image = SrgbImage::read(&args.image)?;
+    let (size, decoder) = SrgbImage::probe(&args.image)?;
     let mut scene = super::load_scene(Some(&args.scene), args.nff_lights, args.format)?;
     let overrides = SettingsOverrides::from(args.overrides);
-    let size = (image.width, image.height);
     if overrides.width.is_some_and(|w| w != size.0) || overrides.height.is_some_and(|h| h != size.1)
     {
         return Err(format!(
@@ -60,8 +62,24 @@ pub fn run(args: CheckArgs) -> Result<Verdict, String> {
     scene.camera = overrides.apply_camera(scene.camera.spec)?;
     (scene.settings.width, scene.settings.height) = size;
     scene.settings.validate()?;
+    let pixels = u64::from(size.0) * u64::from(size.1);
+    memory::check(
+        &format!("checking a {}×{} image", size.0, size.1),
+        pixels * 3 + decoder + memory_bytes(&scene.settings),
+    )?;
+    let image = SrgbImage::read(&args.image)?;
     let assembled = assemble(scene)?;
-    let report = check(&assembled, &image, args.tolerance)?;
+    let bar = ProgressBar::new_spinner();
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} [{elapsed_precise}] check: {msg}")
+            .expect("the template is valid"),
+    );
+    bar.enable_steady_tick(Duration::from_millis(100));
+    let report = check(&assembled, &image, args.tolerance, &mut |step| {
+        bar.set_message(step.to_string());
+    });
+    bar.finish_and_clear();
+    let report = report?;
     super::print_out(|out| {
         if args.json {
             let json = serde_json::to_string_pretty(&report)

@@ -4,19 +4,20 @@
 //! of each of the largest regions that differ, the ray tree's account of why
 //! ([`super::explain`]).
 
-use std::collections::HashMap;
 use std::fmt::Write;
 
 use serde::Serialize;
 use strum::IntoEnumIterator;
 
-use super::difference::{Difference, difference};
+use super::difference::{Difference, difference, difference_from};
+use super::evidence::{Evidence, evidence};
 use super::explain::{PixelExplanation, explain_pixel};
-use super::mistakes::{Mistake, trace_with, write_with};
+use super::mistakes::{Mistake, Written, fitted_scale, trace_with};
 use super::regions::{Region, regions};
-use crate::color::Color;
+use crate::film::Film;
 use crate::inspect::trace_ray_tree;
 use crate::render::Assembled;
+use crate::settings::RenderSettings;
 use crate::srgb_image::SrgbImage;
 
 /// How many mistakes at once are looked for.
@@ -30,7 +31,11 @@ const REGIONS_EXPLAINED: usize = 3;
 pub struct CheckReport {
     /// The image against raylab's render of the scene.
     pub difference: Difference,
-    /// How many regions differ.
+    /// What the image shows on its own, or against raylab's, when that says where to look:
+    /// all one colour, edges that do not line up with raylab's.
+    pub evidence: Vec<Evidence>,
+    /// How many regions differ (after the mistakes found are made, where they change the whole
+    /// image alike).
     pub region_count: usize,
     /// The mistakes that account for the difference, in the order found: with each (and those
     /// before it) made, raylab's image has `over_tolerance` pixels over the tolerance.
@@ -45,7 +50,7 @@ pub struct CheckReport {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Cause {
     pub mistake: Mistake,
-    pub description: &'static str,
+    pub description: String,
     pub over_tolerance: u64,
 }
 
@@ -56,34 +61,72 @@ pub struct ExplainedRegion {
     pub explanation: PixelExplanation,
 }
 
+/// The memory [`check`] takes for an image of `settings`' size beyond the scene and the image
+/// itself: raylab's image as written (3 bytes a pixel), two traced films at once (the one the
+/// mistakes found so far make and the one being tried, 16 bytes a pixel each), the render's own
+/// copy for its anti-aliasing rounds, and the regions' marks and their search's stack (6).
+pub fn memory_bytes(settings: &RenderSettings) -> u64 {
+    let (width, height) = (settings.width, settings.height);
+    let pixels = u64::from(width) * u64::from(height);
+    pixels * (3 + 6)
+        + 2 * Film::memory_bytes(width, height)
+        + crate::progressive::memory_bytes(settings)
+}
+
 /// Compares `image` with raylab's render of `assembled`'s scene (which must be of the image's
-/// size) with a tolerance of `tolerance` levels, and finds why they differ.
+/// size) with a tolerance of `tolerance` levels, and finds why they differ. `step` hears of each
+/// image traced, as it starts (what it is for).
 pub fn check(
     assembled: &Assembled,
     image: &SrgbImage,
     tolerance: u8,
+    step: &mut dyn FnMut(&str),
 ) -> Result<CheckReport, String> {
     let settings = &assembled.scene.settings;
-    let (width, height) = (settings.width, settings.height);
-    let mut traced: HashMap<Vec<Mistake>, Vec<Color>> = HashMap::new();
-    let colors = traced
-        .entry(Vec::new())
-        .or_insert_with(|| trace_with(assembled, &[]));
-    let reference = write_with(width, height, colors, &[]);
-    let figures = difference(&reference, image, tolerance)?;
-    if figures.within_tolerance() {
-        return Ok(CheckReport {
-            difference: figures,
-            region_count: 0,
-            causes: Vec::new(),
-            regions: Vec::new(),
-            samples: settings.samples,
-        });
+    step("tracing raylab's image");
+    let traced = trace_with(assembled, &[]);
+    let reference = Written {
+        colors: &traced,
+        mistakes: &[],
+        scale: 1.0,
     }
-    let found = regions(&reference, image, tolerance)?;
-    let causes = find_mistakes(assembled, image, tolerance, &figures, &mut traced)?;
+    .image();
+    let figures = difference(&reference, image, tolerance)?;
+    let mut report = CheckReport {
+        difference: figures,
+        evidence: Vec::new(),
+        region_count: 0,
+        causes: Vec::new(),
+        regions: Vec::new(),
+        samples: settings.samples,
+    };
+    if report.difference.within_tolerance() {
+        return Ok(report);
+    }
+    let scale = fitted_scale(&traced, image);
+    let over = report.difference.over_tolerance;
+    let (causes, made) = find_mistakes(assembled, image, tolerance, (traced, over), scale, step)?;
+    // A mistake that changes the whole image alike (a flip, a curve, the camera) is no term of
+    // a pixel's ray tree: the regions are what is left once it is made.
+    let compared = match causes.iter().any(|c| !c.mistake.is_local()) {
+        true => {
+            let mistakes: Vec<Mistake> = causes.iter().map(|c| c.mistake).collect();
+            Written {
+                colors: &made,
+                mistakes: &mistakes,
+                scale,
+            }
+            .image()
+        }
+        false => reference,
+    };
+    drop(made);
+    let found = regions(&compared, image, tolerance)?;
+    if causes.is_empty() {
+        report.evidence = evidence(&compared, image, scale);
+    }
     let tracer = assembled.tracer();
-    let explained = found
+    report.regions = found
         .iter()
         .take(REGIONS_EXPLAINED)
         .map(|region| {
@@ -91,38 +134,33 @@ pub fn check(
             let tree = trace_ray_tree(&tracer, x, y);
             ExplainedRegion {
                 region: region.clone(),
-                explanation: explain_pixel(&tree, image.at(x, y), reference.at(x, y)),
+                explanation: explain_pixel(&tree, image.at(x, y), compared.at(x, y)),
             }
         })
         .collect();
-    Ok(CheckReport {
-        difference: figures,
-        region_count: found.len(),
-        causes,
-        regions: explained,
-        samples: settings.samples,
-    })
+    report.region_count = found.len();
+    report.causes = causes;
+    Ok(report)
 }
 
 /// The mistakes, at most [`MOST_MISTAKES`], that bring raylab's image closest to `image`: one
 /// at a time, the one that leaves the fewest pixels over the tolerance (then the smallest mean
-/// difference), as long as it at least halves them. `traced` keeps the images traced, by the
-/// mistakes that change the tracing.
+/// difference), as long as it at least halves them. `traced` is raylab's image and the pixels
+/// over the tolerance it leaves; `scale` the factor [`Mistake::Scaled`] multiplies by. Returns them and the image traced with them. At
+/// most two traced images are held at once: the one the mistakes found so far make, and the one
+/// being tried.
 fn find_mistakes(
     assembled: &Assembled,
     image: &SrgbImage,
     tolerance: u8,
-    figures: &Difference,
-    traced: &mut HashMap<Vec<Mistake>, Vec<Color>>,
-) -> Result<Vec<Cause>, String> {
-    let (width, height) = (figures.width, figures.height);
+    (traced, mut over): (Film, u64),
+    scale: f32,
+    step: &mut dyn FnMut(&str),
+) -> Result<(Vec<Cause>, Film), String> {
+    let mut base = traced;
     let mut made: Vec<Mistake> = Vec::new();
     let mut causes = Vec::new();
-    let mut over = figures.over_tolerance;
     while made.len() < MOST_MISTAKES && over > 0 {
-        // Only images traced with every mistake made so far can serve again: the others go, so
-        // that at most one round's images are held (a dozen at most).
-        traced.retain(|key, _| made.iter().all(|m| !m.retraces() || key.contains(m)));
         let mut best: Option<(u64, f64, Mistake)> = None;
         for mistake in Mistake::iter() {
             if made.contains(&mistake)
@@ -133,13 +171,23 @@ fn find_mistakes(
             }
             let mut trial = made.clone();
             trial.push(mistake);
-            trial.sort();
-            let retraced: Vec<Mistake> = trial.iter().copied().filter(|m| m.retraces()).collect();
-            let colors = traced
-                .entry(retraced.clone())
-                .or_insert_with(|| trace_with(assembled, &retraced));
-            let made_image = write_with(width, height, colors, &trial);
-            let d = difference(&made_image, image, tolerance)?;
+            let retraced = if mistake.retraces() {
+                let retraced: Vec<Mistake> =
+                    trial.iter().copied().filter(|m| m.retraces()).collect();
+                step(&format!(
+                    "tracing raylab's image as if {}",
+                    mistake.describe()
+                ));
+                Some(trace_with(assembled, &retraced))
+            } else {
+                None
+            };
+            let written = Written {
+                colors: retraced.as_ref().unwrap_or(&base),
+                mistakes: &trial,
+                scale,
+            };
+            let d = difference_from(|x, y| written.at(x, y), image, tolerance);
             let score = (d.over_tolerance, d.mean_absolute);
             if best.is_none_or(|(o, m, _)| score < (o, m)) {
                 best = Some((score.0, score.1, mistake));
@@ -148,9 +196,18 @@ fn find_mistakes(
         match best {
             Some((after, _, mistake)) if after * 2 <= over && after < over => {
                 made.push(mistake);
+                if mistake.retraces() {
+                    let retraced: Vec<Mistake> =
+                        made.iter().copied().filter(|m| m.retraces()).collect();
+                    step(&format!(
+                        "tracing raylab's image as if {}",
+                        mistake.describe()
+                    ));
+                    base = trace_with(assembled, &retraced);
+                }
                 causes.push(Cause {
                     mistake,
-                    description: mistake.describe(),
+                    description: describe(mistake, scale),
                     over_tolerance: after,
                 });
                 over = after;
@@ -158,7 +215,18 @@ fn find_mistakes(
             _ => break,
         }
     }
-    Ok(causes)
+    Ok((causes, base))
+}
+
+/// What `check` says of a mistake found: its description, with the factor of a scaling.
+fn describe(mistake: Mistake, scale: f32) -> String {
+    match mistake {
+        Mistake::Scaled => format!(
+            "{} (your colours are raylab's × {scale:.2})",
+            mistake.describe()
+        ),
+        _ => mistake.describe().to_string(),
+    }
 }
 
 impl CheckReport {
@@ -179,12 +247,11 @@ impl CheckReport {
         }
         let _ = writeln!(
             out,
-            "{} pixels ({:.2} %) over the tolerance of {} levels, in {} regions; mean absolute \
-             difference {:.4} levels, largest {} at pixel ({}, {})",
+            "{} pixels ({:.2} %) over the tolerance of {} levels; mean absolute difference {:.4} \
+             levels, largest {} at pixel ({}, {})",
             d.over_tolerance,
             100.0 * d.over_tolerance_share(),
             d.tolerance,
-            self.region_count,
             d.mean_absolute,
             d.largest,
             d.largest_at.0,
@@ -201,6 +268,15 @@ impl CheckReport {
         }
         if self.causes.is_empty() {
             let _ = writeln!(out, "no common mistake accounts for it");
+        }
+        for evidence in &self.evidence {
+            let _ = writeln!(out, "what your image shows: {}", evidence.says);
+        }
+        if self.region_count == 0 {
+            let _ = writeln!(
+                out,
+                "with the mistakes found made, raylab's image is yours within the tolerance"
+            );
         }
         if self.samples > 1 {
             let _ = writeln!(

@@ -1,14 +1,16 @@
 //! The common mistakes of a ray tracer written for the lecture, each a change to how raylab
 //! makes its image: a term of the shading model left out, a wrong index of refraction, eye rays
-//! through pixel corners, the image upside down, the sRGB curve applied twice or not at all,
-//! colours not clamped. [`trace_with`] and [`write_with`] make raylab's image with some of them,
-//! so that `raylab check` can find those an image shows by comparing it with each.
+//! through pixel corners, the image upside down or a pixel off, the sRGB curve applied twice or
+//! not at all, colours not clamped, every colour scaled. [`trace_with`] traces raylab's image
+//! with some of them and [`Written`] writes it with the rest, pixel by pixel, so that
+//! `raylab check` can find those an image shows by comparing it with each.
 
 use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::camera::PIXEL_CENTRE;
-use crate::color::{Color, linear_to_srgb, srgb8};
+use crate::color::{linear_to_srgb, srgb_to_linear, srgb8};
+use crate::film::Film;
 use crate::render::Assembled;
 use crate::scene::Scene;
 use crate::srgb_image::SrgbImage;
@@ -44,6 +46,17 @@ pub enum Mistake {
     NoGamma,
     /// Values over 1 not clamped: their levels wrap around past 255.
     NoClamping,
+    /// Every colour multiplied by one factor ([`Written::scale`], fitted to the image): a
+    /// wrong exposure, or lights of another intensity.
+    Scaled,
+    /// The image one pixel to the left of where it belongs (its column 0 is raylab's column 1).
+    ShiftedLeft,
+    /// The image one pixel to the right.
+    ShiftedRight,
+    /// The image one pixel up.
+    ShiftedUp,
+    /// The image one pixel down.
+    ShiftedDown,
 }
 
 impl Mistake {
@@ -72,29 +85,46 @@ impl Mistake {
             Mistake::GammaTwice => "gamma applied twice (the sRGB curve on encoded values)",
             Mistake::NoGamma => "gamma not applied (linear values written as levels)",
             Mistake::NoClamping => "colours over 1 are not clamped (their levels wrap around)",
+            Mistake::Scaled => {
+                "every colour is scaled by one factor: look at the exposure or the lights' \
+                 intensity"
+            }
+            Mistake::ShiftedLeft => "the image is shifted one pixel to the left",
+            Mistake::ShiftedRight => "the image is shifted one pixel to the right",
+            Mistake::ShiftedUp => "the image is shifted one pixel up",
+            Mistake::ShiftedDown => "the image is shifted one pixel down",
         }
+    }
+
+    /// Whether raylab's ray tree at a pixel can account for what the mistake changes there (a
+    /// term of the shading left out or changed); the others change the whole image alike.
+    pub fn is_local(self) -> bool {
+        matches!(
+            self,
+            Mistake::NoShadows
+                | Mistake::NoSpecular
+                | Mistake::NoReflection
+                | Mistake::NoTransmission
+                | Mistake::IndexOfRefractionOne
+                | Mistake::IndexOfRefractionInverted
+        )
     }
 
     /// Whether the mistake changes the scene or where the eye rays go, so that the image must
     /// be traced again; the others change only how it is written.
     pub fn retraces(self) -> bool {
-        !matches!(
-            self,
-            Mistake::FlippedVertically
-                | Mistake::GammaTwice
-                | Mistake::NoGamma
-                | Mistake::NoClamping
-        )
+        self.is_local() || matches!(self, Mistake::PixelCorners | Mistake::PixelTopLeftCorners)
     }
 
     /// Whether the two cannot be made at once (two indices of refraction, two sample
-    /// positions, two curves).
+    /// positions, two curves, two shifts).
     pub fn excludes(self, other: Mistake) -> bool {
         use Mistake::*;
         let group = |m: Mistake| match m {
             IndexOfRefractionOne | IndexOfRefractionInverted => 1,
             PixelCorners | PixelTopLeftCorners => 2,
             GammaTwice | NoGamma => 3,
+            ShiftedLeft | ShiftedRight | ShiftedUp | ShiftedDown => 4,
             _ => 0,
         };
         self != other && group(self) != 0 && group(self) == group(other)
@@ -155,37 +185,68 @@ fn sample_offset(mistakes: &[Mistake]) -> (f32, f32) {
     }
 }
 
-/// raylab's image of `assembled`'s scene as linear colours, row by row, traced with the
-/// mistakes among `mistakes` that [`Mistake::retraces`]. Without them it is the renderer's
-/// image; eye rays through pixel corners are traced one per pixel.
-pub fn trace_with(assembled: &Assembled, mistakes: &[Mistake]) -> Vec<Color> {
+/// raylab's image of `assembled`'s scene, traced with the mistakes among `mistakes` that
+/// [`Mistake::retraces`]. Without them it is the renderer's image; eye rays through pixel
+/// corners are traced one per pixel.
+pub fn trace_with(assembled: &Assembled, mistakes: &[Mistake]) -> Film {
     let scene = scene_with(&assembled.scene, mistakes);
     let tracer = Tracer::new(&scene, &assembled.bvh).with_caustics(assembled.caustics.as_deref());
     let offset = sample_offset(mistakes);
     if offset == PIXEL_CENTRE {
-        return crate::progressive::render_image(&tracer).0;
+        return crate::progressive::render_film(&tracer).0;
     }
     let (width, height) = (scene.settings.width, scene.settings.height);
-    (0..height)
-        .into_par_iter()
-        .flat_map_iter(|y| {
-            let mut counts = RayCounts::default();
-            let tracer = &tracer;
-            (0..width)
-                .map(move |x| {
-                    let ray = tracer.scene.camera.eye_ray((x, y), offset, (width, height));
-                    tracer.trace_eye(&ray, &mut counts)
-                })
-                .collect::<Vec<_>>()
-        })
-        .collect()
+    let film = Film::new(width, height);
+    (0..height).into_par_iter().for_each(|y| {
+        let mut counts = RayCounts::default();
+        for x in 0..width {
+            let ray = tracer.scene.camera.eye_ray((x, y), offset, (width, height));
+            film.set(x, y, tracer.trace_eye(&ray, &mut counts));
+        }
+    });
+    film
 }
 
-/// The image of `width × height` linear `colors` as written with the mistakes among `mistakes`
-/// that do not [`Mistake::retraces`].
-pub fn write_with(width: u32, height: u32, colors: &[Color], mistakes: &[Mistake]) -> SrgbImage {
-    let has = |m: Mistake| mistakes.contains(&m);
-    let level = |v: f32| -> u8 {
+/// raylab's traced image as written with the mistakes among `mistakes` that do not
+/// [`Mistake::retraces`], pixel by pixel: no written copy of the image is made.
+pub struct Written<'a> {
+    pub colors: &'a Film,
+    pub mistakes: &'a [Mistake],
+    /// The factor [`Mistake::Scaled`] multiplies colours by.
+    pub scale: f32,
+}
+
+impl Written<'_> {
+    /// The levels of pixel `(x, y)` (row 0 at the top).
+    pub fn at(&self, x: u32, y: u32) -> [u8; 3] {
+        let has = |m: Mistake| self.mistakes.contains(&m);
+        let (width, height) = (self.colors.width(), self.colors.height());
+        let (mut sx, mut sy) = (x, y);
+        if has(Mistake::FlippedVertically) {
+            sy = height - 1 - sy;
+        }
+        // Shifted left, the image shows at x what belongs at x + 1; at the edge, the edge.
+        let step = |v: u32, by: i32, size: u32| (v as i32 + by).clamp(0, size as i32 - 1) as u32;
+        sx = match () {
+            _ if has(Mistake::ShiftedLeft) => step(sx, 1, width),
+            _ if has(Mistake::ShiftedRight) => step(sx, -1, width),
+            _ => sx,
+        };
+        sy = match () {
+            _ if has(Mistake::ShiftedUp) => step(sy, 1, height),
+            _ if has(Mistake::ShiftedDown) => step(sy, -1, height),
+            _ => sy,
+        };
+        let mut color = self.colors.get(sx, sy);
+        if has(Mistake::Scaled) {
+            color *= self.scale;
+        }
+        color.to_array().map(|v| self.level(v))
+    }
+
+    /// The level a linear channel value `v` is written as.
+    fn level(&self, v: f32) -> u8 {
+        let has = |m: Mistake| self.mistakes.contains(&m);
         let encoded = if has(Mistake::NoGamma) {
             v
         } else if has(Mistake::GammaTwice) {
@@ -201,22 +262,66 @@ pub fn write_with(width: u32, height: u32, colors: &[Color], mistakes: &[Mistake
         } else {
             level.min(255.0) as u8
         }
-    };
-    let mut pixels: Vec<[u8; 3]> = colors.iter().map(|c| c.to_array().map(level)).collect();
-    if has(Mistake::FlippedVertically) {
-        let rows: Vec<&[[u8; 3]]> = pixels.chunks(width as usize).rev().collect();
-        pixels = rows.concat();
     }
-    SrgbImage {
-        width,
-        height,
-        pixels,
+
+    /// The whole written image.
+    pub fn image(&self) -> SrgbImage {
+        let (width, height) = (self.colors.width(), self.colors.height());
+        let pixels = (0..height)
+            .into_par_iter()
+            .flat_map_iter(|y| (0..width).map(move |x| self.at(x, y)))
+            .collect();
+        SrgbImage {
+            width,
+            height,
+            pixels,
+        }
+    }
+}
+
+/// The factor that scales raylab's colours `traced` closest to `image` (least squares over the
+/// linear values of the channels neither image clips at black or white).
+pub fn fitted_scale(traced: &Film, image: &SrgbImage) -> f32 {
+    let (mut both, mut ours) = (0.0f64, 0.0f64);
+    for y in 0..image.height {
+        for x in 0..image.width {
+            let raylab = traced.get(x, y).to_array();
+            for (c, level) in image.at(x, y).into_iter().enumerate() {
+                let r = raylab[c];
+                if (0.01..0.99).contains(&r) && (1..255).contains(&level) {
+                    let yours = srgb_to_linear(f32::from(level) / 255.0);
+                    both += f64::from(r) * f64::from(yours);
+                    ours += f64::from(r) * f64::from(r);
+                }
+            }
+        }
+    }
+    if ours > 0.0 {
+        (both / ours) as f32
+    } else {
+        1.0
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    use crate::color::Color;
+
+    /// The image of `width × height` linear `colors` written with `mistakes`.
+    fn write_with(width: u32, height: u32, colors: &[Color], mistakes: &[Mistake]) -> SrgbImage {
+        let film = Film::new(width, height);
+        for (i, &c) in colors.iter().enumerate() {
+            film.set(i as u32 % width, i as u32 / width, c);
+        }
+        let written = Written {
+            colors: &film,
+            mistakes,
+            scale: 0.5,
+        };
+        written.image()
+    }
 
     #[test]
     fn without_mistakes_the_image_is_written_as_raylab_writes_it() {
@@ -240,10 +345,43 @@ mod tests {
     }
 
     #[test]
+    fn shifts_and_scaling_move_and_darken_the_image() {
+        let colors = [Color::splat(0.1), Color::splat(0.2), Color::splat(0.4)];
+        let levels = |image: SrgbImage| image.pixels.iter().map(|p| p[0]).collect::<Vec<_>>();
+        let [a, b, c] = colors.map(|c| srgb8(c.x));
+        let left = write_with(3, 1, &colors, &[Mistake::ShiftedLeft]);
+        assert_eq!(levels(left), [b, c, c]);
+        let right = write_with(3, 1, &colors, &[Mistake::ShiftedRight]);
+        assert_eq!(levels(right), [a, a, b]);
+        let scaled = write_with(3, 1, &colors, &[Mistake::Scaled]);
+        assert_eq!(levels(scaled), [0.05, 0.1, 0.2].map(srgb8));
+        let down = write_with(1, 3, &colors, &[Mistake::ShiftedDown]);
+        assert_eq!(levels(down), [a, a, b]);
+    }
+
+    #[test]
+    fn the_scale_fitted_is_the_one_made() {
+        let film = Film::new(16, 1);
+        let mut pixels = Vec::new();
+        for x in 0..16 {
+            let c = Color::splat(0.05 * (x + 1) as f32);
+            film.set(x, 0, c);
+            pixels.push((c * 0.8).to_array().map(srgb8));
+        }
+        let image = SrgbImage {
+            width: 16,
+            height: 1,
+            pixels,
+        };
+        assert!((fitted_scale(&film, &image) - 0.8).abs() < 0.01);
+    }
+
+    #[test]
     fn mistakes_of_one_kind_exclude_each_other() {
         assert!(Mistake::GammaTwice.excludes(Mistake::NoGamma));
         assert!(Mistake::PixelCorners.excludes(Mistake::PixelTopLeftCorners));
         assert!(!Mistake::NoShadows.excludes(Mistake::NoSpecular));
         assert!(!Mistake::NoGamma.excludes(Mistake::NoGamma));
+        assert!(Mistake::ShiftedLeft.excludes(Mistake::ShiftedUp));
     }
 }

@@ -2,10 +2,12 @@
 //! renders of its own: both images as 8-bit sRGB levels ([`crate::srgb_image`]), the figures
 //! of their [`difference`] and a heat map of it, the [`regions`] where they differ, the common
 //! [`mistakes`] of a student's tracer, one pixel's difference [`explain`]ed from raylab's ray
-//! tree, and all of it together in [`check`].
+//! tree, what the image shows when no mistake accounts for it ([`evidence`]), and all of it
+//! together in [`check`].
 
 pub mod check;
 pub mod difference;
+pub mod evidence;
 pub mod explain;
 pub mod mistakes;
 pub mod regions;

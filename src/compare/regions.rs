@@ -36,6 +36,7 @@ pub fn regions(
         .map(|(a, b)| pixel_difference(*a, *b))
         .collect();
     let mut seen = vec![false; over.len()];
+    // Pixel indices; an image has fewer than 2³² pixels (its sides are at most 16384).
     let mut found = Vec::new();
     let mut stack = Vec::new();
     for start in 0..over.len() {
@@ -43,7 +44,7 @@ pub fn regions(
             continue;
         }
         seen[start] = true;
-        stack.push(start);
+        stack.push(start as u32);
         let mut region = Region {
             pixels: 0,
             bounds: [u32::MAX, u32::MAX, 0, 0],
@@ -51,6 +52,7 @@ pub fn regions(
             worst_levels: 0,
         };
         while let Some(i) = stack.pop() {
+            let i = i as usize;
             let (x, y) = (i % width, i / width);
             add_pixel(&mut region, (x as u32, y as u32), over[i]);
             for (dx, dy) in NEIGHBOURS {
@@ -61,7 +63,7 @@ pub fn regions(
                 let j = ny as usize * width + nx as usize;
                 if !seen[j] && over[j] > tolerance {
                     seen[j] = true;
-                    stack.push(j);
+                    stack.push(j as u32);
                 }
             }
         }

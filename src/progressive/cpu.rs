@@ -314,11 +314,21 @@ pub fn render_image(tracer: &Tracer) -> (Vec<Color>, RenderStats) {
 
 /// [`render_image`] of what `shader` shows.
 pub fn render_image_with(tracer: &Tracer, shader: &dyn Shader) -> (Vec<Color>, RenderStats) {
+    let (film, stats) = render_film_with(tracer, shader);
+    (film.pixels(), stats)
+}
+
+/// [`render_image`] into a film, which is returned: no copy of its pixels is made.
+pub fn render_film(tracer: &Tracer) -> (Film, RenderStats) {
+    render_film_with(tracer, &Shaded)
+}
+
+fn render_film_with(tracer: &Tracer, shader: &dyn Shader) -> (Film, RenderStats) {
     let settings = &tracer.scene.settings;
     let film = Film::new(settings.width, settings.height);
     let control = RenderControl::default();
     let stats = render(tracer, shader, &film, &control, |_| {}).unwrap_or_else(|Cancelled| {
         unreachable!("nobody else holds this render's control, so it cannot be cancelled")
     });
-    (film.pixels(), stats)
+    (film, stats)
 }

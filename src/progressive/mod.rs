@@ -48,6 +48,7 @@ pub mod plan;
 
 pub use control::{Cancelled, PassStats, Progress, RenderControl, RenderStats, run_plan};
 pub use cpu::{
-    Shaded, Shader, render, render_image, render_image_with, render_pass, render_unwatched,
+    Shaded, Shader, render, render_film, render_image, render_image_with, render_pass,
+    render_unwatched,
 };
 pub use plan::{Pass, decision_reach, memory_bytes, passes, traces_pixel, unwatched_passes};
