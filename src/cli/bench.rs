@@ -289,7 +289,7 @@ fn bench_caustics(
             single_shots.push(start.elapsed());
         }
         let start = Instant::now();
-        map = caustics.map();
+        map = caustics.map()?;
         builds.push(start.elapsed());
     }
     // On one thread, at the photons' own landing points, seen from the side they came from.

@@ -108,32 +108,11 @@ fn describe(file: &Path, info: &PartInfo) -> String {
 /// Checks that the parts come from one render (image size, scene, settings, frame) and cover
 /// its image exactly once.
 fn check_parts(files: &[PathBuf], infos: &[PartInfo]) -> Result<(), String> {
-    let (first, reference) = (&files[0], &infos[0]);
-    for (file, info) in files.iter().zip(infos).skip(1) {
-        let (a, b) = (first.display(), file.display());
-        if (info.width, info.height) != (reference.width, reference.height) {
-            return Err(format!(
-                "{a} is a part of a {}×{} image, {b} of a {}×{}",
-                reference.width, reference.height, info.width, info.height
-            ));
-        }
-        if info.settings != reference.settings {
-            return Err(format!(
-                "{a} and {b} were rendered with different settings{}",
-                setting_that_differs(&reference.settings, &info.settings)
-            ));
-        }
-        if info.frame != reference.frame {
-            return Err(format!("{a} and {b} are parts of different frames"));
-        }
-        if info.scene != reference.scene {
-            return Err(format!(
-                "{a} and {b} come from different scenes or cameras (scene hash {} and {})",
-                reference.scene, info.scene
-            ));
-        }
+    let parts: Vec<(&Path, &PartInfo)> = files.iter().map(PathBuf::as_path).zip(infos).collect();
+    if let Some(why) = not_of_one_render(&parts) {
+        return Err(why);
     }
-    let image = Rect::image(reference.width, reference.height);
+    let image = Rect::image(infos[0].width, infos[0].height);
     let rects: Vec<Rect> = infos.iter().map(|info| info.rect).collect();
     match check_cover(&image, &rects) {
         Ok(()) => Ok(()),
@@ -151,6 +130,35 @@ fn check_parts(files: &[PathBuf], infos: &[PartInfo]) -> Result<(), String> {
             None => Err(format!("no part covers pixel ({x}, {y})")),
         },
     }
+}
+
+/// Why the parts (file and what it says) are not all parts of one render (image size,
+/// settings, frame, scene), naming the first that is not of the first's; `None` when they are.
+fn not_of_one_render(parts: &[(&Path, &PartInfo)]) -> Option<String> {
+    let (first, reference) = parts[0];
+    parts.iter().skip(1).find_map(|&(file, info)| {
+        let (a, b) = (first.display(), file.display());
+        if (info.width, info.height) != (reference.width, reference.height) {
+            Some(format!(
+                "{a} is a part of a {}×{} image, {b} of a {}×{}",
+                reference.width, reference.height, info.width, info.height
+            ))
+        } else if info.settings != reference.settings {
+            Some(format!(
+                "{a} and {b} were rendered with different settings{}",
+                setting_that_differs(&reference.settings, &info.settings)
+            ))
+        } else if info.frame != reference.frame {
+            Some(format!("{a} and {b} are parts of different frames"))
+        } else if info.scene != reference.scene {
+            Some(format!(
+                "{a} and {b} come from different scenes or cameras (scene hash {} and {})",
+                reference.scene, info.scene
+            ))
+        } else {
+            None
+        }
+    })
 }
 
 /// The first setting that differs between the settings texts `a` and `b` (as parts hold them:
@@ -196,22 +204,32 @@ fn missing_tiles(infos: &[PartInfo]) -> Option<String> {
 }
 
 /// `--status`: each part's file, tile or rectangle and frame; then, for each frame, the tiles
-/// missing, or how many pixels the parts cover.
+/// missing, or how many pixels the parts cover; or, when a frame's parts are not of one render,
+/// which do not belong together (an error).
 fn status(files: &[PathBuf]) -> Result<(), String> {
-    let mut frames: BTreeMap<Option<u32>, Vec<PartInfo>> = BTreeMap::new();
+    let mut frames: BTreeMap<Option<u32>, Vec<(&Path, PartInfo)>> = BTreeMap::new();
+    let mut apart = Vec::new();
     super::print_out(|out| {
         for file in files {
             match read_part_info(file) {
                 Ok(info) => {
                     let frame = info.frame.map_or(String::new(), |f| format!(", frame {f}"));
                     writeln!(out, "{}{frame}", describe(file, &info))?;
-                    frames.entry(info.frame).or_default().push(info);
+                    frames.entry(info.frame).or_default().push((file, info));
                 }
                 Err(e) => writeln!(out, "{e}")?,
             }
         }
-        for (frame, infos) in &frames {
+        for (frame, parts) in &frames {
             let frame = frame.map_or(String::new(), |f| format!("frame {f}: "));
+            let named: Vec<(&Path, &PartInfo)> = parts.iter().map(|(f, i)| (*f, i)).collect();
+            if let Some(why) = not_of_one_render(&named) {
+                writeln!(out, "{frame}these parts do not belong together: {why}")?;
+                apart.push(why);
+                continue;
+            }
+            let infos: Vec<PartInfo> = parts.iter().map(|(_, info)| info.clone()).collect();
+            let infos = &infos;
             let covered: u64 = infos.iter().map(|info| info.rect.pixels()).sum();
             let all = u64::from(infos[0].width) * u64::from(infos[0].height);
             match missing_tiles(infos) {
@@ -223,5 +241,9 @@ fn status(files: &[PathBuf]) -> Result<(), String> {
             }
         }
         Ok(())
-    })
+    })?;
+    match apart.first() {
+        Some(why) => Err(format!("the parts are not of one render: {why}")),
+        None => Ok(()),
+    }
 }

@@ -7,6 +7,8 @@ use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
+use crate::shapes::MAX_CSG_DEPTH;
+
 /// An error in a scene file, located at the offending value.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SceneError {
@@ -56,11 +58,13 @@ impl fmt::Display for SceneError {
         if let Some(source_line) = &self.source_line {
             let number = self.line.to_string();
             let gutter = " ".repeat(number.len());
-            let before: String = source_line.chars().take(self.column - 1).collect();
+            let (source_line, column) = shown_part(source_line, self.column);
+            let source_line = source_line.as_str();
+            let before: String = source_line.chars().take(column - 1).collect();
             let marked: String = source_line
                 .chars()
-                .skip(self.column - 1)
-                .take(self.underline)
+                .skip(column - 1)
+                .take(self.underline.min(SHOWN_LINE / 2))
                 .collect();
             // Tabs stay tabs under the line so that the caret lines up in any terminal.
             let indent: String = printable(&before)
@@ -80,6 +84,34 @@ impl fmt::Display for SceneError {
 }
 
 impl std::error::Error for SceneError {}
+
+/// How deeply the `toml` crate lets tables and arrays nest in a file it reads.
+pub const TOML_NESTING_LIMIT: u32 = 80;
+
+/// The most characters of the offending line shown under a message: a longer line is shown
+/// around the column, cut short at either end with `…`.
+const SHOWN_LINE: usize = 100;
+
+/// The characters `line` shows under a message at 1-based `column`: the whole line, or
+/// [`SHOWN_LINE`] of them around the column; and the column within what is shown.
+fn shown_part(line: &str, column: usize) -> (String, usize) {
+    let count = line.chars().count();
+    if count <= SHOWN_LINE {
+        return (line.to_string(), column);
+    }
+    let start = column
+        .saturating_sub(SHOWN_LINE / 2)
+        .min(count - SHOWN_LINE);
+    let part: String = line.chars().skip(start).take(SHOWN_LINE).collect();
+    let before = if start > 0 { "…" } else { "" };
+    let after = if start + SHOWN_LINE < count {
+        "…"
+    } else {
+        ""
+    };
+    let shown_column = column - start + before.chars().count();
+    (format!("{before}{part}{after}"), shown_column)
+}
 
 /// `text` with each control character but the tab escaped as Rust writes it (`\u{0}`, `\r`),
 /// so that bytes read from a binary file cannot move a terminal's cursor or change its colours.
@@ -130,7 +162,16 @@ impl Source<'_> {
 
     /// A TOML syntax error, or an error serde raised while reading the schema.
     pub fn toml_error(&self, error: &toml::de::Error) -> SceneError {
-        self.error(error.span().unwrap_or(0..0), error.message().trim())
+        let message = error.message().trim();
+        let message = if message.contains("max recursion depth") {
+            format!(
+                "tables and arrays are nested more than {TOML_NESTING_LIMIT} deep, the TOML \
+                 reader's limit (csg objects nest at most {MAX_CSG_DEPTH} deep)"
+            )
+        } else {
+            message.to_string()
+        };
+        self.error(error.span().unwrap_or(0..0), message)
     }
 }
 
@@ -191,6 +232,26 @@ mod tests {
         let caret = lines[3].find('^').unwrap();
         assert_eq!(caret, lines[2].find("\\u{0}").unwrap(), "{printed}");
         assert_eq!(lines[3][caret..].trim_end(), "^^^^^");
+    }
+
+    #[test]
+    fn a_long_line_is_shown_around_the_column() {
+        let text = format!("a = [{}]\n", "1, ".repeat(500));
+        let error = source(&text).error(1000..1001, "here");
+        let printed = error.to_string();
+        let lines: Vec<&str> = printed.lines().collect();
+        assert!(lines[2].chars().count() < 120, "{printed}");
+        assert!(
+            lines[2].starts_with("1 | …") && lines[2].ends_with('…'),
+            "{printed}"
+        );
+        let caret = lines[3].chars().position(|c| c == '^').unwrap();
+        let at: String = lines[2].chars().skip(caret).take(3).collect();
+        assert_eq!(
+            at,
+            text.chars().skip(1000).take(3).collect::<String>(),
+            "{printed}"
+        );
     }
 
     #[test]

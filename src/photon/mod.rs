@@ -24,16 +24,21 @@ use crate::whitted::Tracer;
 /// diagonal of its bounded objects' box).
 const MAX_RADIUS_SHARE: f32 = 0.05;
 
-/// Memory one stored photon takes at most while its map is built: a copy in the list, one in the
-/// tree, and its 16-byte node.
-const BYTES_PER_PHOTON: u64 = 2 * std::mem::size_of::<Photon>() as u64 + 16;
+/// Memory one stored photon takes at the peak, while its map is built from the list: the photon
+/// itself, the axis its node splits (a byte) and its 16-byte node.
+const BYTES_PER_STORED: u64 = std::mem::size_of::<Photon>() as u64 + 1 + 16;
+
+/// Photons shot in one batch. Before each, the memory of the photons all of them will store is
+/// checked, projected from how many those shot so far stored (a photon may land in a caustic
+/// more than once, or never).
+const BATCH: u32 = 1 << 18;
 
 /// The caustic photon map of the tracer's scene from `count` photons shot; an empty map when no
 /// light reaches anything specular. The error says the photons would not fit in memory.
 pub fn caustic_map(tracer: &Tracer, count: u32) -> Result<PhotonMap, String> {
     let mut caustics = Caustics::new(tracer);
     caustics.shoot(tracer, count)?;
-    Ok(caustics.map())
+    Ok(caustics.into_map())
 }
 
 /// A caustic photon map that grows: more photons shot sharpen the same caustics (each photon's
@@ -62,19 +67,33 @@ impl Caustics {
         }
     }
 
-    /// Shoots `count` more photons. Most land at most once in a caustic; the memory of one
-    /// stored photon for each photon shot is checked first, and the error says it would not fit.
+    /// Shoots `count` more photons, a batch at a time. Before each batch the memory the map of
+    /// all of them takes at its peak is checked, the photons they will store projected from
+    /// those stored so far (one per photon shot before the first batch says); the error says it
+    /// would not fit.
     pub fn shoot(&mut self, tracer: &Tracer, count: u32) -> Result<(), String> {
-        let total = u64::from(self.shot) + u64::from(count);
-        memory::check(
-            &format!("a map of {total} caustic photons"),
-            total * BYTES_PER_PHOTON,
-        )?;
-        if let Some(source) = &self.source {
-            let more = source.shoot(tracer, self.shot, count);
-            self.stored.extend(more);
+        let end = self.shot.saturating_add(count);
+        let Some(source) = &self.source else {
+            self.shot = end;
+            return Ok(());
+        };
+        while self.shot < end {
+            let expected = match self.shot {
+                0 => u64::from(end),
+                shot => self.stored.len() as u64 * u64::from(end) / u64::from(shot),
+            };
+            memory::check(
+                &format!("a map of {end} caustic photons (about {expected} stored)"),
+                expected * BYTES_PER_STORED,
+            )?;
+            if self.shot > 0 {
+                let more = (expected as usize).saturating_sub(self.stored.len());
+                self.stored.reserve_exact(more);
+            }
+            let batch = BATCH.min(end - self.shot);
+            source.shoot(tracer, self.shot, batch, &mut self.stored);
+            self.shot += batch;
         }
-        self.shot = self.shot.saturating_add(count);
         Ok(())
     }
 
@@ -83,8 +102,19 @@ impl Caustics {
         self.shot
     }
 
-    /// The map of the photons stored so far.
-    pub fn map(&self) -> PhotonMap {
-        PhotonMap::build(self.stored.clone(), u64::from(self.shot), self.max_radius)
+    /// The map of the photons stored so far, which go on growing as more are shot: a copy of
+    /// them is made into the map. The error says it would not fit in memory.
+    pub fn map(&self) -> Result<PhotonMap, String> {
+        let photons = self.stored.len() as u64;
+        memory::check(
+            &format!("a map of {photons} caustic photons beside the list it grows from"),
+            photons * (BYTES_PER_STORED + std::mem::size_of::<Photon>() as u64),
+        )?;
+        Ok(self.clone().into_map())
+    }
+
+    /// The map of the photons stored, made of their list without a copy.
+    pub fn into_map(self) -> PhotonMap {
+        PhotonMap::build(self.stored, u64::from(self.shot), self.max_radius)
     }
 }

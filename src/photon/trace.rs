@@ -63,11 +63,11 @@ impl PhotonSource {
     }
 
     /// Shoots the photons numbered `first..first + count` through the scene (on all cores,
-    /// the same photons whatever the thread count) and returns those stored, in order.
-    pub fn shoot(&self, tracer: &Tracer, first: u32, count: u32) -> Vec<Photon> {
+    /// the same photons whatever the thread count) and adds those stored to `stored`, in order.
+    pub fn shoot(&self, tracer: &Tracer, first: u32, count: u32, stored: &mut Vec<Photon>) {
         let end = first.saturating_add(count);
         let chunks: Vec<u32> = (first..end).step_by(CHUNK as usize).collect();
-        let stored: Vec<Vec<Photon>> = chunks
+        let each: Vec<Vec<Photon>> = chunks
             .into_par_iter()
             .map(|start| {
                 let mut stored = Vec::new();
@@ -77,7 +77,9 @@ impl PhotonSource {
                 stored
             })
             .collect();
-        stored.concat()
+        for chunk in each {
+            stored.extend(chunk);
+        }
     }
 
     /// Traces photon `index`, adding where it is stored to `stored`.

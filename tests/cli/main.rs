@@ -16,3 +16,4 @@ mod overrides;
 mod render;
 mod sequences;
 mod tone;
+mod user_files;

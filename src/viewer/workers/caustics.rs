@@ -126,7 +126,7 @@ impl SharedCaustics {
             added += photons;
         }
         if added > 0 {
-            grown.map = Arc::new(grown.caustics.map());
+            grown.map = Arc::new(grown.caustics.map()?);
         }
         let shot = (added > 0).then(|| Shot {
             photons: grown.caustics.shot(),
