@@ -42,8 +42,9 @@ pub const THREE_QUARTER_VIEW: Vec3 = Vec3::new(0.6, 0.5, 1.0);
 
 impl CameraSpec {
     /// The camera looking the same way at the centre of `bounds`, just far enough that the box's
-    /// bounding sphere fits the view of an image `aspect` wide per unit of height. `None` for an
-    /// empty or infinite box.
+    /// bounding sphere fits the view of an image `aspect` wide per unit of height, its image plane
+    /// (which eye rays see beyond) brought nearer than the sphere when the camera's near distance
+    /// would cut into it. `None` for an empty or infinite box.
     pub fn framing(&self, bounds: &Aabb, aspect: f32) -> Option<CameraSpec> {
         if !bounds.is_finite() || bounds.is_empty() {
             return None;
@@ -53,9 +54,11 @@ impl CameraSpec {
         let half_h = (half_v.tan() * aspect.max(1e-3)).atan();
         let distance = radius / half_v.min(half_h).sin();
         let back = (self.eye - self.look_at).try_normalize().unwrap_or(Vec3::Z);
+        let in_front = (distance - radius) * 0.5;
         Some(CameraSpec {
             eye: bounds.center() + back * distance,
             look_at: bounds.center(),
+            near: self.near.min(in_front).max(*limits::NEAR_RANGE.start()),
             ..*self
         })
     }

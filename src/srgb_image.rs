@@ -50,15 +50,7 @@ impl SrgbImage {
                 pixels,
             });
         }
-        let reader = ImageReader::new(reader)
-            .with_guessed_format()
-            .map_err(|e| e.to_string())?;
-        match reader.format() {
-            None => Err(
-                "not an image raylab reads (PNG, PPM, BMP, JPEG, OpenEXR or Radiance HDR)".into(),
-            ),
-            Some(_) => decode_with(reader),
-        }
+        decode_with(guessed(reader)?)
     }
 
     /// The size of the image in the file at `path` and the memory decoding it takes at most
@@ -71,11 +63,9 @@ impl SrgbImage {
             let size = check_exr_header(&mut reader).map_err(named)?;
             return Ok((size, 0));
         }
-        let decoder = ImageReader::new(reader)
-            .with_guessed_format()
-            .map_err(|e| named(e.to_string()))?
-            .into_decoder()
-            .map_err(|e| named(e.to_string()))?;
+        let decoder = guessed(reader)
+            .and_then(|reader| reader.into_decoder().map_err(|e| e.to_string()))
+            .map_err(named)?;
         let (width, height) = decoder.dimensions();
         check_image_size(width, height).map_err(named)?;
         Ok(((width, height), decoder.total_bytes()))
@@ -102,6 +92,20 @@ impl SrgbImage {
     /// The pixel at column `x`, row `y` (row 0 at the top).
     pub fn at(&self, x: u32, y: u32) -> [u8; 3] {
         self.pixels[(y as usize) * self.width as usize + x as usize]
+    }
+}
+
+/// A reader of the image `reader` holds, its format told by its first bytes; the error says
+/// which formats raylab reads.
+fn guessed<R: BufRead + Seek>(reader: R) -> Result<ImageReader<R>, String> {
+    let reader = ImageReader::new(reader)
+        .with_guessed_format()
+        .map_err(|e| e.to_string())?;
+    match reader.format() {
+        Some(_) => Ok(reader),
+        None => {
+            Err("not an image raylab reads (PNG, PPM, BMP, JPEG, OpenEXR or Radiance HDR)".into())
+        }
     }
 }
 

@@ -101,7 +101,11 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
         Device::Gpu if args.scaling => {
             return Err("--scaling measures the CPU's threads: leave out --device gpu".into());
         }
-        Device::Gpu => Some(Arc::new(GpuDevice::new()?)),
+        Device::Gpu => {
+            let device = Arc::new(GpuDevice::new()?);
+            eprintln!("{}", super::compiling_notice(&device));
+            Some(device)
+        }
     };
     // The CPU tracer's item buffers are drawn on a GPU of their own; the GPU tracer draws its
     // own.

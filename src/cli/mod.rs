@@ -182,6 +182,20 @@ fn save_legend(legend: &Legend, image: &Path) -> Result<PathBuf, String> {
     Ok(path)
 }
 
+/// What the command line says before the GPU tracer is compiled for `device`, which takes a
+/// minute or two on a software adapter: the run is not stuck.
+fn compiling_notice(device: &GpuDevice) -> String {
+    let wait = if device.is_software() {
+        ", which a software adapter takes a minute or two for"
+    } else {
+        ""
+    };
+    format!(
+        "compiling the GPU tracer for {}, once for this run{wait}…",
+        device.name()
+    )
+}
+
 /// A rayon pool of `threads` workers (default: one per core).
 fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, String> {
     rayon::ThreadPoolBuilder::new()

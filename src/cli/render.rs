@@ -180,7 +180,9 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
                     args.view
                 )
             })?;
-            let mut renderer = GpuRenderer::new(Arc::new(GpuDevice::new()?), &assembled)?;
+            let device = Arc::new(GpuDevice::new()?);
+            eprintln!("{}", super::compiling_notice(&device));
+            let mut renderer = GpuRenderer::new(device, &assembled)?;
             renderer.set_first_hit(args.first_hit);
             Some(renderer)
         }

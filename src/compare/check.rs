@@ -125,10 +125,17 @@ pub fn check(
     if causes.is_empty() {
         report.evidence = evidence(&compared, image, scale);
     }
+    // Where the image as a whole points elsewhere (one colour, the camera), no pixel's ray tree
+    // speaks to it.
+    let explained = if report.evidence.is_empty() {
+        REGIONS_EXPLAINED
+    } else {
+        0
+    };
     let tracer = assembled.tracer();
     report.regions = found
         .iter()
-        .take(REGIONS_EXPLAINED)
+        .take(explained)
         .map(|region| {
             let (x, y) = region.worst;
             let tree = trace_ray_tree(&tracer, x, y);
@@ -271,6 +278,14 @@ impl CheckReport {
         }
         for evidence in &self.evidence {
             let _ = writeln!(out, "what your image shows: {}", evidence.says);
+        }
+        if !self.evidence.is_empty() {
+            let _ = writeln!(
+                out,
+                "its {} regions are not explained pixel by pixel from raylab's ray tree: they \
+                 follow from what the image shows",
+                self.region_count
+            );
         }
         if self.region_count == 0 {
             let _ = writeln!(

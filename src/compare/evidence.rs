@@ -11,10 +11,8 @@ use crate::srgb_image::SrgbImage;
 /// Neighbours that differ by more than this many levels in a channel make an edge.
 const EDGE_LEVELS: u8 = 24;
 
-/// Below this share of your image's edges within a pixel of raylab's, the edges do not line up.
-const EDGES_APART: f64 = 0.5;
-
-/// Above this share they do.
+/// At least this share of your image's edge pixels are raylab's edge pixels too where the edges
+/// line up; fewer, and the objects are elsewhere in the frame.
 const EDGES_TOGETHER: f64 = 0.8;
 
 /// How far from 1 the fitted scale of the colours must be to be worth a word.
@@ -53,18 +51,18 @@ pub fn evidence(raylab: &SrgbImage, image: &SrgbImage, scale: f32) -> Vec<Eviden
     let Some(share) = edges_together(raylab, image) else {
         return Vec::new();
     };
-    if share < EDGES_APART {
+    if share < EDGES_TOGETHER {
         return vec![Evidence {
             kind: "edges-apart",
             says: format!(
-                "only {:.0} % of the edges in your image lie within a pixel of raylab's: the \
-                 objects are not where raylab sees them. Look at the camera: the eye, the \
+                "only {:.0} % of the edges in your image are where raylab's are: the objects \
+                 are not where raylab sees them. Look at the camera: the eye, the \
                  look-at point, the up vector, the view angle θ and the image's aspect",
                 100.0 * share
             ),
         }];
     }
-    if share > EDGES_TOGETHER && (scale - 1.0).abs() > SCALED {
+    if (scale - 1.0).abs() > SCALED {
         return vec![Evidence {
             kind: "scaled",
             says: format!(
@@ -91,8 +89,8 @@ fn is_edge(image: &SrgbImage, x: u32, y: u32) -> bool {
         || (y + 1 < image.height && pixel_difference(here, image.at(x, y + 1)) > EDGE_LEVELS)
 }
 
-/// The share of `image`'s edge pixels that have one of `raylab`'s within a pixel; `None` when
-/// either image has no edges.
+/// The share of `image`'s edge pixels that are edge pixels of `raylab` too; `None` when either
+/// image has no edges.
 fn edges_together(raylab: &SrgbImage, image: &SrgbImage) -> Option<f64> {
     let (width, height) = (image.width, image.height);
     let (mut edges, mut together, mut raylab_edges) = (0u64, 0u64, 0u64);
@@ -103,10 +101,7 @@ fn edges_together(raylab: &SrgbImage, image: &SrgbImage) -> Option<f64> {
                 continue;
             }
             edges += 1;
-            let near = (y.saturating_sub(1)..(y + 2).min(height))
-                .flat_map(|ny| (x.saturating_sub(1)..(x + 2).min(width)).map(move |nx| (nx, ny)))
-                .any(|(nx, ny)| is_edge(raylab, nx, ny));
-            together += u64::from(near);
+            together += u64::from(is_edge(raylab, x, y));
         }
     }
     (edges > 0 && raylab_edges > 0).then(|| together as f64 / edges as f64)

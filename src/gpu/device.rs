@@ -6,6 +6,8 @@
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
+use crate::memory::Bytes;
+
 /// An adapter, its device and queue, and the compute pipelines compiled for it.
 pub struct GpuDevice {
     /// The instance the adapter came from: a window's surface on it may show what the GPU made.
@@ -99,7 +101,7 @@ impl GpuDevice {
     }
 
     /// Checks that a storage buffer of `bytes` for `what` fits the device's limits; the error
-    /// says how much it needs and how much the GPU allows.
+    /// says how much it needs and how much the GPU allows, and to trace on the CPU instead.
     pub fn check_storage(&self, what: &str, bytes: u64) -> Result<(), String> {
         let limits = self.device.limits();
         let allowed = limits
@@ -109,9 +111,18 @@ impl GpuDevice {
             Ok(())
         } else {
             Err(format!(
-                "{what} need {bytes} bytes on the GPU, which allows {allowed} bytes in one buffer"
+                "{what} need {} on the GPU, which allows {} in one buffer: the scene is too \
+                 large for this GPU, use --device cpu",
+                Bytes(bytes),
+                Bytes(allowed)
             ))
         }
+    }
+
+    /// Whether the adapter is a GPU emulated on the processor (Mesa's lavapipe, llvmpipe), which
+    /// compiles the tracer for a minute or more.
+    pub fn is_software(&self) -> bool {
+        self.adapter.get_info().device_type == wgpu::DeviceType::Cpu
     }
 }
 

@@ -257,3 +257,86 @@ fn an_anti_aliased_reference_says_to_take_one_sample() {
         "{text}"
     );
 }
+
+#[test]
+fn what_no_common_mistake_explains_is_pointed_at() {
+    use raylab::camera::{Camera, CameraSpec};
+    let dir = tempfile::tempdir().unwrap();
+    let colors = rendered(&scene(|_| {}));
+    let reference = levels(&colors);
+    let view = |change: fn(&mut CameraSpec)| {
+        move |s: &mut Scene| {
+            let mut spec = s.camera.spec;
+            change(&mut spec);
+            s.camera = Camera::new(spec).unwrap();
+        }
+    };
+    let pixels = (SIZE.0 * SIZE.1) as usize;
+    // One pixel to the right: column x shows raylab's column x − 1, the first column repeated.
+    let shifted: Vec<[u8; 3]> = reference
+        .chunks(SIZE.0 as usize)
+        .flat_map(|row| std::iter::once(row[0]).chain(row[..row.len() - 1].iter().copied()))
+        .collect();
+    let students: [(&str, Vec<[u8; 3]>, &str); 6] = [
+        (
+            "darker.png",
+            levels(&colors.iter().map(|c| *c * 0.8).collect::<Vec<_>>()),
+            "likely cause: every colour is scaled by one factor",
+        ),
+        (
+            "narrow.png",
+            levels(&rendered(&scene(view(|c| c.view_angle *= 0.7)))),
+            "Look at the camera",
+        ),
+        (
+            "moved.png",
+            levels(&rendered(&scene(view(|c| c.eye.x += 1.0)))),
+            "Look at the camera",
+        ),
+        ("black.png", vec![[0; 3]; pixels], "your image is all black"),
+        (
+            "grey.png",
+            vec![[90, 100, 110]; pixels],
+            "every pixel of your image is (90, 100, 110)",
+        ),
+        (
+            "shifted.png",
+            shifted,
+            "likely cause: the image is shifted one pixel to the right",
+        ),
+    ];
+    for (name, pixels, expected) in students {
+        save(dir.path(), name, &pixels);
+        let (code, text) = check(dir.path(), name);
+        assert_eq!(code, Some(1), "{name}: {text}");
+        assert!(
+            text.contains(expected),
+            "{name}: expected {expected:?}:\n{text}"
+        );
+    }
+}
+
+#[test]
+fn a_mistake_of_the_whole_image_leaves_no_pixel_blamed_on_a_term() {
+    let dir = tempfile::tempdir().unwrap();
+    let reference = levels(&rendered(&scene(|_| {})));
+    let flipped: Vec<[u8; 3]> = reference
+        .chunks(SIZE.0 as usize)
+        .rev()
+        .flatten()
+        .copied()
+        .collect();
+    save(dir.path(), "flipped.png", &flipped);
+    let (code, text) = check(dir.path(), "flipped.png");
+    assert_eq!(code, Some(1), "{text}");
+    assert!(
+        text.contains("likely cause: the image is flipped vertically"),
+        "{text}"
+    );
+    assert!(text.contains("with the mistakes found made"), "{text}");
+    assert!(
+        !text.contains("region 1"),
+        "no region is left to explain:\n{text}"
+    );
+    assert!(!text.contains("specular"), "{text}");
+}

@@ -9,8 +9,8 @@ use crate::common::run::{raylab, stderr};
 use crate::harness::mean_level_difference;
 
 /// `raylab render` of the default scene at 64 × 48 on `device`, as 8-bit sRGB pixels, and its
-/// summary line.
-fn render_on(device: &str, dir: &std::path::Path) -> (Vec<u8>, String) {
+/// summary line and what it said on stderr.
+fn render_on(device: &str, dir: &std::path::Path) -> (Vec<u8>, String, String) {
     let out = raylab(
         &[
             "render", "--device", device, "--size", "64x48", "-o", "out.png",
@@ -22,15 +22,18 @@ fn render_on(device: &str, dir: &std::path::Path) -> (Vec<u8>, String) {
         .unwrap()
         .to_rgb8()
         .into_raw();
-    (pixels, String::from_utf8_lossy(&out.stdout).into_owned())
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    (pixels, stdout, stderr(&out))
 }
 
 #[test]
 fn render_on_the_gpu_writes_the_cpus_image_and_names_the_adapter() {
     let dir = tempfile::tempdir().unwrap();
-    let (on_gpu, gpu_summary) = render_on("gpu", dir.path());
-    let (on_cpu, cpu_summary) = render_on("cpu", dir.path());
+    let (on_gpu, gpu_summary, said) = render_on("gpu", dir.path());
+    let (on_cpu, cpu_summary, _) = render_on("cpu", dir.path());
     assert!(gpu_summary.contains("(gpu: "), "{gpu_summary}");
+    // The compile that a software adapter takes minutes for is announced, not silent.
+    assert!(said.contains("compiling the GPU tracer for "), "{said}");
     assert!(
         cpu_summary.contains("(cpu: ") && cpu_summary.contains(" threads)"),
         "{cpu_summary}"

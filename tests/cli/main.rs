@@ -13,6 +13,7 @@ mod gpu;
 mod inspect;
 mod outputs;
 mod overrides;
+mod proportion;
 mod render;
 mod sequences;
 mod tone;

@@ -201,3 +201,21 @@ fn the_anti_aliasing_threshold_is_taken_and_checked() {
         }
     }
 }
+
+#[test]
+fn window_sizes_past_the_limit_are_refused_before_a_window_opens() {
+    let dir = tempfile::tempdir().unwrap();
+    for size in ["16385x100", "100000x100000"] {
+        let out = raylab_without_display(&["view", "--window", size], dir.path());
+        assert_eq!(out.status.code(), Some(2), "{size}: {}", stderr(&out));
+        let text = stderr(&out);
+        assert!(
+            text.contains("sides must be from 1 to 16384"),
+            "{size}: {text}"
+        );
+        assert!(!text.contains("panicked"), "{size}: {text}");
+    }
+    let out = raylab_without_display(&["view", "--script", "resize 16385 100"], dir.path());
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("from 1 to 16384"), "{}", stderr(&out));
+}

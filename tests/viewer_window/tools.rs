@@ -12,7 +12,7 @@ use raylab::render::Assembled;
 use raylab::whitted::RayKind;
 
 use crate::harness::{
-    cpu_render, cpu_render_view, differing, image_rect, mismatches, run_to_screenshot,
+    Run, cpu_render, cpu_render_view, differing, image_rect, mismatches, run_to_screenshot,
     shown_pixels, sized,
 };
 
@@ -63,6 +63,46 @@ fn busiest_pixel(assembled: &Assembled, size: u32) -> RayTree {
     best.unwrap()
 }
 
+/// Checks that the viewer printed (`print-tree`) the headings of `tree`, in the tree's order, each
+/// indented by its depth.
+fn assert_printed_tree(run: &Run, tree: &RayTree) {
+    let printed: Vec<&str> = run
+        .stdout
+        .lines()
+        .filter_map(|l| l.strip_prefix("tree: "))
+        .filter(|l| !l.starts_with("your "))
+        .collect();
+    assert_eq!(
+        printed.len(),
+        tree.nodes.len(),
+        "stdout: {}\nstderr: {}",
+        run.stdout,
+        run.stderr
+    );
+    let mut order = vec![0];
+    let mut preorder = Vec::new();
+    while let Some(i) = order.pop() {
+        preorder.push(i);
+        order.extend(tree.nodes[i].children.iter().rev());
+    }
+    for (line, &i) in printed.iter().zip(&preorder) {
+        let node = &tree.nodes[i];
+        let indent = line.len() - line.trim_start().len();
+        assert_eq!(indent, 2 * (node.depth as usize - 1), "{line}");
+        let kind = match node.kind {
+            RayKind::Eye => "eye",
+            RayKind::Reflected => "reflected",
+            RayKind::Transmitted => "transmitted",
+        };
+        assert!(line.trim_start().starts_with(kind), "{line}: {kind}");
+        assert!(line.contains(&format!("depth {}", node.depth)), "{line}");
+        match &node.hit {
+            Some(hit) => assert!(line.contains(&hit.label), "{line}: {}", hit.label),
+            None => assert!(line.contains("miss"), "{line}"),
+        }
+    }
+}
+
 /// The default scene rendered on the CPU at `size × size`, as linear colours.
 fn cpu_render_linear(size: u32) -> Vec<raylab::color::Color> {
     let scene = default_scene().unwrap();
@@ -94,41 +134,7 @@ fn a_click_on_a_pixel_shows_its_ray_tree_and_draws_it_over_the_image() {
     ) else {
         return;
     };
-    // The panel's headings, in the tree's order, each indented by its depth.
-    let printed: Vec<&str> = run
-        .stdout
-        .lines()
-        .filter_map(|l| l.strip_prefix("tree: "))
-        .collect();
-    assert_eq!(
-        printed.len(),
-        tree.nodes.len(),
-        "stdout: {}\nstderr: {}",
-        run.stdout,
-        run.stderr
-    );
-    let mut order = vec![0];
-    let mut preorder = Vec::new();
-    while let Some(i) = order.pop() {
-        preorder.push(i);
-        order.extend(tree.nodes[i].children.iter().rev());
-    }
-    for (line, &i) in printed.iter().zip(&preorder) {
-        let node = &tree.nodes[i];
-        let indent = line.len() - line.trim_start().len();
-        assert_eq!(indent, 2 * (node.depth as usize - 1), "{line}");
-        let kind = match node.kind {
-            RayKind::Eye => "eye",
-            RayKind::Reflected => "reflected",
-            RayKind::Transmitted => "transmitted",
-        };
-        assert!(line.trim_start().starts_with(kind), "{line}: {kind}");
-        assert!(line.contains(&format!("depth {}", node.depth)), "{line}");
-        match &node.hit {
-            Some(hit) => assert!(line.contains(&hit.label), "{line}: {}", hit.label),
-            None => assert!(line.contains("miss"), "{line}"),
-        }
-    }
+    assert_printed_tree(&run, &tree);
     // The overlay: the image differs from the CPU's where the rays and the pixel's frame are
     // drawn, and around the picked pixel.
     let rect = image_rect(&run.stdout);
@@ -152,6 +158,40 @@ fn a_click_on_a_pixel_shows_its_ray_tree_and_draws_it_over_the_image() {
         "the rest of the image is as rendered: {} pixels differ",
         differing.len()
     );
+}
+
+#[test]
+fn a_click_at_the_default_window_shows_the_point_clicked_and_the_viewer_settles() {
+    // As a newcomer meets it: no --size, no --window, the default sampling; the run must end
+    // (within the harness's time limit) with the tree of the pixel clicked.
+    let dir = tempfile::tempdir().unwrap();
+    let (x, y) = (400, 330);
+    let script = format!("wait; click {x} {y}; wait; print-tree");
+    let Some((run, _)) = run_to_screenshot(dir.path(), &["--stats", "--script", &script]) else {
+        return;
+    };
+    let picked = format!("ray tree of pixel ({x}, {y})");
+    let after_click = run.stderr.split_once(&picked).map(|(_, rest)| rest);
+    let after_click = after_click.unwrap_or_else(|| panic!("{picked}: {}", run.stderr));
+    assert!(
+        !after_click.contains("first image"),
+        "opening the inspector rendered the image again: {}",
+        run.stderr
+    );
+    // The image it was clicked in: the last size rendered at block size 1 before the click.
+    let before_click = run.stderr.split_once(&picked).unwrap().0;
+    let size = before_click
+        .rsplit("block size 1 at ")
+        .next()
+        .and_then(|rest| rest.split_whitespace().next())
+        .and_then(|size| size.split_once('×'))
+        .map(|(w, h)| (w.parse::<u32>().unwrap(), h.parse::<u32>().unwrap()))
+        .unwrap_or_else(|| panic!("no size rendered before the click: {}", run.stderr));
+    let mut scene = default_scene().unwrap();
+    (scene.settings.width, scene.settings.height) = size;
+    let assembled = raylab::render::assemble(scene).unwrap();
+    let tree = trace_ray_tree(&assembled.tracer(), x, y);
+    assert_printed_tree(&run, &tree);
 }
 
 #[test]
@@ -284,8 +324,9 @@ fn an_image_to_compare_shows_left_of_the_divider_its_difference_right_and_beside
         .save(&path)
         .unwrap();
     let path = path.to_str().unwrap();
+    // No --samples: an image is compared with raylab's at one sample a pixel unless asked.
     let compare_with = |script: &str| {
-        let args = ["--compare", path, "--samples", "1", "--script", script];
+        let args = ["--compare", path, "--script", script];
         run_to_screenshot(dir.path(), &args)
     };
     let Some((run, shot)) = compare_with("wait; compare diff; divider 0.5; wait") else {
@@ -327,9 +368,15 @@ fn an_image_to_compare_shows_left_of_the_divider_its_difference_right_and_beside
     let Some((run, _)) = compare_with("wait; pick 45 30; wait; print-tree") else {
         return;
     };
+    // Beside the inspector the image is shown no smaller than it is.
+    let (_, _, width, height) = image_rect(&run.stdout);
+    assert!(
+        width >= size as f32 && height >= size as f32,
+        "{width}×{height}"
+    );
     let k = ((30 * size + 45) * 3) as usize;
     let colours = format!(
-        "tree: compared image (0, 0, 0), raylab ({}, {}, {})",
+        "tree: your image (0, 0, 0), raylab ({}, {}, {})",
         shaded[k],
         shaded[k + 1],
         shaded[k + 2]

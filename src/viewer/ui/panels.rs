@@ -53,16 +53,21 @@ pub fn side_panel(
         .resizable(true)
         .default_size(300.0)
         .show(ui, |ui| {
-            egui::ScrollArea::vertical().show(ui, |ui| {
-                scene_section(ui, scene, state, &mut actions);
-                camera_section(ui, controls, &mut actions);
-                views_section(ui, scene.views, &mut actions);
-                tracing_section(ui, controls, state, legend);
-                lights_section(ui, controls, scene.scene.scene().lights.len());
-                display::section(ui, &mut state.display, &mut actions);
-                materials_panel::show(ui, controls, scene, &mut actions);
-                save_section(ui, state, &mut actions);
-            });
+            // A scroll bar that is always there, not one that shows only under the pointer:
+            // a newcomer sees at once that the panel holds more than the window shows.
+            ui.style_mut().spacing.scroll = egui::style::ScrollStyle::solid();
+            egui::ScrollArea::vertical()
+                .scroll_bar_visibility(egui::scroll_area::ScrollBarVisibility::AlwaysVisible)
+                .show(ui, |ui| {
+                    scene_section(ui, scene, state, &mut actions);
+                    camera_section(ui, controls, &mut actions);
+                    views_section(ui, scene.views, &mut actions);
+                    tracing_section(ui, controls, state, legend);
+                    lights_section(ui, controls, scene.scene.scene().lights.len());
+                    display::section(ui, &mut state.display, &mut actions);
+                    materials_panel::show(ui, controls, scene, &mut actions);
+                    save_section(ui, state, &mut actions);
+                });
         });
     actions
 }
@@ -108,6 +113,10 @@ pub fn status_bar(
     actions
 }
 
+/// The most height the list of scene files beside the open one takes in the panel (points);
+/// a longer list scrolls within it.
+const SCENE_LIST_HEIGHT: f32 = 120.0;
+
 fn scene_section(
     ui: &mut egui::Ui,
     scene: &SceneInfo<'_>,
@@ -131,7 +140,9 @@ fn scene_section(
             ui.horizontal(|ui| {
                 let field = ui.add(
                     egui::TextEdit::singleline(&mut state.open_field)
-                        .hint_text("scene file (.toml, .nff) or spd:NAME, or drop a file here")
+                        .hint_text(
+                            "scene file (.toml, .nff, .dat, .obj) or spd:NAME, or drop a file here",
+                        )
                         .desired_width(190.0),
                 );
                 let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
@@ -142,13 +153,19 @@ fn scene_section(
             if ui.button("Built-in default scene").clicked() {
                 actions.push(Action::Open(None));
             }
-            for file in scene.files_beside {
-                let current = scene.scene.path.as_deref() == Some(file.as_path());
-                let name = file_name(file);
-                if ui.selectable_label(current, name).clicked() && !current {
-                    actions.push(Action::Open(Some(file.clone())));
-                }
-            }
+            // However many files there are, the sections below stay in sight.
+            egui::ScrollArea::vertical()
+                .id_salt("scene files beside")
+                .max_height(SCENE_LIST_HEIGHT)
+                .show(ui, |ui| {
+                    for file in scene.files_beside {
+                        let current = scene.scene.path.as_deref() == Some(file.as_path());
+                        let name = file_name(file);
+                        if ui.selectable_label(current, name).clicked() && !current {
+                            actions.push(Action::Open(Some(file.clone())));
+                        }
+                    }
+                });
         });
 }
 
@@ -204,11 +221,8 @@ fn camera_section(ui: &mut egui::Ui, controls: &mut Controls, actions: &mut Vec<
                 }
             });
             ui.label(
-                egui::RichText::new(
-                    "left-drag orbit · right/middle-drag pan · wheel dolly · W/A/S/D/Q/E fly · \
-                     double-click: orbit centre · click or I: inspect the pixel · Esc: close",
-                )
-                .small(),
+                "left-drag orbit · right/middle-drag pan · wheel dolly · W/A/S/D/Q/E fly · \
+                 double-click: orbit centre · click or I: inspect the pixel · Esc: close",
             );
         });
 }
@@ -409,6 +423,6 @@ fn views_section(ui: &mut egui::Ui, views: &SceneViews, actions: &mut Vec<Action
                     actions.push(Action::PlayPath(None));
                 }
             });
-            ui.label(egui::RichText::new("Ctrl+1…9: store the camera · 1…9: go to it").small());
+            ui.label("Ctrl+1…9: store the camera · 1…9: go to it");
         });
 }

@@ -59,7 +59,7 @@ fn compared_ui(ui: &mut egui::Ui, tree: &RayTree, theirs: [u8; 3], tone: Tone) {
 pub fn compared_lines(tree: &RayTree, theirs: [u8; 3], tone: Tone) -> [String; 2] {
     let ours = tone.map(tree.color);
     let levels = |c: [u8; 3]| format!("({}, {}, {})", c[0], c[1], c[2]);
-    let colours = format!("compared image {}, raylab {}", levels(theirs), levels(ours));
+    let colours = format!("your image {}, raylab {}", levels(theirs), levels(ours));
     let why = explain_pixel(tree, theirs, ours)
         .accounted_for
         .unwrap_or_else(|| match pixel_difference(theirs, ours) {
