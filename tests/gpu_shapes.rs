@@ -23,6 +23,7 @@ use raylab::gpu::probe::{
 use raylab::gpu::scene::GpuScene;
 use raylab::gpu::tracer::tracer_wgsl;
 use raylab::material::Material;
+use raylab::memory::Bytes;
 use raylab::mesh::Mesh;
 use raylab::primitive::PrimId;
 use raylab::ray::Ray;
@@ -1072,9 +1073,11 @@ fn a_scene_larger_than_the_gpu_holds_is_refused_with_both_sizes() {
     let error = GpuScene::upload(&gpu, &assembled)
         .err()
         .expect("the scene is refused");
+    // In bytes as people read them, and what to do instead.
     assert!(
-        error.contains("the triangles need 96000 bytes")
-            && error.contains(&format!("allows {small} bytes")),
+        error.contains("the triangles need 96.0 KB")
+            && error.contains(&format!("allows {}", Bytes(small.into())))
+            && error.contains("use --device cpu"),
         "{error}"
     );
 }

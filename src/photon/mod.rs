@@ -69,8 +69,8 @@ impl Caustics {
 
     /// Shoots `count` more photons, a batch at a time. Before each batch the memory the map of
     /// all of them takes at its peak is checked, the photons they will store projected from
-    /// those stored so far (one per photon shot before the first batch says); the error says it
-    /// would not fit.
+    /// those stored so far (before the first batch, the batch's own photons, each stored once);
+    /// the error says it would not fit.
     pub fn shoot(&mut self, tracer: &Tracer, count: u32) -> Result<(), String> {
         let end = self.shot.saturating_add(count);
         let Some(source) = &self.source else {
@@ -78,19 +78,23 @@ impl Caustics {
             return Ok(());
         };
         while self.shot < end {
-            let expected = match self.shot {
-                0 => u64::from(end),
-                shot => self.stored.len() as u64 * u64::from(end) / u64::from(shot),
+            let batch = BATCH.min(end - self.shot);
+            let (expected, what) = match self.shot {
+                0 => (
+                    u64::from(batch),
+                    format!("the first {batch} of {end} caustic photons"),
+                ),
+                shot => {
+                    let expected = self.stored.len() as u64 * u64::from(end) / u64::from(shot);
+                    let what = format!("a map of {end} caustic photons (about {expected} stored)");
+                    (expected, what)
+                }
             };
-            memory::check(
-                &format!("a map of {end} caustic photons (about {expected} stored)"),
-                expected * BYTES_PER_STORED,
-            )?;
+            memory::check(&what, expected * BYTES_PER_STORED)?;
             if self.shot > 0 {
                 let more = (expected as usize).saturating_sub(self.stored.len());
                 self.stored.reserve_exact(more);
             }
-            let batch = BATCH.min(end - self.shot);
             source.shoot(tracer, self.shot, batch, &mut self.stored);
             self.shot += batch;
         }

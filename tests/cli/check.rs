@@ -51,6 +51,16 @@ fn rendered_through_corners(scene: &Scene) -> Vec<Color> {
         .collect()
 }
 
+/// `pixels` (an image of [`SIZE`]) with its rows in the other order.
+fn flipped(pixels: &[[u8; 3]]) -> Vec<[u8; 3]> {
+    pixels
+        .chunks(SIZE.0 as usize)
+        .rev()
+        .flatten()
+        .copied()
+        .collect()
+}
+
 fn levels(colors: &[Color]) -> Vec<[u8; 3]> {
     colors.iter().map(|c| c.to_array().map(srgb8)).collect()
 }
@@ -81,12 +91,7 @@ fn each_mistake_of_a_students_tracer_is_named() {
     };
     let colors = rendered(&scene(|_| {}));
     let reference = levels(&colors);
-    let flipped: Vec<[u8; 3]> = reference
-        .chunks(SIZE.0 as usize)
-        .rev()
-        .flatten()
-        .copied()
-        .collect();
+    let flipped = flipped(&reference);
     // Gamma applied again, as 1/2.2, to levels already encoded with the sRGB curve.
     let gamma_twice: Vec<[u8; 3]> = reference
         .iter()
@@ -160,11 +165,20 @@ fn each_mistake_of_a_students_tracer_is_named() {
             "likely cause: colours over 1 are not clamped",
         ),
     ];
-    for (name, pixels, cause) in students {
-        save(dir.path(), name, &pixels);
-        let (code, text) = check(dir.path(), name);
+    assert_each_said(dir.path(), students);
+}
+
+/// Saves each student's image (a name, its pixels) in `dir` and checks that `check` says what is
+/// expected of it, and that it differs.
+fn assert_each_said<const N: usize>(dir: &Path, students: [(&str, Vec<[u8; 3]>, &str); N]) {
+    for (name, pixels, expected) in students {
+        save(dir, name, &pixels);
+        let (code, text) = check(dir, name);
         assert_eq!(code, Some(1), "{name}: {text}");
-        assert!(text.contains(cause), "{name}: expected {cause:?}:\n{text}");
+        assert!(
+            text.contains(expected),
+            "{name}: expected {expected:?}:\n{text}"
+        );
         assert!(text.ends_with("different\n"), "{name}: {text}");
     }
 }
@@ -305,27 +319,14 @@ fn what_no_common_mistake_explains_is_pointed_at() {
             "likely cause: the image is shifted one pixel to the right",
         ),
     ];
-    for (name, pixels, expected) in students {
-        save(dir.path(), name, &pixels);
-        let (code, text) = check(dir.path(), name);
-        assert_eq!(code, Some(1), "{name}: {text}");
-        assert!(
-            text.contains(expected),
-            "{name}: expected {expected:?}:\n{text}"
-        );
-    }
+    assert_each_said(dir.path(), students);
 }
 
 #[test]
 fn a_mistake_of_the_whole_image_leaves_no_pixel_blamed_on_a_term() {
     let dir = tempfile::tempdir().unwrap();
     let reference = levels(&rendered(&scene(|_| {})));
-    let flipped: Vec<[u8; 3]> = reference
-        .chunks(SIZE.0 as usize)
-        .rev()
-        .flatten()
-        .copied()
-        .collect();
+    let flipped = flipped(&reference);
     save(dir.path(), "flipped.png", &flipped);
     let (code, text) = check(dir.path(), "flipped.png");
     assert_eq!(code, Some(1), "{text}");
