@@ -1076,7 +1076,7 @@ fn a_scene_larger_than_the_gpu_holds_is_refused_with_both_sizes() {
     // In bytes as people read them, and what to do instead.
     assert!(
         error.contains("the triangles need 96.0 KB")
-            && error.contains(&format!("allows {}", Bytes(small.into())))
+            && error.contains(&format!("allows {}", Bytes(small)))
             && error.contains("use --device cpu"),
         "{error}"
     );

@@ -140,7 +140,7 @@ pub fn views_path(file: &Path) -> PathBuf {
     file.with_extension("views.toml")
 }
 
-/// The scene with the default framing camera ([`camera::frame`]): a three-quarter view of its
+/// The scene with the default framing camera ([`crate::camera::frame`]): a three-quarter view of its
 /// finite objects at its image's aspect. The reader of a format without a camera ends with it:
 /// `load_sdl(path).map(with_framing_camera)`.
 pub fn with_framing_camera(mut scene: Scene) -> Scene {

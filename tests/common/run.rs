@@ -67,12 +67,15 @@ pub fn raylab_measured(
         }
         if start.elapsed() > limit {
             let _ = child.kill();
+            let _ = child.wait();
             panic!(
                 "raylab {args:?} ran for more than {limit:?}: it should have finished or refused"
             );
         }
         std::thread::sleep(Duration::from_millis(10));
     };
+    // wait4 reaped it; std's own wait then only learns that there is nothing left to wait for.
+    let _ = child.wait();
     use std::os::unix::process::ExitStatusExt;
     Measured {
         output: Output {
