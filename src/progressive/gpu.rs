@@ -42,6 +42,26 @@ const BAND: u32 = 8;
 /// systems reset a GPU that does not answer, and short enough to stop soon after a cancel.
 pub const DISPATCH_TIME: Duration = Duration::from_millis(100);
 
+/// Traces one sample on `gpu` and waits for it. A driver may compile the tracer only when it
+/// first runs it (lavapipe: a minute or two, once a device): that time is the renderer's
+/// making, not a render's, whose rays per second would count it.
+fn warm_up(gpu: &GpuDevice, scene: &GpuScene, trace: &ComputeEntry) -> Result<(), String> {
+    let sample = PixelSample {
+        x: 0,
+        y: 0,
+        k: 0,
+        item_t: 0.0,
+    };
+    let list = upload_list(gpu, &[sample], size_of::<SampleColor>() as u64)?;
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    dispatch_list(gpu, scene, trace, &list, &mut encoder);
+    gpu.queue.submit([encoder.finish()]);
+    gpu.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| format!("the GPU did not finish: {e}"))?;
+    Ok(())
+}
+
 /// A scene's objects, BVH, materials, lights and caustic photons on the GPU, ready to render it
 /// from any camera with any of the settings the frame record carries (the switches, depth,
 /// weights, sizes).
@@ -69,6 +89,7 @@ impl GpuRenderer {
     ) -> Result<GpuRenderer, String> {
         let scene = GpuScene::upload_with(&gpu, assembled, nodes)?;
         let trace = pipeline(&gpu, "trace_samples", nodes);
+        warm_up(&gpu, &scene, &trace)?;
         Ok(GpuRenderer {
             gpu,
             scene,
