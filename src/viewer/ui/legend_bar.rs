@@ -12,7 +12,7 @@ const LABEL_HEIGHT: f32 = 14.0;
 
 /// Draws `legend` across the panel's width.
 pub fn show(ui: &mut egui::Ui, legend: &Legend) {
-    ui.label(egui::RichText::new(&legend.label).small());
+    ui.label(&legend.label);
     let width = ui.available_width().min(280.0);
     let height = BAR_HEIGHT + TICK_LENGTH + LABEL_HEIGHT;
     let (rect, _) = ui.allocate_exact_size(vec2(width, height), Sense::hover());

@@ -51,7 +51,7 @@ fn compared_ui(ui: &mut egui::Ui, tree: &RayTree, theirs: [u8; 3], tone: Tone) {
         swatch(ui, linear(ours));
         ui.label(colours);
     });
-    ui.label(RichText::new(why).small());
+    ui.label(why);
 }
 
 /// Two lines: the compared image's levels at the tree's pixel (`theirs`) and raylab's as shown
@@ -140,7 +140,7 @@ pub fn show(
                 let ms = ids.time.as_secs_f64() * 1e3;
                 timing += &format!("; objects of the image in {ms:.0} ms");
             }
-            ui.label(RichText::new(timing).small());
+            ui.label(timing);
             let mut hovered = None;
             egui::ScrollArea::vertical().show(ui, |ui| {
                 if !tree.nodes.is_empty() {
