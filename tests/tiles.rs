@@ -450,6 +450,35 @@ fn merge_status_lists_the_tiles_there_are_and_those_missing() {
         "{text}"
     );
     assert!(!text.contains("missing tile 0/3"), "{text}");
+    // A tile of another render among them: named, and no count of pixels past the image's.
+    raylab(
+        &[
+            "render",
+            "--size",
+            "40x12",
+            "--tile",
+            "1/3",
+            "-o",
+            "parts/1.exr",
+        ],
+        d,
+    );
+    let out = raylab_with(&["merge", "--status", "parts"], d, &[]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains(
+            "these parts do not belong together: parts/0.exr is a part of a 20×12 \
+                       image, parts/1.exr of a 40×12"
+        ),
+        "{text}"
+    );
+    assert!(!text.contains("pixels in parts"), "{text}");
+    assert!(
+        stderr(&out).contains("the parts are not of one render"),
+        "{}",
+        stderr(&out)
+    );
 }
 
 #[test]

@@ -3,8 +3,8 @@
 
 use std::io::Read;
 use std::path::Path;
-use std::process::{Command, ExitStatus, Output, Stdio};
-use std::time::Duration;
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
 
 /// Runs `raylab ARGS` in `dir` and returns what it did.
 pub fn raylab(args: &[&str], dir: &Path) -> Output {
@@ -26,16 +26,25 @@ pub struct Measured {
     pub peak_bytes: u64,
 }
 
-/// Runs `raylab ARGS` in `dir` with the environment variables `env` set, and measures the peak
-/// of its resident memory (the kernel's count for the process, `ru_maxrss`). The run fails the
-/// test if it takes longer than `limit`: it is killed and the test says so.
+/// GNU time, which measures the command it runs. The peak memory of a process this test starts
+/// itself would not do: Linux counts the starting process's own resident memory (a test binary's,
+/// with its images) into the peak of the process it starts, up to that process's `exec`.
+const TIME: &str = "/usr/bin/time";
+
+/// Runs `raylab ARGS` in `dir` with the environment variables `env` set, under GNU time, and
+/// measures the peak of its resident memory. The run fails the test if it takes longer than
+/// `limit`: it is killed and the test says so.
 pub fn raylab_measured(
     args: &[&str],
     dir: &Path,
     env: &[(&str, &str)],
     limit: Duration,
 ) -> Measured {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_raylab"))
+    let report = tempfile::NamedTempFile::new().expect("a file for the measurement");
+    let mut child = Command::new(TIME)
+        .args(["-f", "%M", "-o"])
+        .arg(report.path())
+        .arg(env!("CARGO_BIN_EXE_raylab"))
         .args(args)
         .current_dir(dir)
         .envs(env.iter().copied())
@@ -43,7 +52,9 @@ pub fn raylab_measured(
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
-        .expect("the binary runs");
+        .unwrap_or_else(|e| {
+            panic!("{TIME} runs the measured commands ({e}); install it: apt-get install time")
+        });
     let drain = |mut pipe: Box<dyn Read + Send>| {
         std::thread::spawn(move || {
             let mut bytes = Vec::new();
@@ -53,17 +64,10 @@ pub fn raylab_measured(
     };
     let stdout = drain(Box::new(child.stdout.take().expect("piped")));
     let stderr = drain(Box::new(child.stderr.take().expect("piped")));
-    let pid = child.id() as libc::pid_t;
-    let start = std::time::Instant::now();
-    let (status, usage) = loop {
-        let mut status = 0;
-        // SAFETY: an all-zero rusage is a valid value for wait4 to fill.
-        let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
-        // SAFETY: `pid` is our child, not yet waited for; the pointers are to live locals.
-        let done = unsafe { libc::wait4(pid, &mut status, libc::WNOHANG, &mut usage) };
-        assert!(done >= 0, "waiting for raylab {args:?} failed");
-        if done == pid {
-            break (status, usage);
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("the run can be waited for") {
+            break status;
         }
         if start.elapsed() > limit {
             let _ = child.kill();
@@ -74,16 +78,19 @@ pub fn raylab_measured(
         }
         std::thread::sleep(Duration::from_millis(10));
     };
-    // wait4 reaped it; std's own wait then only learns that there is nothing left to wait for.
-    let _ = child.wait();
-    use std::os::unix::process::ExitStatusExt;
+    let text = std::fs::read_to_string(report.path()).expect("GNU time's report");
+    // The last line: a killed command's report starts with a line saying so. In kilobytes.
+    let kilobytes: u64 = text
+        .lines()
+        .last()
+        .and_then(|line| line.trim().parse().ok())
+        .unwrap_or_else(|| panic!("no peak memory in GNU time's report: {text:?}"));
     Measured {
         output: Output {
-            status: ExitStatus::from_raw(status),
+            status,
             stdout: stdout.join().expect("read stdout"),
             stderr: stderr.join().expect("read stderr"),
         },
-        // Linux counts it in kilobytes.
-        peak_bytes: usage.ru_maxrss as u64 * 1024,
+        peak_bytes: kilobytes * 1024,
     }
 }
