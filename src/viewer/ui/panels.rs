@@ -426,3 +426,99 @@ fn views_section(ui: &mut egui::Ui, views: &SceneViews, actions: &mut Vec<Action
             ui.label("Ctrl+1…9: store the camera · 1…9: go to it");
         });
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::viewer::scene::source::load;
+    use raylab::views::Views;
+
+    /// Where the texts of `shapes` that read exactly `text` are drawn and shown (their rectangle
+    /// inside their clip rectangle), the top of each.
+    fn shown_at(shapes: &[egui::epaint::ClippedShape], text: &str) -> Vec<f32> {
+        shapes
+            .iter()
+            .filter_map(|clipped| match &clipped.shape {
+                egui::Shape::Text(shape) if shape.galley.text() == text => {
+                    let rect = shape.visual_bounding_rect();
+                    clipped.clip_rect.contains_rect(rect).then_some(rect.top())
+                }
+                _ => None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn at_1280_by_800_the_camera_stays_in_sight_and_the_last_section_scrolls_into_view() {
+        let loaded = load(None, None).unwrap();
+        let mut controls = Controls::from_scene(loaded.scene());
+        // A folder of many scene files.
+        let files: Vec<PathBuf> = (0..40)
+            .map(|i| PathBuf::from(format!("scene_{i:02}.toml")))
+            .collect();
+        let views = SceneViews::new(Views::default(), None);
+        let info = SceneInfo {
+            scene: &loaded,
+            load_error: None,
+            files_beside: &files,
+            views: &views,
+        };
+        let mut state = PanelState {
+            open_field: String::new(),
+            save_field: "raylab.png".into(),
+            message: None,
+            resolution: Resolution::Fit,
+            max_side: 2048,
+            display: DisplayControls::default(),
+            compared: None,
+        };
+        let ctx = egui::Context::default();
+        let screen = egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1280.0, 800.0));
+        let mut frame = |k: usize, events: Vec<egui::Event>| {
+            let input = egui::RawInput {
+                screen_rect: Some(screen),
+                time: Some(k as f64 / 60.0),
+                events,
+                ..Default::default()
+            };
+            let mut output = ctx.run_ui(input, |ui| {
+                side_panel(ui, &mut controls, &info, &mut state, None);
+            });
+            output.textures_delta.clear();
+            output.shapes
+        };
+        // The second frame, once egui knows the sizes it laid out in the first.
+        frame(0, Vec::new());
+        let shapes = frame(1, Vec::new());
+        let camera = shown_at(&shapes, "Camera");
+        assert!(
+            camera.iter().any(|&top| top < 400.0),
+            "the camera section starts in the upper half: {camera:?}"
+        );
+        assert!(
+            shown_at(&shapes, "Save").is_empty(),
+            "the panel holds more than 800 points"
+        );
+        // The wheel over the panel scrolls it down to its last section.
+        let over_panel = egui::pos2(150.0, 600.0);
+        let mut last = shapes;
+        for k in 2..60 {
+            let events = vec![
+                egui::Event::PointerMoved(over_panel),
+                egui::Event::MouseWheel {
+                    unit: egui::MouseWheelUnit::Point,
+                    delta: egui::vec2(0.0, -400.0),
+                    phase: egui::TouchPhase::Move,
+                    source: egui::MouseWheelSource::Unknown,
+                    modifiers: egui::Modifiers::NONE,
+                },
+            ];
+            last = frame(k, events);
+        }
+        let save = shown_at(&last, "Save");
+        assert!(
+            save.iter().any(|&top| top < 800.0),
+            "the Save section scrolls into view: {save:?}"
+        );
+    }
+}
