@@ -44,9 +44,9 @@ impl LoadedScene {
     }
 }
 
-/// Reads the scene at `path` (a TOML, NFF or SDL file, or an `spd:NAME[:SIZE]` name; the default
-/// scene for `None`) in `format`, or the one its name says, with the views file beside it, and
-/// builds its BVH. The error is the loader's message (`file:line:column: message`).
+/// Reads the scene at `path` (a TOML, NFF, SDL or OBJ file, or an `spd:NAME[:SIZE]` name; the
+/// default scene for `None`) in `format`, or the one its name says, with the views file beside
+/// it, and builds its BVH. The error is the loader's message (`file:line:column: message`).
 pub fn load(path: Option<&Path>, format: Option<SceneFormat>) -> Result<LoadedScene, String> {
     let start = Instant::now();
     let scene = match path {
