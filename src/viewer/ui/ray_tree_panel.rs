@@ -18,6 +18,9 @@ use super::swatch::swatch;
 use crate::viewer::input::action::Action;
 use crate::viewer::workers::picked_pixel::PickedPixel;
 
+/// The panel's widest (points), however long its lines.
+const MAX_WIDTH: f32 = 420.0;
+
 /// A ray kind as the panel names it.
 pub fn kind_name(kind: RayKind) -> &'static str {
     match kind {
@@ -46,7 +49,7 @@ fn compared_ui(ui: &mut egui::Ui, tree: &RayTree, theirs: [u8; 3], tone: Tone) {
     let ours = tone.map(tree.color);
     let linear = |c: [u8; 3]| Color::from_array(c.map(|l| srgb_to_linear(f32::from(l) / 255.0)));
     let [colours, why] = compared_lines(tree, theirs, tone);
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         swatch(ui, linear(theirs));
         swatch(ui, linear(ours));
         ui.label(colours);
@@ -105,9 +108,12 @@ pub fn show(
     let Some((x, y)) = picked.pixel else {
         return actions;
     };
+    // At most a third of a 1280-wide window: its long lines wrap rather than push the image
+    // into a corner.
     egui::Panel::right("inspector")
         .resizable(true)
         .default_size(340.0)
+        .max_size(MAX_WIDTH)
         .show(ui, |ui| {
             ui.horizontal(|ui| {
                 ui.heading(format!("Pixel ({x}, {y})"));
