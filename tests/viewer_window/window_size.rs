@@ -200,3 +200,35 @@ fn a_fitted_image_on_a_hidpi_window_has_its_physical_pixels() {
     let expected = cpu_render_sized(rect.2 as u32, rect.3 as u32);
     assert_eq!(mismatches_one_to_one(&shot, rect, &expected), 0);
 }
+
+#[test]
+fn at_1280_by_800_the_side_panel_shows_that_it_scrolls() {
+    // The screen's size, the default scene's panel longer than it: a scroll bar must be drawn
+    // without the pointer over it, its handle shorter than its track.
+    let dir = tempfile::tempdir().unwrap();
+    let Some((run, shot)) =
+        run_to_screenshot(dir.path(), &["--window", "1280x800", "--samples", "1"])
+    else {
+        return;
+    };
+    let (x, _, _, height) = image_rect(&run.stdout);
+    let shot = image::open(&shot).unwrap().to_rgb8();
+    let rows = 10..(height as u32).saturating_sub(10);
+    let scroll_bar = (x as u32 - 30..x as u32).find(|&column| {
+        let mut colours: Vec<[u8; 3]> = rows.clone().map(|y| shot.get_pixel(column, y).0).collect();
+        colours.sort_unstable();
+        let mut runs: Vec<usize> = colours
+            .chunk_by(|a, b| a == b)
+            .map(<[[u8; 3]]>::len)
+            .collect();
+        runs.sort_unstable_by(|a, b| b.cmp(a));
+        // A handle and a track, each a good part of the column, and little else (their edges).
+        let tenth = colours.len() / 10;
+        runs.len() <= 6 && runs.len() >= 2 && runs[1] >= tenth && runs[0] + runs[1] >= 9 * tenth
+    });
+    assert!(
+        scroll_bar.is_some(),
+        "no scroll bar in the side panel's right edge (x {} to {x})",
+        x - 30.0
+    );
+}
