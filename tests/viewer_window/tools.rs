@@ -388,3 +388,29 @@ fn an_image_to_compare_shows_left_of_the_divider_its_difference_right_and_beside
         run.stdout
     );
 }
+
+#[test]
+fn a_compared_image_of_a_students_size_stays_whole_beside_the_inspector() {
+    // At the default window, a 320×240 image (a size students hand in) with a pixel picked: the
+    // inspector's panel must leave it at least its own size.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("mine.png");
+    image::RgbImage::from_fn(320, 240, |x, y| image::Rgb([x as u8, y as u8, 90]))
+        .save(&path)
+        .unwrap();
+    let args = [
+        "--compare",
+        path.to_str().unwrap(),
+        "--script",
+        "wait; pick 150 150; wait; print-tree",
+    ];
+    let Some((run, _)) = run_to_screenshot(dir.path(), &args) else {
+        return;
+    };
+    assert!(run.stdout.contains("tree: your image ("), "{}", run.stdout);
+    let (_, _, width, height) = image_rect(&run.stdout);
+    assert!(
+        width >= 320.0 && height >= 240.0,
+        "shown at {width}×{height}"
+    );
+}
