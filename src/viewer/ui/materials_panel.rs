@@ -8,7 +8,7 @@ use egui::{DragValue, Slider};
 use raylab::light::Light;
 use raylab::material::Material;
 
-use super::panels::vector;
+use super::fields::vector;
 use super::swatch::color32;
 use crate::viewer::input::action::Action;
 use crate::viewer::scene::controls::Controls;

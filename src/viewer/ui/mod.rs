@@ -4,6 +4,7 @@
 //! bar and colour swatches. Its input becomes [`Action`]s for the app to carry out.
 
 pub mod display;
+pub mod fields;
 pub mod legend_bar;
 pub mod materials_panel;
 pub mod overlay;

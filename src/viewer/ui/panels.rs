@@ -12,6 +12,7 @@ use raylab::srgb_image::SrgbImage;
 use strum::IntoEnumIterator;
 
 use super::display::{self, DisplayControls};
+use super::fields::vector;
 use super::{legend_bar, materials_panel};
 use crate::viewer::input::action::Action;
 use crate::viewer::layout::Resolution;
@@ -174,16 +175,6 @@ fn file_name(path: &Path) -> String {
         || path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     )
-}
-
-/// A vector's three numbers, to drag or type.
-pub fn vector(ui: &mut egui::Ui, label: &str, v: &mut glam::Vec3) {
-    ui.horizontal(|ui| {
-        ui.label(label);
-        for c in [&mut v.x, &mut v.y, &mut v.z] {
-            ui.add(DragValue::new(c).speed(0.02).max_decimals(3));
-        }
-    });
 }
 
 fn camera_section(ui: &mut egui::Ui, controls: &mut Controls, actions: &mut Vec<Action>) {
