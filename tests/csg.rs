@@ -314,6 +314,27 @@ fn open_surfaces_and_absurd_nesting_are_errors_at_their_place() {
         error.message.contains("nested more than 16 deep"),
         "{error}"
     );
+    // Far deeper, the TOML reader stops first: its limit is named, and the CSG's beside it.
+    for _ in 17..100 {
+        node = format!(r#"{{ type = "csg", operation = "union", children = [{node}] }}"#);
+    }
+    let text = format!("objects = [{node}]\n");
+    let error = parse_scene(&text, Path::new("test.toml"), Path::new("."))
+        .expect_err("nesting 100 deep is refused");
+    assert!(
+        error
+            .message
+            .contains("nested more than 80 deep, the TOML reader's limit")
+            && error.message.contains("csg objects nest at most 16 deep"),
+        "{error}"
+    );
+    // The offending line, 6,000 characters long, is shown around the column.
+    let shown = error
+        .to_string()
+        .lines()
+        .nth(2)
+        .map(|line| line.chars().count());
+    assert!(shown.is_some_and(|count| count < 120), "{error}");
     let bad_operation = "[[objects]]\ntype = \"csg\"\noperation = \"xor\"\nchildren = []\n";
     let error = parse_scene(bad_operation, Path::new("test.toml"), Path::new("."))
         .expect_err("xor is no operation");
