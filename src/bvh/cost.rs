@@ -3,10 +3,11 @@
 //! nothing and vanish when compiled, and the BVH cost view passes a [`BvhCost`] that counts.
 //! `sah_cost` estimates a whole tree's cost for a ray, as the builder does for one split.
 
-use super::Node;
-use super::build::{TRAVERSAL_COST, tests};
+use super::build::{TRAVERSAL_COST, binary_tree, tests};
 use super::leaf::LeafKind;
+use super::{Bvh, Node};
 use crate::aabb::Aabb;
+use crate::primitive::Geometry;
 
 /// Told of every node visited and every primitive tested during a traversal.
 pub trait TraversalCost {
@@ -77,6 +78,17 @@ pub(super) fn sah_cost(nodes: &[Node], kinds: &[LeafKind]) -> f64 {
         }
     }
     cost / root_area
+}
+
+impl Bvh {
+    /// The SAH cost ([`sah_cost`]) of the binary tree that [`Bvh::build`] collapses, and its
+    /// number of nodes: for measuring the builder. `(0, 0)` when nothing is bounded.
+    pub fn binary_tree_cost(geometry: &Geometry) -> (f64, usize) {
+        match binary_tree(geometry) {
+            Some((tree, kinds)) => (sah_cost(&tree, &kinds), tree.len()),
+            None => (0.0, 0),
+        }
+    }
 }
 
 #[cfg(test)]

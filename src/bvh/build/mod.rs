@@ -62,19 +62,18 @@ impl Bvh {
         let ids: Vec<PrimId> = prims.par_iter().map(BuildPrim::id).collect();
         Bvh::from_binary(geometry, &binary, &ids, unbounded)
     }
+}
 
-    /// The SAH cost (`cost::sah_cost`) of the binary tree that [`Bvh::build`]
-    /// collapses, and its number of nodes: for measuring the builder. `(0, 0)` when nothing
-    /// is bounded.
-    pub fn binary_tree_cost(geometry: &Geometry) -> (f64, usize) {
-        let (mut prims, extent, _) = build_prims(geometry);
-        if prims.is_empty() {
-            return (0.0, 0);
-        }
-        let tree = subtree(&mut prims, 0, extent, 0);
-        let kinds: Vec<LeafKind> = prims.iter().map(BuildPrim::kind).collect();
-        (super::cost::sah_cost(&tree, &kinds), tree.len())
+/// The binary tree that [`Bvh::build`] collapses, and the kind of each primitive in the tree's
+/// order; `None` when nothing is bounded.
+pub(super) fn binary_tree(geometry: &Geometry) -> Option<(Vec<Node>, Vec<LeafKind>)> {
+    let (mut prims, extent, _) = build_prims(geometry);
+    if prims.is_empty() {
+        return None;
     }
+    let tree = subtree(&mut prims, 0, extent, 0);
+    let kinds = prims.iter().map(BuildPrim::kind).collect();
+    Some((tree, kinds))
 }
 
 /// The bounded primitives as the builder sees them with their extent, and the ids of the
