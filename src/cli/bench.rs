@@ -34,6 +34,7 @@ use raylab::whitted::Tracer;
 
 use super::bench_first_hits::bench_first_hits;
 use super::bench_report::{self, BenchResult, CausticBench};
+use super::median;
 use super::overrides::parse_size;
 
 #[derive(Args, Debug)]
@@ -317,11 +318,6 @@ fn bench_caustics(
         render_off: Duration::ZERO,
     };
     Ok((map, bench))
-}
-
-pub(super) fn median(mut times: Vec<Duration>) -> Duration {
-    times.sort();
-    times[times.len() / 2]
 }
 
 /// Starts measuring the process's peak resident memory afresh (Linux: writing 5 to

@@ -17,7 +17,7 @@ use raylab::stats::RayCounts;
 use raylab::whitted::{EYE_RAY_T_MIN, Tracer};
 use rayon::prelude::*;
 
-use super::bench::median;
+use super::median;
 
 /// The eye rays' first hits with the rays alone and with the item buffer (times are medians
 /// over the repeats).

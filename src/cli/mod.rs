@@ -21,6 +21,7 @@ use std::io::{self, BufWriter, StdoutLock, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
+use std::time::Duration;
 
 use clap::{Parser, Subcommand};
 use raylab::compare::difference::Difference;
@@ -194,6 +195,12 @@ fn compiling_notice(device: &GpuDevice) -> String {
         "compiling the GPU tracer for {}, once for this run{wait}…",
         device.name()
     )
+}
+
+/// The median of the times a bench measured (at least one).
+fn median(mut times: Vec<Duration>) -> Duration {
+    times.sort();
+    times[times.len() / 2]
 }
 
 /// A rayon pool of `threads` workers (default: one per core).
