@@ -227,16 +227,16 @@ impl Written<'_> {
         }
         // Shifted left, the image shows at x what belongs at x + 1; at the edge, the edge.
         let step = |v: u32, by: i32, size: u32| (v as i32 + by).clamp(0, size as i32 - 1) as u32;
-        sx = match () {
-            _ if has(Mistake::ShiftedLeft) => step(sx, 1, width),
-            _ if has(Mistake::ShiftedRight) => step(sx, -1, width),
-            _ => sx,
-        };
-        sy = match () {
-            _ if has(Mistake::ShiftedUp) => step(sy, 1, height),
-            _ if has(Mistake::ShiftedDown) => step(sy, -1, height),
-            _ => sy,
-        };
+        if has(Mistake::ShiftedLeft) {
+            sx = step(sx, 1, width);
+        } else if has(Mistake::ShiftedRight) {
+            sx = step(sx, -1, width);
+        }
+        if has(Mistake::ShiftedUp) {
+            sy = step(sy, 1, height);
+        } else if has(Mistake::ShiftedDown) {
+            sy = step(sy, -1, height);
+        }
         let mut color = self.colors.get(sx, sy);
         if has(Mistake::Scaled) {
             color *= self.scale;
