@@ -81,7 +81,7 @@ pub(super) fn sah_cost(nodes: &[Node], kinds: &[LeafKind]) -> f64 {
 }
 
 impl Bvh {
-    /// The SAH cost ([`sah_cost`]) of the binary tree that [`Bvh::build`] collapses, and its
+    /// The SAH cost (`sah_cost`) of the binary tree that [`Bvh::build`] collapses, and its
     /// number of nodes: for measuring the builder. `(0, 0)` when nothing is bounded.
     pub fn binary_tree_cost(geometry: &Geometry) -> (f64, usize) {
         match binary_tree(geometry) {
