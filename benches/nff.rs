@@ -1,6 +1,6 @@
 //! The NFF reader on a large file: SPD's `rings` at size factor 12, about 39,000 primitives, read
 //! from text into a scene (the claim that tens of thousands of primitives parse in well under a
-//! second; `tests/nff.rs` checks that they all arrive).
+//! second; `tests/library/nff.rs` checks that they all arrive).
 
 use std::hint::black_box;
 use std::path::Path;

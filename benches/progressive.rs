@@ -1,7 +1,7 @@
 //! Progressive rendering's answer to a cancel: the time from `RenderControl::cancel` to
 //! `progressive::render` returning, on a render far too large to finish (1200 × 1200 pixels,
 //! 64 samples each). Each thread finishes the band it is tracing, so this stays within a few
-//! milliseconds; `tests/progressive.rs` checks that no thread starts another band.
+//! milliseconds; `tests/library/progressive.rs` checks that no thread starts another band.
 
 use std::time::{Duration, Instant};
 

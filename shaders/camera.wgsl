@@ -15,9 +15,6 @@ fn eye_ray_dir(x: u32, y: u32, offset: vec2<f32>) -> vec3<f32> {
         + h * (2.0 * r / n_rows - 1.0) * frame.v;
 }
 
-// `f32::EPSILON`.
-const F32_EPSILON: f32 = 1.1920929e-7;
-
 // Where a ray crosses the backdrop, if it does.
 struct BackdropUv {
     uv: vec2<f32>,
@@ -38,4 +35,17 @@ fn backdrop_uv(dir: vec3<f32>, aspect: f32) -> BackdropUv {
     let x = frame.near * dot(dir, frame.u) / depth / (frame.half_height * aspect);
     let uv = (vec2<f32>(x, y) + 1.0) * 0.5;
     return BackdropUv(uv, all(uv >= vec2<f32>(0.0)) && all(uv <= vec2<f32>(1.0)));
+}
+
+// `sample_ray` (src/progressive/plan.rs): the direction of the eye ray of sample `k` of film
+// pixel (x, y): through the pixel's centre for sample 0, through its jittered point for k ≥ 1,
+// by the pixel's place in the whole image, of which the film may be a window.
+fn sample_ray_dir(film_x: u32, film_y: u32, k: u32) -> vec3<f32> {
+    let x = frame.film_left + film_x;
+    let y = frame.film_top + film_y;
+    var offset = PIXEL_CENTRE;
+    if k != 0u {
+        offset = jitter(x, y, k);
+    }
+    return eye_ray_dir(x, y, offset);
 }

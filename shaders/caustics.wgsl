@@ -5,13 +5,6 @@
 // max-heap, as the CPU's, and walks the tree as the CPU's recursion does, with a stack of the
 // halves still to look at.
 
-// `LEAF_SIZE`: ranges of this many photons or fewer are searched one photon after another.
-const PHOTON_LEAF_SIZE: u32 = 8u;
-// `MAX_CAUSTIC_GATHER`: the most photons one estimate may gather.
-const MAX_GATHER: u32 = 512u;
-// `MAX_PHOTON_TREE_DEPTH`: one waiting half per level of the tree.
-const PHOTON_STACK: u32 = 32u;
-
 // `Photon`, with the axis its node splits.
 struct Photon {
     position: vec3<f32>,

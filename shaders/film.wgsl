@@ -46,16 +46,16 @@ struct ShowRows {
     pad1: u32,
 }
 
-@group(0) @binding(0) var<storage, read> samples: array<PixelSample>;
-@group(0) @binding(1) var<storage, read> colors: array<SampleColor>;
-@group(0) @binding(2) var<storage, read_write> pixels: array<FilmPixel>;
-@group(0) @binding(3) var<storage, read_write> tally: Tally;
-@group(0) @binding(4) var<storage, read_write> cut: array<u32>;
-@group(0) @binding(5) var<storage, read> film_pass: FilmPass;
+@group(0) @binding(FILM_SAMPLES) var<storage, read> samples: array<PixelSample>;
+@group(0) @binding(FILM_COLORS) var<storage, read> colors: array<SampleColor>;
+@group(0) @binding(FILM_PIXELS) var<storage, read_write> pixels: array<FilmPixel>;
+@group(0) @binding(FILM_TALLY) var<storage, read_write> tally: Tally;
+@group(0) @binding(FILM_CUT) var<storage, read_write> cut: array<u32>;
+@group(0) @binding(FILM_FILM_PASS) var<storage, read> film_pass: FilmPass;
 
-@group(0) @binding(6) var<storage, read_write> texels: array<u32>;
-@group(0) @binding(7) var<storage, read> srgb_table: array<vec2<u32>>;
-@group(0) @binding(8) var<storage, read> show: ShowRows;
+@group(0) @binding(FILM_TEXELS) var<storage, read_write> texels: array<u32>;
+@group(0) @binding(FILM_SRGB_TABLE) var<storage, read> srgb_table: array<vec2<u32>>;
+@group(0) @binding(FILM_SHOW) var<storage, read> show: ShowRows;
 
 fn same_pixel(a: PixelSample, b: PixelSample) -> bool {
     return a.x == b.x && a.y == b.y;
@@ -85,7 +85,7 @@ fn put_sample(s: PixelSample, color: vec3<f32>) {
 // Counts each sample's rays, lists those cut short, and puts the others into the film. A
 // pixel's samples lie next to each other in the list, in the order the CPU adds them: the
 // invocation of a pixel's first sample adds them all, so no two invocations write a pixel.
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP)
 fn add_samples(@builtin(global_invocation_id) id: vec3<u32>) {
     let n = arrayLength(&samples);
     let i = id.x;
@@ -115,11 +115,6 @@ fn add_samples(@builtin(global_invocation_id) id: vec3<u32>) {
     }
 }
 
-// `SrgbEncoder`'s bucket shift: a value's bucket is its bit pattern shifted right by it.
-const SRGB_BUCKET_SHIFT: u32 = 16u;
-// `CURVE_INPUT_MAX` of src/tone.rs.
-const CURVE_INPUT_MAX: f32 = 1e6;
-
 fn is_nan(v: f32) -> bool {
     return (bitcast<u32>(v) & 0x7fffffffu) > 0x7f800000u;
 }
@@ -131,13 +126,13 @@ fn tone_curve(curve: u32, v: f32) -> f32 {
         x = clamp(v, 0.0, CURVE_INPUT_MAX);
     }
     switch curve {
-        case 1u: {
+        case CURVE_REINHARD: {
             return x / (1.0 + x);
         }
-        case 2u: {
+        case CURVE_FILMIC: {
             return min((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 1.0);
         }
-        default: {
+        case CURVE_CLAMP, default: {
             return min(x, 1.0);
         }
     }
@@ -156,7 +151,7 @@ fn srgb_byte(v: f32) -> u32 {
 }
 
 // One texel of the shown rows: red, green, blue and an opaque alpha, a byte each in that order.
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP)
 fn show_rows(@builtin(global_invocation_id) id: vec3<u32>) {
     let x = id.x;
     let y = show.first_row + id.y;

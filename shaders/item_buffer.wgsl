@@ -25,9 +25,8 @@ struct RasterFilm {
     pad1: u32,
 }
 
-// Bindings 3 and 4: 0 to 2 are the tracer's lists and item buffer (trace_samples.wgsl).
-@group(1) @binding(3) var<storage, read> proxies: array<Proxy>;
-@group(1) @binding(4) var<storage, read> raster_film: RasterFilm;
+@group(1) @binding(WORK_PROXIES) var<storage, read> proxies: array<Proxy>;
+@group(1) @binding(WORK_RASTER_FILM) var<storage, read> raster_film: RasterFilm;
 
 // What a fragment writes: the primitive (`PrimId`), the bits of `t`, the part of an object hit,
 // and a triangle's slot in `triangles`. A pixel nothing was drawn on keeps the primitive
@@ -36,11 +35,6 @@ struct ItemOutput {
     @location(0) item: vec4<u32>,
     @builtin(frag_depth) depth: f32,
 }
-
-// The near clipping plane's distance along the view direction, as a share of the image plane's:
-// a little nearer than every eye ray's first point (t = 1), so no surface an eye ray sees is
-// clipped.
-const NEAR_SHARE: f32 = 0.999;
 
 // The clip-space position of the world point `p` on the film: the camera's projection, the
 // twin of `eye_ray_dir` (camera.wgsl), with `w` the distance along the view direction. The film
@@ -66,7 +60,7 @@ fn clip_position(p: vec3<f32>) -> vec4<f32> {
 fn fragment_ray_dir(position: vec4<f32>) -> vec3<f32> {
     let x = frame.film_left + u32(position.x);
     let y = frame.film_top + u32(position.y);
-    return eye_ray_dir(x, y, vec2<f32>(0.5, 0.5));
+    return eye_ray_dir(x, y, PIXEL_CENTRE);
 }
 
 // The corners of a box's twelve triangles, two per face; corner bits: x 1, y 2, z 4.

@@ -2,9 +2,6 @@
 // `Fog::transmittance`) and of `Within` in src/whitted/within.rs, which says which medium a ray
 // runs through. The fog and its backdrop are the frame's, a material's medium its record's.
 
-// `ISOTROPIC_PHASE`: the share of scattered light that leaves into each unit of solid angle.
-const ISOTROPIC_PHASE: f32 = 1.0 / (4.0 * 3.14159265358979);
-
 // `Medium`: the extinction coefficient per unit length (zero: clear), the share of it that is
 // scattering, and the colour of the scattered light.
 struct Medium {
@@ -71,11 +68,6 @@ fn fog_transmittance(origin: vec3<f32>, dir: vec3<f32>, start: f32, end: f32) ->
     }
     return medium_transmittance(fog_medium(), segment.end - segment.start);
 }
-
-// `Within`: the fog between objects, clear material inside an object without a medium, or
-// else the index of the material whose medium fills the object.
-const WITHIN_FOG: u32 = 0xffffffffu;
-const WITHIN_CLEAR: u32 = 0xfffffffeu;
 
 // `Within::after_crossing`: where a ray is after passing through a surface of `material`:
 // `entering` the object, in its medium; leaving it, back in the fog.

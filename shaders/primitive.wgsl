@@ -13,8 +13,6 @@ struct SurfacePoint {
     material: u32,
 }
 
-const MATERIAL_BITS: u32 = 0x3fffffffu;
-
 // The material at `hit`: a CSG operand's own, or the object's.
 fn material_of(hit: Hit) -> u32 {
     if (hit.prim & OBJECT_BIT) != 0u {

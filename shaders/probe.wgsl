@@ -21,8 +21,8 @@ struct ProbeHit {
     part: u32,
 }
 
-@group(1) @binding(0) var<storage, read> probe_rays: array<ProbeRay>;
-@group(1) @binding(1) var<storage, read_write> probe_hits: array<ProbeHit>;
+@group(1) @binding(WORK_INPUT) var<storage, read> probe_rays: array<ProbeRay>;
+@group(1) @binding(WORK_OUTPUT) var<storage, read_write> probe_hits: array<ProbeHit>;
 
 fn probe_result(ray: ProbeRay, hit: Hit) -> ProbeHit {
     if !hit.found {
@@ -32,7 +32,7 @@ fn probe_result(ray: ProbeRay, hit: Hit) -> ProbeHit {
     return ProbeHit(s.normal, hit.t, s.uv, hit.prim, hit.part);
 }
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP)
 fn probe_objects(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x;
     if i >= arrayLength(&probe_rays) {
@@ -49,7 +49,7 @@ fn probe_objects(@builtin(global_invocation_id) id: vec3<u32>) {
     probe_hits[i] = probe_result(ray, best);
 }
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP)
 fn probe_bvh(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x;
     if i >= arrayLength(&probe_rays) {
@@ -69,10 +69,10 @@ struct TextureProbe {
     pad1: u32,
 }
 
-@group(1) @binding(0) var<storage, read> texture_probes: array<TextureProbe>;
-@group(1) @binding(1) var<storage, read_write> texture_colors: array<vec4<f32>>;
+@group(1) @binding(WORK_INPUT) var<storage, read> texture_probes: array<TextureProbe>;
+@group(1) @binding(WORK_OUTPUT) var<storage, read_write> texture_colors: array<vec4<f32>>;
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP)
 fn probe_textures(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x;
     if i >= arrayLength(&texture_probes) {

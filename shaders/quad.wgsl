@@ -37,9 +37,9 @@ struct Display {
     unused2: f32,
 };
 
-@group(0) @binding(0) var live: texture_2d<f32>;
-@group(0) @binding(1) var snapshot: texture_2d<f32>;
-@group(0) @binding(2) var<uniform> display: Display;
+@group(0) @binding(QUAD_LIVE) var live: texture_2d<f32>;
+@group(0) @binding(QUAD_SNAPSHOT) var snapshot: texture_2d<f32>;
+@group(0) @binding(QUAD_DISPLAY) var<uniform> display: Display;
 
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {

@@ -1,35 +1,22 @@
 // The scene as the GPU holds it (src/gpu/scene.rs uploads it): bind group 0, shared by every
 // entry point. Buffers hold plain records; the `Frame` holds the camera and the settings.
 
-@group(0) @binding(0) var<storage, read> objects: array<Object>;
-@group(0) @binding(1) var<storage, read> shape_words: array<vec4<f32>>;
-@group(0) @binding(2) var<storage, read> nodes: array<Node>;
-@group(0) @binding(3) var<storage, read> triangles: array<Triangle>;
-@group(0) @binding(4) var<storage, read> refs: array<u32>;
-@group(0) @binding(5) var<storage, read> triangle_shading: array<TriangleShading>;
-@group(0) @binding(6) var<storage, read> vertex_attributes: array<VertexAttributes>;
-@group(0) @binding(7) var<storage, read> materials: array<Material>;
-@group(0) @binding(8) var<storage, read> lights: array<Light>;
+@group(0) @binding(SCENE_OBJECTS) var<storage, read> objects: array<Object>;
+@group(0) @binding(SCENE_SHAPE_WORDS) var<storage, read> shape_words: array<vec4<f32>>;
+@group(0) @binding(SCENE_NODES) var<storage, read> nodes: array<Node>;
+@group(0) @binding(SCENE_TRIANGLES) var<storage, read> triangles: array<Triangle>;
+@group(0) @binding(SCENE_REFS) var<storage, read> refs: array<u32>;
+@group(0) @binding(SCENE_TRIANGLE_SHADING) var<storage, read> triangle_shading: array<TriangleShading>;
+@group(0) @binding(SCENE_VERTEX_ATTRIBUTES) var<storage, read> vertex_attributes: array<VertexAttributes>;
+@group(0) @binding(SCENE_MATERIALS) var<storage, read> materials: array<Material>;
+@group(0) @binding(SCENE_LIGHTS) var<storage, read> lights: array<Light>;
 // The scene's textures, then the background image (texture.wgsl).
-@group(0) @binding(9) var<storage, read> textures: array<Texture>;
+@group(0) @binding(SCENE_TEXTURES) var<storage, read> textures: array<Texture>;
 // The sRGB decode table (the bits of 256 floats), then every image's texels.
-@group(0) @binding(10) var<storage, read> texels: array<u32>;
-@group(0) @binding(11) var<storage, read> photons: array<Photon>;
+@group(0) @binding(SCENE_TEXELS) var<storage, read> texels: array<u32>;
+@group(0) @binding(SCENE_PHOTONS) var<storage, read> photons: array<Photon>;
 // A storage buffer, not a uniform one: lavapipe would compile the tracer anew for its values.
-@group(0) @binding(12) var<storage, read> frame: Frame;
-
-// Switches of `Frame::flags`.
-const SHADOWS: u32 = 1u;
-const REFLECTIONS: u32 = 2u;
-const TRANSMISSION: u32 = 4u;
-// Every material is opaque: a shadow ray stops at its first hit.
-const OPAQUE: u32 = 8u;
-// Textures are on: a textured material takes its colour from its texture.
-const TEXTURES: u32 = 16u;
-// The fog's backdrop is the ball around the scene (`Backdrop::Ball`), not a distance.
-const BALL_BACKDROP: u32 = 32u;
-// Caustics are on: the photon map brings the light that glass bends (caustics.wgsl).
-const CAUSTICS: u32 = 64u;
+@group(0) @binding(SCENE_FRAME) var<storage, read> frame: Frame;
 
 // The camera (`Camera`), the image, and the settings the tracer reads (`RenderSettings`).
 struct Frame {
@@ -109,10 +96,6 @@ struct Material {
     pad: f32,
 }
 
-const POINT_LIGHT: u32 = 0u;
-const DIRECTIONAL_LIGHT: u32 = 1u;
-const SPOT_LIGHT: u32 = 2u;
-
 // A light: the twin of `Light` in src/light.rs. A directional light's `direction` points
 // towards it; a spot's away from it, along its cone's axis.
 struct Light {
@@ -131,9 +114,6 @@ struct TriangleShading {
     // The material, with `HAS_NORMALS` and `HAS_UVS` set as the mesh has them.
     material: u32,
 }
-
-const HAS_NORMALS: u32 = 0x40000000u;
-const HAS_UVS: u32 = 0x80000000u;
 
 // A mesh vertex's normal and texture coordinates.
 struct VertexAttributes {

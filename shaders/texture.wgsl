@@ -2,28 +2,6 @@
 // src/texture.rs. The records are made by src/gpu/texture.rs; an image's texels lie in `texels`
 // one u32 each (r | g << 8 | b << 16), after the sRGB decode table.
 
-const CHECKER_3D_TEXTURE: u32 = 0u;
-const CHECKER_UV_TEXTURE: u32 = 1u;
-const WOOD_TEXTURE: u32 = 2u;
-const MARBLE_TEXTURE: u32 = 3u;
-const IMAGE_TEXTURE: u32 = 4u;
-
-// A material's texture or the frame's background image when there is none.
-const NO_TEXTURE: u32 = 0xffffffffu;
-
-// `Wrap`.
-const WRAP_REPEAT: u32 = 0u;
-const WRAP_CLAMP: u32 = 1u;
-
-// `WOOD_RING_WIDTH`; `WOOD_WOBBLE`: how far the rings wobble, in rings, how many wobbles go round
-// the axis, how fast they turn with z; `MARBLE_TURBULENCE`: the turbulence's frequency and
-// strength.
-const WOOD_RING_WIDTH: f32 = 0.12;
-const WOOD_WOBBLE: vec3<f32> = vec3<f32>(0.6, 5.0, 1.8);
-const MARBLE_TURBULENCE: vec2<f32> = vec2<f32>(1.5, 5.0);
-// `std::f32::consts::TAU`.
-const TAU: f32 = 6.283185307179586;
-
 // A texture: its kind and the numbers that kind reads (`GpuTexture`).
 struct Texture {
     // The first colour; Marble's colour.
@@ -113,28 +91,28 @@ fn image_sample(t: Texture, uv: vec2<f32>) -> vec3<f32> {
 fn texture_color(index: u32, uv: vec2<f32>, object_point: vec3<f32>) -> vec3<f32> {
     let t = textures[index];
     switch t.kind {
-        case CHECKER_3D_TEXTURE: {
+        case TEXTURE_CHECKER3D: {
             // The small bias keeps a surface on a cell boundary in one cell.
             let cell = floor(object_point / t.size + 1e-4);
             return alternate(t.a, t.b, parity(cell.x + cell.y + cell.z));
         }
-        case CHECKER_UV_TEXTURE: {
+        case TEXTURE_CHECKER_UV: {
             // The parity of a sum of whole numbers is that of their parities' sum.
             let squares = floor(uv * t.scale);
             return alternate(t.a, t.b, parity(parity(squares.x) + parity(squares.y)));
         }
-        case WOOD_TEXTURE: {
+        case TEXTURE_WOOD: {
             let angle = atan2(object_point.y, object_point.x);
             let radius = length(object_point.xy) / WOOD_RING_WIDTH;
             let ring = radius + WOOD_WOBBLE.x * sin(angle * WOOD_WOBBLE.y + WOOD_WOBBLE.z * object_point.z);
             return alternate(t.a, t.b, parity(floor(ring)));
         }
-        case MARBLE_TEXTURE: {
+        case TEXTURE_MARBLE: {
             let stir = MARBLE_TURBULENCE.y * turbulence(MARBLE_TURBULENCE.x, object_point);
             let vein = sin(TAU * object_point.z + stir);
             return t.a * marble_spline(vein);
         }
-        default: {
+        case TEXTURE_IMAGE, default: {
             return image_sample(t, uv * t.scale + t.offset);
         }
     }

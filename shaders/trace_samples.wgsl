@@ -4,24 +4,17 @@
 // tree, its first hit searched for only up to its pixel's item where the render has an item
 // buffer (the sample's `item_t`). Bind group 1 holds the list and the colours.
 
-@group(1) @binding(0) var<storage, read> samples: array<PixelSample>;
-@group(1) @binding(1) var<storage, read_write> colors: array<SampleColor>;
+@group(1) @binding(WORK_INPUT) var<storage, read> samples: array<PixelSample>;
+@group(1) @binding(WORK_OUTPUT) var<storage, read_write> colors: array<SampleColor>;
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP)
 fn trace_samples(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x;
     if i >= arrayLength(&samples) {
         return;
     }
     let s = samples[i];
-    // Rays and jitter go by the pixel's place in the whole image.
-    let x = frame.film_left + s.x;
-    let y = frame.film_top + s.y;
-    var offset = vec2<f32>(0.5, 0.5);
-    if s.k != 0u {
-        offset = jitter(x, y, s.k);
-    }
-    let traced = trace_eye(eye_ray_dir(x, y, offset), s.item_t);
+    let traced = trace_eye(sample_ray_dir(s.x, s.y, s.k), s.item_t);
     let c = traced.counts;
     colors[i] = SampleColor(traced.color, c.primary_hits, c.shadow, c.reflected, c.transmitted, c.over_budget, u32(cut_short), c.from_item_buffer, 0u, 0u);
 }

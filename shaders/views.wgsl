@@ -2,13 +2,6 @@
 // `id_color` in src/inspect/view_color.rs. The heat maps of the whole ray tree are drawn on the
 // CPU only.
 
-// `GpuView`'s numbers.
-const VIEW_SHADED: u32 = 0u;
-const VIEW_NORMALS: u32 = 1u;
-const VIEW_DEPTH: u32 = 2u;
-const VIEW_UV: u32 = 3u;
-const VIEW_OBJECT: u32 = 4u;
-
 // `id_color`: a colour for `id`, distinct from its neighbours' (a hash), never near black.
 fn id_color(id: u32) -> vec3<f32> {
     let h = hash((id * 0x9e3779b9u) ^ 0x5bd1e995u);
@@ -48,7 +41,7 @@ fn view_color(hit: Hit, surface: SurfacePoint) -> vec3<f32> {
         case VIEW_OBJECT: {
             return id_color(part_id(hit));
         }
-        default: {
+        case VIEW_MATERIAL, default: {
             return id_color(surface.material);
         }
     }

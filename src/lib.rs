@@ -7,7 +7,7 @@
 //! ```
 //!
 //! and the modules depend on each other in that order only, each on those listed before it
-//! (`tests/module_order.rs` checks it):
+//! (`tests/library/module_order.rs` checks it):
 //!
 //! - Basics: [`color`] (linear RGB and its 8-bit sRGB encoding), [`ray`], [`aabb`],
 //!   [`tone`] (exposure and tone curves), [`transform`], [`limits`], [`memory`], [`output`]

@@ -5,7 +5,13 @@ use glam::Vec3;
 
 use crate::color::Color;
 
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// A light of the scene.
+#[derive(Clone, Copy, Debug, PartialEq, strum::EnumDiscriminants)]
+#[strum_discriminants(
+    name(LightKind),
+    doc = "The kinds of light, one per variant of `Light`.",
+    derive(Hash, strum::EnumIter)
+)]
 pub enum Light {
     /// Light from a point, the same in every direction (no fall-off, as in the lecture).
     Point { position: Vec3, color: Color },

@@ -36,7 +36,8 @@ impl Object {
 pub struct PrimId(pub u32);
 
 impl PrimId {
-    const OBJECT_BIT: u32 = 1 << 31;
+    /// The bit that tells an object's id from a triangle's.
+    pub const OBJECT_BIT: u32 = 1 << 31;
 
     pub fn object(index: usize) -> Self {
         PrimId(index as u32 | Self::OBJECT_BIT)

@@ -13,13 +13,19 @@ use crate::noise::turbulence;
 use crate::srgb_image::SrgbImage;
 
 /// What happens to texture coordinates outside [0, 1].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, strum::EnumIter)]
 pub enum Wrap {
     Repeat,
     Clamp,
 }
 
-#[derive(Clone, Debug, PartialEq)]
+/// A texture: a colour for each point of a surface.
+#[derive(Clone, Debug, PartialEq, strum::EnumDiscriminants)]
+#[strum_discriminants(
+    name(TextureKind),
+    doc = "The kinds of texture, one per variant of `Texture`.",
+    derive(Hash, strum::EnumIter)
+)]
 pub enum Texture {
     /// Cubes of side `size` in object space, alternating `a` and `b`.
     Checker3d { a: Color, b: Color, size: f32 },
@@ -52,9 +58,9 @@ pub const WOOD_COLORS: (Color, Color) = (Color::new(0.6, 0.5, 0.2), Color::new(1
 pub const WOOD_RING_WIDTH: f32 = 0.12;
 /// How far the rings wobble, in rings; how many wobbles go round the axis; how fast they turn
 /// with z (the book's `K`, `1/N` and `B`).
-const WOOD_WOBBLE: (f32, f32, f32) = (0.6, 5.0, 1.8);
+pub const WOOD_WOBBLE: (f32, f32, f32) = (0.6, 5.0, 1.8);
 /// The frequency of the marble's turbulence, and how strongly it stirs the veins.
-const MARBLE_TURBULENCE: (f32, f32) = (1.5, 5.0);
+pub const MARBLE_TURBULENCE: (f32, f32) = (1.5, 5.0);
 
 impl Texture {
     /// The colour at texture coordinates `uv`, or at `object_point` for solid textures.

@@ -10,7 +10,7 @@ use strum::VariantNames;
 
 /// Largest linear value a curve looks at: beyond it every curve is white anyway, and the filmic
 /// curve's squares stay finite.
-const CURVE_INPUT_MAX: f32 = 1e6;
+pub const CURVE_INPUT_MAX: f32 = 1e6;
 
 /// How linear values (after exposure) are brought into [0, 1]. The command line and the viewer
 /// name it in lower case: `clamp`, `reinhard`, `filmic`.

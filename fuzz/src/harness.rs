@@ -2,7 +2,7 @@
 //! raylab's readers and, when it reads as a scene, render a tiny image of the scene and trace
 //! the ray tree of one pixel. A reader's error is a fine outcome (returned as its message); a panic, a hang
 //! or a runaway allocation is a bug. The fuzz targets (`fuzz/fuzz_targets/`) call these, and so
-//! does the replay of the kept corpus (`tests/fuzz_corpus.rs`), so this file uses raylab and
+//! does the replay of the kept corpus (`tests/library/fuzz_corpus.rs`), so this file uses raylab and
 //! std alone.
 
 use std::path::Path;

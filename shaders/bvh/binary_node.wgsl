@@ -2,8 +2,6 @@
 // tests both after one load of a cache line (`GpuBinaryNode` in src/gpu/bvh.rs makes it of the
 // eight-wide tree, each wide node a small tree of its own).
 
-const WIDTH: u32 = 2u;
-
 // `GpuBinaryNode`: each child's box, with where the child is beside it.
 struct BinaryNode {
     lo0: vec3<f32>,

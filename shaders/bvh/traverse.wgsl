@@ -4,16 +4,6 @@
 // src/bvh/leaf.rs, and the closest-hit and shadow searches built on them (`Bvh::closest_hit`,
 // `Bvh::any_hit`). The unbounded objects (planes) are tested first, against every ray.
 
-const INTERIOR: u32 = 0xffffffffu;
-const TRIANGLE_LEAF: u32 = 0x40000000u;
-// Entries of the walk's stack: a visited node of the eight-wide tree leaves at most seven
-// siblings waiting, so a tree up to STACK_SIZE / 7 levels deep fits (src/gpu/scene.rs refuses
-// deeper ones); the two-wide tree made of it is at most seven times as deep, with one sibling
-// waiting per level.
-const STACK_SIZE: u32 = 128u;
-// The far end of a ray that runs on for ever: the largest float, as the CPU clamps its limit.
-const T_FAR: f32 = 3.40282347e38;
-
 // A child of a node, as the layout gives it (`node_child`): its box, and an interior child's
 // node or a leaf's entries (count 0: no child in this slot).
 struct NodeChild {
@@ -22,9 +12,6 @@ struct NodeChild {
     first: u32,
     count: u32,
 }
-
-// `PrimId`: an object's index with the top bit set, or a triangle's index.
-const OBJECT_BIT: u32 = 0x80000000u;
 
 // The closest hit found so far along a ray: `Hit` in src/primitive.rs.
 struct Hit {
@@ -79,10 +66,6 @@ fn enter_box(lo: vec3<f32>, hi: vec3<f32>, ray: WalkRay, t_min: f32, t_max: f32)
 // through.
 var<private> cut_short: bool;
 
-// What a walk looks for: the closest hit, or what a shadow ray lets through.
-const FIND_CLOSEST: u32 = 0u;
-const FIND_SHADOW: u32 = 1u;
-
 // What a walk found: the closest hit, or the product of the tints of what the shadow ray met
 // and the sum of the optical depths of the media inside what it passed (`Tracer::tints`).
 struct WalkResult {
@@ -103,10 +86,6 @@ fn meet(hit: Hit, find: u32, result: ptr<function, WalkResult>, t_max: ptr<funct
     (*result).passed *= tint(hit);
     return all((*result).passed == vec3<f32>(0.0));
 }
-
-// The most crossings of one object a shadow ray follows: a CSG node's 32 solids, each crossed
-// at most four times (a torus).
-const MAX_CROSSINGS: u32 = 128u;
 
 // Tests the `count` objects listed in `refs` from `first`; returns whether the walk can stop.
 //
@@ -197,9 +176,9 @@ fn walk(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max_in: f32, find: u32)
     var result = WalkResult(Hit(t_max_in, 0u, 0u, 0u, vec2<f32>(0.0), false), vec3<f32>(1.0), 0.0);
     let ray = walk_ray(origin, dir);
     var t_max = min(t_max_in, T_FAR);
-    var stack_first: array<u32, STACK_SIZE>;
-    var stack_count: array<u32, STACK_SIZE>;
-    var stack_t: array<f32, STACK_SIZE>;
+    var stack_first: array<u32, WALK_STACK>;
+    var stack_count: array<u32, WALK_STACK>;
+    var stack_t: array<f32, WALK_STACK>;
     var size = 0u;
     if frame.node_count != 0u {
         stack_first[0] = 0u;

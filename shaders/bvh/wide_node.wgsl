@@ -1,14 +1,12 @@
 // The eight-wide node layout: the CPU's `WideNode` (src/bvh/mod.rs) node for node, 256 bytes,
 // as `GpuWideNode` in src/gpu/bvh.rs copies it: a node is one load of eight children's boxes.
 
-const WIDTH: u32 = 8u;
-
 // `WideNode`: eight children's boxes, axis by axis, and where each child is.
 struct WideNode {
-    lo: array<array<f32, 8>, 3>,
-    hi: array<array<f32, 8>, 3>,
-    first: array<u32, 8>,
-    count: array<u32, 8>,
+    lo: array<array<f32, WIDTH>, 3>,
+    hi: array<array<f32, WIDTH>, 3>,
+    first: array<u32, WIDTH>,
+    count: array<u32, WIDTH>,
 }
 
 alias Node = WideNode;

@@ -10,24 +10,6 @@
 // where its transform to the node's space starts, its material); then the steps, four to a
 // word: a leaf's index, or `CSG_COMBINE` or-ed with the operation.
 
-// `PART_BITS`: a hit's part is the leaf's index shifted by this, or-ed with the leaf's part.
-const CSG_PART_BITS: u32 = 4u;
-const CSG_COMPLEMENTED: u32 = 0x80000000u;
-const CSG_COMBINE: u32 = 0x80000000u;
-
-const CSG_UNION: u32 = 0u;
-const CSG_INTERSECTION: u32 = 1u;
-const CSG_DIFFERENCE: u32 = 2u;
-
-// The most leaves a node may have on the GPU (`GPU_MAX_CSG_OPERANDS`, fewer than the CPU's
-// `MAX_OPERANDS`, to keep the span stacks in private memory small), and so the most spans a
-// stack holds: two per leaf.
-const CSG_MAX_OPERANDS: u32 = 32u;
-const CSG_MAX_SPANS: u32 = 2u * CSG_MAX_OPERANDS;
-// The most lists pending at once: one per enclosing node and two for the node being combined
-// (`MAX_DEPTH` + 2).
-const CSG_MAX_LISTS: u32 = 18u;
-
 struct CsgLeaf {
     kind: u32,
     first: u32,
@@ -68,7 +50,7 @@ fn csg_contains(operation: u32, in_a: bool, in_b: bool) -> bool {
         case CSG_INTERSECTION: {
             return in_a && in_b;
         }
-        default: {
+        case CSG_DIFFERENCE, default: {
             return in_a && !in_b;
         }
     }

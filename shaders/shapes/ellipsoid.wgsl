@@ -29,7 +29,7 @@ fn intersect_ellipsoid(s: Ellipsoid, origin: vec3<f32>, dir: vec3<f32>, t_min: f
 
 // `Ellipsoid::surface`: the gradient (p − c) / r² and the sphere's texture coordinates at the
 // matching point of the unit sphere.
-fn ellipsoid_surface(s: Ellipsoid, p: vec3<f32>) -> LocalSurface {
+fn ellipsoid_surface(s: Ellipsoid, p: vec3<f32>, part: u32) -> LocalSurface {
     let on_unit_sphere = (p - s.center) * s.inv_radii;
     var d = vec3<f32>(0.0, 1.0, 0.0);
     if dot(on_unit_sphere, on_unit_sphere) > 0.0 {

@@ -1,9 +1,6 @@
 // Paraboloids of revolution opening towards +y, cut at a height and optionally capped: the twin
 // of src/shapes/paraboloid.rs.
 
-const PARABOLOID_BOWL: u32 = 0u;
-const PARABOLOID_CAP: u32 = 1u;
-
 // The surface y = curvature·(x² + z²) for 0 ≤ y ≤ height, measured from `vertex`.
 struct Paraboloid {
     vertex: vec3<f32>,

@@ -43,7 +43,7 @@ fn plane_crossings(s: Plane, origin: vec3<f32>, dir: vec3<f32>) -> Crossings {
 }
 
 // `Plane::surface`: planar mapping, distances along the two `tangent_axes`.
-fn plane_surface(s: Plane, p: vec3<f32>) -> LocalSurface {
+fn plane_surface(s: Plane, p: vec3<f32>, part: u32) -> LocalSurface {
     let axes = tangent_axes(s.normal);
     let d = p - s.point;
     return LocalSurface(s.normal, vec2<f32>(dot(d, axes[0]), dot(d, axes[1])));

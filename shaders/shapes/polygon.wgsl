@@ -112,7 +112,7 @@ fn polygon_band_start(s: Polygon, k: u32) -> u32 {
 
 // `Polygon::surface`: planar mapping, scaled so that the polygon's extent along each axis
 // covers [0, 1].
-fn polygon_surface(s: Polygon, p: vec3<f32>) -> LocalSurface {
+fn polygon_surface(s: Polygon, p: vec3<f32>, part: u32) -> LocalSurface {
     let planar = vec2<f32>(dot(p, s.texture_axis_s), dot(p, s.texture_axis_t));
     let uv = (planar - s.texture_min) * s.texture_inv_extent;
     return LocalSurface(s.normal, clamp(uv, vec2<f32>(0.0), vec2<f32>(1.0)));

@@ -4,22 +4,6 @@
 // src/shapes/mod.rs. Every shape's numbers and every transform are read from `shape_words`
 // (src/gpu/shapes.rs writes them).
 
-const PI: f32 = 3.14159265358979;
-
-// The largest finite float, where the Rust has ±infinity (WGSL implementations may assume there
-// are no infinities).
-const FLOAT_MAX: f32 = 3.40282347e38;
-
-const SHAPE_SPHERE: u32 = 0u;
-const SHAPE_PLANE: u32 = 1u;
-const SHAPE_POLYGON: u32 = 2u;
-const SHAPE_CUBOID: u32 = 3u;
-const SHAPE_TAPERED_CYLINDER: u32 = 4u;
-const SHAPE_ELLIPSOID: u32 = 5u;
-const SHAPE_PARABOLOID: u32 = 6u;
-const SHAPE_TORUS: u32 = 7u;
-const SHAPE_CSG: u32 = 8u;
-
 // WGSL's twin of `GpuObject`.
 struct Object {
     kind: u32,
@@ -27,8 +11,6 @@ struct Object {
     transform: u32,
     material: u32,
 }
-
-const NO_TRANSFORM: u32 = 0xffffffffu;
 
 // A crossing of a ray with a shape: `found` is false where there is none in the range asked;
 // `part` says which part of the shape was hit (a face of a box, a cap of a cylinder).
@@ -57,79 +39,12 @@ fn intersect_shape(kind: u32, first: u32, origin: vec3<f32>, dir: vec3<f32>, t_m
     return intersect_plain_shape(kind, first, origin, dir, t_min, t_max);
 }
 
-// `intersect_shape` for every shape but CSG, which traces its operands by this (WGSL has no
-// recursion).
-fn intersect_plain_shape(kind: u32, first: u32, origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max: f32) -> ShapeHit {
-    switch kind {
-        case SHAPE_SPHERE: {
-            return intersect_sphere(load_sphere(first), origin, dir, t_min, t_max);
-        }
-        case SHAPE_PLANE: {
-            return intersect_plane(load_plane(first), origin, dir, t_min, t_max);
-        }
-        case SHAPE_POLYGON: {
-            return intersect_polygon(load_polygon(first), origin, dir, t_min, t_max);
-        }
-        case SHAPE_CUBOID: {
-            return intersect_cuboid(load_cuboid(first), origin, dir, t_min, t_max);
-        }
-        case SHAPE_TAPERED_CYLINDER: {
-            return intersect_tapered_cylinder(load_tapered_cylinder(first), origin, dir, t_min, t_max);
-        }
-        case SHAPE_ELLIPSOID: {
-            return intersect_ellipsoid(load_ellipsoid(first), origin, dir, t_min, t_max);
-        }
-        case SHAPE_PARABOLOID: {
-            return intersect_paraboloid(load_paraboloid(first), origin, dir, t_min, t_max);
-        }
-        case SHAPE_TORUS: {
-            return intersect_torus(load_torus(first), origin, dir, t_min, t_max);
-        }
-        default: {
-            return no_hit();
-        }
-    }
-}
-
 // Normal and texture coordinates at the object-space point `p` of part `part`.
 fn shape_surface(kind: u32, first: u32, p: vec3<f32>, part: u32) -> LocalSurface {
     if kind == SHAPE_CSG {
         return csg_surface(first, p, part);
     }
     return plain_shape_surface(kind, first, p, part);
-}
-
-// `shape_surface` for every shape but CSG.
-fn plain_shape_surface(kind: u32, first: u32, p: vec3<f32>, part: u32) -> LocalSurface {
-    switch kind {
-        case SHAPE_SPHERE: {
-            return sphere_surface(load_sphere(first), p);
-        }
-        case SHAPE_PLANE: {
-            return plane_surface(load_plane(first), p);
-        }
-        case SHAPE_POLYGON: {
-            return polygon_surface(load_polygon(first), p);
-        }
-        case SHAPE_CUBOID: {
-            return cuboid_surface(load_cuboid(first), p, part);
-        }
-        case SHAPE_TAPERED_CYLINDER: {
-            return tapered_cylinder_surface(load_tapered_cylinder(first), p, part);
-        }
-        case SHAPE_ELLIPSOID: {
-            return ellipsoid_surface(load_ellipsoid(first), p);
-        }
-        case SHAPE_PARABOLOID: {
-            return paraboloid_surface(load_paraboloid(first), p, part);
-        }
-        case SHAPE_TORUS: {
-            return torus_surface(load_torus(first), p);
-        }
-        default: {
-            return LocalSurface(vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(0.0));
-        }
-    }
 }
 
 // An affine transform: `object_from_world` by its columns (three axes, the translation) and
@@ -182,37 +97,22 @@ struct Crossings {
     count: u32,
 }
 
-// `Shape::crossings`, for a shape that is an operand of a CSG node (a closed solid or a plane,
-// not a node itself).
-fn shape_crossings(kind: u32, first: u32, origin: vec3<f32>, dir: vec3<f32>) -> Crossings {
+// `Shape::crossings` of a convex solid (`Shape::is_convex`): a line crosses it at most twice:
+// it enters at the first hit on the whole line and leaves at the next one (both found by one
+// call, which the compiler copies once). A line that only touches the surface does not go in.
+fn convex_crossings(kind: u32, first: u32, origin: vec3<f32>, dir: vec3<f32>) -> Crossings {
     var crossings = Crossings(vec4<f32>(0.0), vec4<u32>(0u), 0u);
-    switch kind {
-        case SHAPE_PLANE: {
-            crossings = plane_crossings(load_plane(first), origin, dir);
+    var search_from = -FLOAT_MAX;
+    for (var k = 0u; k < 2u; k++) {
+        let h = intersect_plain_shape(kind, first, origin, dir, search_from, FLOAT_MAX);
+        if !h.found {
+            break;
         }
-        case SHAPE_TORUS: {
-            let roots = torus_crossings(load_torus(first), origin, dir);
-            crossings.t = roots.t;
-            crossings.count = roots.count;
-        }
-        default: {
-            // The other solids are convex, so a line crosses them at most twice: it enters at
-            // the first hit on the whole line and leaves at the next one (both found by one
-            // call, which the compiler copies once). A line that only touches the surface does
-            // not go in.
-            var search_from = -FLOAT_MAX;
-            for (var k = 0u; k < 2u; k++) {
-                let h = intersect_plain_shape(kind, first, origin, dir, search_from, FLOAT_MAX);
-                if !h.found {
-                    break;
-                }
-                crossings.t[k] = h.t;
-                crossings.part[k] = h.part;
-                search_from = h.t;
-                if k == 1u {
-                    crossings.count = 2u;
-                }
-            }
+        crossings.t[k] = h.t;
+        crossings.part[k] = h.part;
+        search_from = h.t;
+        if k == 1u {
+            crossings.count = 2u;
         }
     }
     return crossings;

@@ -40,7 +40,7 @@ fn intersect_sphere(s: Sphere, origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_
 
 // `Sphere::surface`: the normal, and the spherical mapping (`sphere_uv`): u around the vertical
 // axis, v from the south pole (0) to the north pole (1).
-fn sphere_surface(s: Sphere, p: vec3<f32>) -> LocalSurface {
+fn sphere_surface(s: Sphere, p: vec3<f32>, part: u32) -> LocalSurface {
     let n = (p - s.center) / s.radius;
     var d = vec3<f32>(0.0, 1.0, 0.0);
     if dot(n, n) > 0.0 {

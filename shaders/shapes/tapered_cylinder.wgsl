@@ -2,10 +2,6 @@
 // src/shapes/tapered_cylinder.rs. Work is done in a local frame: z along the axis (0 at the
 // base, `height` at the top), x and y across it.
 
-const TAPERED_SIDE: u32 = 0u;
-const TAPERED_BASE_CAP: u32 = 1u;
-const TAPERED_TOP_CAP: u32 = 2u;
-
 struct TaperedCylinder {
     base: vec3<f32>,
     height: f32,

@@ -268,13 +268,14 @@ fn intersect_torus(tor: Torus, origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_
 
 // `Torus::crossings`: every `t`, of any sign, where the line of the ray crosses the surface,
 // smallest first, in entry/exit pairs.
-fn torus_crossings(tor: Torus, origin: vec3<f32>, dir: vec3<f32>) -> TorusRoots {
-    return torus_roots(tor, origin, dir, -FLOAT_MAX, FLOAT_MAX, 4u);
+fn torus_crossings(tor: Torus, origin: vec3<f32>, dir: vec3<f32>) -> Crossings {
+    let roots = torus_roots(tor, origin, dir, -FLOAT_MAX, FLOAT_MAX, 4u);
+    return Crossings(roots.t, vec4<u32>(0u), roots.count);
 }
 
 // `Torus::surface`: the normal points from the nearest point of the ring out through `p`; u is
 // the angle around the ring, v the angle around the tube, starting inside the hole.
-fn torus_surface(tor: Torus, p: vec3<f32>) -> LocalSurface {
+fn torus_surface(tor: Torus, p: vec3<f32>, part: u32) -> LocalSurface {
     let q = p - tor.center;
     let radial = vec3<f32>(q.x, 0.0, q.z);
     let radial_len = length(radial);

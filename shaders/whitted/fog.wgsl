@@ -113,7 +113,7 @@ struct Spread {
 fn spread_along(light: Light, origin: vec3<f32>, dir: vec3<f32>, segment: Segment, density: f32) -> Spread {
     let mass = -exp_m1(-density * (segment.end - segment.start));
     let by_transmittance = Spread(false, segment.start, density, mass, 0.0, 0.0, 0.0, 0.0);
-    if light.kind != SPOT_LIGHT {
+    if light.kind != LIGHT_SPOT {
         return by_transmittance;
     }
     let to_light = light.position - origin;

@@ -29,11 +29,11 @@ fn spot_cone(light: Light, dir: vec3<f32>) -> f32 {
 
 // `Light::sample`: where the light is seen from `point`.
 fn light_sample(light: Light, point: vec3<f32>) -> LightSample {
-    if light.kind == DIRECTIONAL_LIGHT {
+    if light.kind == LIGHT_DIRECTIONAL {
         return LightSample(light.direction, T_FAR, light.color);
     }
     let to_light = light.position - point;
-    if light.kind == SPOT_LIGHT {
+    if light.kind == LIGHT_SPOT {
         let distance_squared = dot(to_light, to_light);
         let distance = sqrt(distance_squared);
         let dir = to_light / distance;

@@ -9,13 +9,6 @@
 // it starts a child. A hit's shadow rays are cast before the next child, each adding its
 // light's share of the local colour where it gets through.
 
-// `EYE_RAY_T_MIN`: eye rays see only what lies beyond the image plane.
-const EYE_RAY_T_MIN: f32 = 1.0;
-// `RAY_BUDGET`: most reflected and transmitted rays one eye ray's tree may trace.
-const RAY_BUDGET: u32 = 1024u;
-// `MAX_DEPTH_LIMIT`: the deepest tree the settings allow; one child at most waits per level.
-const TREE_STACK: u32 = 64u;
-
 // A ray of the tree still to trace.
 struct Branch {
     origin: vec3<f32>,
@@ -90,11 +83,6 @@ fn next_branch(stack: ptr<function, array<Branch, TREE_STACK>>, size: ptr<functi
     }
     return false;
 }
-
-// `item_buffer::FAR_MARGIN`: how far beyond its item's distance an eye ray's search looks, as a
-// share of that distance (the raster pass's fragment and this walk may round the same test
-// differently).
-const FAR_MARGIN: f32 = 1e-4;
 
 // How far an eye ray's first search looks, given the distance `item_t` of its pixel's item in
 // the item buffer (0: none): a little beyond the item, or all the way without one.

@@ -5,6 +5,7 @@ use std::io::{self, Write};
 use std::time::Duration;
 
 use raylab::stats::RayCounts;
+use serde_json::{Value, json};
 
 use super::bench_first_hits::FirstHitBench;
 
@@ -172,92 +173,113 @@ pub fn write_row(out: &mut impl Write, r: &BenchResult) -> io::Result<()> {
     Ok(())
 }
 
-/// The first hits' JSON object, or `null`.
-fn first_hits_json(f: Option<&FirstHitBench>) -> String {
-    let Some(f) = f else {
-        return "null".into();
-    };
-    format!(
-        concat!(
-            "{{\"eye_rays\": {}, \"from_item_buffer\": {}, \"raster_ms\": {:.3}, ",
-            "\"first_hits_rays_ms\": {:.3}, \"first_hits_raster_ms\": {:.3}, ",
-            "\"nodes_per_eye_ray_rays\": {:.3}, \"nodes_per_eye_ray_raster\": {:.3}, ",
-            "\"prims_per_eye_ray_rays\": {:.3}, \"prims_per_eye_ray_raster\": {:.3}}}"
-        ),
-        f.eye_rays,
-        f.from_item_buffer,
-        ms(f.raster),
-        ms(f.first_hits_rays),
-        ms(f.first_hits_raster),
-        f.cost_rays.0,
-        f.cost_raster.0,
-        f.cost_rays.1,
-        f.cost_raster.1,
-    )
+/// `d` in milliseconds, to the microsecond.
+fn ms_json(d: Duration) -> f64 {
+    thousandths(ms(d))
 }
 
-/// The caustics' JSON object, or `null`.
-fn caustics_json(c: Option<&CausticBench>) -> String {
-    let Some(c) = c else {
-        return "null".into();
-    };
-    format!(
-        concat!(
-            "{{\"photons\": {}, \"stored\": {}, \"shoot_ms\": {:.3}, \"shoot_one_thread_ms\": {}, ",
-            "\"mphotons_per_s\": {:.3}, \"build_ms\": {:.3}, \"gather_us\": {:.3}, ",
-            "\"render_off_ms\": {:.3}}}"
-        ),
-        c.photons,
-        c.stored,
-        ms(c.shoot),
-        c.shoot_one_thread
-            .map_or("null".into(), |d| format!("{:.3}", ms(d))),
-        c.mphotons_per_second(c.shoot),
-        ms(c.build),
-        c.gather.as_secs_f64() * 1e6,
-        ms(c.render_off),
-    )
+/// `x` rounded to three decimals, as the JSON gives figures.
+fn thousandths(x: f64) -> f64 {
+    (x * 1e3).round() / 1e3
 }
 
+/// The first hits' JSON object.
+fn first_hits_json(f: &FirstHitBench) -> Value {
+    json!({
+        "eye_rays": f.eye_rays,
+        "from_item_buffer": f.from_item_buffer,
+        "raster_ms": ms_json(f.raster),
+        "first_hits_rays_ms": ms_json(f.first_hits_rays),
+        "first_hits_raster_ms": ms_json(f.first_hits_raster),
+        "nodes_per_eye_ray_rays": thousandths(f.cost_rays.0),
+        "nodes_per_eye_ray_raster": thousandths(f.cost_raster.0),
+        "prims_per_eye_ray_rays": thousandths(f.cost_rays.1),
+        "prims_per_eye_ray_raster": thousandths(f.cost_raster.1),
+    })
+}
+
+/// The caustics' JSON object.
+fn caustics_json(c: &CausticBench) -> Value {
+    json!({
+        "photons": c.photons,
+        "stored": c.stored,
+        "shoot_ms": ms_json(c.shoot),
+        "shoot_one_thread_ms": c.shoot_one_thread.map(ms_json),
+        "mphotons_per_s": thousandths(c.mphotons_per_second(c.shoot)),
+        "build_ms": ms_json(c.build),
+        "gather_us": thousandths(c.gather.as_secs_f64() * 1e6),
+        "render_off_ms": ms_json(c.render_off),
+    })
+}
+
+/// One scene's JSON object.
+fn scene_json(r: &BenchResult) -> Value {
+    json!({
+        "scene": r.name,
+        "primitives": r.primitives,
+        "setup_ms": ms_json(r.setup),
+        "build_ms": ms_json(r.build),
+        "first_pass_ms": ms_json(r.first_pass),
+        "render_ms": ms_json(r.render),
+        "render_one_thread_ms": r.render_one_thread.map(ms_json),
+        "scaling": r.scaling().map(thousandths),
+        "eye_rays": r.rays.primary,
+        "eye_hits": r.rays.primary_hits,
+        "shadow_rays": r.rays.shadow,
+        "reflected_rays": r.rays.reflected,
+        "transmitted_rays": r.rays.transmitted,
+        "mrays_per_s": thousandths(r.mrays_per_second()),
+        "scene_bytes": r.scene_bytes,
+        "bytes_per_primitive": (r.bytes_per_primitive() * 10.0).round() / 10.0,
+        "peak_rss_bytes": r.peak_rss_bytes,
+        "caustics": r.caustics.as_ref().map(caustics_json),
+        "first_hits": r.first_hits.as_ref().map(first_hits_json),
+    })
+}
+
+/// The whole run as JSON: the image size, the threads and each scene's figures.
 pub fn to_json(results: &[BenchResult], (width, height): (u32, u32), threads: usize) -> String {
-    let null_or = |v: Option<String>| v.unwrap_or_else(|| "null".into());
-    let scenes: Vec<String> = results
-        .iter()
-        .map(|r| {
-            format!(
-                concat!(
-                    "    {{\"scene\": \"{}\", \"primitives\": {}, \"setup_ms\": {:.3}, ",
-                    "\"build_ms\": {:.3}, \"first_pass_ms\": {:.3}, \"render_ms\": {:.3}, ",
-                    "\"render_one_thread_ms\": {}, \"scaling\": {}, ",
-                    "\"eye_rays\": {}, \"eye_hits\": {}, \"shadow_rays\": {}, ",
-                    "\"reflected_rays\": {}, \"transmitted_rays\": {}, \"mrays_per_s\": {:.3}, ",
-                    "\"scene_bytes\": {}, \"bytes_per_primitive\": {:.1}, \"peak_rss_bytes\": {}, ",
-                    "\"caustics\": {}, \"first_hits\": {}}}"
-                ),
-                r.name,
-                r.primitives,
-                ms(r.setup),
-                ms(r.build),
-                ms(r.first_pass),
-                ms(r.render),
-                null_or(r.render_one_thread.map(|d| format!("{:.3}", ms(d)))),
-                null_or(r.scaling().map(|s| format!("{s:.3}"))),
-                r.rays.primary,
-                r.rays.primary_hits,
-                r.rays.shadow,
-                r.rays.reflected,
-                r.rays.transmitted,
-                r.mrays_per_second(),
-                r.scene_bytes,
-                r.bytes_per_primitive(),
-                null_or(r.peak_rss_bytes.map(|b| b.to_string())),
-                caustics_json(r.caustics.as_ref()),
-                first_hits_json(r.first_hits.as_ref()),
-            )
-        })
-        .collect();
-    format!(
-        "{{\n  \"width\": {width},\n  \"height\": {height},\n  \"threads\": {threads},\n  \"scenes\": [\n{}\n  ]\n}}\n",
-        scenes.join(",\n")
-    )
+    let report = json!({
+        "width": width,
+        "height": height,
+        "threads": threads,
+        "scenes": results.iter().map(scene_json).collect::<Vec<_>>(),
+    });
+    let mut text = serde_json::to_string_pretty(&report).expect("JSON of numbers and strings");
+    text.push('\n');
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scene_names_are_escaped_in_the_json() {
+        let name = "a \"quoted\" \\ name\twith\ncontrol characters";
+        let result = BenchResult {
+            name: name.into(),
+            primitives: 3,
+            setup: Duration::from_millis(1),
+            build: Duration::from_millis(2),
+            first_pass: Duration::from_millis(3),
+            render: Duration::from_millis(40),
+            render_one_thread: None,
+            rays: RayCounts {
+                primary: 100,
+                shadow: 50,
+                ..RayCounts::default()
+            },
+            scene_bytes: 1000,
+            peak_rss_bytes: None,
+            caustics: None,
+            first_hits: None,
+        };
+        let text = to_json(&[result], (10, 10), 2);
+        let parsed: Value = serde_json::from_str(&text).unwrap();
+        assert_eq!(parsed["scenes"][0]["scene"], name);
+        assert_eq!(parsed["scenes"][0]["render_ms"], 40.0);
+        assert_eq!(parsed["scenes"][0]["render_one_thread_ms"], Value::Null);
+        assert_eq!(parsed["threads"], 2);
+    }
 }

@@ -5,7 +5,8 @@
 //! of 64-byte nodes made of them, over the same leaves. The WGSL that walks them is
 //! `shaders/bvh/traverse.wgsl`, with `wide_node.wgsl` or `binary_node.wgsl`.
 
-use bytemuck::{Pod, Zeroable};
+use super::record::gpu_record;
+use bytemuck::Zeroable;
 
 use crate::aabb::Aabb;
 use crate::bvh::{Bvh, WIDTH, WideNode};
@@ -36,60 +37,70 @@ pub enum NodeLayout {
 }
 
 impl NodeLayout {
-    /// The WGSL of the layout's nodes.
-    pub fn wgsl(self) -> &'static str {
-        match self {
-            NodeLayout::Wide => include_str!("../../shaders/bvh/wide_node.wgsl"),
-            NodeLayout::Binary => include_str!("../../shaders/bvh/binary_node.wgsl"),
-        }
+    /// The WGSL of the layout's nodes, after `WIDTH`, the children of a node.
+    pub fn wgsl(self) -> String {
+        let (width, nodes) = match self {
+            NodeLayout::Wide => (WIDTH, include_str!("../../shaders/bvh/wide_node.wgsl")),
+            NodeLayout::Binary => (2, include_str!("../../shaders/bvh/binary_node.wgsl")),
+        };
+        format!("const WIDTH: u32 = {width}u;\n{nodes}")
     }
 }
 
-/// WGSL's `WideNode`: [`crate::bvh::WideNode`] with the leaves pointing into
-/// [`GpuBvh::triangles`] or [`GpuBvh::refs`]. 256 bytes.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct GpuWideNode {
-    /// `min[axis][child]`.
-    pub min: [[f32; WIDTH]; 3],
-    pub max: [[f32; WIDTH]; 3],
-    /// An interior child's node index, or where a leaf's entries start.
-    pub first: [u32; WIDTH],
-    /// `WideNode::INTERIOR` for an interior child, 0 for an unused slot, or a leaf's entry
-    /// count with [`TRIANGLE_LEAF`] set for a leaf of triangles.
-    pub count: [u32; WIDTH],
+gpu_record! {
+    /// WGSL's `WideNode`: [`crate::bvh::WideNode`] with the leaves pointing into
+    /// [`GpuBvh::triangles`] or [`GpuBvh::refs`]. 256 bytes.
+    pub struct GpuWideNode {
+        /// The children's boxes: `lo[axis][child]` to `hi[axis][child]`.
+        pub lo: [[f32; WIDTH]; 3],
+        pub hi: [[f32; WIDTH]; 3],
+        /// An interior child's node index, or where a leaf's entries start.
+        pub first: [u32; WIDTH],
+        /// `WideNode::INTERIOR` for an interior child, 0 for an unused slot, or a leaf's entry
+        /// count with [`TRIANGLE_LEAF`] set for a leaf of triangles.
+        pub count: [u32; WIDTH],
+    }
 }
 
-/// WGSL's `BinaryNode`: two children, each its box and, as in [`GpuWideNode`], an interior
-/// child's node index or a leaf's entries (count 0: no child). 64 bytes.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct GpuBinaryNode {
-    pub lo0: [f32; 3],
-    pub first0: u32,
-    pub hi0: [f32; 3],
-    pub count0: u32,
-    pub lo1: [f32; 3],
-    pub first1: u32,
-    pub hi1: [f32; 3],
-    pub count1: u32,
+gpu_record! {
+    /// WGSL's `BinaryNode`: two children, each its box and, as in [`GpuWideNode`], an interior
+    /// child's node index or a leaf's entries (count 0: no child). 64 bytes.
+    pub struct GpuBinaryNode {
+        pub lo0: [f32; 3],
+        pub first0: u32,
+        pub hi0: [f32; 3],
+        pub count0: u32,
+        pub lo1: [f32; 3],
+        pub first1: u32,
+        pub hi1: [f32; 3],
+        pub count1: u32,
+    }
 }
 
 /// The bit of a leaf's count that says its entries are triangles (else object indices).
 pub const TRIANGLE_LEAF: u32 = 1 << 30;
 
-/// WGSL's `Triangle`: the corners of a mesh triangle and its index in the scene's triangles.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct GpuTriangle {
-    pub p0: [f32; 3],
-    /// The triangle's index ([`crate::primitive::PrimId::triangle`]).
-    pub index: u32,
-    pub p1: [f32; 3],
-    /// The id the object view colours it by: its mesh's ([`Geometry::object_id`]).
-    pub object: u32,
-    pub p2: [f32; 3],
-    pub pad2: u32,
+/// Entries of the stack of the BVH's walk on the GPU: a visited node of the eight-wide tree
+/// leaves at most seven siblings waiting, so a tree up to [`MAX_TREE_DEPTH`] levels deep fits;
+/// the two-wide tree made of it is at most seven times as deep, with one sibling waiting per
+/// level.
+pub const WALK_STACK: u32 = 128;
+
+/// The deepest tree the GPU's walk takes.
+pub const MAX_TREE_DEPTH: usize = WALK_STACK as usize / (WIDTH - 1);
+
+gpu_record! {
+    /// WGSL's `Triangle`: the corners of a mesh triangle and its index in the scene's triangles.
+    pub struct GpuTriangle {
+        pub p0: [f32; 3],
+        /// The triangle's index ([`crate::primitive::PrimId::triangle`]).
+        pub index: u32,
+        pub p1: [f32; 3],
+        /// The id the object view colours it by: its mesh's ([`Geometry::object_id`]).
+        pub object: u32,
+        pub p2: [f32; 3],
+        pub pad2: u32,
+    }
 }
 
 /// The tree and its leaves' entries as the GPU reads them.
@@ -111,8 +122,8 @@ impl GpuBvh {
         gpu.nodes.reserve_exact(bvh.nodes.len());
         for node in &bvh.nodes {
             let mut copy = GpuWideNode {
-                min: node.min,
-                max: node.max,
+                lo: node.min,
+                hi: node.max,
                 first: node.first,
                 count: node.count,
             };
@@ -200,7 +211,7 @@ impl GpuBvh {
             .map(|k| {
                 let corner = |c: &[[f32; WIDTH]; 3]| glam::Vec3::new(c[0][k], c[1][k], c[2][k]);
                 Part::Child {
-                    bounds: Aabb::new(corner(&node.min), corner(&node.max)),
+                    bounds: Aabb::new(corner(&node.lo), corner(&node.hi)),
                     first: node.first[k],
                     count: node.count[k],
                 }

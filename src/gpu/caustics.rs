@@ -1,20 +1,20 @@
 //! The caustic photon map on the GPU: its photons in the kd-tree's order, each with the axis its
 //! node splits, which `shaders/caustics.wgsl` searches as `PhotonMap::irradiance` does.
 
-use bytemuck::{Pod, Zeroable};
+use super::record::gpu_record;
 
 use crate::photon_map::PhotonMap;
 
-/// WGSL's `Photon`: a photon where it landed, and the axis its node of the tree splits.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct GpuPhoton {
-    pub position: [f32; 3],
-    pub axis: u32,
-    pub power: [f32; 3],
-    pub pad0: u32,
-    pub dir: [f32; 3],
-    pub pad1: u32,
+gpu_record! {
+    /// WGSL's `Photon`: a photon where it landed, and the axis its node of the tree splits.
+    pub struct GpuPhoton {
+        pub position: [f32; 3],
+        pub axis: u32,
+        pub power: [f32; 3],
+        pub pad0: u32,
+        pub dir: [f32; 3],
+        pub pad1: u32,
+    }
 }
 
 /// The deepest tree the GPU's search takes: its stack (`PHOTON_STACK` in
@@ -41,9 +41,8 @@ pub fn photon_records(map: &PhotonMap) -> Vec<GpuPhoton> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gpu::tracer::TRACER_WGSL;
     use crate::photon_map::LEAF_SIZE;
-    use crate::settings::{MAX_CAUSTIC_GATHER, MAX_CAUSTIC_PHOTONS};
+    use crate::settings::MAX_CAUSTIC_PHOTONS;
 
     /// The levels of nodes above the leaves in the tree of `photons` photons: ranges are halved
     /// (less their middle photon) until they hold at most [`LEAF_SIZE`].
@@ -56,17 +55,6 @@ mod tests {
             depth += 1;
         }
         depth
-    }
-
-    #[test]
-    fn the_wgsl_has_the_photon_map_numbers_of_the_rust() {
-        for line in [
-            format!("const PHOTON_LEAF_SIZE: u32 = {LEAF_SIZE}u;"),
-            format!("const MAX_GATHER: u32 = {MAX_CAUSTIC_GATHER}u;"),
-            format!("const PHOTON_STACK: u32 = {MAX_PHOTON_TREE_DEPTH}u;"),
-        ] {
-            assert!(TRACER_WGSL.contains(&line), "the WGSL lacks `{line}`");
-        }
     }
 
     #[test]

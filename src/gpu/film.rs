@@ -5,56 +5,60 @@
 //! into a texture on the same device ([`FilmShow`]), as [`Tone::map`] makes them on the CPU.
 //! The WGSL is `shaders/film.wgsl`.
 
+use super::record::gpu_record;
 use std::ops::Range;
 use std::sync::Arc;
 
-use bytemuck::{Pod, Zeroable};
+use bytemuck::Zeroable;
 use wgpu::util::DeviceExt;
 
 use super::device::{ComputeEntry, GpuDevice, read_buffer};
-use super::tracer::{PixelSample, SampleColor, WORKGROUP, WorkList, upload_list};
-use crate::color::{BUCKET_SHIFT, Color, SrgbEncoder};
+use super::prelude::{FilmBinding, WORKGROUP, prelude};
+use super::tracer::{PixelSample, SampleColor, WorkList, upload_list};
+use crate::color::{Color, SrgbEncoder};
 use crate::film::Film;
 use crate::stats::RayCounts;
-use crate::tone::{Tone, ToneCurve};
+use crate::tone::Tone;
 
-/// The film's WGSL, as one module: the sample lists' records and the film's entry points.
-pub const FILM_WGSL: &str = concat!(
-    include_str!("../../shaders/samples.wgsl"),
-    include_str!("../../shaders/film.wgsl"),
-);
-
-/// WGSL's `FilmPixel`: [`Film::get`] and [`Film::samples`] of a pixel.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct FilmPixel {
-    pub color: [f32; 3],
-    pub samples: u32,
+/// The film's WGSL, as one module: the prelude, the sample lists' records and the film's entry
+/// points.
+pub fn film_wgsl() -> String {
+    prelude() + include_str!("../../shaders/samples.wgsl") + include_str!("../../shaders/film.wgsl")
 }
 
-/// WGSL's `FilmPass`: the film's size and the block side of the pass its samples belong to.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Pod, Zeroable)]
-pub struct FilmPass {
-    pub width: u32,
-    pub height: u32,
-    pub step: u32,
-    pub pad: u32,
+gpu_record! {
+    /// WGSL's `FilmPixel`: [`Film::get`] and [`Film::samples`] of a pixel.
+    pub struct FilmPixel {
+        pub color: [f32; 3],
+        pub samples: u32,
+    }
 }
 
-/// WGSL's `Tally`: the rays of the samples of a list put into the film, and how many samples
-/// the driver cut short (not put in).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
-pub struct Tally {
-    pub primary: u32,
-    pub primary_hits: u32,
-    pub shadow: u32,
-    pub reflected: u32,
-    pub transmitted: u32,
-    pub over_budget: u32,
-    pub cut_short: u32,
-    pub from_item_buffer: u32,
+gpu_record! {
+    /// WGSL's `FilmPass`: the film's size and the block side of the pass its samples belong to.
+    #[derive(Eq)]
+    pub struct FilmPass {
+        pub width: u32,
+        pub height: u32,
+        pub step: u32,
+        pub pad: u32,
+    }
+}
+
+gpu_record! {
+    /// WGSL's `Tally`: the rays of the samples of a list put into the film, and how many samples
+    /// the driver cut short (not put in).
+    #[derive(Default, Eq)]
+    pub struct Tally {
+        pub primary: u32,
+        pub primary_hits: u32,
+        pub shadow: u32,
+        pub reflected: u32,
+        pub transmitted: u32,
+        pub over_budget: u32,
+        pub cut_short: u32,
+        pub from_item_buffer: u32,
+    }
 }
 
 impl Tally {
@@ -72,32 +76,19 @@ impl Tally {
     }
 }
 
-/// WGSL's `ShowRows`: which rows of the film to show, through which exposure factor and curve.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct ShowRows {
-    pub width: u32,
-    pub first_row: u32,
-    pub rows: u32,
-    pub row_texels: u32,
-    pub scale: f32,
-    pub curve: u32,
-    pub pad0: u32,
-    pub pad1: u32,
-}
-
-/// The WGSL `curve` of a tone curve.
-fn curve_index(curve: ToneCurve) -> u32 {
-    match curve {
-        ToneCurve::Clamp => 0,
-        ToneCurve::Reinhard => 1,
-        ToneCurve::Filmic => 2,
+gpu_record! {
+    /// WGSL's `ShowRows`: which rows of the film to show, through which exposure factor and curve.
+    pub struct ShowRows {
+        pub width: u32,
+        pub first_row: u32,
+        pub rows: u32,
+        pub row_texels: u32,
+        pub scale: f32,
+        pub curve: u32,
+        pub pad0: u32,
+        pub pad1: u32,
     }
 }
-
-/// The WGSL's `SRGB_BUCKET_SHIFT`, which must be the CPU table's.
-pub const SRGB_BUCKET_SHIFT: u32 = 16;
-const _: () = assert!(SRGB_BUCKET_SHIFT == BUCKET_SHIFT);
 
 /// The pipeline of entry point `entry` of the film's WGSL on `gpu`, compiled once per device;
 /// its bind group 0 is the layout wgpu derives from what the entry uses.
@@ -105,7 +96,7 @@ fn film_pipeline(gpu: &GpuDevice, entry: &'static str) -> Arc<ComputeEntry> {
     gpu.pipeline(("film", entry), |device| {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("the film"),
-            source: wgpu::ShaderSource::Wgsl(FILM_WGSL.into()),
+            source: wgpu::ShaderSource::Wgsl(film_wgsl().into()),
         });
         let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(entry),
@@ -121,9 +112,9 @@ fn film_pipeline(gpu: &GpuDevice, entry: &'static str) -> Arc<ComputeEntry> {
 }
 
 /// A buffer binding of a bind group.
-fn binding(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+fn binding(binding: FilmBinding, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
     wgpu::BindGroupEntry {
-        binding,
+        binding: binding as u32,
         resource: buffer.as_entire_binding(),
     }
 }
@@ -218,12 +209,12 @@ impl GpuFilm {
             label: Some("film samples"),
             layout: &self.add.work,
             entries: &[
-                binding(0, &list.input),
-                binding(1, &list.output),
-                binding(2, &self.pixels),
-                binding(3, &self.tally),
-                binding(4, &cut),
-                binding(5, &self.film_pass),
+                binding(FilmBinding::Samples, &list.input),
+                binding(FilmBinding::Colors, &list.output),
+                binding(FilmBinding::Pixels, &self.pixels),
+                binding(FilmBinding::Tally, &self.tally),
+                binding(FilmBinding::Cut, &cut),
+                binding(FilmBinding::FilmPass, &self.film_pass),
             ],
         });
         {
@@ -386,7 +377,7 @@ impl FilmShow {
             rows: rows.len() as u32,
             row_texels,
             scale: tone.scale(),
-            curve: curve_index(tone.curve),
+            curve: tone.curve as u32,
             pad0: 0,
             pad1: 0,
         };
@@ -396,10 +387,10 @@ impl FilmShow {
             label: Some("film shown"),
             layout: &self.entry.work,
             entries: &[
-                binding(2, &film.pixels),
-                binding(6, texels),
-                binding(7, &self.table),
-                binding(8, &self.rows),
+                binding(FilmBinding::Pixels, &film.pixels),
+                binding(FilmBinding::Texels, texels),
+                binding(FilmBinding::SrgbTable, &self.table),
+                binding(FilmBinding::Show, &self.rows),
             ],
         });
         let mut encoder = device.create_command_encoder(&Default::default());

@@ -5,6 +5,7 @@
 //! the CPU tracer's eye rays ([`CpuItems`]), or to give each of the GPU tracer's pixel samples
 //! its item's distance.
 
+use super::record::gpu_record;
 use std::sync::Arc;
 
 use bytemuck::{Pod, Zeroable};
@@ -13,7 +14,10 @@ use wgpu::util::DeviceExt;
 
 use super::bvh::NodeLayout;
 use super::device::{GpuDevice, read_buffer};
-use super::scene::{GpuScene, GpuView, scene_layout, storage_entry_in};
+use super::frame::GpuView;
+use super::prelude::WorkBinding;
+use super::scene::{GpuScene, scene_layout};
+use super::storage::storage_entry_in;
 use super::tracer::tracer_wgsl;
 use crate::aabb::Aabb;
 use crate::item_buffer::{Item, ItemBuffer};
@@ -24,15 +28,15 @@ use crate::scene::Scene;
 /// The raster pass's WGSL, which goes with the tracer's into one module.
 pub const ITEM_BUFFER_WGSL: &str = include_str!("../../shaders/item_buffer.wgsl");
 
-/// WGSL's `Proxy`: an object's bounding box, or the whole film (`full_film` 1) for an object
-/// without finite bounds.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct GpuProxy {
-    pub lo: [f32; 3],
-    pub object: u32,
-    pub hi: [f32; 3],
-    pub full_film: u32,
+gpu_record! {
+    /// WGSL's `Proxy`: an object's bounding box, or the whole film (`full_film` 1) for an object
+    /// without finite bounds.
+    pub struct GpuProxy {
+        pub lo: [f32; 3],
+        pub object: u32,
+        pub hi: [f32; 3],
+        pub full_film: u32,
+    }
 }
 
 /// WGSL's `RasterFilm`: the film's size.
@@ -118,8 +122,8 @@ impl ItemRaster {
         let film_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("the item buffer's proxies and film"),
             entries: &[
-                storage_entry_in(3, true, STAGES),
-                storage_entry_in(4, true, STAGES),
+                storage_entry_in(WorkBinding::Proxies as u32, true, STAGES),
+                storage_entry_in(WorkBinding::RasterFilm as u32, true, STAGES),
             ],
         });
         let scene_layout = scene_layout(device, STAGES);
@@ -253,11 +257,11 @@ impl ItemRaster {
             layout: &self.film_layout,
             entries: &[
                 wgpu::BindGroupEntry {
-                    binding: 3,
+                    binding: WorkBinding::Proxies as u32,
                     resource: buffer("the proxies", proxy_bytes).as_entire_binding(),
                 },
                 wgpu::BindGroupEntry {
-                    binding: 4,
+                    binding: WorkBinding::RasterFilm as u32,
                     resource: buffer("the raster's film", bytemuck::bytes_of(&film))
                         .as_entire_binding(),
                 },

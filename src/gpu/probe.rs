@@ -3,21 +3,21 @@
 //! shapes' WGSL, and through the BVH, which checks the walk and the triangles too; with the
 //! surface there; and the colours of the scene's textures at given points.
 
-use bytemuck::{Pod, Zeroable};
+use super::record::gpu_record;
 
 use super::device::GpuDevice;
 use super::scene::GpuScene;
 use super::tracer::{pipeline, run_list};
 use crate::ray::Ray;
 
-/// WGSL's `ProbeRay`: a ray and the range of `t` it looks in.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct ProbeRay {
-    pub origin: [f32; 3],
-    pub t_min: f32,
-    pub dir: [f32; 3],
-    pub t_max: f32,
+gpu_record! {
+    /// WGSL's `ProbeRay`: a ray and the range of `t` it looks in.
+    pub struct ProbeRay {
+        pub origin: [f32; 3],
+        pub t_min: f32,
+        pub dir: [f32; 3],
+        pub t_max: f32,
+    }
 }
 
 impl ProbeRay {
@@ -31,17 +31,17 @@ impl ProbeRay {
     }
 }
 
-/// WGSL's `ProbeHit`: the closest hit's `t` (the ray's `t_max` for none), its primitive's
-/// [`crate::primitive::PrimId`] ([`NO_PRIM`] for none) and part, and the unit world normal and
-/// texture coordinates there.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct ProbeHit {
-    pub normal: [f32; 3],
-    pub t: f32,
-    pub uv: [f32; 2],
-    pub prim: u32,
-    pub part: u32,
+gpu_record! {
+    /// WGSL's `ProbeHit`: the closest hit's `t` (the ray's `t_max` for none), its primitive's
+    /// [`crate::primitive::PrimId`] ([`NO_PRIM`] for none) and part, and the unit world normal and
+    /// texture coordinates there.
+    pub struct ProbeHit {
+        pub normal: [f32; 3],
+        pub t: f32,
+        pub uv: [f32; 2],
+        pub prim: u32,
+        pub part: u32,
+    }
 }
 
 /// [`ProbeHit::prim`] of a ray that hits nothing.
@@ -70,14 +70,15 @@ pub fn closest_hits(
     run_list(gpu, scene, &pipeline(gpu, entry, scene.node_layout), rays)
 }
 
-/// WGSL's `TextureProbe`: where to colour texture `texture` of the scene.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct TextureProbe {
-    pub point: [f32; 3],
-    pub texture: u32,
-    pub uv: [f32; 2],
-    pub pad: [u32; 2],
+gpu_record! {
+    /// WGSL's `TextureProbe`: where to colour texture `texture` of the scene.
+    pub struct TextureProbe {
+        pub point: [f32; 3],
+        pub texture: u32,
+        pub uv: [f32; 2],
+        pub pad0: u32,
+        pub pad1: u32,
+    }
 }
 
 /// The colour of each probe's texture at its texture coordinates and object point, found on the

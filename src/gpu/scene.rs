@@ -4,241 +4,29 @@
 
 use std::sync::Arc;
 
-use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
-use super::bvh::{GpuBinaryNode, GpuBvh, GpuTriangle, GpuWideNode, NodeLayout};
+use super::bvh::{GpuBinaryNode, GpuBvh, GpuTriangle, GpuWideNode, MAX_TREE_DEPTH, NodeLayout};
 use super::caustics::{GpuPhoton, photon_records};
 use super::device::GpuDevice;
+use super::frame::{
+    BALL_BACKDROP, CAUSTICS, GpuFrame, GpuView, OPAQUE, REFLECTIONS, SHADOWS, TEXTURES,
+    TRANSMISSION, ViewKind,
+};
+use super::materials::{
+    GpuLight, GpuMaterial, GpuTriangleShading, GpuVertexAttributes, HAS_NORMALS, HAS_UVS,
+};
 use super::shapes::{GpuObject, ObjectTable, Word};
-use super::texture::{GpuTexture, NO_TEXTURE, TextureRecords, background_record};
+use super::storage::storage_entry_in;
+use super::texture::{GpuTexture, TextureRecords, background_record};
 use crate::aabb::Aabb;
 use crate::bvh::Bvh;
 use crate::camera::Camera;
 use crate::color::Color;
-use crate::light::Light;
-use crate::material::Material;
 use crate::medium::{Backdrop, Fog, Medium};
 use crate::photon_map::PhotonMap;
 use crate::render::Assembled;
 use crate::scene::Scene;
-
-/// The deepest tree the GPU's walk takes: its stack (`STACK_SIZE` in
-/// `shaders/bvh/traverse.wgsl`) holds seven waiting children per level.
-pub const MAX_TREE_DEPTH: usize = 128 / 7;
-
-/// WGSL's `Frame`: the camera, the image and the settings.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct GpuFrame {
-    pub eye: [f32; 3],
-    pub near: f32,
-    pub u: [f32; 3],
-    pub half_height: f32,
-    pub v: [f32; 3],
-    pub width: u32,
-    pub n: [f32; 3],
-    pub height: u32,
-    pub background: [f32; 3],
-    pub max_depth: u32,
-    pub ambient: [f32; 3],
-    pub min_weight: f32,
-    pub flags: u32,
-    pub unbounded_first: u32,
-    pub unbounded: u32,
-    pub node_count: u32,
-    pub light_count: u32,
-    pub object_count: u32,
-    pub film_left: u32,
-    pub film_top: u32,
-    /// The background image's texture record ([`NO_TEXTURE`]: none).
-    pub background_image: u32,
-    /// `fog_steps`: the sample points of the light a medium scatters into a ray, per light.
-    pub fog_steps: u32,
-    /// The fog's [`Medium`]: its albedo, and below its colour and density (zero: no fog).
-    pub fog_albedo: f32,
-    /// The fog's [`Backdrop::Distance`] (unless [`BALL_BACKDROP`] is set).
-    pub backdrop_distance: f32,
-    pub fog_color: [f32; 3],
-    pub fog_density: f32,
-    /// The fog's [`Backdrop::Ball`] (where [`BALL_BACKDROP`] is set).
-    pub backdrop_center: [f32; 3],
-    pub backdrop_radius: f32,
-    /// What the pixels show: a [`GpuView`]'s number.
-    pub view: u32,
-    /// The depth view's range ([`GpuView::Depth`]).
-    pub depth_near: f32,
-    pub depth_far: f32,
-    /// `caustic_gather`: the photons each caustic estimate gathers.
-    pub caustic_gather: u32,
-    /// The caustic photon map ([`PhotonMap`]): the box around its photons, their number, how
-    /// far an estimate looks at most, and how many photons were shot.
-    pub photons_min: [f32; 3],
-    pub photon_count: u32,
-    pub photons_max: [f32; 3],
-    pub photon_radius: f32,
-    pub photons_shot: f32,
-    pub pad0: u32,
-    pub pad1: u32,
-    pub pad2: u32,
-}
-
-/// What the GPU's pixels show: the Whitted colour, or one of the debug views that look at the
-/// eye ray's first hit (the twins of `inspect::DebugView`'s, which the CPU draws; the heat
-/// maps of the whole ray tree are drawn on the CPU only).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub enum GpuView {
-    #[default]
-    Shaded,
-    Normals,
-    /// Grey from white at `near` to black at `far`, along the view direction.
-    Depth {
-        near: f32,
-        far: f32,
-    },
-    Uv,
-    Object,
-    Material,
-}
-
-impl GpuView {
-    /// Its number in the frame record, as `shaders/views.wgsl` names them.
-    fn number(self) -> u32 {
-        match self {
-            GpuView::Shaded => 0,
-            GpuView::Normals => 1,
-            GpuView::Depth { .. } => 2,
-            GpuView::Uv => 3,
-            GpuView::Object => 4,
-            GpuView::Material => 5,
-        }
-    }
-}
-
-/// Switches of [`GpuFrame::flags`], as `shaders/scene.wgsl` names them.
-pub const SHADOWS: u32 = 1;
-pub const REFLECTIONS: u32 = 2;
-pub const TRANSMISSION: u32 = 4;
-pub const OPAQUE: u32 = 8;
-pub const TEXTURES: u32 = 16;
-/// The fog's backdrop is the ball around the scene ([`Backdrop::Ball`]).
-pub const BALL_BACKDROP: u32 = 32;
-/// Caustics are on: the photon map brings the light that glass bends.
-pub const CAUSTICS: u32 = 64;
-
-/// WGSL's `Material`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct GpuMaterial {
-    pub color: [f32; 3],
-    pub ambient: f32,
-    pub emission: [f32; 3],
-    pub diffuse: f32,
-    pub specular_color: [f32; 3],
-    pub specular: f32,
-    pub shininess: f32,
-    pub reflectivity: f32,
-    pub transparency: f32,
-    pub ior: f32,
-    pub fresnel: u32,
-    /// Its texture record ([`NO_TEXTURE`]: none).
-    pub texture: u32,
-    /// The medium inside it (a density of zero: none).
-    pub medium_density: f32,
-    pub medium_albedo: f32,
-    pub medium_color: [f32; 3],
-    pub pad: f32,
-}
-
-impl From<&Material> for GpuMaterial {
-    fn from(m: &Material) -> GpuMaterial {
-        let medium = m.medium.unwrap_or_default();
-        GpuMaterial {
-            color: m.color.to_array(),
-            ambient: m.ambient,
-            emission: m.emission.to_array(),
-            diffuse: m.diffuse,
-            specular_color: m.specular_color.to_array(),
-            specular: m.specular,
-            shininess: m.shininess,
-            reflectivity: m.reflectivity,
-            transparency: m.transparency,
-            ior: m.ior,
-            fresnel: u32::from(m.fresnel),
-            texture: m.texture.unwrap_or(NO_TEXTURE),
-            medium_density: medium.density,
-            medium_albedo: medium.albedo,
-            medium_color: medium.color.to_array(),
-            pad: 0.0,
-        }
-    }
-}
-
-/// WGSL's `Light`; `kind` as its `*_LIGHT` constants.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct GpuLight {
-    pub position: [f32; 3],
-    pub kind: u32,
-    pub direction: [f32; 3],
-    pub cos_angle: f32,
-    pub color: [f32; 3],
-    pub cos_full: f32,
-}
-
-impl From<&Light> for GpuLight {
-    fn from(light: &Light) -> GpuLight {
-        let zero = [0.0; 3];
-        match *light {
-            Light::Point { position, color } => GpuLight {
-                position: position.to_array(),
-                kind: 0,
-                direction: zero,
-                cos_angle: 0.0,
-                color: color.to_array(),
-                cos_full: 0.0,
-            },
-            Light::Directional { direction, color } => GpuLight {
-                position: zero,
-                kind: 1,
-                direction: direction.to_array(),
-                cos_angle: 0.0,
-                color: color.to_array(),
-                cos_full: 0.0,
-            },
-            Light::Spot(spot) => GpuLight {
-                position: spot.position.to_array(),
-                kind: 2,
-                direction: spot.direction.to_array(),
-                cos_angle: spot.cos_angle,
-                color: spot.color.to_array(),
-                cos_full: spot.cos_full,
-            },
-        }
-    }
-}
-
-/// WGSL's `TriangleShading`: which vertices of [`GpuScene`]'s vertex attributes a triangle's
-/// corners are, and its material with [`HAS_NORMALS`] and [`HAS_UVS`].
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct GpuTriangleShading {
-    pub corners: [u32; 3],
-    pub material: u32,
-}
-
-pub const HAS_NORMALS: u32 = 1 << 30;
-pub const HAS_UVS: u32 = 1 << 31;
-
-/// WGSL's `VertexAttributes`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct GpuVertexAttributes {
-    pub normal: [f32; 3],
-    pub u: f32,
-    pub v: f32,
-    pub pad: [f32; 3],
-}
 
 /// The records of a scene, before they go to the GPU.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -281,7 +69,9 @@ impl SceneRecords {
                     normal,
                     u: uv.x,
                     v: uv.y,
-                    pad: [0.0; 3],
+                    pad0: 0.0,
+                    pad1: 0.0,
+                    pad2: 0.0,
                 }
             }));
         }
@@ -350,10 +140,29 @@ struct RecordCounts {
     materials: u32,
 }
 
-/// Storage buffers in bind group 0 before the frame's. The frame is a storage buffer too, not a
-/// uniform one: Mesa's lavapipe inlines a uniform buffer's values into the shader, so that it
-/// compiled the tracer again (for minutes) for every scene.
-const STORAGE_BUFFERS: u32 = 12;
+/// The bindings of bind group 0, the scene, in the order of [`GpuScene`]'s storage buffers:
+/// the WGSL names them `SCENE_OBJECTS`, `SCENE_SHAPE_WORDS`, … (`super::prelude`). The frame
+/// is a storage buffer too, not a uniform one: Mesa's lavapipe inlines a uniform buffer's
+/// values into the shader, so that it compiled the tracer again (for minutes) for every scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, strum::EnumIter)]
+pub enum SceneBinding {
+    Objects,
+    ShapeWords,
+    Nodes,
+    Triangles,
+    Refs,
+    TriangleShading,
+    VertexAttributes,
+    Materials,
+    Lights,
+    Textures,
+    Texels,
+    Photons,
+    Frame,
+}
+
+/// Storage buffers in bind group 0 before the frame's.
+const STORAGE_BUFFERS: u32 = SceneBinding::Frame as u32;
 
 impl GpuScene {
     /// Uploads `assembled`'s scene and BVH; the error says what the GPU tracer does not trace,
@@ -576,7 +385,7 @@ impl GpuScene {
             fog_density: medium.density,
             backdrop_center: center,
             backdrop_radius: radius,
-            view: view.number(),
+            view: ViewKind::from(view) as u32,
             depth_near,
             depth_far,
             caustic_gather: settings.caustic_gather,
@@ -697,27 +506,4 @@ pub(super) fn scene_layout(
         label: Some("the scene"),
         entries: &entries,
     })
-}
-
-/// A storage buffer at `binding` of a compute shader's bind group.
-pub fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
-    storage_entry_in(binding, read_only, wgpu::ShaderStages::COMPUTE)
-}
-
-/// A storage buffer at `binding` of a bind group seen by `stages`.
-pub fn storage_entry_in(
-    binding: u32,
-    read_only: bool,
-    stages: wgpu::ShaderStages,
-) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: stages,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
 }

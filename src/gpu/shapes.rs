@@ -4,17 +4,22 @@
 //! is `shaders/shapes/`: one file per shape, each the twin of its Rust module in `src/shapes`,
 //! and `shape.wgsl`, which picks the shape by its kind and places it by its transform.
 
-use bytemuck::{Pod, Zeroable};
+use super::record::gpu_record;
+use strum::IntoEnumIterator;
 
 use crate::primitive::Object;
 use crate::shapes::{
-    Csg, CsgOperation, CsgStep, Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, Sphere,
+    Csg, CsgStep, Cuboid, Ellipsoid, Paraboloid, Plane, Polygon, Shape, ShapeKind, Sphere,
     TaperedCylinder, Torus,
 };
 use crate::transform::Transform;
 
-/// The shapes' WGSL: the dispatch by kind and each shape's intersection and surface.
-pub const SHAPES_WGSL: &str = concat!(
+use super::wgsl_names::snake_case;
+
+/// The WGSL of the objects and of each shape: one file per shape, `shapes/NAME.wgsl` with
+/// `load_NAME`, `intersect_NAME` and `NAME_surface` (NAME the kind's snake-case name), and
+/// CSG's.
+const SHAPE_FILES: &str = concat!(
     include_str!("../../shaders/shapes/shape.wgsl"),
     include_str!("../../shaders/shapes/quadratic.wgsl"),
     include_str!("../../shaders/shapes/sphere.wgsl"),
@@ -28,37 +33,102 @@ pub const SHAPES_WGSL: &str = concat!(
     include_str!("../../shaders/shapes/csg.wgsl"),
 );
 
-/// WGSL's `Object`: an analytic shape placed in the world.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct GpuObject {
-    /// Which shape ([`ShapeKind`]).
-    pub kind: u32,
-    /// Where its numbers start in the shape words.
-    pub first: u32,
-    /// Where its transform starts in the shape words ([`NO_TRANSFORM`]: none).
-    pub transform: u32,
-    pub material: u32,
+/// How the WGSL finds where a line crosses a CSG operand of a kind, as [`Shape::crossings`]
+/// does on the CPU.
+enum OperandCrossings {
+    /// By the shape's own `NAME_crossings`.
+    Own,
+    /// As a convex solid: two hits on the whole line ([`Shape::is_convex`]).
+    Convex,
+    /// Never an operand: `Csg::new` takes neither polygons nor nodes.
+    None,
+}
+
+/// [`OperandCrossings`] of `kind`.
+fn operand_crossings(kind: ShapeKind) -> OperandCrossings {
+    match kind {
+        ShapeKind::Plane | ShapeKind::Torus => OperandCrossings::Own,
+        ShapeKind::Sphere
+        | ShapeKind::Cuboid
+        | ShapeKind::Ellipsoid
+        | ShapeKind::TaperedCylinder
+        | ShapeKind::Paraboloid => OperandCrossings::Convex,
+        ShapeKind::Polygon | ShapeKind::Csg => OperandCrossings::None,
+    }
+}
+
+/// The shapes' WGSL: each shape's file and the dispatch by kind, a case for every
+/// [`ShapeKind`] but CSG (which `intersect_shape` traces, its operands through this). A kind
+/// the WGSL does not trace sets `cut_short`, so that its sample is traced again on the CPU.
+pub fn shapes_wgsl() -> String {
+    let mut intersect = String::new();
+    let mut surface = String::new();
+    let (mut convex, mut own) = (Vec::new(), String::new());
+    for kind in ShapeKind::iter().filter(|&kind| kind != ShapeKind::Csg) {
+        let (name, constant) = (
+            snake_case(&kind),
+            format!("SHAPE_{}", snake_case(&kind).to_uppercase()),
+        );
+        let load = format!("load_{name}(first)");
+        intersect += &format!(
+            "        case {constant}: {{ return intersect_{name}({load}, origin, dir, t_min, t_max); }}\n"
+        );
+        surface +=
+            &format!("        case {constant}: {{ return {name}_surface({load}, p, part); }}\n");
+        match operand_crossings(kind) {
+            OperandCrossings::Own => {
+                own += &format!(
+                    "        case {constant}: {{ return {name}_crossings({load}, origin, dir); }}\n"
+                );
+            }
+            OperandCrossings::Convex => convex.push(constant),
+            OperandCrossings::None => {}
+        }
+    }
+    format!(
+        "{SHAPE_FILES}
+// `intersect_shape` for every shape but CSG, which traces its operands by this (WGSL has no
+// recursion). Written by src/gpu/shapes.rs, a case for each `ShapeKind`.
+fn intersect_plain_shape(kind: u32, first: u32, origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max: f32) -> ShapeHit {{
+    switch kind {{
+{intersect}        default: {{ cut_short = true; return no_hit(); }}
+    }}
+}}
+
+// `shape_surface` for every shape but CSG.
+fn plain_shape_surface(kind: u32, first: u32, p: vec3<f32>, part: u32) -> LocalSurface {{
+    switch kind {{
+{surface}        default: {{ cut_short = true; return LocalSurface(vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(0.0)); }}
+    }}
+}}
+
+// `Shape::crossings`, for a shape that is an operand of a CSG node.
+fn shape_crossings(kind: u32, first: u32, origin: vec3<f32>, dir: vec3<f32>) -> Crossings {{
+    switch kind {{
+{own}        case {convex}: {{ return convex_crossings(kind, first, origin, dir); }}
+        default: {{ cut_short = true; return Crossings(vec4<f32>(0.0), vec4<u32>(0u), 0u); }}
+    }}
+}}
+",
+        convex = convex.join(", ")
+    )
+}
+
+gpu_record! {
+    /// WGSL's `Object`: an analytic shape placed in the world.
+    pub struct GpuObject {
+        /// Which shape ([`ShapeKind`]).
+        pub kind: u32,
+        /// Where its numbers start in the shape words.
+        pub first: u32,
+        /// Where its transform starts in the shape words ([`NO_TRANSFORM`]: none).
+        pub transform: u32,
+        pub material: u32,
+    }
 }
 
 /// [`GpuObject::transform`] of an object given in world coordinates.
 pub const NO_TRANSFORM: u32 = u32::MAX;
-
-/// The shape kinds, numbered as the `SHAPE_*` constants of `shaders/shapes/shape.wgsl`. The
-/// numbers only need to be distinct; they are not counts or indices.
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ShapeKind {
-    Sphere = 0,
-    Plane = 1,
-    Polygon = 2,
-    Cuboid = 3,
-    TaperedCylinder = 4,
-    Ellipsoid = 5,
-    Paraboloid = 6,
-    Torus = 7,
-    Csg = 8,
-}
 
 /// The most solids one CSG object may combine on the GPU: fewer than the CPU's
 /// [`crate::shapes::MAX_CSG_OPERANDS`], since every ray keeps two stacks of two spans per solid
@@ -103,43 +173,17 @@ impl ObjectTable {
 /// Appends the numbers of `shape` to `words`, in the order its WGSL `load_*` reads them.
 fn push_shape(shape: &Shape, words: &mut Vec<Word>) -> Result<ShapeKind, String> {
     match shape {
-        Shape::Sphere(s) => {
-            push_sphere(s, words);
-            Ok(ShapeKind::Sphere)
-        }
-        Shape::Plane(p) => {
-            push_plane(p, words);
-            Ok(ShapeKind::Plane)
-        }
-        Shape::Polygon(p) => {
-            push_polygon(p, words);
-            Ok(ShapeKind::Polygon)
-        }
-        Shape::Cuboid(c) => {
-            push_cuboid(c, words);
-            Ok(ShapeKind::Cuboid)
-        }
-        Shape::TaperedCylinder(c) => {
-            push_tapered_cylinder(c, words);
-            Ok(ShapeKind::TaperedCylinder)
-        }
-        Shape::Ellipsoid(e) => {
-            push_ellipsoid(e, words);
-            Ok(ShapeKind::Ellipsoid)
-        }
-        Shape::Paraboloid(p) => {
-            push_paraboloid(p, words);
-            Ok(ShapeKind::Paraboloid)
-        }
-        Shape::Torus(t) => {
-            push_torus(t, words);
-            Ok(ShapeKind::Torus)
-        }
-        Shape::Csg(c) => {
-            push_csg(c, words)?;
-            Ok(ShapeKind::Csg)
-        }
+        Shape::Sphere(s) => push_sphere(s, words),
+        Shape::Plane(p) => push_plane(p, words),
+        Shape::Polygon(p) => push_polygon(p, words),
+        Shape::Cuboid(c) => push_cuboid(c, words),
+        Shape::TaperedCylinder(c) => push_tapered_cylinder(c, words),
+        Shape::Ellipsoid(e) => push_ellipsoid(e, words),
+        Shape::Paraboloid(p) => push_paraboloid(p, words),
+        Shape::Torus(t) => push_torus(t, words),
+        Shape::Csg(c) => push_csg(c, words)?,
     }
+    Ok(ShapeKind::from(shape))
 }
 
 /// `load_sphere`: the centre and the radius.
@@ -242,21 +286,11 @@ fn push_torus(t: &Torus, words: &mut Vec<Word>) {
 }
 
 /// `load_csg_leaf`'s flag on the kind of a leaf that is subtracted an odd number of times.
-const CSG_COMPLEMENTED: u32 = 1 << 31;
+pub const CSG_COMPLEMENTED: u32 = 1 << 31;
 
 /// The flag of a step of a CSG program that combines the two topmost lists (or-ed with the
 /// operation); a step without it pushes the spans of the leaf it names.
-const CSG_COMBINE: u32 = 1 << 31;
-
-/// The number of a CSG operation in a combining step, as the WGSL's `CSG_UNION`,
-/// `CSG_INTERSECTION` and `CSG_DIFFERENCE`.
-fn operation_number(operation: CsgOperation) -> u32 {
-    match operation {
-        CsgOperation::Union => 0,
-        CsgOperation::Intersection => 1,
-        CsgOperation::Difference => 2,
-    }
-}
+pub const CSG_COMBINE: u32 = 1 << 31;
 
 /// `intersect_csg`: a header (the numbers of leaves and of steps), a record per leaf (its
 /// shape's kind, or-ed with [`CSG_COMPLEMENTED`] where it is subtracted an odd number of times;
@@ -282,7 +316,7 @@ fn push_csg(csg: &Csg, words: &mut Vec<Word>) -> Result<(), String> {
         for (w, step) in word.iter_mut().zip(chunk) {
             *w = f32::from_bits(match *step {
                 CsgStep::Leaf(i) => u32::from(i),
-                CsgStep::Combine(operation) => CSG_COMBINE | operation_number(operation),
+                CsgStep::Combine(operation) => CSG_COMBINE | operation as u32,
             });
         }
         words.push(word);
@@ -332,39 +366,13 @@ fn push_transform(t: &Transform, words: &mut Vec<Word>) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shapes::{CSG_PART_BITS, MAX_CSG_DEPTH, Operand};
+    use crate::shapes::{CsgOperation, Operand};
 
     fn sphere_operand(x: f32) -> Operand {
         Operand {
             shape: Shape::Sphere(Sphere::new(glam::Vec3::new(x, 0.0, 0.0), 1.0).unwrap()),
             transform: None,
             material: 0,
-        }
-    }
-
-    #[test]
-    fn the_wgsl_has_the_csg_numbers_of_the_rust() {
-        for line in [
-            format!("const CSG_MAX_OPERANDS: u32 = {GPU_MAX_CSG_OPERANDS}u;"),
-            format!("const CSG_MAX_LISTS: u32 = {}u;", MAX_CSG_DEPTH + 2),
-            format!("const CSG_PART_BITS: u32 = {CSG_PART_BITS}u;"),
-            format!("const SHAPE_CSG: u32 = {}u;", ShapeKind::Csg as u32),
-            format!("const CSG_COMPLEMENTED: u32 = {CSG_COMPLEMENTED:#x}u;"),
-            format!("const CSG_COMBINE: u32 = {CSG_COMBINE:#x}u;"),
-            format!(
-                "const CSG_UNION: u32 = {}u;",
-                operation_number(CsgOperation::Union)
-            ),
-            format!(
-                "const CSG_INTERSECTION: u32 = {}u;",
-                operation_number(CsgOperation::Intersection)
-            ),
-            format!(
-                "const CSG_DIFFERENCE: u32 = {}u;",
-                operation_number(CsgOperation::Difference)
-            ),
-        ] {
-            assert!(SHAPES_WGSL.contains(&line), "the WGSL lacks `{line}`");
         }
     }
 

@@ -3,50 +3,40 @@
 //! every image's texels. The WGSL that reads them is `shaders/texture.wgsl`, the twin of
 //! [`Texture::color`], with `shaders/noise.wgsl`, the twin of [`crate::noise`].
 
-use bytemuck::{Pod, Zeroable};
+use super::record::gpu_record;
+use bytemuck::Zeroable;
 use glam::Vec2;
 
 use crate::color::Color;
 use crate::scene::Scene;
 use crate::srgb_image::SrgbImage;
-use crate::texture::{SRGB8_TO_LINEAR, Texture, Wrap};
+use crate::texture::{SRGB8_TO_LINEAR, Texture, TextureKind, Wrap};
 
-/// A material's [`super::scene::GpuMaterial::texture`] or the frame's background image when
+/// A material's [`super::materials::GpuMaterial::texture`] or the frame's background image when
 /// there is none.
 pub const NO_TEXTURE: u32 = u32::MAX;
 
-/// The texture kinds, numbered as the `*_TEXTURE` constants of `shaders/texture.wgsl`.
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum TextureKind {
-    Checker3d = 0,
-    CheckerUv = 1,
-    Wood = 2,
-    Marble = 3,
-    Image = 4,
-}
-
-/// WGSL's `Texture`: a texture's kind ([`TextureKind`]) and the numbers that kind reads.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct GpuTexture {
-    /// The first colour; Marble's colour.
-    pub a: [f32; 3],
-    pub kind: u32,
-    /// The second colour.
-    pub b: [f32; 3],
-    /// Checker3d's cube side.
-    pub size: f32,
-    /// An image's scale; CheckerUv's squares across and up (`u_count`, `v_count`).
-    pub scale: [f32; 2],
-    /// An image's offset.
-    pub offset: [f32; 2],
-    /// Where an image's texels start in the texel buffer, one u32 each (`r | g << 8 | b << 16`).
-    pub first: u32,
-    pub width: u32,
-    pub height: u32,
-    /// [`Wrap`]: 0 Repeat, 1 Clamp.
-    pub wrap: u32,
+gpu_record! {
+    /// WGSL's `Texture`: a texture's kind ([`TextureKind`]) and the numbers that kind reads.
+    pub struct GpuTexture {
+        /// The first colour; Marble's colour.
+        pub a: [f32; 3],
+        pub kind: u32,
+        /// The second colour.
+        pub b: [f32; 3],
+        /// Checker3d's cube side.
+        pub size: f32,
+        /// An image's scale; CheckerUv's squares across and up (`u_count`, `v_count`).
+        pub scale: [f32; 2],
+        /// An image's offset.
+        pub offset: [f32; 2],
+        /// Where an image's texels start in the texel buffer, one u32 each (`r | g << 8 | b << 16`).
+        pub first: u32,
+        pub width: u32,
+        pub height: u32,
+        /// [`Wrap`]: 0 Repeat, 1 Clamp.
+        pub wrap: u32,
+    }
 }
 
 /// The textures of a scene as the GPU reads them.
@@ -133,10 +123,7 @@ impl TextureRecords {
             first,
             width: image.width,
             height: image.height,
-            wrap: match wrap {
-                Wrap::Repeat => 0,
-                Wrap::Clamp => 1,
-            },
+            wrap: wrap as u32,
             ..GpuTexture::zeroed()
         }
     }

@@ -2,17 +2,20 @@
 //! list of pixel samples, traced by the ray tree on the GPU in dispatches small enough for an
 //! operating system's GPU watchdog.
 
-use bytemuck::{Pod, Zeroable};
+use super::record::gpu_record;
+use bytemuck::Pod;
 use wgpu::util::DeviceExt;
 
 use std::sync::Arc;
 
 use super::bvh::NodeLayout;
 use super::device::{ComputeEntry, GpuDevice, read_buffer};
-use super::scene::{GpuScene, scene_layout, storage_entry};
-use super::shapes::SHAPES_WGSL;
+use super::prelude::{WORKGROUP, WorkBinding, prelude};
+use super::scene::{GpuScene, scene_layout};
+use super::shapes::shapes_wgsl;
+use super::storage::storage_entry;
 
-/// All the GPU tracer's WGSL but the shapes' ([`SHAPES_WGSL`]) and the BVH's nodes'
+/// All the GPU tracer's WGSL but the prelude, the shapes' ([`shapes_wgsl`]) and the BVH's nodes'
 /// ([`NodeLayout::wgsl`]), which go with it into one module: the scene's records, the camera
 /// and the jitter, the triangles, the BVH's walk, the textures, the caustic photons, the shading, the media and the
 /// ray tree, the debug views, and the entry points.
@@ -37,38 +40,35 @@ pub const TRACER_WGSL: &str = concat!(
     include_str!("../../shaders/probe.wgsl"),
 );
 
-/// Invocations per workgroup of every entry point (`@workgroup_size`).
-pub const WORKGROUP: u32 = 64;
-
-/// WGSL's `PixelSample`: sample `k` of film pixel (x, y), and the distance `item_t` of its
-/// pixel's item in the item buffer, to which its eye ray's first search looks (0: none, all the
-/// way).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct PixelSample {
-    pub x: u32,
-    pub y: u32,
-    pub k: u32,
-    pub item_t: f32,
+gpu_record! {
+    /// WGSL's `PixelSample`: sample `k` of film pixel (x, y), and the distance `item_t` of its
+    /// pixel's item in the item buffer, to which its eye ray's first search looks (0: none, all the
+    /// way).
+    pub struct PixelSample {
+        pub x: u32,
+        pub y: u32,
+        pub k: u32,
+        pub item_t: f32,
+    }
 }
 
-/// WGSL's `SampleColor`: a sample's colour and the rays its tree traced, or that the driver
-/// cut its work short (`cut_short` 1: a driver may bound the loop iterations of a shader, as
-/// Mesa's llvmpipe does at 65535, and the sample must be traced again).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct SampleColor {
-    pub color: [f32; 3],
-    pub primary_hits: u32,
-    pub shadow: u32,
-    pub reflected: u32,
-    pub transmitted: u32,
-    pub over_budget: u32,
-    pub cut_short: u32,
-    /// 1 where the eye ray's first hit is its pixel's item in the item buffer.
-    pub from_item_buffer: u32,
-    pub pad1: u32,
-    pub pad2: u32,
+gpu_record! {
+    /// WGSL's `SampleColor`: a sample's colour and the rays its tree traced, or that the driver
+    /// cut its work short (`cut_short` 1: a driver may bound the loop iterations of a shader, as
+    /// Mesa's llvmpipe does at 65535, and the sample must be traced again).
+    pub struct SampleColor {
+        pub color: [f32; 3],
+        pub primary_hits: u32,
+        pub shadow: u32,
+        pub reflected: u32,
+        pub transmitted: u32,
+        pub over_budget: u32,
+        pub cut_short: u32,
+        /// 1 where the eye ray's first hit is its pixel's item in the item buffer.
+        pub from_item_buffer: u32,
+        pub pad1: u32,
+        pub pad2: u32,
+    }
 }
 
 /// The compute pipeline of WGSL entry point `entry` of the GPU tracer's module on `gpu`, for
@@ -83,9 +83,9 @@ pub fn pipeline(gpu: &GpuDevice, entry: &'static str, nodes: NodeLayout) -> Arc<
     gpu.pipeline((module, entry), |device| compile(device, entry, nodes))
 }
 
-/// All the tracer's WGSL, for the BVH's nodes in `nodes`.
+/// All the tracer's WGSL, for the BVH's nodes in `nodes`, after the prelude.
 pub fn tracer_wgsl(nodes: NodeLayout) -> String {
-    [SHAPES_WGSL, nodes.wgsl(), TRACER_WGSL].concat()
+    prelude() + &shapes_wgsl() + &nodes.wgsl() + TRACER_WGSL
 }
 
 /// Compiles `entry` of all the tracer's WGSL for `device`.
@@ -97,7 +97,10 @@ fn compile(device: &wgpu::Device, entry: &str, nodes: NodeLayout) -> ComputeEntr
     });
     let work = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some(entry),
-        entries: &[storage_entry(0, true), storage_entry(1, false)],
+        entries: &[
+            storage_entry(WorkBinding::Input as u32, true),
+            storage_entry(WorkBinding::Output as u32, false),
+        ],
     });
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(entry),
@@ -177,11 +180,11 @@ pub fn dispatch_list(
         layout: work,
         entries: &[
             wgpu::BindGroupEntry {
-                binding: 0,
+                binding: WorkBinding::Input as u32,
                 resource: list.input.as_entire_binding(),
             },
             wgpu::BindGroupEntry {
-                binding: 1,
+                binding: WorkBinding::Output as u32,
                 resource: list.output.as_entire_binding(),
             },
         ],

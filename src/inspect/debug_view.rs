@@ -6,7 +6,7 @@ use strum::VariantNames;
 
 use super::legend::{Legend, depth_range};
 #[cfg(feature = "gpu")]
-use crate::gpu::scene::GpuView;
+use crate::gpu::frame::GpuView;
 use crate::scene::Scene;
 use crate::whitted::Tracer;
 

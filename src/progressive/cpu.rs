@@ -8,20 +8,18 @@
 
 use std::ops::Range;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::time::Instant;
 
 use arrayvec::ArrayVec;
 use rayon::prelude::*;
 
 use super::control::{Cancelled, PassStats, RenderControl, RenderStats, run_plan};
-use super::plan::{Pass, PassGrid, passes, take_snapshot, unwatched_passes};
+use super::pass::PassStart;
+use super::plan::{Pass, PassGrid, passes, sample_ray, unwatched_passes};
 use crate::bvh::packet::PACKET_SIZE;
-use crate::camera::PIXEL_CENTRE;
 use crate::color::Color;
 use crate::film::Film;
 use crate::item_buffer::Item;
 use crate::ray::Ray;
-use crate::sampling::jitter;
 use crate::stats::RayCounts;
 use crate::whitted::Tracer;
 
@@ -166,21 +164,9 @@ fn run_pass(
     start_block: u32,
     shown: &mut Vec<[u8; 3]>,
 ) -> Result<PassStats, Cancelled> {
-    let started = Instant::now();
-    if let Pass::Refine(_) = pass {
-        take_snapshot(film, shown);
-    }
-    let grid = PassGrid::new(
-        pass,
-        start_block,
-        film,
-        shown,
-        tracer.scene.settings.aa_threshold,
-    );
-    let step = pass.step();
-    let (rows, columns) = (film.height().div_ceil(step), film.width().div_ceil(step));
-    control.start_pass(step, pass.samples(), rows);
-    let rays_before = control.rays();
+    let threshold = tracer.scene.settings.aa_threshold;
+    let start = PassStart::new(pass, film, shown, (start_block, threshold), control);
+    let (grid, rows, columns, step) = (&start.grid, start.rows, start.columns, pass.step());
     let pixels = AtomicU64::new(0);
     // Bands of TILE rows of the grid go to the threads; each band is traced tile by tile. Each
     // band is a job of its own that an idle thread can take: left to itself, rayon would hand a
@@ -196,7 +182,7 @@ fn run_pass(
             let mut traced = Traced::default();
             for c in (0..columns).step_by(TILE as usize) {
                 let tile_columns = c..(c + TILE).min(columns);
-                let tile = trace_tile(tracer, shader, &grid, &band_rows, tile_columns, &mut counts);
+                let tile = trace_tile(tracer, shader, grid, &band_rows, tile_columns, &mut counts);
                 traced.pixels += tile.pixels;
                 traced.samples += tile.samples;
             }
@@ -205,13 +191,7 @@ fn run_pass(
             film.touch_rows(band_rows.start * step..band_rows.end * step);
             Ok(())
         })?;
-    let rays = control.rays() - rays_before;
-    Ok(PassStats {
-        pass,
-        pixels: pixels.into_inner(),
-        rays,
-        time: started.elapsed(),
-    })
+    Ok(start.finish(control, pixels.into_inner()))
 }
 
 /// What a tile (or a band) traced.
@@ -287,13 +267,7 @@ fn trace_tile(
                 if packet.rays.is_full() {
                     packet.trace(tracer, shader, grid, counts);
                 }
-                let pixel = (left + x, top + y);
-                let offset = if k == 0 {
-                    PIXEL_CENTRE
-                } else {
-                    jitter(pixel.0, pixel.1, k)
-                };
-                packet.rays.push(camera.eye_ray(pixel, offset, size));
+                packet.rays.push(sample_ray(camera, grid.film, (x, y), k));
                 packet.samples.push((x, y, k));
                 packet
                     .items

@@ -15,22 +15,21 @@ use std::time::{Duration, Instant};
 
 use super::control::{Cancelled, PassStats, RenderControl, RenderStats, run_plan};
 use super::cpu::Shader;
-use super::plan::{Pass, PassGrid, passes, take_snapshot, unwatched_passes};
-use crate::camera::PIXEL_CENTRE;
+use super::pass::PassStart;
+use super::plan::{Pass, passes, sample_ray, unwatched_passes};
 use crate::color::Color;
 use crate::film::Film;
 use crate::gpu::bvh::NodeLayout;
 use crate::gpu::device::{ComputeEntry, GpuDevice};
 use crate::gpu::film::GpuFilm;
+use crate::gpu::frame::GpuView;
 use crate::gpu::item_raster::ItemRaster;
-use crate::gpu::scene::{GpuScene, GpuView};
-use crate::gpu::tracer::{
-    PixelSample, SampleColor, WORKGROUP, dispatch_list, pipeline, upload_list,
-};
+use crate::gpu::prelude::WORKGROUP;
+use crate::gpu::scene::GpuScene;
+use crate::gpu::tracer::{PixelSample, SampleColor, dispatch_list, pipeline, upload_list};
 use crate::item_buffer::ItemBuffer;
 use crate::photon_map::PhotonMap;
 use crate::render::{Assembled, FirstHit};
-use crate::sampling::jitter;
 use crate::stats::RayCounts;
 use crate::whitted::Tracer;
 
@@ -256,14 +255,9 @@ impl GpuRenderer {
     ) -> Result<PassStats, Option<String>> {
         let Sweep { film, control, .. } = *sweep;
         let settings = &sweep.tracer.scene.settings;
-        let started = Instant::now();
-        if let Pass::Refine(_) = pass {
-            take_snapshot(film, shown);
-        }
-        let (start_block, threshold) = (settings.block_size, settings.aa_threshold);
-        let grid = PassGrid::new(pass, start_block, film, shown, threshold);
-        let step = pass.step();
-        let (rows, columns) = (film.height().div_ceil(step), film.width().div_ceil(step));
+        let setup = (settings.block_size, settings.aa_threshold);
+        let start = PassStart::new(pass, film, shown, setup, control);
+        let (grid, rows, columns, step) = (&start.grid, start.rows, start.columns, pass.step());
         // At most as many rows a dispatch as their samples fit one dispatch: however fast the
         // GPU, a list stays within its limits.
         let pixel_samples = match pass {
@@ -272,8 +266,6 @@ impl GpuRenderer {
         };
         let row_samples = u64::from(columns) * u64::from(pixel_samples.max(1));
         let most_rows = (most_samples(&self.gpu) / row_samples.max(1)).clamp(1, u64::from(rows));
-        control.start_pass(step, pass.samples(), rows);
-        let rays_before = control.rays();
         let mut pixels = 0;
         let mut band_start = 0;
         while band_start < rows {
@@ -302,12 +294,7 @@ impl GpuRenderer {
         }
         sweep.on_gpu.read_into(&self.gpu, film).map_err(Some)?;
         film.touch();
-        Ok(PassStats {
-            pass,
-            pixels,
-            rays: control.rays() - rays_before,
-            time: started.elapsed(),
-        })
+        Ok(start.finish(control, pixels))
     }
 
     /// Traces `samples` (of a pass of block side `step`) on the GPU into the GPU's film, those
@@ -356,15 +343,7 @@ impl Sweep<'_> {
     /// The colour of sample `s` traced on the CPU, as the CPU sweep traces it, counting its
     /// rays into `counts`.
     fn trace_on_cpu(&self, s: &PixelSample, counts: &mut RayCounts) -> Color {
-        let size = self.film.image_size();
-        let (left, top) = self.film.origin();
-        let pixel = (left + s.x, top + s.y);
-        let offset = if s.k == 0 {
-            PIXEL_CENTRE
-        } else {
-            jitter(pixel.0, pixel.1, s.k)
-        };
-        let ray = self.tracer.scene.camera.eye_ray(pixel, offset, size);
+        let ray = sample_ray(&self.tracer.scene.camera, self.film, (s.x, s.y), s.k);
         let mut color = [Color::ZERO];
         let item = self.items.and_then(|items| items.at(s.x, s.y));
         self.shader

@@ -44,6 +44,7 @@ pub mod control;
 pub mod cpu;
 #[cfg(feature = "gpu")]
 pub mod gpu;
+mod pass;
 pub mod plan;
 
 pub use control::{Cancelled, PassStats, Progress, RenderControl, RenderStats, run_plan};

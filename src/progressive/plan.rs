@@ -6,8 +6,11 @@ use std::ops::Range;
 
 use rayon::prelude::*;
 
+use crate::camera::{Camera, PIXEL_CENTRE};
 use crate::color::srgb8;
 use crate::film::Film;
+use crate::ray::Ray;
+use crate::sampling::jitter;
 use crate::settings::RenderSettings;
 
 /// One pass of refinement.
@@ -97,6 +100,21 @@ pub fn memory_bytes(settings: &RenderSettings) -> u64 {
     if adaptive { pixels * 3 } else { 0 }
 }
 
+/// The eye ray of sample `k` of pixel `(x, y)` of `film`: through the pixel's centre for sample
+/// 0, through its jittered point ([`jitter`]) for k ≥ 1. Rays and jitter go by the pixel's place
+/// in the whole image, of which the film may be a window. The WGSL's twin is `sample_ray_dir`
+/// (`shaders/camera.wgsl`).
+pub fn sample_ray(camera: &Camera, film: &Film, (x, y): (u32, u32), k: u32) -> Ray {
+    let (left, top) = film.origin();
+    let pixel = (left + x, top + y);
+    let offset = if k == 0 {
+        PIXEL_CENTRE
+    } else {
+        jitter(pixel.0, pixel.1, k)
+    };
+    camera.eye_ray(pixel, offset, film.image_size())
+}
+
 /// Puts the film's pixels as they are saved and shown (8-bit sRGB) into `shown`, row by row.
 pub(crate) fn take_snapshot(film: &Film, shown: &mut Vec<[u8; 3]>) {
     let width = film.width() as usize;
@@ -114,7 +132,7 @@ pub(crate) fn take_snapshot(film: &Film, shown: &mut Vec<[u8; 3]>) {
 /// The pixels of one pass: a grid of `step`-pixel blocks over the film, of which the pass traces
 /// the top-left pixel of each block it has not traced before, or adds samples to pixels.
 pub(crate) struct PassGrid<'a> {
-    pass: Pass,
+    pub pass: Pass,
     start_block: u32,
     pub step: u32,
     pub film: &'a Film,

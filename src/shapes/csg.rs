@@ -39,7 +39,7 @@ const MAX_SPANS: usize = MAX_OPERANDS * MAX_OPERAND_SPANS;
 pub const PART_BITS: u32 = 4;
 
 /// The three boolean operations.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, strum::EnumIter)]
 pub enum CsgOperation {
     Union,
     Intersection,

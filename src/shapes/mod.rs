@@ -72,7 +72,12 @@ pub struct LocalSurface {
 
 /// Every analytic shape raylab knows. Triangle meshes live apart (see [`crate::mesh`]), since
 /// they are stored and traversed triangle by triangle.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, strum::EnumDiscriminants)]
+#[strum_discriminants(
+    name(ShapeKind),
+    doc = "The kinds of shape, one per variant of `Shape`: the GPU's records name them by their numbers (`kind as u32`).",
+    derive(Hash, strum::EnumIter)
+)]
 pub enum Shape {
     Sphere(Sphere),
     Plane(Plane),
@@ -179,8 +184,20 @@ impl Shape {
         self.is_closed() || matches!(self, Shape::Plane(_))
     }
 
-    /// Where the ray crosses the solid along the whole line (see [`Crossings`]), for a closed
-    /// shape that is an operand of a CSG node (so neither an open surface nor a node itself).
+    /// Whether the shape is a convex solid: a line that goes in crosses its surface exactly
+    /// twice, entering and leaving.
+    pub fn is_convex(&self) -> bool {
+        match self {
+            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Ellipsoid(_) => true,
+            Shape::TaperedCylinder(s) => s.is_capped(),
+            Shape::Paraboloid(s) => s.is_capped(),
+            Shape::Plane(_) | Shape::Polygon(_) | Shape::Torus(_) | Shape::Csg(_) => false,
+        }
+    }
+
+    /// Where the ray crosses the solid along the whole line (see [`Crossings`]), for a shape
+    /// that is an operand of a CSG node ([`Self::is_solid`], not a node itself: a node's
+    /// operands are its leaves).
     pub fn crossings(&self, ray: &Ray) -> Crossings {
         match self {
             Shape::Plane(s) => s.crossings(ray),
@@ -189,20 +206,31 @@ impl Shape {
                 .into_iter()
                 .map(|t| ShapeHit { t, part: 0 })
                 .collect(),
-            // The other solids are convex, so a line crosses them at most twice: it
-            // enters at the first hit on the whole line and leaves at the next one. A line that
-            // only touches the surface does not go in.
-            _ => {
-                let mut crossings = Crossings::new();
-                let whole_line = (f32::NEG_INFINITY, f32::INFINITY);
-                if let Some(enter) = self.intersect(ray, whole_line.0, whole_line.1)
-                    && let Some(exit) = self.intersect(ray, enter.t, whole_line.1)
-                {
-                    crossings.push(enter);
-                    crossings.push(exit);
-                }
-                crossings
+            Shape::Sphere(_)
+            | Shape::Cuboid(_)
+            | Shape::Ellipsoid(_)
+            | Shape::TaperedCylinder(_)
+            | Shape::Paraboloid(_) => {
+                debug_assert!(self.is_convex(), "an open surface is not a CSG operand");
+                self.convex_crossings(ray)
+            }
+            Shape::Polygon(_) | Shape::Csg(_) => {
+                unreachable!("`Csg::new` takes neither polygons nor nodes as leaves")
             }
         }
+    }
+
+    /// [`Self::crossings`] of a convex solid: the line enters at the first hit on the whole
+    /// line and leaves at the next one. A line that only touches the surface does not go in.
+    fn convex_crossings(&self, ray: &Ray) -> Crossings {
+        let mut crossings = Crossings::new();
+        let whole_line = (f32::NEG_INFINITY, f32::INFINITY);
+        if let Some(enter) = self.intersect(ray, whole_line.0, whole_line.1)
+            && let Some(exit) = self.intersect(ray, enter.t, whole_line.1)
+        {
+            crossings.push(enter);
+            crossings.push(exit);
+        }
+        crossings
     }
 }

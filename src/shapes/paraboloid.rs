@@ -11,10 +11,6 @@ use super::{LocalSurface, ShapeHit};
 use crate::aabb::Aabb;
 use crate::ray::Ray;
 
-/// The part numbers of a paraboloid's surface.
-const BOWL: u32 = 0;
-const CAP: u32 = 1;
-
 /// The surface `y = height·(x² + z²) / radius²` for `0 ≤ y ≤ height`, measured from `vertex`:
 /// it is `radius` wide at the top.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -28,6 +24,10 @@ pub struct Paraboloid {
 }
 
 impl Paraboloid {
+    // The part numbers of a paraboloid's surface.
+    pub const BOWL: u32 = 0;
+    pub const CAP: u32 = 1;
+
     pub fn new(vertex: Vec3, radius: f32, height: f32, capped: bool) -> Result<Paraboloid, String> {
         if !vertex.is_finite() {
             return Err(format!("paraboloid vertex must be finite, got {vertex}"));
@@ -83,7 +83,10 @@ impl Paraboloid {
         let bowl = roots
             .and_then(|r| first_root_between_ends(r, shift, t_min, t_far, (o.y, d.y), self.height));
         if let Some(t) = bowl {
-            nearest = Some(ShapeHit { t, part: BOWL });
+            nearest = Some(ShapeHit {
+                t,
+                part: Paraboloid::BOWL,
+            });
             t_far = t;
         }
 
@@ -94,7 +97,10 @@ impl Paraboloid {
                 let x = o.x + d.x * s;
                 let z = o.z + d.z * s;
                 if x * x + z * z <= self.radius * self.radius {
-                    nearest = Some(ShapeHit { t, part: CAP });
+                    nearest = Some(ShapeHit {
+                        t,
+                        part: Paraboloid::CAP,
+                    });
                 }
             }
         }
@@ -106,7 +112,7 @@ impl Paraboloid {
     /// along −z, like a horizontal plane.
     pub fn surface(&self, p: Vec3, part: u32) -> LocalSurface {
         let local = p - self.vertex;
-        if part == CAP {
+        if part == Paraboloid::CAP {
             return LocalSurface {
                 normal: Vec3::Y,
                 uv: disk_uv(Vec2::new(local.x, -local.z), self.radius),
@@ -153,7 +159,7 @@ mod tests {
     fn side_hit() {
         let ray = Ray::new(Vec3::new(5.0, 0.25, 0.0), Vec3::new(-2.0, 0.0, 0.0));
         let h = hit(&dish(true), &ray).unwrap();
-        assert_eq!(h.part, BOWL);
+        assert_eq!(h.part, Paraboloid::BOWL);
         assert!((h.t - 2.25).abs() < 1e-6);
         let p = ray.at(h.t);
         assert_near(p, Vec3::new(0.5, 0.25, 0.0), 1e-6);
@@ -170,10 +176,16 @@ mod tests {
     fn from_above_open_hits_the_inside_and_capped_hits_the_cap() {
         let ray = Ray::new(Vec3::new(0.5, 5.0, 0.0), -Vec3::Y);
         let open = hit(&dish(false), &ray).unwrap();
-        assert_eq!(open.part, BOWL);
+        assert_eq!(open.part, Paraboloid::BOWL);
         assert!((open.t - 4.75).abs() < 1e-6);
         let closed = hit(&dish(true), &ray).unwrap();
-        assert_eq!(closed, ShapeHit { t: 4.0, part: CAP });
+        assert_eq!(
+            closed,
+            ShapeHit {
+                t: 4.0,
+                part: Paraboloid::CAP
+            }
+        );
         let s = dish(true).surface(ray.at(closed.t), closed.part);
         assert_eq!(s.normal, Vec3::Y);
         assert_eq!(s.uv, Vec2::new(0.75, 0.5));
@@ -188,7 +200,13 @@ mod tests {
         let n = dish(true).surface(p, h.part).normal;
         assert!(n.dot(p - Vec3::new(0.0, 0.5, 0.0)) > 0.0);
         let up = Ray::new(Vec3::new(0.2, 0.5, 0.0), Vec3::Y);
-        assert_eq!(hit(&dish(true), &up), Some(ShapeHit { t: 0.5, part: CAP }));
+        assert_eq!(
+            hit(&dish(true), &up),
+            Some(ShapeHit {
+                t: 0.5,
+                part: Paraboloid::CAP
+            })
+        );
         assert_eq!(hit(&dish(false), &up), None);
     }
 
@@ -232,7 +250,9 @@ mod tests {
             let h = hit(&p, &ray).expect("aimed inside");
             let q = ray.at(h.t) - Vec3::new(1.0, -2.0, 0.5);
             match h.part {
-                BOWL => assert!((k * (q.x * q.x + q.z * q.z) - q.y).abs() < 1e-4, "{q}"),
+                Paraboloid::BOWL => {
+                    assert!((k * (q.x * q.x + q.z * q.z) - q.y).abs() < 1e-4, "{q}")
+                }
                 _ => assert!((q.y - 2.5).abs() < 1e-5 && q.x.hypot(q.z) <= 1.5 + 1e-5),
             }
             let n = p.surface(ray.at(h.t), h.part).normal.normalize();

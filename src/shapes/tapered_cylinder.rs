@@ -10,11 +10,6 @@ use super::{LocalSurface, ShapeHit};
 use crate::aabb::Aabb;
 use crate::ray::Ray;
 
-/// The part numbers of a tapered cylinder's surface.
-const SIDE: u32 = 0;
-const BASE_CAP: u32 = 1;
-const TOP_CAP: u32 = 2;
-
 /// The surface swept by a circle moving from `base` to `top` while its radius changes linearly
 /// from `base_radius` to `top_radius`. Work is done in a local frame: `z` along the axis (0 at
 /// the base, `height` at the top), `x` and `y` across it.
@@ -34,6 +29,11 @@ pub struct TaperedCylinder {
 }
 
 impl TaperedCylinder {
+    // The part numbers of a tapered cylinder's surface.
+    pub const SIDE: u32 = 0;
+    pub const BASE_CAP: u32 = 1;
+    pub const TOP_CAP: u32 = 2;
+
     pub fn new(
         base: Vec3,
         top: Vec3,
@@ -128,14 +128,17 @@ impl TaperedCylinder {
         let side = roots
             .and_then(|r| first_root_between_ends(r, shift, t_min, t_far, (o.z, d.z), self.height));
         if let Some(t) = side {
-            nearest = Some(ShapeHit { t, part: SIDE });
+            nearest = Some(ShapeHit {
+                t,
+                part: TaperedCylinder::SIDE,
+            });
             t_far = t;
         }
 
         if self.capped && d.z != 0.0 {
             let caps = [
-                (0.0, self.base_radius, BASE_CAP),
-                (self.height, self.top_radius, TOP_CAP),
+                (0.0, self.base_radius, TaperedCylinder::BASE_CAP),
+                (self.height, self.top_radius, TaperedCylinder::TOP_CAP),
             ];
             for (z, radius, part) in caps {
                 if radius == 0.0 {
@@ -159,8 +162,8 @@ impl TaperedCylinder {
     /// The outward normal at `p` on part `part` (not of unit length on the side).
     pub fn normal(&self, p: Vec3, part: u32) -> Vec3 {
         match part {
-            BASE_CAP => -self.axis,
-            TOP_CAP => self.axis,
+            TaperedCylinder::BASE_CAP => -self.axis,
+            TaperedCylinder::TOP_CAP => self.axis,
             _ => {
                 // The gradient of `√(x² + y²) − r₀ − slope·z`; at a cone's apex the radial
                 // direction is undefined and any one will do.
@@ -176,8 +179,8 @@ impl TaperedCylinder {
     pub fn surface(&self, p: Vec3, part: u32) -> LocalSurface {
         let local = self.local_point(p);
         let uv = match part {
-            BASE_CAP => disk_uv(Vec2::new(-local.x, local.y), self.base_radius),
-            TOP_CAP => disk_uv(Vec2::new(local.x, local.y), self.top_radius),
+            TaperedCylinder::BASE_CAP => disk_uv(Vec2::new(-local.x, local.y), self.base_radius),
+            TaperedCylinder::TOP_CAP => disk_uv(Vec2::new(local.x, local.y), self.top_radius),
             _ => {
                 let u = 0.5 + local.y.atan2(local.x) / TAU;
                 let v = (local.z / self.height).clamp(0.0, 1.0);
@@ -241,7 +244,7 @@ mod tests {
         let c = cylinder(false);
         let ray = Ray::new(Vec3::new(5.0, 1.0, 0.0), Vec3::new(-2.0, 0.0, 0.0));
         let h = hit(&c, &ray).unwrap();
-        assert_eq!(h.part, SIDE);
+        assert_eq!(h.part, TaperedCylinder::SIDE);
         assert!((h.t - 2.0).abs() < 1e-6);
         let p = ray.at(h.t);
         assert_near(p, Vec3::new(1.0, 1.0, 0.0), 1e-6);
@@ -269,7 +272,7 @@ mod tests {
         let ray = Ray::new(Vec3::new(5.0, 0.5, 0.0), -Vec3::X);
         let p = ray.at(hit(&funnel, &ray).unwrap().t);
         assert_near(p, Vec3::new(0.5, 0.5, 0.0), 1e-6);
-        let n = funnel.surface(p, SIDE).normal.normalize();
+        let n = funnel.surface(p, TaperedCylinder::SIDE).normal.normalize();
         assert_near(n, Vec3::new(FRAC_1_SQRT_2, -FRAC_1_SQRT_2, 0.0), 1e-6);
 
         // Radius 2 at y = 0 to 1 at y = 2: radius 1.5 at y = 1.
@@ -287,7 +290,7 @@ mod tests {
             h,
             ShapeHit {
                 t: 1.5,
-                part: TOP_CAP
+                part: TaperedCylinder::TOP_CAP
             }
         );
         let s = cylinder(true).surface(down.at(h.t), h.part);
@@ -298,7 +301,7 @@ mod tests {
             h,
             ShapeHit {
                 t: 5.0,
-                part: BASE_CAP
+                part: TaperedCylinder::BASE_CAP
             }
         );
         assert_eq!(cylinder(true).surface(up.at(h.t), h.part).normal, -Vec3::Y);
@@ -309,11 +312,14 @@ mod tests {
     #[test]
     fn a_cone_has_no_cap_at_its_apex() {
         let up = Ray::new(Vec3::new(0.0, -5.0, 0.0), Vec3::Y);
-        assert_eq!(hit(&cone(true), &up).unwrap().part, BASE_CAP);
+        assert_eq!(
+            hit(&cone(true), &up).unwrap().part,
+            TaperedCylinder::BASE_CAP
+        );
         // From above, the ray meets the apex of the side.
         let down = Ray::new(Vec3::new(0.25, 5.0, 0.0), -Vec3::Y);
         let h = hit(&cone(true), &down).unwrap();
-        assert_eq!(h.part, SIDE);
+        assert_eq!(h.part, TaperedCylinder::SIDE);
         assert!((h.t - 4.25).abs() < 1e-5);
     }
 
@@ -321,14 +327,14 @@ mod tests {
     fn ray_from_inside_hits_the_exit() {
         let ray = Ray::new(Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.0, 0.0, 3.0));
         let h = hit(&cylinder(true), &ray).unwrap();
-        assert_eq!(h.part, SIDE);
+        assert_eq!(h.part, TaperedCylinder::SIDE);
         assert!((h.t - 1.0 / 3.0).abs() < 1e-6);
         let up = Ray::new(Vec3::new(0.2, 1.0, 0.0), Vec3::Y);
         assert_eq!(
             hit(&cylinder(true), &up),
             Some(ShapeHit {
                 t: 1.0,
-                part: TOP_CAP
+                part: TaperedCylinder::TOP_CAP
             })
         );
         // A ray leaving the side from a point on it does not hit it again.
@@ -412,12 +418,12 @@ mod tests {
             let n = c.surface(p, h.part).normal.normalize();
             assert!((n.length() - 1.0).abs() < 1e-5);
             match h.part {
-                SIDE => {
+                TaperedCylinder::SIDE => {
                     let radius = 1.5 + (0.4 - 1.5) * z / (top - base).length();
                     assert!((radial.length() - radius).abs() < 1e-4, "{p}");
                     assert!(n.dot(radial) > 0.0);
                 }
-                BASE_CAP => assert!(z.abs() < 1e-4 && n.dot(-axis) > 0.999),
+                TaperedCylinder::BASE_CAP => assert!(z.abs() < 1e-4 && n.dot(-axis) > 0.999),
                 _ => assert!((p - top).dot(axis).abs() < 1e-4 && n.dot(axis) > 0.999),
             }
             assert!(n.dot(p - centre) > 0.0);
@@ -432,22 +438,36 @@ mod tests {
             Vec3::new(0.0, 2.0, -1.0),
             Vec3::new(-1.0, 1.0, 0.0),
         ] {
-            let uv = c.surface(p, SIDE).uv;
+            let uv = c.surface(p, TaperedCylinder::SIDE).uv;
             assert!(
                 uv.cmpge(Vec2::ZERO).all() && uv.cmple(Vec2::ONE).all(),
                 "{uv}"
             );
         }
-        assert_eq!(c.surface(Vec3::new(0.0, 2.0, -1.0), SIDE).uv.y, 1.0);
+        assert_eq!(
+            c.surface(Vec3::new(0.0, 2.0, -1.0), TaperedCylinder::SIDE)
+                .uv
+                .y,
+            1.0
+        );
         // Opposite sides of the axis are half a turn apart.
-        let u0 = c.surface(Vec3::new(1.0, 1.0, 0.0), SIDE).uv.x;
-        let u1 = c.surface(Vec3::new(-1.0, 1.0, 0.0), SIDE).uv.x;
+        let u0 = c
+            .surface(Vec3::new(1.0, 1.0, 0.0), TaperedCylinder::SIDE)
+            .uv
+            .x;
+        let u1 = c
+            .surface(Vec3::new(-1.0, 1.0, 0.0), TaperedCylinder::SIDE)
+            .uv
+            .x;
         assert!(((u0 - u1).abs() - 0.5).abs() < 1e-6);
         assert_eq!(
-            c.surface(Vec3::new(0.0, 2.0, 0.0), TOP_CAP).uv,
+            c.surface(Vec3::new(0.0, 2.0, 0.0), TaperedCylinder::TOP_CAP)
+                .uv,
             Vec2::splat(0.5)
         );
-        let rim = c.surface(Vec3::new(1.0, 2.0, 0.0), TOP_CAP).uv;
+        let rim = c
+            .surface(Vec3::new(1.0, 2.0, 0.0), TaperedCylinder::TOP_CAP)
+            .uv;
         assert!(((rim - Vec2::splat(0.5)).length() - 0.5).abs() < 1e-6);
     }
 
@@ -497,7 +517,7 @@ mod tests {
         ];
         let side = Ray::new(Vec3::new(8.5, 10.0, 0.0), Vec3::new(0.0, -1.0, 0.0));
         let (h, s) = hit_in_world(Shape::TaperedCylinder(unit), &steps, &side).unwrap();
-        assert_eq!(h.part, SIDE);
+        assert_eq!(h.part, TaperedCylinder::SIDE);
         assert!((h.t - 8.0).abs() < 1e-5);
         assert_near(s.point, Vec3::new(8.5, 2.0, 0.0), 1e-5);
         assert_near(s.normal, Vec3::Y, 1e-5);
@@ -505,7 +525,7 @@ mod tests {
 
         let end_on = Ray::new(Vec3::new(0.0, 0.5, 0.5), Vec3::new(2.0, 0.0, 0.0));
         let (h, s) = hit_in_world(Shape::TaperedCylinder(unit), &steps, &end_on).unwrap();
-        assert_eq!(h.part, TOP_CAP);
+        assert_eq!(h.part, TaperedCylinder::TOP_CAP);
         assert!((h.t - 3.5).abs() < 1e-5);
         assert_near(s.normal, -Vec3::X, 1e-5);
     }

@@ -6,6 +6,7 @@ mod harness;
 
 mod camera;
 mod check;
+mod cluster;
 mod diff;
 mod first_hit;
 mod gen_and_bench;

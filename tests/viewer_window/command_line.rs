@@ -12,7 +12,7 @@ use crate::harness::{ball_scene, cpu_render, image_rect, mismatches, run_to_scre
 fn the_window_shows_the_default_scene_as_the_cpu_renders_it() {
     let dir = tempfile::tempdir().unwrap();
     let size = 96;
-    let Some((run, shot)) = run_to_screenshot(
+    let (run, shot) = run_to_screenshot(
         dir.path(),
         &[
             "view",
@@ -24,9 +24,7 @@ fn the_window_shows_the_default_scene_as_the_cpu_renders_it() {
             "700x500",
             "--stats",
         ],
-    ) else {
-        return;
-    };
+    );
     assert!(
         run.stderr.contains("block size 1 at 96×96"),
         "{}",
@@ -55,7 +53,7 @@ fn the_viewer_reads_a_scene_in_the_format_given_whatever_its_name() {
     )
     .unwrap();
     let size = 64;
-    let Some((run, shot)) = run_to_screenshot(
+    let (run, shot) = run_to_screenshot(
         dir.path(),
         &[
             path.to_str().unwrap(),
@@ -68,9 +66,7 @@ fn the_viewer_reads_a_scene_in_the_format_given_whatever_its_name() {
             "--window",
             "600x400",
         ],
-    ) else {
-        return;
-    };
+    );
     let name = path.to_str().unwrap();
     let scene = load_any_as(name, NffLighting::default(), Some(SceneFormat::Sdl)).unwrap();
     let expected = cpu_render(&scene, size, scene.camera.spec);
@@ -83,12 +79,10 @@ fn the_viewer_reads_a_scene_in_the_format_given_whatever_its_name() {
 #[test]
 fn the_viewer_takes_a_width_and_height_as_render_does() {
     let dir = tempfile::tempdir().unwrap();
-    let Some((run, _)) = run_to_screenshot(
+    let (run, _) = run_to_screenshot(
         dir.path(),
         &["view", "--width", "72", "--height", "48", "--stats"],
-    ) else {
-        return;
-    };
+    );
     assert!(
         run.stderr.contains("block size 1 at 72×48"),
         "{}",
@@ -112,7 +106,7 @@ fn the_viewer_takes_a_width_alone_and_a_min_weight_as_render_does() {
              [[objects]]\ntype = \"plane\"\nmaterial = \"mirror\"\n",
         );
     std::fs::write(&path, text).unwrap();
-    let Some((run, shot)) = run_to_screenshot(
+    let (run, shot) = run_to_screenshot(
         dir.path(),
         &[
             path.to_str().unwrap(),
@@ -124,9 +118,7 @@ fn the_viewer_takes_a_width_alone_and_a_min_weight_as_render_does() {
             "0.5",
             "--stats",
         ],
-    ) else {
-        return;
-    };
+    );
     assert!(
         run.stderr.contains("block size 1 at 64×64"),
         "{}",

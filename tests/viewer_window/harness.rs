@@ -1,9 +1,9 @@
 //! Running the viewer and reading what it shows, for every topic: one viewer at a time in a
-//! window on a real or virtual display (or the test skipped or failed for want of one), the
+//! window on a real or virtual display (the test failed for want of one), the
 //! image area and the camera it reports, CPU renders of the same scene to compare with, and a
 //! small scene file to edit.
 
-use std::io::{BufRead, BufReader, Read, Write};
+use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::sync::Mutex;
@@ -61,43 +61,32 @@ fn display_wrapper() -> Option<Vec<String>> {
     }
 }
 
-/// Where no display can be had: fails saying how to get one, or, if the person running the tests
-/// opted out with `RAYLAB_SKIP_WINDOW_TESTS=1`, says that the test is skipped. The note goes to
-/// the real stderr, which the test runner does not capture, so that it shows among the results.
-fn skip_or_fail_without_display() {
+/// Where no display can be had: fails, saying how to get one.
+fn no_display() -> ! {
     let packages = "xvfb xauth mesa-vulkan-drivers libvulkan1 libxkbcommon-x11-0";
-    if std::env::var("RAYLAB_SKIP_WINDOW_TESTS").is_ok_and(|v| v == "1") {
-        let test = std::thread::current().name().unwrap_or("?").to_string();
-        let _ = writeln!(
-            std::io::stderr(),
-            "SKIPPED {test}: no display, and RAYLAB_SKIP_WINDOW_TESTS=1"
-        );
-        return;
-    }
     panic!(
         "the viewer's window tests need a display, and there is neither DISPLAY nor xvfb-run. \
          Install Xvfb and Mesa's software Vulkan (Debian: sudo apt-get install {packages}) and \
          run `cargo test --test viewer_window` (the tests start Xvfb themselves), or \
-         `xvfb-run -a cargo test --test viewer_window`, or scripts/test, which installs them; \
-         to skip these tests instead, set RAYLAB_SKIP_WINDOW_TESTS=1"
+         `xvfb-run -a cargo test --test viewer_window`, or scripts/test, which installs them"
     );
 }
 
-/// Runs the viewer with `args` in a window; `None` if skipped for want of a display.
-fn run_viewer(args: &[&str]) -> Option<Run> {
+/// Runs the viewer with `args` in a window.
+fn run_viewer(args: &[&str]) -> Run {
     run_viewer_watching(args, &[], |_, _| {})
 }
 
 /// [`run_viewer`] with `args`, until refinement is done, then a screenshot of the window saved
 /// into `dir`: the run, which must have succeeded, and the screenshot's path.
-pub fn run_to_screenshot(dir: &Path, args: &[&str]) -> Option<(Run, PathBuf)> {
+pub fn run_to_screenshot(dir: &Path, args: &[&str]) -> (Run, PathBuf) {
     let shot = dir.join("window.png");
     let shot_arg = shot.to_str().unwrap().to_string();
     let mut all = args.to_vec();
     all.extend(["--exit-when-done", "--screenshot", &shot_arg]);
-    let run = run_viewer(&all)?;
+    let run = run_viewer(&all);
     run.assert_success();
-    Some((run, shot))
+    (run, shot)
 }
 
 /// [`run_viewer`] with environment variables `env`, handing each line the viewer prints on
@@ -107,10 +96,9 @@ pub fn run_viewer_watching(
     args: &[&str],
     env: &[(&str, &str)],
     mut on_line: impl FnMut(&str, u32) + Send + 'static,
-) -> Option<Run> {
+) -> Run {
     let Some(wrapper) = display_wrapper() else {
-        skip_or_fail_without_display();
-        return None;
+        no_display();
     };
     let _one_at_a_time = DISPLAY_LOCK.lock().unwrap_or_else(|e| e.into_inner());
     let runtime_dir = tempfile::tempdir().unwrap();
@@ -165,7 +153,7 @@ pub fn run_viewer_watching(
         stderr: err.join().unwrap(),
     };
     assert!(!run.stderr.contains("panicked"), "{}", run.stderr);
-    Some(run)
+    run
 }
 
 /// Where the screenshot put the image: `(x, y, width, height)` from the viewer's report.

@@ -2,8 +2,7 @@
 //! (Xvfb) with Mesa's software Vulkan, told to exit once refinement is over and to save a
 //! screenshot of its window; the image area is compared with a CPU render of the same scene and
 //! camera. The tests start Xvfb themselves through `xvfb-run` (`scripts/test` installs it on
-//! Debian), or use the display in `DISPLAY`. Without either they fail, saying what to install,
-//! unless `RAYLAB_SKIP_WINDOW_TESTS=1` is set: then they pass, printing that they were skipped.
+//! Debian), or use the display in `DISPLAY`. Without either they fail, saying what to install.
 
 mod harness;
 

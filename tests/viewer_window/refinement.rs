@@ -34,7 +34,7 @@ fn caustics_sharpen_while_the_view_is_still_and_a_camera_move_reuses_the_photons
          type = \"sphere\"\ncenter = [0, 1, 0]\nradius = 1\nmaterial = \"glass\"\n",
     )
     .unwrap();
-    let Some((run, _)) = run_to_screenshot(
+    let (run, _) = run_to_screenshot(
         dir.path(),
         &[
             path.to_str().unwrap(),
@@ -44,9 +44,7 @@ fn caustics_sharpen_while_the_view_is_still_and_a_camera_move_reuses_the_photons
             "--script",
             "wait; orbit 20 0; wait",
         ],
-    ) else {
-        return;
-    };
+    );
     let stats = &run.stderr;
     // The first view: a new map, then a round at a time up to 8 × 5000 photons.
     let (first, after_move) = stats
@@ -71,7 +69,7 @@ fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
     let dir = tempfile::tempdir().unwrap();
     let saved = dir.path().join("saved.png");
     let size = 80;
-    let Some((run, shot)) = run_to_screenshot(
+    let (run, shot) = run_to_screenshot(
         dir.path(),
         &[
             "--size",
@@ -86,9 +84,7 @@ fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
             "--save",
             saved.to_str().unwrap(),
         ],
-    ) else {
-        return;
-    };
+    );
     let scene = default_scene().unwrap();
     let camera = printed_camera(&run.stdout);
     assert!(
@@ -121,7 +117,7 @@ fn a_scripted_camera_change_restarts_refinement_and_ends_on_the_new_view() {
 fn left_alone_the_viewer_refines_the_default_scene_close_to_a_256_spp_reference() {
     let dir = tempfile::tempdir().unwrap();
     let size = 96;
-    let Some((run, shot)) = run_to_screenshot(
+    let (run, shot) = run_to_screenshot(
         dir.path(),
         &[
             "--size",
@@ -130,9 +126,7 @@ fn left_alone_the_viewer_refines_the_default_scene_close_to_a_256_spp_reference(
             "700x500",
             "--stats",
         ],
-    ) else {
-        return;
-    };
+    );
     assert!(run.stderr.contains("refined at 96×96"), "{}", run.stderr);
     let shown = shown_pixels(&shot, image_rect(&run.stdout), (size, size));
     let reference = cpu_render_sampled(size, 256, 0.0);
@@ -155,12 +149,10 @@ fn with_a_threshold_of_zero_the_viewer_shows_what_render_saves() {
     let dir = tempfile::tempdir().unwrap();
     let size = 64;
     let sampling = ["--samples", "4", "--aa-threshold", "0"];
-    let Some((run, shot)) = run_to_screenshot(
+    let (run, shot) = run_to_screenshot(
         dir.path(),
         &[&["--size", "64", "--window", "600x400"][..], &sampling].concat(),
-    ) else {
-        return;
-    };
+    );
     let saved = dir.path().join("render.png");
     let render = Command::new(env!("CARGO_BIN_EXE_raylab"))
         .args(
@@ -190,7 +182,7 @@ fn with_a_threshold_of_zero_the_viewer_shows_what_render_saves() {
 fn skip_traces_at_block_size_one_at_once() {
     let dir = tempfile::tempdir().unwrap();
     let size = 256;
-    let Some((run, shot)) = run_to_screenshot(
+    let (run, shot) = run_to_screenshot(
         dir.path(),
         &[
             "--size",
@@ -203,9 +195,7 @@ fn skip_traces_at_block_size_one_at_once() {
             "--script",
             "wait-load 1; skip; wait; print-status",
         ],
-    ) else {
-        return;
-    };
+    );
     // The first image on screen is already at block size 1: no coarse pass was shown.
     let firsts: Vec<&str> = run
         .stderr
@@ -234,7 +224,7 @@ fn skip_traces_at_block_size_one_at_once() {
 #[test]
 fn pause_stops_refinement_and_resume_finishes_it() {
     let dir = tempfile::tempdir().unwrap();
-    let Some((run, _)) = run_to_screenshot(
+    let (run, _) = run_to_screenshot(
         dir.path(),
         &[
             "--size",
@@ -245,9 +235,7 @@ fn pause_stops_refinement_and_resume_finishes_it() {
             "--script",
             "wait-load 1; pause; print-status; sleep 0.5; print-status; resume; wait; print-status",
         ],
-    ) else {
-        return;
-    };
+    );
     let statuses: Vec<&str> = run
         .stdout
         .lines()

@@ -20,7 +20,7 @@ fn a_broken_scene_file_shows_its_error_and_keeps_the_last_good_scene() {
     let broken = dir.path().join("broken.toml");
     std::fs::write(&good, ball_scene([0.0, 2.0, 6.0])).unwrap();
     std::fs::write(&broken, "[camera]\neye = [0, 1]\n").unwrap();
-    let Some((run, shot)) = run_to_screenshot(
+    let (run, shot) = run_to_screenshot(
         dir.path(),
         &[
             good.to_str().unwrap(),
@@ -31,9 +31,7 @@ fn a_broken_scene_file_shows_its_error_and_keeps_the_last_good_scene() {
             "--script",
             &format!("wait; open {}; wait", broken.display()),
         ],
-    ) else {
-        return;
-    };
+    );
     // The loader's message, located: file:line:column.
     let located = format!("{}:2:", broken.display());
     assert!(run.stderr.contains(&located), "{}", run.stderr);
@@ -60,7 +58,7 @@ fn saving_the_watched_scene_file_renders_it_again() {
             std::fs::rename(&temp, &edit_path).unwrap();
         }
     };
-    let Some(run) = run_viewer_watching(
+    let run = run_viewer_watching(
         &[
             path.to_str().unwrap(),
             "--size",
@@ -76,9 +74,7 @@ fn saving_the_watched_scene_file_renders_it_again() {
         ],
         &[],
         on_line,
-    ) else {
-        return;
-    };
+    );
     run.assert_success();
     assert_eq!(printed_camera(&run.stdout).eye, Vec3::from(moved));
     let scene = load_scene(&path).unwrap();
@@ -111,7 +107,7 @@ fn the_camera_flags_and_camera_file_hold_on_every_load() {
             std::fs::rename(&temp, &edit_path).unwrap();
         }
     };
-    let Some(run) = run_viewer_watching(
+    let run = run_viewer_watching(
         &[
             path.to_str().unwrap(),
             "--view-angle",
@@ -123,9 +119,7 @@ fn the_camera_flags_and_camera_file_hold_on_every_load() {
         ],
         &[],
         on_line,
-    ) else {
-        return;
-    };
+    );
     run.assert_success();
     // The scene's new look-at point, the file's eye and the flag's view angle.
     let reloaded = printed_camera(&run.stdout);
@@ -150,7 +144,7 @@ fn a_material_edited_in_the_viewer_changes_the_image_and_saves_into_the_file_wit
     // After the save, a few idle frames give the watcher time to report the viewer's own write
     // (which must not reload the file) before the viewer exits.
     let idle_frames = "; close-inspector".repeat(30);
-    let Some((run, shot)) = run_to_screenshot(
+    let (run, shot) = run_to_screenshot(
         dir.path(),
         &[
             path.to_str().unwrap(),
@@ -162,9 +156,7 @@ fn a_material_edited_in_the_viewer_changes_the_image_and_saves_into_the_file_wit
             "--script",
             &format!("wait; material red color 0.1 0.3 0.9; wait; save-scene{idle_frames}; wait"),
         ],
-    ) else {
-        return;
-    };
+    );
     assert!(
         run.stdout.contains("saved the scene's materials"),
         "{}",
@@ -200,7 +192,7 @@ fn a_stored_view_is_recalled_saved_beside_the_scene_and_a_turntable_preview_ends
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("ball.toml");
     std::fs::write(&path, ball_scene([0.0, 2.0, 6.0])).unwrap();
-    let Some((run, shot)) = run_to_screenshot(
+    let (run, shot) = run_to_screenshot(
         dir.path(),
         &[
             path.to_str().unwrap(),
@@ -213,9 +205,7 @@ fn a_stored_view_is_recalled_saved_beside_the_scene_and_a_turntable_preview_ends
             "--script",
             "bookmark 1; orbit 40 0; wait; print-camera; recall 1; wait; turntable 4; wait",
         ],
-    ) else {
-        return;
-    };
+    );
     let scene = load_scene(&path).unwrap();
     let moved = printed_camera(&run.stdout);
     assert!(

@@ -52,7 +52,7 @@ fn assert_fills_the_view_area(run: &Run, window_width: f32) -> (f32, f32, f32, f
 fn a_resized_window_letterboxes_the_same_image() {
     let dir = tempfile::tempdir().unwrap();
     let size = 64;
-    let Some((run, shot)) = run_to_screenshot(
+    let (run, shot) = run_to_screenshot(
         dir.path(),
         &[
             "--size",
@@ -64,9 +64,7 @@ fn a_resized_window_letterboxes_the_same_image() {
             "--script",
             "wait; resize 480 640; wait",
         ],
-    ) else {
-        return;
-    };
+    );
     let image = image::open(&shot).unwrap();
     assert_eq!(
         (image.width(), image.height()),
@@ -87,7 +85,7 @@ fn a_hidpi_window_draws_in_physical_pixels() {
     let dir = tempfile::tempdir().unwrap();
     let shot = dir.path().join("hidpi.png");
     let size = 64;
-    let Some(run) = run_viewer_watching(
+    let run = run_viewer_watching(
         &[
             "--size",
             &size.to_string(),
@@ -101,9 +99,7 @@ fn a_hidpi_window_draws_in_physical_pixels() {
         ],
         &[("WINIT_X11_SCALE_FACTOR", "2")],
         |_, _| {},
-    ) else {
-        return;
-    };
+    );
     run.assert_success();
     let image = image::open(&shot).unwrap();
     assert_eq!(
@@ -125,12 +121,10 @@ fn a_hidpi_window_draws_in_physical_pixels() {
 fn the_viewer_starts_fitted_to_the_window_whatever_the_scenes_size() {
     let dir = tempfile::tempdir().unwrap();
     // The default scene says 640×480; the window's view area is another shape.
-    let Some((run, shot)) = run_to_screenshot(
+    let (run, shot) = run_to_screenshot(
         dir.path(),
         &["--window", "700x500", "--samples", "1", "--stats"],
-    ) else {
-        return;
-    };
+    );
     let rect = assert_fills_the_view_area(&run, 700.0);
     assert!(
         rect.3 > 400.0,
@@ -144,7 +138,7 @@ fn the_viewer_starts_fitted_to_the_window_whatever_the_scenes_size() {
 #[test]
 fn a_scripted_resize_renders_again_at_the_new_size() {
     let dir = tempfile::tempdir().unwrap();
-    let Some((run, shot)) = run_to_screenshot(
+    let (run, shot) = run_to_screenshot(
         dir.path(),
         &[
             "--window",
@@ -155,9 +149,7 @@ fn a_scripted_resize_renders_again_at_the_new_size() {
             "--script",
             "wait; resize 560 400; wait",
         ],
-    ) else {
-        return;
-    };
+    );
     let image = image::open(&shot).unwrap();
     assert_eq!((image.width(), image.height()), (560, 400));
     let rect = assert_fills_the_view_area(&run, 560.0);
@@ -178,7 +170,7 @@ fn a_scripted_resize_renders_again_at_the_new_size() {
 fn a_fitted_image_on_a_hidpi_window_has_its_physical_pixels() {
     let dir = tempfile::tempdir().unwrap();
     let shot = dir.path().join("hidpi_fit.png");
-    let Some(run) = run_viewer_watching(
+    let run = run_viewer_watching(
         &[
             "--window",
             "560x360",
@@ -191,9 +183,7 @@ fn a_fitted_image_on_a_hidpi_window_has_its_physical_pixels() {
         ],
         &[("WINIT_X11_SCALE_FACTOR", "2")],
         |_, _| {},
-    ) else {
-        return;
-    };
+    );
     run.assert_success();
     // Rendered at the view area's physical size (twice its logical one), shown 1:1.
     let rect = assert_fills_the_view_area(&run, 1120.0);
@@ -206,11 +196,7 @@ fn at_1280_by_800_the_side_panel_shows_that_it_scrolls() {
     // The screen's size, the default scene's panel longer than it: a scroll bar must be drawn
     // without the pointer over it, its handle shorter than its track.
     let dir = tempfile::tempdir().unwrap();
-    let Some((run, shot)) =
-        run_to_screenshot(dir.path(), &["--window", "1280x800", "--samples", "1"])
-    else {
-        return;
-    };
+    let (run, shot) = run_to_screenshot(dir.path(), &["--window", "1280x800", "--samples", "1"]);
     let (x, _, _, height) = image_rect(&run.stdout);
     let shot = image::open(&shot).unwrap().to_rgb8();
     let rows = 10..(height as u32).saturating_sub(10);

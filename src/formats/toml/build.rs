@@ -7,13 +7,14 @@ use std::ops::Range;
 use std::path::Path;
 use std::sync::Arc;
 
-use glam::{Vec2, Vec3};
+use glam::Vec2;
 use toml::Spanned;
 
 use super::file::{
-    AtmosphereFile, CameraFile, CsgOperationFile, LightFile, MaterialFile, MediumFile, ObjectFile,
-    RenderFile, SceneFile, ShapeFile, TextureFile, TransformStepFile, WrapFile,
+    AtmosphereFile, CameraFile, LightFile, MaterialFile, MediumFile, RenderFile, SceneFile,
+    TextureFile, WrapFile,
 };
+use super::object_file::{CsgOperationFile, ObjectFile, ShapeFile, TransformStepFile};
 use super::values::{ColorValue, Direction, Exact, NonNegative, TexCoord, Vector};
 use crate::camera::{Camera, CameraError, CameraSpec};
 use crate::color::Color;
@@ -28,10 +29,7 @@ use crate::mesh::{Mesh, MeshError};
 use crate::primitive::{Geometry, Object};
 use crate::scene::Scene;
 use crate::settings::RenderSettings;
-use crate::shapes::{
-    Csg, CsgOperation, Cuboid, Ellipsoid, Operand, Paraboloid, Plane, Polygon, Shape, Sphere,
-    TaperedCylinder, Torus, Triangle,
-};
+use crate::shapes::{Csg, CsgOperation, Operand, Shape, Triangle};
 use crate::srgb_image::SrgbImage;
 use crate::texture::{Texture, WOOD_COLORS, Wrap};
 use crate::transform::{Transform, TransformStep};
@@ -646,10 +644,8 @@ impl GeometryBuilder<'_> {
         Ok((material, transform))
     }
 
-    /// An analytic shape, and the position to blame for what is wrong with it. Each arm hands
-    /// the result of the shape's constructor, a `Result<Shape, String>`, with that position,
-    /// e.g. `ShapeFile::Box { min, max } => (Cuboid::new(min.0, max.0).map(Shape::Cuboid),
-    /// span)`. `material` is what the children of a csg object take when they name none.
+    /// An analytic shape or a csg node, and the position to blame for what is wrong with it.
+    /// `material` is what the children of a csg object take when they name none.
     fn analytic_shape(
         &mut self,
         shape: ShapeFile,
@@ -657,94 +653,16 @@ impl GeometryBuilder<'_> {
         material: Option<u32>,
     ) -> Result<(Shape, Range<usize>), SceneError> {
         let source = self.source;
-        let (shape, blame) = match shape {
-            ShapeFile::Sphere { center, radius } => {
-                let radius_span = radius.as_ref().map_or(span, |r| r.span());
-                let center = center.map_or(Vec3::ZERO, |c| c.0);
-                let radius = radius.map_or(1.0, |r| *r.get_ref());
-                let shape = Sphere::new(center, radius).map(Shape::Sphere);
-                (shape, radius_span)
-            }
-            ShapeFile::Plane { point, normal } => {
-                let plane = Plane {
-                    point: point.map_or(Vec3::ZERO, |p| p.0),
-                    normal: normal.map_or(Vec3::Y, |n| n.0),
-                };
-                (Ok(Shape::Plane(plane)), span)
-            }
-            ShapeFile::Polygon { vertices } => {
-                let vertices = vertices.iter().map(|v| v.0).collect();
-                let shape = Polygon::new(vertices).map(Shape::Polygon);
-                (shape, span)
-            }
-            ShapeFile::Box { min, max } => {
-                let shape = Cuboid::new(min.0, max.0).map(Shape::Cuboid);
-                (shape, span)
-            }
-            ShapeFile::Cylinder {
-                base,
-                top,
-                radius,
-                capped,
-            } => {
-                let radius = radius.unwrap_or(1.0);
-                let shape = TaperedCylinder::new(
-                    base.map_or(Vec3::ZERO, |v| v.0),
-                    top.map_or(Vec3::Y, |v| v.0),
-                    radius,
-                    radius,
-                    capped.unwrap_or(true),
-                );
-                (shape.map(Shape::TaperedCylinder), span)
-            }
-            ShapeFile::Cone {
-                base,
-                top,
-                base_radius,
-                top_radius,
-                capped,
-            } => {
-                let shape = TaperedCylinder::new(
-                    base.map_or(Vec3::ZERO, |v| v.0),
-                    top.map_or(Vec3::Y, |v| v.0),
-                    base_radius.unwrap_or(1.0),
-                    top_radius.unwrap_or(0.0),
-                    capped.unwrap_or(true),
-                );
-                (shape.map(Shape::TaperedCylinder), span)
-            }
-            ShapeFile::Ellipsoid { center, radii } => {
-                let shape = Ellipsoid::new(center.map_or(Vec3::ZERO, |v| v.0), radii.0);
-                (shape.map(Shape::Ellipsoid), span)
-            }
-            ShapeFile::Paraboloid {
-                vertex,
-                radius,
-                height,
-                capped,
-            } => {
-                let shape = Paraboloid::new(
-                    vertex.map_or(Vec3::ZERO, |v| v.0),
-                    radius.unwrap_or(1.0),
-                    height.unwrap_or(1.0),
-                    capped.unwrap_or(false),
-                );
-                (shape.map(Shape::Paraboloid), span)
-            }
-            ShapeFile::Torus {
-                center,
-                major_radius,
-                minor_radius,
-            } => {
-                let center = center.map_or(Vec3::ZERO, |c| c.0);
-                let shape = Torus::new(center, major_radius, minor_radius);
-                (shape.map(Shape::Torus), span)
-            }
-            ShapeFile::Csg {
-                operation,
-                children,
-            } => (Ok(self.csg(operation, children, material, &span)?), span),
-            ShapeFile::Triangle { .. } | ShapeFile::Mesh { .. } | ShapeFile::Obj { .. } => {
+        let (shape, blame) = match (shape.analytic(span.clone()), shape) {
+            (Some(analytic), _) => analytic,
+            (
+                None,
+                ShapeFile::Csg {
+                    operation,
+                    children,
+                },
+            ) => (Ok(self.csg(operation, children, material, &span)?), span),
+            (None, shape) => {
                 let kind = match shape {
                     ShapeFile::Triangle { .. } => "triangle",
                     ShapeFile::Mesh { .. } => "mesh",

@@ -12,9 +12,9 @@ use std::collections::BTreeMap;
 use serde::Deserialize;
 use toml::Spanned;
 
+use super::object_file::ObjectFile;
 use super::values::{
-    ColorValue, Direction, Exact, Finite, Fraction, NonNegative, Positive, PositiveOrInfinite,
-    ScaleFactors, TexCoord, Vector,
+    ColorValue, Direction, Exact, Fraction, NonNegative, Positive, PositiveOrInfinite, Vector,
 };
 
 /// The whole file.
@@ -203,110 +203,4 @@ pub struct MaterialFile {
     pub fresnel: Option<bool>,
     /// The medium filling the object inside.
     pub medium: Option<MediumFile>,
-}
-
-/// `[[objects]]`: a shape with a material and a placement.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ObjectFile {
-    /// A name from `[materials]`; the default material when absent.
-    pub material: Option<Spanned<String>>,
-    /// Steps applied in file order.
-    pub transform: Option<Spanned<Vec<TransformStepFile>>>,
-    /// Every other key of the object's table, tagged with its `type` (see [`super::retag`]).
-    pub shape: Spanned<ShapeFile>,
-}
-
-/// The keys of [`ObjectFile`] that the file writes next to the shape's own keys.
-pub const OBJECT_KEYS: [&str; 2] = ["material", "transform"];
-
-/// One step of `transform = [ … ]`.
-#[derive(Debug, Deserialize)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
-pub enum TransformStepFile {
-    Translate(Vector),
-    Rotate { axis: Direction, degrees: Finite },
-    Scale(ScaleFactors),
-}
-
-/// The shape of an object, by its `type`.
-#[derive(Debug, Deserialize)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
-pub enum ShapeFile {
-    Sphere {
-        center: Option<Vector>,
-        radius: Option<Spanned<f32>>,
-    },
-    Plane {
-        point: Option<Vector>,
-        /// Towards the plane's front.
-        normal: Option<Direction>,
-    },
-    Triangle {
-        vertices: Spanned<Exact<Vector, 3>>,
-        normals: Option<Exact<Direction, 3>>,
-        uvs: Option<Exact<TexCoord, 3>>,
-    },
-    /// A mesh written out in the file.
-    Mesh {
-        positions: Vec<Vector>,
-        /// Vertex indices, counted from 0.
-        faces: Spanned<Vec<Exact<u32, 3>>>,
-        normals: Option<Spanned<Vec<Direction>>>,
-        uvs: Option<Spanned<Vec<TexCoord>>>,
-    },
-    /// A Wavefront OBJ file, relative to the scene file's folder.
-    Obj { file: Spanned<String> },
-    /// A planar polygon, convex or concave, counter-clockwise seen from its front.
-    Polygon { vertices: Vec<Vector> },
-    /// An axis-aligned box (turn it with a transform).
-    Box { min: Vector, max: Vector },
-    /// A cylinder from `base` to `top`.
-    Cylinder {
-        base: Option<Vector>,
-        top: Option<Vector>,
-        radius: Option<f32>,
-        capped: Option<bool>,
-    },
-    /// A cone, or a truncated cone when both radii are positive.
-    Cone {
-        base: Option<Vector>,
-        top: Option<Vector>,
-        base_radius: Option<f32>,
-        top_radius: Option<f32>,
-        capped: Option<bool>,
-    },
-    Ellipsoid {
-        center: Option<Vector>,
-        radii: Vector,
-    },
-    /// A paraboloid opening towards +y from `vertex`, `radius` wide at `height`.
-    Paraboloid {
-        vertex: Option<Vector>,
-        radius: Option<f32>,
-        height: Option<f32>,
-        capped: Option<bool>,
-    },
-    /// A torus around the y axis through `center`: a tube of radius `minor_radius` swept
-    /// around a ring of radius `major_radius`.
-    Torus {
-        center: Option<Vector>,
-        major_radius: f32,
-        minor_radius: f32,
-    },
-    /// A boolean object: closed solids and other csg objects combined by `operation`. Children
-    /// without a `material` take the node's.
-    Csg {
-        operation: CsgOperationFile,
-        children: Vec<Spanned<ObjectFile>>,
-    },
-}
-
-/// `operation = "union" | "intersection" | "difference"` (the first child minus the others).
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum CsgOperationFile {
-    Union,
-    Intersection,
-    Difference,
 }

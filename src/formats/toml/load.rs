@@ -9,7 +9,8 @@ use toml::Spanned;
 use toml::de::DeTable;
 
 use super::build::{build_camera, build_obj_scene, build_scene};
-use super::file::{CameraSnippetFile, OBJECT_KEYS, SceneFile};
+use super::file::{CameraSnippetFile, SceneFile};
+use super::object_file::OBJECT_KEYS;
 use super::retag::retag_document;
 use crate::camera::{Camera, CameraSpec};
 use crate::formats::{SceneError, Source};

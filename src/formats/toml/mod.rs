@@ -4,7 +4,7 @@
 //! [`views_text`]), and the built-in default scene written in one
 //! ([`default_scene`]). `load` reads a file in four steps: the
 //! text is parsed as TOML, `retag` moves its type tags where serde wants them, serde reads the
-//! schema (`file`, with the checked numbers of `values`), and `build` turns the schema into a
+//! schema (`file`, its objects in `object_file`, with the checked numbers of `values`), and `build` turns the schema into a
 //! [`Scene`](crate::scene::Scene). `edit` writes a viewer's edits of materials and lights back
 //! into the file ([`save_edits`]).
 
@@ -13,6 +13,7 @@ mod builtin;
 mod edit;
 mod file;
 mod load;
+mod object_file;
 mod retag;
 mod values;
 mod views;

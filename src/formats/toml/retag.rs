@@ -16,14 +16,14 @@ use std::ops::Range;
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 
-use super::file::OBJECT_KEYS;
+use super::object_file::OBJECT_KEYS;
 use crate::formats::{SceneError, Source};
 use crate::shapes::MAX_CSG_DEPTH;
 
 /// The key that says what kind of light, texture or object a table describes.
 const TAG: &str = "type";
 
-/// The key [`super::file::ObjectFile`] reads an object's shape from.
+/// The key [`super::object_file::ObjectFile`] reads an object's shape from.
 const SHAPE_KEY: &str = "shape";
 
 /// The kind of object whose `children` are objects too, and that key.

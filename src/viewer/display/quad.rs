@@ -4,10 +4,27 @@
 //! pass's viewport. The shader shows each screen pixel's nearest texel (so coarse passes show as
 //! fat pixels), and the snapshot left of the divider when comparing.
 
+use raylab::gpu::prelude::numbered;
 use raylab::srgb_image::SrgbImage;
 use raylab::tone::Tone;
 
 use crate::viewer::layout::PixelRect;
+
+/// The bindings of the quad's bind group: the live image, the snapshot beside it and the
+/// display's settings, numbered for `shaders/quad.wgsl` as `QUAD_LIVE`, … .
+#[derive(Clone, Copy, Debug, strum::EnumIter)]
+enum QuadBinding {
+    Live,
+    Snapshot,
+    Display,
+}
+
+/// The quad's WGSL, after its binding numbers.
+fn quad_wgsl() -> String {
+    let mut wgsl = String::new();
+    numbered::<QuadBinding>(&mut wgsl, "QUAD_");
+    wgsl + include_str!("../../../shaders/quad.wgsl")
+}
 
 /// The texture format of the image and the snapshot: sRGB bytes, passed to the (non-sRGB) target
 /// unchanged.
@@ -53,7 +70,7 @@ impl QuadRenderer {
     ) -> QuadRenderer {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("quad.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../../../shaders/quad.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(quad_wgsl().into()),
         });
         let texture_entry = |binding| wgpu::BindGroupLayoutEntry {
             binding,
@@ -68,10 +85,10 @@ impl QuadRenderer {
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("image"),
             entries: &[
-                texture_entry(0),
-                texture_entry(1),
+                texture_entry(QuadBinding::Live as u32),
+                texture_entry(QuadBinding::Snapshot as u32),
                 wgpu::BindGroupLayoutEntry {
-                    binding: 2,
+                    binding: QuadBinding::Display as u32,
                     visibility: wgpu::ShaderStages::FRAGMENT,
                     ty: wgpu::BindingType::Buffer {
                         ty: wgpu::BufferBindingType::Uniform,
@@ -240,15 +257,15 @@ impl QuadRenderer {
             layout: &self.layout,
             entries: &[
                 wgpu::BindGroupEntry {
-                    binding: 0,
+                    binding: QuadBinding::Live as u32,
                     resource: wgpu::BindingResource::TextureView(&view(image)),
                 },
                 wgpu::BindGroupEntry {
-                    binding: 1,
+                    binding: QuadBinding::Snapshot as u32,
                     resource: wgpu::BindingResource::TextureView(&view(snapshot.unwrap_or(image))),
                 },
                 wgpu::BindGroupEntry {
-                    binding: 2,
+                    binding: QuadBinding::Display as u32,
                     resource: self.display.as_entire_binding(),
                 },
             ],

@@ -1,8 +1,6 @@
 //! The ray tree of a pixel (`raylab::inspect`), checked node by node on scenes built by hand.
-//! (`tests/inspect_image.rs` checks it against rendered images.) And a pixel's difference from
+//! (`tests/library/inspect_image.rs` checks it against rendered images.) And a pixel's difference from
 //! another image explained from it (`raylab::compare::explain`).
-
-mod common;
 
 use glam::Vec3;
 use raylab::bvh::Bvh;
@@ -135,7 +133,7 @@ fn a_mirror_facing_a_wall_spawns_one_reflected_ray_that_sees_the_wall() {
 /// A glass ball of radius 1 at the origin, without reflection, seen from `eye`.
 fn glass_ball(eye: Vec3, look_at: Vec3) -> Scene {
     let mut scene = Scene::new(settings(5, 0.0), camera(eye, look_at, 0.05));
-    let glass = scene.add_material(common::clear_glass());
+    let glass = scene.add_material(crate::common::clear_glass());
     scene.add_object(sphere(Vec3::ZERO, 1.0), None, glass);
     scene.lights.push(Light::Point {
         position: Vec3::new(0.0, 5.0, 5.0),

@@ -1,8 +1,6 @@
 //! The ray tree of a pixel against the image: its colour is the rendered pixel, its objects are
 //! what [`object_ids`] sees, and its rays project back onto the pixel.
 
-mod common;
-
 use std::path::Path;
 
 use glam::{Vec2, Vec3};
@@ -58,7 +56,7 @@ fn the_tree_gives_the_rendered_pixel_on_the_shipped_scenes() {
 
 #[test]
 fn object_ids_name_what_each_eye_ray_hits() {
-    let scene = common::spheres_on_a_floor(32, 24);
+    let scene = crate::common::spheres_on_a_floor(32, 24);
     let bvh = Bvh::build(&scene.geometry);
     let tracer = Tracer::new(&scene, &bvh);
     let ids = object_ids(&tracer);
@@ -78,7 +76,7 @@ fn object_ids_name_what_each_eye_ray_hits() {
 
 #[test]
 fn projecting_a_point_of_a_pixels_eye_ray_gives_the_pixels_centre() {
-    let scene = common::spheres_on_a_floor(64, 48);
+    let scene = crate::common::spheres_on_a_floor(64, 48);
     for (x, y) in [(0, 0), (63, 0), (10, 40), (32, 24)] {
         let ray = scene.camera.eye_ray((x, y), PIXEL_CENTRE, (64, 48));
         for t in [1.0, 3.5, 20.0] {
@@ -93,7 +91,7 @@ fn projecting_a_point_of_a_pixels_eye_ray_gives_the_pixels_centre() {
 
 #[test]
 fn a_segment_from_behind_the_eye_is_clipped_at_the_image_plane() {
-    let scene = common::spheres_on_a_floor(64, 48);
+    let scene = crate::common::spheres_on_a_floor(64, 48);
     let camera = scene.camera;
     let ahead = camera.eye - 10.0 * camera.n;
     let behind = camera.eye + 10.0 * camera.n + camera.u;

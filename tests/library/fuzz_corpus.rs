@@ -2,7 +2,7 @@
 //! cargo-fuzz: the inputs kept in `fuzz/regressions/TARGET/` must each be read or refused with
 //! an error, never panic; and the files the fuzz corpora are seeded from must read and render.
 
-#[path = "../fuzz/src/harness.rs"]
+#[path = "../../fuzz/src/harness.rs"]
 mod harness;
 
 use std::panic::catch_unwind;

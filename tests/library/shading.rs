@@ -1,8 +1,6 @@
 //! The Whitted shading model: shadows, mirrors, refraction through glass, total internal
 //! reflection and adaptive depth control.
 
-mod common;
-
 use glam::Vec3;
 use raylab::bvh::Bvh;
 use raylab::color::Color;
@@ -31,7 +29,7 @@ fn plane(point: Vec3, normal: Vec3) -> Shape {
 fn sphere_over_floor(blocker: Material) -> Scene {
     let mut scene = Scene::new(
         RenderSettings::default(),
-        common::camera(Vec3::new(0.0, 5.0, 5.0), Vec3::ZERO, 45.0),
+        crate::common::camera(Vec3::new(0.0, 5.0, 5.0), Vec3::ZERO, 45.0),
     );
     let floor = scene.add_material(Material {
         color: Color::new(0.5, 0.6, 0.7),
@@ -149,7 +147,7 @@ fn spheres_before_the_mirror_plane(mirror: bool) -> Scene {
         background: Color::new(0.1, 0.2, 0.3),
         ..RenderSettings::default()
     };
-    let mut scene = Scene::new(settings, common::camera(Vec3::ZERO, Vec3::Z, 40.0));
+    let mut scene = Scene::new(settings, crate::common::camera(Vec3::ZERO, Vec3::Z, 40.0));
     let colors = [Color::new(0.9, 0.2, 0.1), Color::new(0.1, 0.8, 0.3)];
     for (i, color) in colors.into_iter().enumerate() {
         let m = scene.add_material(Material {
@@ -188,9 +186,9 @@ fn a_mirror_shows_what_a_mirrored_camera_sees() {
     // stands at the mirror image of A's eye, in the scene without the mirror, looking at the
     // spheres. B's image is A's, flipped left to right.
     let mut a = spheres_before_the_mirror_plane(true);
-    a.camera = common::camera(Vec3::new(0.5, 0.5, 2.0), Vec3::new(0.0, 0.5, 0.0), 60.0);
+    a.camera = crate::common::camera(Vec3::new(0.5, 0.5, 2.0), Vec3::new(0.0, 0.5, 0.0), 60.0);
     let mut b = spheres_before_the_mirror_plane(false);
-    b.camera = common::camera(Vec3::new(0.5, 0.5, -2.0), Vec3::new(0.0, 0.5, 0.0), 60.0);
+    b.camera = crate::common::camera(Vec3::new(0.5, 0.5, -2.0), Vec3::new(0.0, 0.5, 0.0), 60.0);
     let render = |scene: &Scene| {
         let bvh = Bvh::build(&scene.geometry);
         progressive::render_image(&Tracer::new(scene, &bvh)).0
@@ -245,7 +243,7 @@ fn a_glass_slab_in_a_scene_refracts_the_eye_ray_twice() {
     // the bottom (back face), then hits nothing: two transmitted rays.
     let mut scene = Scene::new(
         RenderSettings::default(),
-        common::camera(Vec3::new(0.0, 5.0, 1.0), Vec3::ZERO, 45.0),
+        crate::common::camera(Vec3::new(0.0, 5.0, 1.0), Vec3::ZERO, 45.0),
     );
     let glass = scene.add_material(Material {
         transparency: 1.0,
@@ -318,7 +316,7 @@ fn facing_mirrors(max_depth: u32, min_weight: f32) -> (Scene, Ray) {
         min_weight,
         ..RenderSettings::default()
     };
-    let mut scene = Scene::new(settings, common::camera(Vec3::ZERO, Vec3::X, 45.0));
+    let mut scene = Scene::new(settings, crate::common::camera(Vec3::ZERO, Vec3::X, 45.0));
     let half_mirror = scene.add_material(Material {
         reflectivity: 0.5,
         ..Material::default()

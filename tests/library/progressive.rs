@@ -2,8 +2,6 @@
 //! finished image independent of the starting block size, blocks clipped at the edges; then
 //! uniform or adaptive anti-aliasing.
 
-mod common;
-
 use raylab::bvh::Bvh;
 use raylab::camera::PIXEL_CENTRE;
 use raylab::color::{Color, to_srgb8};
@@ -58,7 +56,7 @@ fn every_pixel_is_traced_exactly_once_across_all_passes() {
 
 #[test]
 fn the_renderer_traces_exactly_width_times_height_eye_rays() {
-    let scene = common::spheres_on_a_floor(45, 31);
+    let scene = crate::common::spheres_on_a_floor(45, 31);
     let bvh = Bvh::build(&scene.geometry);
     for start in [1, 4, 16, 64] {
         let mut scene = scene.clone();
@@ -72,7 +70,7 @@ fn the_renderer_traces_exactly_width_times_height_eye_rays() {
 
 #[test]
 fn finished_image_is_the_same_from_any_starting_block_size() {
-    let scene = common::spheres_on_a_floor(50, 37);
+    let scene = crate::common::spheres_on_a_floor(50, 37);
     let bvh = Bvh::build(&scene.geometry);
     let (reference, _) = progressive::render_image(&Tracer::new(&scene, &bvh));
     for start in [2, 8, 32, 64] {
@@ -88,7 +86,7 @@ fn finished_image_is_the_same_from_any_starting_block_size() {
 
 #[test]
 fn a_coarse_pass_paints_whole_blocks_clipped_at_the_edges() {
-    let scene = common::spheres_on_a_floor(21, 13);
+    let scene = crate::common::spheres_on_a_floor(21, 13);
     let bvh = Bvh::build(&scene.geometry);
     let tracer = Tracer::new(&scene, &bvh);
     let film = Film::new(21, 13);
@@ -108,7 +106,7 @@ fn a_coarse_pass_paints_whole_blocks_clipped_at_the_edges() {
 
 #[test]
 fn samples_average_jittered_rays_and_stay_deterministic() {
-    let mut scene = common::spheres_on_a_floor(24, 16);
+    let mut scene = crate::common::spheres_on_a_floor(24, 16);
     scene.settings.samples = 4;
     let bvh = Bvh::build(&scene.geometry);
     let tracer = Tracer::new(&scene, &bvh);
@@ -126,7 +124,7 @@ fn a_render_cancelled_from_another_thread_stops_within_a_band() {
     // Seconds of work: 1200 × 1200 pixels, 8 samples each (a render that ignored the cancel
     // would end, and fail, rather than run on for minutes).
     let (width, height) = (1200, 1200);
-    let mut scene = common::spheres_on_a_floor(width, height);
+    let mut scene = crate::common::spheres_on_a_floor(width, height);
     scene.settings.block_size = 1;
     scene.settings.samples = 8;
     let bvh = Bvh::build(&scene.geometry);
@@ -159,7 +157,7 @@ fn a_render_cancelled_from_another_thread_stops_within_a_band() {
 
 #[test]
 fn progress_is_visible_while_a_render_runs() {
-    let scene = common::spheres_on_a_floor(64, 64);
+    let scene = crate::common::spheres_on_a_floor(64, 64);
     let bvh = Bvh::build(&scene.geometry);
     let control = RenderControl::default();
     let film = Film::new(64, 64);
@@ -185,7 +183,7 @@ fn progress_is_visible_while_a_render_runs() {
 
 #[test]
 fn a_paused_render_waits_until_resumed_and_a_cancel_wakes_it() {
-    let scene = common::spheres_on_a_floor(48, 40);
+    let scene = crate::common::spheres_on_a_floor(48, 40);
     let bvh = Bvh::build(&scene.geometry);
     let tracer = Tracer::new(&scene, &bvh);
     let control = RenderControl::default();
@@ -383,7 +381,7 @@ impl Shader for Edge {
 #[test]
 fn flat_regions_take_one_sample_and_edges_the_cap() {
     // 33 columns: the edge runs through the middle of column 16.
-    let mut scene = common::spheres_on_a_floor(33, 20);
+    let mut scene = crate::common::spheres_on_a_floor(33, 20);
     (scene.settings.samples, scene.settings.aa_threshold) = (16, 0.03);
     let bvh = Bvh::build(&scene.geometry);
     let film = Film::new(33, 20);

@@ -6,11 +6,10 @@
 //! first-hit debug views. These tests
 //! need a GPU adapter: without one they fail, saying what to install (Mesa's lavapipe will do).
 
-mod common;
-
 use std::path::Path;
 use std::sync::Arc;
 
+use crate::gpu;
 use glam::Vec3;
 use raylab::camera::Camera;
 use raylab::color::{Color, to_srgb8};
@@ -19,7 +18,7 @@ use raylab::formats::load_any;
 
 use raylab::gpu::bvh::NodeLayout;
 use raylab::gpu::device::GpuDevice;
-use raylab::gpu::scene::GpuView;
+use raylab::gpu::frame::{GpuView, ViewKind};
 use raylab::inspect::DebugView;
 use raylab::progressive::gpu::GpuRenderer;
 use raylab::progressive::{
@@ -31,10 +30,6 @@ use raylab::whitted::Tracer;
 use strum::IntoEnumIterator;
 
 const SIZE: (u32, u32) = (160, 120);
-
-fn gpu() -> Arc<GpuDevice> {
-    Arc::new(GpuDevice::new().unwrap_or_else(|e| panic!("these tests run on a GPU: {e}")))
-}
 
 /// A scene of `tests/gpu_scenes/`, made for these tests: each puts together what the GPU must
 /// trace as the CPU does, whatever the shipped scenes need besides.
@@ -48,8 +43,8 @@ fn made_here(name: &str) -> Scene {
 /// Every shipped scene, every SPD scene at its standard size, and the scenes of
 /// `tests/gpu_scenes/`, by name.
 fn all_scenes() -> Vec<(String, Scene)> {
-    let made_here = common::scene_files("tests/gpu_scenes");
-    common::shipped_and_spd_scenes()
+    let made_here = crate::common::scene_files("tests/gpu_scenes");
+    crate::common::shipped_and_spd_scenes()
         .into_iter()
         .chain(made_here)
         .collect()
@@ -57,7 +52,7 @@ fn all_scenes() -> Vec<(String, Scene)> {
 
 /// The mean absolute difference of two 8-bit images, in levels, and the share of pixels where
 /// every channel is within 3 levels.
-fn difference(a: &[u8], b: &[u8]) -> (f64, f64) {
+pub fn difference(a: &[u8], b: &[u8]) -> (f64, f64) {
     let mean = a
         .iter()
         .zip(b)
@@ -199,7 +194,7 @@ fn every_textured_scene_renders_on_the_gpu_as_on_the_cpu_with_textures_off() {
 
 /// `tracer`'s scene rendered by `renderer` (which holds it on the GPU), as 8-bit sRGB, and what
 /// it traced.
-fn gpu_render(renderer: &GpuRenderer, tracer: &Tracer) -> (Vec<u8>, RenderStats) {
+pub fn gpu_render(renderer: &GpuRenderer, tracer: &Tracer) -> (Vec<u8>, RenderStats) {
     gpu_render_view(renderer, tracer, (GpuView::Shaded, &Shaded))
 }
 
@@ -233,6 +228,7 @@ fn the_first_hit_debug_views_render_on_the_gpu_as_on_the_cpu() {
         .unwrap(),
     ];
     let mut compared = 0;
+    let mut kinds_seen: Vec<ViewKind> = Vec::new();
     for mut scene in scenes {
         (scene.settings.width, scene.settings.height) = SIZE;
         let assembled = assemble(scene).unwrap();
@@ -253,6 +249,7 @@ fn the_first_hit_debug_views_render_on_the_gpu_as_on_the_cpu() {
                     continue;
                 }
             };
+            kinds_seen.push(ViewKind::from(on_gpu));
             let (gpu_pixels, stats) = gpu_render_view(&renderer, &tracer, (on_gpu, &view));
             let (cpu_pixels, cpu_stats) = render_image_with(&tracer, &view);
             let (mean, close) = difference(&gpu_pixels, &to_srgb8(&cpu_pixels));
@@ -277,6 +274,11 @@ fn the_first_hit_debug_views_render_on_the_gpu_as_on_the_cpu() {
         }
     }
     assert_eq!(compared, 3 * 6);
+    // Every kind of view the GPU draws was drawn.
+    let missing: Vec<ViewKind> = ViewKind::iter()
+        .filter(|kind| !kinds_seen.contains(kind))
+        .collect();
+    assert!(missing.is_empty(), "views not compared: {missing:?}");
 }
 
 #[test]

@@ -1,8 +1,6 @@
 //! The debug views (`--view`): checked against geometry known in closed form, and against each
 //! other.
 
-mod common;
-
 use glam::Vec3;
 use raylab::bvh::Bvh;
 use raylab::camera::{Camera, CameraSpec, PIXEL_CENTRE};
@@ -176,7 +174,7 @@ fn the_bvh_cost_view_is_hotter_where_the_geometry_is_dense() {
 
 #[test]
 fn the_object_view_colours_each_pixel_by_the_object_it_sees() {
-    let scene = common::spheres_on_a_floor(WIDTH, HEIGHT);
+    let scene = crate::common::spheres_on_a_floor(WIDTH, HEIGHT);
     let pixels = render(&scene, DebugView::ObjectId);
     let bvh = Bvh::build(&scene.geometry);
     let ids = object_ids(&Tracer::new(&scene, &bvh));
@@ -196,7 +194,7 @@ fn the_object_view_colours_each_pixel_by_the_object_it_sees() {
 
 #[test]
 fn the_tree_depth_view_is_deeper_on_the_mirror_than_on_the_matte_ball() {
-    let scene = common::spheres_on_a_floor(WIDTH, HEIGHT);
+    let scene = crate::common::spheres_on_a_floor(WIDTH, HEIGHT);
     let pixels = render(&scene, DebugView::TreeDepth);
     let bvh = Bvh::build(&scene.geometry);
     let ids = object_ids(&Tracer::new(&scene, &bvh));
@@ -210,7 +208,7 @@ fn the_tree_depth_view_is_deeper_on_the_mirror_than_on_the_matte_ball() {
 
 #[test]
 fn debug_views_refine_progressively_to_the_same_image() {
-    let mut scene = common::spheres_on_a_floor(WIDTH, HEIGHT);
+    let mut scene = crate::common::spheres_on_a_floor(WIDTH, HEIGHT);
     for view in DebugView::iter() {
         scene.settings.block_size = 1;
         let direct = render(&scene, view);

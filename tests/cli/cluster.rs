@@ -2,15 +2,12 @@
 //! renders a scene as tiles with `--tile auto` (each job's number in `PARALLEL_SEQ`) and merges
 //! them, and the merged image must equal a single render of the scene byte for byte. The test
 //! needs Debian's `parallel` (`scripts/test` installs it); without it the test fails, saying
-//! what to install, unless `RAYLAB_SKIP_PARALLEL_TESTS=1` is set: then it passes, printing that
-//! it was skipped.
+//! what to install.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-mod common;
-use common::run::raylab;
+use crate::common::run::raylab;
 
 fn repo() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -25,29 +22,17 @@ fn assert_success(out: &Output, what: &str) {
     );
 }
 
-/// Whether GNU parallel is there; if not, fails saying how to get it, or, if the person running
-/// the tests opted out with `RAYLAB_SKIP_PARALLEL_TESTS=1`, says on the real stderr (which the
-/// test runner does not capture) that the test is skipped.
-fn parallel_or_skip() -> bool {
+/// Fails, saying how to get it, where GNU parallel is not installed.
+fn require_parallel() {
     let found = Command::new("sh")
         .args(["-c", "command -v parallel"])
         .output()
         .is_ok_and(|out| out.status.success());
-    if found {
-        return true;
-    }
-    if std::env::var("RAYLAB_SKIP_PARALLEL_TESTS").is_ok_and(|v| v == "1") {
-        let test = std::thread::current().name().unwrap_or("?").to_string();
-        let _ = writeln!(
-            std::io::stderr(),
-            "SKIPPED {test}: no GNU parallel, and RAYLAB_SKIP_PARALLEL_TESTS=1"
-        );
-        return false;
-    }
-    panic!(
+    assert!(
+        found,
         "the cluster tests run GNU parallel, which is not installed. Install it (Debian: sudo \
-         apt-get install parallel) and run `cargo test --test cluster`, or scripts/test, which \
-         installs it; to skip these tests instead, set RAYLAB_SKIP_PARALLEL_TESTS=1"
+         apt-get install parallel) and run `cargo test --test cli cluster`, or scripts/test, \
+         which installs it"
     );
 }
 
@@ -83,9 +68,7 @@ fn parallel_recipe(
 /// The tiles of `scene` through GNU parallel, merged, equal one render of it, for each count of
 /// tiles: as an 8-bit PNG byte for byte, and as an EXR of linear values, value for value.
 fn tiles_through_parallel_equal_one_render(scene: &str, options: &[&str], tile_counts: &[u32]) {
-    if !parallel_or_skip() {
-        return;
-    }
+    require_parallel();
     let dir = tempfile::tempdir().unwrap();
     let scene = repo().join(scene);
     let scene_arg = scene.to_str().unwrap();

@@ -1,11 +1,9 @@
 //! The BVH must return exactly what testing every primitive returns.
 
-mod common;
-
 use std::collections::BTreeSet;
 use std::ops::ControlFlow;
 
-use common::random::{Rng, in_cube, in_range};
+use crate::common::random::{Rng, in_cube, in_range};
 use glam::Vec3;
 use proptest::prelude::*;
 use raylab::aabb::Aabb;

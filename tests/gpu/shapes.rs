@@ -4,11 +4,10 @@
 //! share laid out alike, and the WGSL valid as a whole. These tests need a GPU adapter: without one they fail, saying what to install
 //! (Mesa's lavapipe will do).
 
-mod common;
-
 use std::sync::Arc;
 
-use common::random::{Rng, direction, in_cube, in_range};
+use crate::common::random::{Rng, direction, in_cube, in_range};
+use crate::gpu;
 use glam::{Vec2, Vec3};
 use raylab::aabb::Aabb;
 use raylab::camera::{Camera, PIXEL_CENTRE};
@@ -20,6 +19,7 @@ use raylab::gpu::item_raster::{CpuItems, proxy_box};
 use raylab::gpu::probe::{
     NO_PRIM, ProbeHit, ProbeRay, Search, TextureProbe, closest_hits, texture_colors,
 };
+use raylab::gpu::record::{GpuRecord, wgsl_name};
 use raylab::gpu::scene::GpuScene;
 use raylab::gpu::tracer::tracer_wgsl;
 use raylab::material::Material;
@@ -39,10 +39,6 @@ use raylab::texture::{Texture, WOOD_COLORS, Wrap};
 use raylab::transform::{Transform, TransformStep};
 use raylab::whitted::EYE_RAY_T_MIN;
 use strum::IntoEnumIterator;
-
-fn gpu() -> GpuDevice {
-    GpuDevice::new().unwrap_or_else(|e| panic!("these tests run on a GPU: {e}"))
-}
 
 /// A scene of `objects` (each shape with its transform, if any) and `meshes`, one material,
 /// ready on the CPU.
@@ -111,7 +107,12 @@ fn untransformed(shapes: Vec<Shape>) -> Vec<(Shape, Option<Transform>)> {
 /// they are larger than 1, as a plane's are), away from grazing hits and near ties (where
 /// rounding may pick the other primitive), which are counted. Returns how many hits were
 /// compared, and prints it with the largest error of `t`.
-fn compare(assembled: &Assembled, search: Search, rays: &[ProbeRay], on_gpu: &[ProbeHit]) -> usize {
+pub fn compare(
+    assembled: &Assembled,
+    search: Search,
+    rays: &[ProbeRay],
+    on_gpu: &[ProbeHit],
+) -> usize {
     assert_eq!(on_gpu.len(), rays.len());
     let (mut compared, mut left_out) = (0, 0);
     let mut max_t_error = 0.0f32;
@@ -736,192 +737,66 @@ fn parsed(source: &str) -> naga::Module {
     module
 }
 
-/// `(name, size, fields)` of a Rust struct shared with WGSL, for [`wgsl_layout`]'s answer.
-macro_rules! rust_layout {
-    ($wgsl:literal, $ty:ty, [$($field:ident),*]) => {
-        (
-            $wgsl,
-            std::mem::size_of::<$ty>() as u32,
-            vec![$((stringify!($field).to_string(), std::mem::offset_of!($ty, $field) as u32)),*],
+/// Record `T` against its WGSL twin in `module`: the same size, and the same fields by name
+/// and offset, in order; what differs, if anything.
+fn same_layout<T: GpuRecord>(module: &naga::Module) -> Option<String> {
+    let name = wgsl_name::<T>();
+    let (wgsl_size, wgsl_fields) = wgsl_layout(module, name);
+    let rust_size = size_of::<T>() as u32;
+    let rust_fields: Vec<(String, u32)> = T::fields()
+        .into_iter()
+        .map(|(field, offset)| (field.to_string(), offset as u32))
+        .collect();
+    ((wgsl_size, &wgsl_fields) != (rust_size, &rust_fields)).then(|| {
+        format!(
+            "{name}: WGSL {wgsl_size} bytes {wgsl_fields:?}, Rust {rust_size} bytes {rust_fields:?}"
         )
-    };
+    })
 }
 
 #[test]
 fn the_structs_rust_and_wgsl_share_have_the_same_layout() {
     use raylab::gpu::bvh::{GpuBinaryNode, GpuTriangle, GpuWideNode};
-    use raylab::gpu::film::{FILM_WGSL, FilmPass, FilmPixel, ShowRows, Tally};
+    use raylab::gpu::film::{FilmPass, FilmPixel, ShowRows, Tally, film_wgsl};
+    use raylab::gpu::frame::GpuFrame;
     use raylab::gpu::item_raster::{GpuProxy, ITEM_BUFFER_WGSL};
+    use raylab::gpu::materials::{GpuLight, GpuMaterial, GpuTriangleShading, GpuVertexAttributes};
     use raylab::gpu::probe::ProbeHit;
-    use raylab::gpu::scene::{
-        GpuFrame, GpuLight, GpuMaterial, GpuTriangleShading, GpuVertexAttributes,
-    };
     use raylab::gpu::shapes::GpuObject;
     use raylab::gpu::texture::GpuTexture;
     use raylab::gpu::tracer::{PixelSample, SampleColor};
-    let module = tracer_module(NodeLayout::Wide);
-    let cases = [
-        rust_layout!("Object", GpuObject, [kind, first, transform, material]),
-        rust_layout!("WideNode", GpuWideNode, [min, max, first, count]),
-        rust_layout!("Triangle", GpuTriangle, [p0, index, p1, object, p2, pad2]),
-        rust_layout!("TriangleShading", GpuTriangleShading, [corners, material]),
-        rust_layout!("VertexAttributes", GpuVertexAttributes, [normal, u, v, pad]),
-        rust_layout!(
-            "Material",
-            GpuMaterial,
-            [
-                color,
-                ambient,
-                emission,
-                diffuse,
-                specular_color,
-                specular,
-                shininess,
-                reflectivity,
-                transparency,
-                ior,
-                fresnel,
-                texture,
-                medium_density,
-                medium_albedo,
-                medium_color,
-                pad
-            ]
-        ),
-        rust_layout!(
-            "Light",
-            GpuLight,
-            [position, kind, direction, cos_angle, color, cos_full]
-        ),
-        rust_layout!(
-            "Frame",
-            GpuFrame,
-            [
-                eye,
-                near,
-                u,
-                half_height,
-                v,
-                width,
-                n,
-                height,
-                background,
-                max_depth,
-                ambient,
-                min_weight,
-                flags,
-                unbounded_first,
-                unbounded,
-                node_count,
-                light_count,
-                object_count,
-                film_left,
-                film_top,
-                background_image,
-                fog_steps,
-                fog_albedo,
-                backdrop_distance,
-                fog_color,
-                fog_density,
-                backdrop_center,
-                backdrop_radius,
-                view,
-                depth_near,
-                depth_far,
-                caustic_gather,
-                photons_min,
-                photon_count,
-                photons_max,
-                photon_radius,
-                photons_shot,
-                pad0,
-                pad1,
-                pad2
-            ]
-        ),
-        rust_layout!("PixelSample", PixelSample, [x, y, k, item_t]),
-        rust_layout!(
-            "Photon",
-            GpuPhoton,
-            [position, axis, power, pad0, dir, pad1]
-        ),
-        rust_layout!(
-            "SampleColor",
-            SampleColor,
-            [
-                color,
-                primary_hits,
-                shadow,
-                reflected,
-                transmitted,
-                over_budget,
-                cut_short,
-                from_item_buffer,
-                pad1,
-                pad2
-            ]
-        ),
-        rust_layout!("ProbeRay", ProbeRay, [origin, t_min, dir, t_max]),
-        rust_layout!("ProbeHit", ProbeHit, [normal, t, uv, prim, part]),
-        rust_layout!(
-            "Texture",
-            GpuTexture,
-            [a, kind, b, size, scale, offset, first, width, height, wrap]
-        ),
-        rust_layout!("TextureProbe", TextureProbe, [point, texture, uv, pad]),
-    ];
+    let tracer = tracer_module(NodeLayout::Wide);
     let binary = tracer_module(NodeLayout::Binary);
-    let binary_cases = [rust_layout!(
-        "BinaryNode",
-        GpuBinaryNode,
-        [lo0, first0, hi0, count0, lo1, first1, hi1, count1]
-    )];
-    let film = parsed(FILM_WGSL);
-    let film_cases = [
-        rust_layout!("PixelSample", PixelSample, [x, y, k, item_t]),
-        rust_layout!("FilmPixel", FilmPixel, [color, samples]),
-        rust_layout!("FilmPass", FilmPass, [width, height, step, pad]),
-        rust_layout!(
-            "Tally",
-            Tally,
-            [
-                primary,
-                primary_hits,
-                shadow,
-                reflected,
-                transmitted,
-                over_budget,
-                cut_short,
-                from_item_buffer
-            ]
-        ),
-        rust_layout!(
-            "ShowRows",
-            ShowRows,
-            [width, first_row, rows, row_texels, scale, curve, pad0, pad1]
-        ),
-    ];
+    let film = parsed(&film_wgsl());
     let raster = parsed(&(tracer_wgsl(NodeLayout::Wide) + ITEM_BUFFER_WGSL));
-    let raster_cases = [rust_layout!("Proxy", GpuProxy, [lo, object, hi, full_film])];
-    let tracer_cases = cases.into_iter().map(|case| (&module, case));
-    let binary_cases = binary_cases.into_iter().map(|case| (&binary, case));
-    let film_cases = film_cases.into_iter().map(|case| (&film, case));
-    let raster_cases = raster_cases.into_iter().map(|case| (&raster, case));
-    for (module, (name, rust_size, rust_fields)) in tracer_cases
-        .chain(binary_cases)
-        .chain(film_cases)
-        .chain(raster_cases)
-    {
-        let (wgsl_size, wgsl_fields) = wgsl_layout(module, name);
-        // WGSL names the node's boxes `lo` and `hi`, the vertex attributes' padding three fields.
-        let wgsl_offsets: Vec<u32> = wgsl_fields.iter().map(|f| f.1).collect();
-        let rust_offsets: Vec<u32> = rust_fields.iter().map(|f| f.1).collect();
-        assert_eq!(wgsl_size, rust_size, "size of {name}");
-        assert!(
-            wgsl_offsets.starts_with(&rust_offsets) || rust_offsets.starts_with(&wgsl_offsets),
-            "fields of {name}: WGSL {wgsl_fields:?}, Rust {rust_fields:?}"
-        );
-    }
+    let differences: Vec<String> = [
+        same_layout::<GpuObject>(&tracer),
+        same_layout::<GpuWideNode>(&tracer),
+        same_layout::<GpuTriangle>(&tracer),
+        same_layout::<GpuTriangleShading>(&tracer),
+        same_layout::<GpuVertexAttributes>(&tracer),
+        same_layout::<GpuMaterial>(&tracer),
+        same_layout::<GpuLight>(&tracer),
+        same_layout::<GpuFrame>(&tracer),
+        same_layout::<PixelSample>(&tracer),
+        same_layout::<GpuPhoton>(&tracer),
+        same_layout::<SampleColor>(&tracer),
+        same_layout::<ProbeRay>(&tracer),
+        same_layout::<ProbeHit>(&tracer),
+        same_layout::<GpuTexture>(&tracer),
+        same_layout::<TextureProbe>(&tracer),
+        same_layout::<GpuBinaryNode>(&binary),
+        same_layout::<PixelSample>(&film),
+        same_layout::<FilmPixel>(&film),
+        same_layout::<FilmPass>(&film),
+        same_layout::<Tally>(&film),
+        same_layout::<ShowRows>(&film),
+        same_layout::<GpuProxy>(&raster),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    assert!(differences.is_empty(), "{differences:#?}");
 }
 
 /// A `width × height` image of random texels.
@@ -990,7 +865,8 @@ fn every_kind_of_texture_gives_the_cpus_colours_at_random_points() {
             point: in_cube(&mut rng, -4.0, 4.0).to_array(),
             texture: texture as u32,
             uv: [in_range(&mut rng, -2.0, 3.0), in_range(&mut rng, -2.0, 3.0)],
-            pad: [0; 2],
+            pad0: 0,
+            pad1: 0,
         })
         .collect();
     let on_gpu = texture_colors(&gpu, &gpu_scene, &probes).unwrap();
@@ -1111,7 +987,7 @@ fn every_proxy_covers_its_shape_from_random_cameras() {
         for _ in 0..2 {
             let eye = direction(&mut rng) * in_range(&mut rng, 1.5, 12.0);
             let look_at = in_cube(&mut rng, -1.0, 1.0);
-            let camera = common::camera(eye, look_at, in_range(&mut rng, 20.0, 100.0));
+            let camera = crate::common::camera(eye, look_at, in_range(&mut rng, 20.0, 100.0));
             assembled.scene.camera = camera;
             let proxy = proxy_box(&assembled.scene.geometry, 0, eye);
             let items = raster.draw(&assembled.scene, ((0, 0), SIZE)).unwrap();

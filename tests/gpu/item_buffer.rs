@@ -4,10 +4,9 @@
 //! anti-aliasing off and on. These tests need a GPU adapter: without one they fail, saying what
 //! to install (Mesa's lavapipe will do).
 
-mod common;
-
 use std::sync::Arc;
 
+use crate::gpu;
 use raylab::camera::PIXEL_CENTRE;
 use raylab::gpu::device::GpuDevice;
 use raylab::gpu::item_raster::CpuItems;
@@ -19,10 +18,6 @@ use raylab::whitted::EYE_RAY_T_MIN;
 
 const SIZE: (u32, u32) = (160, 120);
 
-fn gpu() -> Arc<GpuDevice> {
-    Arc::new(GpuDevice::new().unwrap_or_else(|e| panic!("these tests run on a GPU: {e}")))
-}
-
 /// The item buffer of `assembled`'s whole image.
 fn item_buffer(gpu: &Arc<GpuDevice>, assembled: &Assembled) -> ItemBuffer {
     let scene = &assembled.scene;
@@ -33,7 +28,7 @@ fn item_buffer(gpu: &Arc<GpuDevice>, assembled: &Assembled) -> ItemBuffer {
 
 /// Every shipped scene and SPD scene at [`SIZE`], assembled.
 fn scenes() -> Vec<(String, Assembled)> {
-    common::shipped_and_spd_scenes()
+    crate::common::shipped_and_spd_scenes()
         .into_iter()
         .map(|(name, mut scene)| {
             (scene.settings.width, scene.settings.height) = SIZE;

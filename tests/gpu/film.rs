@@ -4,6 +4,7 @@
 //! the bytes `Tone::map` gives, for every tone curve and several exposures. These tests need a
 //! GPU adapter: without one they fail, saying what to install (Mesa's lavapipe will do).
 
+use crate::gpu;
 use glam::Vec3;
 use raylab::color::Color;
 use raylab::film::Film;
@@ -12,10 +13,6 @@ use raylab::gpu::film::{FilmShow, GpuFilm};
 use raylab::gpu::tracer::PixelSample;
 use raylab::tone::{Tone, ToneCurve};
 use strum::IntoEnumIterator;
-
-fn gpu() -> GpuDevice {
-    GpuDevice::new().unwrap_or_else(|e| panic!("these tests run on a GPU: {e}"))
-}
 
 /// A small deterministic generator of colours.
 fn colour(i: u32) -> Color {

@@ -3,7 +3,7 @@
 //! that absorbs floating-point differences between machines but not a changed picture.
 //!
 //! To update the references after an intended change of the pictures:
-//! `RAYLAB_BLESS=1 cargo test --test images` writes them and fails (a blessing run never passes);
+//! `RAYLAB_BLESS=1 cargo test --test library images` writes them and fails (a blessing run never passes);
 //! look at every file, commit them, and run the tests again without `RAYLAB_BLESS`.
 
 use std::path::{Path, PathBuf};

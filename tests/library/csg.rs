@@ -4,11 +4,9 @@
 //! their line and column, the BVH against brute force, and a glass lens that focuses as
 //! thin-lens optics predicts.
 
-mod common;
-
 use std::path::Path;
 
-use common::random::{Rng, direction, in_cube, in_range};
+use crate::common::random::{Rng, direction, in_cube, in_range};
 use glam::Vec3;
 use raylab::bvh::Bvh;
 use raylab::formats::toml::parse_scene;

@@ -2,12 +2,10 @@
 //! files load, every kind of mistake is reported at its line and column, no mutation of a file
 //! makes the reader panic, and large files parse whole (how fast: `cargo bench --bench nff`).
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
-use common::fuzz::mutate;
-use common::random::Rng;
+use crate::common::fuzz::mutate;
+use crate::common::random::Rng;
 use glam::Vec3;
 use raylab::formats::nff::{NffLighting, SPD_MAX_DEPTH, load_nff, parse_nff, parse_nff_document};
 use raylab::formats::spd::Database;
