@@ -55,7 +55,7 @@ impl From<&Material> for GpuMaterial {
 }
 
 gpu_record! {
-    /// WGSL's `Light`; `kind` as its `*_LIGHT` constants.
+    /// WGSL's `Light`; `kind` is a [`LightKind`] (`LIGHT_*` in the WGSL).
     pub struct GpuLight {
         pub position: [f32; 3],
         pub kind: u32,

@@ -2,7 +2,8 @@
 //! start in the shape words, its transform, its material) and the shape words themselves, four
 //! floats each, which hold every shape's numbers and every transform. The WGSL that reads them
 //! is `shaders/shapes/`: one file per shape, each the twin of its Rust module in `src/shapes`,
-//! and `shape.wgsl`, which picks the shape by its kind and places it by its transform.
+//! and `shape.wgsl`, which places a shape by its transform; the dispatch by kind is written
+//! here, from [`ShapeKind`] ([`shapes_wgsl`]).
 
 use super::record::gpu_record;
 use strum::IntoEnumIterator;
