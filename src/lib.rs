@@ -31,7 +31,7 @@
 //!   (under the `gpu` feature) holds the GPU tracer's parts, each the twin of a CPU part above
 //!   and tested against it, the film included; [`progressive`] refines the image pass after
 //!   pass (the plan and control of any backend, the CPU sweep on all cores, the GPU sweep), each
-//!   CPU pixel sample coloured by a [`progressive::Shader`] (the shaded image is
+//!   CPU pixel sample coloured by a [`progressive::SampleColoring`] (the shaded image is
 //!   [`progressive::Shaded`]); [`formats::image`] saves it.
 //! - Looking inside: [`inspect`] records one pixel's ray tree with a tree observer and renders
 //!   debug views as shaders of the same renderer; [`compare`] measures how another image

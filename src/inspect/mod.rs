@@ -1,7 +1,7 @@
 //! Seeing inside the tracer: the ray tree of one pixel ([`trace_ray_tree`], recorded by a
 //! [`crate::whitted::TreeObserver`] of the Whitted tracer's own code, and printed as text), the
 //! object each pixel sees ([`object_ids`]), and the debug views of the whole image
-//! ([`DebugView`], a [`crate::progressive::Shader`] that the renderer refines like the shaded
+//! ([`DebugView`], a [`crate::progressive::SampleColoring`] that the renderer refines like the shaded
 //! image) with the [`Legend`]s that explain their colours. It builds on [`crate::whitted`] and
 //! [`crate::progressive`]; neither knows about it.
 

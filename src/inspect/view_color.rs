@@ -1,4 +1,4 @@
-//! The colour of one pixel sample in a debug view: a [`DebugView`] is a [`Shader`], what
+//! The colour of one pixel sample in a debug view: a [`DebugView`] is a [`SampleColoring`], what
 //! [`crate::progressive`] writes to the film for an eye ray. The first-hit views look at the eye
 //! ray's hit; the tree views trace the whole Whitted tree (the renderer's own code) with an
 //! observer that counts.
@@ -13,7 +13,7 @@ use crate::bvh::cost::{BvhCost, TraversalCost};
 use crate::color::Color;
 use crate::item_buffer::Item;
 use crate::primitive::{Hit, SurfacePoint};
-use crate::progressive::{Shaded, Shader};
+use crate::progressive::{SampleColoring, Shaded};
 use crate::ray::Ray;
 use crate::sampling::hash;
 use crate::stats::RayCounts;
@@ -24,7 +24,7 @@ pub const MISS_COLOR: Color = Color::ZERO;
 
 /// Each view's colour of the neighbouring eye rays `rays`. The shaded view is the renderer's
 /// own [`Shaded`], with the eye rays traced as one packet.
-impl Shader for DebugView {
+impl SampleColoring for DebugView {
     fn shade(
         &self,
         tracer: &Tracer,

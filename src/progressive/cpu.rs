@@ -4,7 +4,7 @@
 //! ([`crate::bvh::packet`]). A band reports its progress and statistics to the render's
 //! [`RenderControl`] as it goes, stops when cancelled from another thread, waits before it starts
 //! while paused, and marks its rows of the film as changed ([`Film::touch_rows`]). Each pixel
-//! sample is what the caller's [`Shader`] makes of its eye ray.
+//! sample is what the caller's [`SampleColoring`] makes of its eye ray.
 
 use std::ops::Range;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -12,6 +12,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use arrayvec::ArrayVec;
 use rayon::prelude::*;
 
+use super::coloring::{SampleColoring, Shaded};
 use super::control::{Cancelled, PassStats, RenderControl, RenderStats, run_plan};
 use super::pass::PassStart;
 use super::plan::{Pass, PassGrid, passes, sample_ray, unwatched_passes};
@@ -23,47 +24,12 @@ use crate::ray::Ray;
 use crate::stats::RayCounts;
 use crate::whitted::Tracer;
 
-/// What the renderer writes for the pixel samples whose eye rays it traces: the shaded image
-/// ([`Shaded`]) or another view of the scene.
-pub trait Shader: Sync {
-    /// The colours of the neighbouring eye rays `rays` (up to [`PACKET_SIZE`]), into `colors`,
-    /// counting the rays traced into `counts`. `items` holds each ray's pixel's item from the
-    /// tracer's item buffer (`None` without one).
-    fn shade(
-        &self,
-        tracer: &Tracer,
-        rays: &[Ray],
-        items: &[Option<Item>],
-        colors: &mut [Color],
-        counts: &mut RayCounts,
-    );
-}
-
-/// The shaded image: the Whitted colour of each eye ray, the eye rays traced as one packet
-/// ([`Tracer::trace_eye_packet`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Shaded;
-
-impl Shader for Shaded {
-    #[inline]
-    fn shade(
-        &self,
-        tracer: &Tracer,
-        rays: &[Ray],
-        items: &[Option<Item>],
-        colors: &mut [Color],
-        counts: &mut RayCounts,
-    ) {
-        tracer.trace_eye_packet(rays, items, colors, counts);
-    }
-}
-
 /// Traced pixels per side of a tile: a tile's eye rays go through the BVH as one packet of
 /// [`PACKET_SIZE`].
 const TILE: u32 = 8;
 const _: () = assert!((TILE * TILE) as usize == PACKET_SIZE);
 
-/// Renders `tracer`'s scene as `shader` shows it into `film` (which must have the settings'
+/// Renders `tracer`'s scene as `coloring` shows it into `film` (which must have the settings'
 /// size), pass after pass, calling `on_pass` after each. Runs on the current rayon thread pool.
 ///
 /// ```
@@ -95,7 +61,7 @@ const _: () = assert!((TILE * TILE) as usize == PACKET_SIZE);
 /// ```
 pub fn render(
     tracer: &Tracer,
-    shader: &dyn Shader,
+    coloring: &dyn SampleColoring,
     film: &Film,
     control: &RenderControl,
     on_pass: impl FnMut(&PassStats),
@@ -109,7 +75,15 @@ pub fn render(
     let start_block = settings.block_size;
     let mut shown = Vec::new();
     run_plan(&plan, control, on_pass, |pass| {
-        run_pass(tracer, shader, film, control, pass, start_block, &mut shown)
+        run_pass(
+            tracer,
+            coloring,
+            film,
+            control,
+            pass,
+            start_block,
+            &mut shown,
+        )
     })
 }
 
@@ -117,7 +91,7 @@ pub fn render(
 /// [`unwatched_passes`], the same film in the end.
 pub fn render_unwatched(
     tracer: &Tracer,
-    shader: &dyn Shader,
+    coloring: &dyn SampleColoring,
     film: &Film,
     control: &RenderControl,
 ) -> Result<RenderStats, Cancelled> {
@@ -129,7 +103,17 @@ pub fn render_unwatched(
         &plan,
         control,
         |_| {},
-        |pass| run_pass(tracer, shader, film, control, pass, start_block, &mut shown),
+        |pass| {
+            run_pass(
+                tracer,
+                coloring,
+                film,
+                control,
+                pass,
+                start_block,
+                &mut shown,
+            )
+        },
     )
 }
 
@@ -137,7 +121,7 @@ pub fn render_unwatched(
 /// has them now).
 pub fn render_pass(
     tracer: &Tracer,
-    shader: &dyn Shader,
+    coloring: &dyn SampleColoring,
     film: &Film,
     control: &RenderControl,
     pass: Pass,
@@ -145,7 +129,7 @@ pub fn render_pass(
 ) -> Result<PassStats, Cancelled> {
     run_pass(
         tracer,
-        shader,
+        coloring,
         film,
         control,
         pass,
@@ -157,7 +141,7 @@ pub fn render_pass(
 /// [`render_pass`], keeping the film's shown colours in `shown` for an anti-aliasing round.
 fn run_pass(
     tracer: &Tracer,
-    shader: &dyn Shader,
+    coloring: &dyn SampleColoring,
     film: &Film,
     control: &RenderControl,
     pass: Pass,
@@ -182,7 +166,14 @@ fn run_pass(
             let mut traced = Traced::default();
             for c in (0..columns).step_by(TILE as usize) {
                 let tile_columns = c..(c + TILE).min(columns);
-                let tile = trace_tile(tracer, shader, grid, &band_rows, tile_columns, &mut counts);
+                let tile = trace_tile(
+                    tracer,
+                    coloring,
+                    grid,
+                    &band_rows,
+                    tile_columns,
+                    &mut counts,
+                );
                 traced.pixels += tile.pixels;
                 traced.samples += tile.samples;
             }
@@ -217,13 +208,13 @@ impl Packet {
     fn trace(
         &mut self,
         tracer: &Tracer,
-        shader: &dyn Shader,
+        coloring: &dyn SampleColoring,
         grid: &PassGrid,
         counts: &mut RayCounts,
     ) {
         let mut colors = [Color::ZERO; PACKET_SIZE];
         let colors = &mut colors[..self.rays.len()];
-        shader.shade(tracer, &self.rays, &self.items, colors, counts);
+        coloring.shade(tracer, &self.rays, &self.items, colors, counts);
         for (&(x, y, sample), &color) in self.samples.iter().zip(colors.iter()) {
             if sample == 0 {
                 grid.film.fill_block(x, y, grid.step, color);
@@ -241,7 +232,7 @@ impl Packet {
 /// rays in packets of up to [`PACKET_SIZE`], and writes them to the film.
 fn trace_tile(
     tracer: &Tracer,
-    shader: &dyn Shader,
+    coloring: &dyn SampleColoring,
     grid: &PassGrid,
     rows: &Range<u32>,
     columns: Range<u32>,
@@ -265,7 +256,7 @@ fn trace_tile(
             traced.samples += u64::from(samples.len() as u32);
             for k in samples {
                 if packet.rays.is_full() {
-                    packet.trace(tracer, shader, grid, counts);
+                    packet.trace(tracer, coloring, grid, counts);
                 }
                 packet.rays.push(sample_ray(camera, grid.film, (x, y), k));
                 packet.samples.push((x, y, k));
@@ -276,7 +267,7 @@ fn trace_tile(
         }
     }
     if !packet.rays.is_empty() {
-        packet.trace(tracer, shader, grid, counts);
+        packet.trace(tracer, coloring, grid, counts);
     }
     traced
 }
@@ -286,9 +277,12 @@ pub fn render_image(tracer: &Tracer) -> (Vec<Color>, RenderStats) {
     render_image_with(tracer, &Shaded)
 }
 
-/// [`render_image`] of what `shader` shows.
-pub fn render_image_with(tracer: &Tracer, shader: &dyn Shader) -> (Vec<Color>, RenderStats) {
-    let (film, stats) = render_film_with(tracer, shader);
+/// [`render_image`] of what `coloring` shows.
+pub fn render_image_with(
+    tracer: &Tracer,
+    coloring: &dyn SampleColoring,
+) -> (Vec<Color>, RenderStats) {
+    let (film, stats) = render_film_with(tracer, coloring);
     (film.pixels(), stats)
 }
 
@@ -297,11 +291,11 @@ pub fn render_film(tracer: &Tracer) -> (Film, RenderStats) {
     render_film_with(tracer, &Shaded)
 }
 
-fn render_film_with(tracer: &Tracer, shader: &dyn Shader) -> (Film, RenderStats) {
+fn render_film_with(tracer: &Tracer, coloring: &dyn SampleColoring) -> (Film, RenderStats) {
     let settings = &tracer.scene.settings;
     let film = Film::new(settings.width, settings.height);
     let control = RenderControl::default();
-    let stats = render(tracer, shader, &film, &control, |_| {}).unwrap_or_else(|Cancelled| {
+    let stats = render(tracer, coloring, &film, &control, |_| {}).unwrap_or_else(|Cancelled| {
         unreachable!("nobody else holds this render's control, so it cannot be cancelled")
     });
     (film, stats)

@@ -13,8 +13,8 @@
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+use super::coloring::SampleColoring;
 use super::control::{Cancelled, PassStats, RenderControl, RenderStats, run_plan};
-use super::cpu::Shader;
 use super::pass::PassStart;
 use super::plan::{Pass, passes, sample_ray, unwatched_passes};
 use crate::color::Color;
@@ -132,18 +132,18 @@ impl GpuRenderer {
 
     /// Renders `tracer`'s scene (the one uploaded, with its camera and settings now) in `view`
     /// into `film` pass after pass as [`super::render`] does on the CPU, calling `on_pass`
-    /// after each. `shader` is the same view on the CPU, for the samples the driver cuts short.
+    /// after each. `coloring` is the same view on the CPU, for the samples the driver cuts short.
     /// The error says why the GPU failed.
     pub fn render(
         &self,
         tracer: &Tracer,
-        (view, shader): (GpuView, &dyn Shader),
+        (view, coloring): (GpuView, &dyn SampleColoring),
         film: &Film,
         control: &RenderControl,
         on_pass: impl FnMut(&PassStats),
     ) -> Result<Result<RenderStats, Cancelled>, String> {
         let on_gpu = GpuFilm::new(&self.gpu, film)?;
-        self.render_into(tracer, (view, shader), (film, &on_gpu), control, on_pass)
+        self.render_into(tracer, (view, coloring), (film, &on_gpu), control, on_pass)
     }
 
     /// [`Self::render`] into `on_gpu`, the film on the GPU, which a viewer on the same device
@@ -151,7 +151,7 @@ impl GpuRenderer {
     pub fn render_into(
         &self,
         tracer: &Tracer,
-        (view, shader): (GpuView, &dyn Shader),
+        (view, coloring): (GpuView, &dyn SampleColoring),
         (film, on_gpu): (&Film, &GpuFilm),
         control: &RenderControl,
         on_pass: impl FnMut(&PassStats),
@@ -164,7 +164,7 @@ impl GpuRenderer {
         );
         self.run(
             tracer,
-            (view, shader),
+            (view, coloring),
             &plan,
             (film, on_gpu),
             control,
@@ -177,7 +177,7 @@ impl GpuRenderer {
     pub fn render_unwatched(
         &self,
         tracer: &Tracer,
-        (view, shader): (GpuView, &dyn Shader),
+        (view, coloring): (GpuView, &dyn SampleColoring),
         film: &Film,
         control: &RenderControl,
     ) -> Result<Result<RenderStats, Cancelled>, String> {
@@ -186,7 +186,7 @@ impl GpuRenderer {
         let on_gpu = GpuFilm::new(&self.gpu, film)?;
         self.run(
             tracer,
-            (view, shader),
+            (view, coloring),
             &plan,
             (film, &on_gpu),
             control,
@@ -198,7 +198,7 @@ impl GpuRenderer {
     fn run(
         &self,
         tracer: &Tracer,
-        (view, shader): (GpuView, &dyn Shader),
+        (view, coloring): (GpuView, &dyn SampleColoring),
         plan: &[Pass],
         (film, on_gpu): (&Film, &GpuFilm),
         control: &RenderControl,
@@ -223,7 +223,7 @@ impl GpuRenderer {
         let stats = run_plan(plan, control, on_pass, |pass| {
             let sweep = Sweep {
                 tracer,
-                shader,
+                coloring,
                 film,
                 on_gpu,
                 items: items.as_ref(),
@@ -327,12 +327,12 @@ impl GpuRenderer {
     }
 }
 
-/// What a pass sweeps: the tracer and the CPU's shader of the view (for the samples the GPU's
+/// What a pass sweeps: the tracer and the CPU's colouring of the view (for the samples the GPU's
 /// driver cuts short), the film on the GPU and its copy, the item buffer the eye rays start
 /// from, and the control.
 struct Sweep<'a> {
     tracer: &'a Tracer<'a>,
-    shader: &'a dyn Shader,
+    coloring: &'a dyn SampleColoring,
     film: &'a Film,
     on_gpu: &'a GpuFilm,
     items: Option<&'a ItemBuffer>,
@@ -346,7 +346,7 @@ impl Sweep<'_> {
         let ray = sample_ray(&self.tracer.scene.camera, self.film, (s.x, s.y), s.k);
         let mut color = [Color::ZERO];
         let item = self.items.and_then(|items| items.at(s.x, s.y));
-        self.shader
+        self.coloring
             .shade(self.tracer, &[ray], &[item], &mut color, counts);
         color[0]
     }

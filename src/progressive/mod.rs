@@ -31,15 +31,16 @@
 //! every pixel, with all its samples under uniform sampling, in one sweep ([`unwatched_passes`],
 //! [`render_unwatched`]), and ends with the same film.
 //!
-//! Each pixel sample is what the caller's [`Shader`] makes of its eye ray: the Whitted colour
+//! Each pixel sample is what the caller's [`SampleColoring`] makes of its eye ray: the Whitted colour
 //! ([`Shaded`]), or another view of the scene (the inspector's debug views implement
-//! [`Shader`] too), refined by the same passes.
+//! [`SampleColoring`] too), refined by the same passes.
 //!
 //! The plan ([`plan`]: the passes and the samples each takes) and the control ([`control`]:
 //! cancel, pause, progress, statistics) belong to no device; [`cpu`] sweeps the passes on all
 //! of rayon's threads, the eye rays of each 8 × 8 tile traced together; [`gpu`] (with the `gpu`
 //! feature) traces the same passes' samples on the GPU.
 
+mod coloring;
 pub mod control;
 pub mod cpu;
 #[cfg(feature = "gpu")]
@@ -47,9 +48,9 @@ pub mod gpu;
 mod pass;
 pub mod plan;
 
+pub use coloring::{SampleColoring, Shaded};
 pub use control::{Cancelled, PassStats, Progress, RenderControl, RenderStats, run_plan};
 pub use cpu::{
-    Shaded, Shader, render, render_film, render_image, render_image_with, render_pass,
-    render_unwatched,
+    render, render_film, render_image, render_image_with, render_pass, render_unwatched,
 };
 pub use plan::{Pass, decision_reach, memory_bytes, passes, traces_pixel, unwatched_passes};

@@ -22,7 +22,7 @@ use raylab::gpu::frame::{GpuView, ViewKind};
 use raylab::inspect::DebugView;
 use raylab::progressive::gpu::GpuRenderer;
 use raylab::progressive::{
-    RenderControl, RenderStats, Shaded, Shader, render_image, render_image_with,
+    RenderControl, RenderStats, SampleColoring, Shaded, render_image, render_image_with,
 };
 use raylab::render::{FirstHit, assemble};
 use raylab::scene::Scene;
@@ -202,7 +202,7 @@ pub fn gpu_render(renderer: &GpuRenderer, tracer: &Tracer) -> (Vec<u8>, RenderSt
 fn gpu_render_view(
     renderer: &GpuRenderer,
     tracer: &Tracer,
-    view: (GpuView, &dyn Shader),
+    view: (GpuView, &dyn SampleColoring),
 ) -> (Vec<u8>, RenderStats) {
     let settings = &tracer.scene.settings;
     let film = Film::new(settings.width, settings.height);

@@ -8,8 +8,8 @@ use raylab::color::{Color, to_srgb8};
 use raylab::film::Film;
 use raylab::item_buffer::Item;
 use raylab::progressive::{
-    self, Cancelled, Pass, RenderControl, RenderStats, Shaded, Shader, passes, traces_pixel,
-    unwatched_passes,
+    self, Cancelled, Pass, RenderControl, RenderStats, SampleColoring, Shaded, passes,
+    traces_pixel, unwatched_passes,
 };
 use raylab::ray::Ray;
 use raylab::sampling::jitter;
@@ -361,7 +361,7 @@ fn adaptive_pixels_at_the_cap_are_the_uniform_renders_and_the_rest_the_one_sampl
 /// direction, black left of it.
 struct Edge;
 
-impl Shader for Edge {
+impl SampleColoring for Edge {
     fn shade(
         &self,
         tracer: &Tracer,
