@@ -72,19 +72,7 @@ pub fn render(
         settings.samples,
         settings.aa_threshold > 0.0,
     );
-    let start_block = settings.block_size;
-    let mut shown = Vec::new();
-    run_plan(&plan, control, on_pass, |pass| {
-        run_pass(
-            tracer,
-            coloring,
-            film,
-            control,
-            pass,
-            start_block,
-            &mut shown,
-        )
-    })
+    run_passes(tracer, coloring, film, control, &plan, on_pass)
 }
 
 /// [`render`] for a film nobody looks at before it is finished (a render to a file): the
@@ -97,24 +85,32 @@ pub fn render_unwatched(
 ) -> Result<RenderStats, Cancelled> {
     let settings = &tracer.scene.settings;
     let plan = unwatched_passes(settings.samples, settings.aa_threshold > 0.0);
-    let start_block = settings.block_size;
+    run_passes(tracer, coloring, film, control, &plan, |_| {})
+}
+
+/// Runs the passes of `plan` one after another, the block passes starting from the settings'
+/// block size, calling `on_pass` after each.
+fn run_passes(
+    tracer: &Tracer,
+    coloring: &dyn SampleColoring,
+    film: &Film,
+    control: &RenderControl,
+    plan: &[Pass],
+    on_pass: impl FnMut(&PassStats),
+) -> Result<RenderStats, Cancelled> {
+    let start_block = tracer.scene.settings.block_size;
     let mut shown = Vec::new();
-    run_plan(
-        &plan,
-        control,
-        |_| {},
-        |pass| {
-            run_pass(
-                tracer,
-                coloring,
-                film,
-                control,
-                pass,
-                start_block,
-                &mut shown,
-            )
-        },
-    )
+    run_plan(plan, control, on_pass, |pass| {
+        run_pass(
+            tracer,
+            coloring,
+            film,
+            control,
+            pass,
+            start_block,
+            &mut shown,
+        )
+    })
 }
 
 /// Runs one pass over the whole image (an anti-aliasing round compares the pixels as the film
