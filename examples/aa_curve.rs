@@ -14,9 +14,9 @@
 use std::path::Path;
 
 use image::{Rgb, RgbImage};
+use raylab::backend::{Backend, RenderError};
 use raylab::color::{Color, to_srgb8};
 use raylab::formats::load_any;
-use raylab::progressive::render_image;
 use raylab::render::assemble;
 
 /// The sample caps measured.
@@ -53,21 +53,23 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let mut scene = load_any("assets/scenes/default.toml")?;
     (scene.settings.width, scene.settings.height) = (width, height);
     let assembled = assemble(scene)?;
-    let render = |samples, aa_threshold| {
+    let mut backend = Backend::on_all_cores()?;
+    let mut render = |samples, aa_threshold| {
         let mut assembled = assembled.clone();
         let settings = &mut assembled.scene.settings;
         (settings.samples, settings.aa_threshold) = (samples, aa_threshold);
-        render_image(&assembled.tracer())
+        let (film, stats) = backend.render_image(&assembled)?;
+        Ok::<_, RenderError>((film.pixels(), stats))
     };
     eprintln!("the {REFERENCE_SAMPLES}-spp reference at {width}×{height}…");
-    let (reference, _) = render(REFERENCE_SAMPLES, 0.0);
+    let (reference, _) = render(REFERENCE_SAMPLES, 0.0)?;
     let reference = to_srgb8(&reference);
     println!("| aa_threshold | cap (spp) | eye rays / pixel | rays (M) | time (s) | RMSE |");
     println!("|---|---|---|---|---|---|");
     let mut points = Vec::new();
     for threshold in THRESHOLDS {
         for cap in CAPS {
-            let (image, stats) = render(cap, threshold);
+            let (image, stats) = render(cap, threshold)?;
             let point = Point {
                 threshold,
                 cap,

@@ -8,12 +8,12 @@
 use std::path::Path;
 
 use glam::Vec3;
+use raylab::backend::Backend;
 use raylab::camera::{Camera, CameraSpec};
 use raylab::color::Color;
 use raylab::formats::image::save_image;
 use raylab::light::Light;
 use raylab::material::Material;
-use raylab::progressive::render_image;
 use raylab::render::assemble;
 use raylab::scene::Scene;
 use raylab::settings::RenderSettings;
@@ -74,11 +74,11 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     });
 
     let assembled = assemble(scene)?;
-    let (pixels, _) = render_image(&assembled.tracer());
+    let (film, _) = Backend::on_all_cores()?.render_image(&assembled)?;
     let out = std::env::args()
         .nth(1)
         .unwrap_or("scene_in_code.png".into());
-    save_image(Path::new(&out), 320, 240, &pixels)?;
+    save_image(Path::new(&out), 320, 240, &film.pixels())?;
     println!("wrote {out}");
     Ok(())
 }

@@ -36,10 +36,14 @@
 //! - Looking inside: [`inspect`] records one pixel's ray tree with a tree observer and renders
 //!   debug views as shaders of the same renderer; [`compare`] measures how another image
 //!   differs from raylab's. Nothing above depends on them.
+//! - Where the back ends meet: [`backend`] runs a render's passes on the CPU or on the GPU, with
+//!   first hits from the rays or the item buffer, in any of [`inspect`]'s views; every program
+//!   renders through it, and nothing else chooses between the tracers.
 //!
 //! Nothing here knows about windows, and only [`gpu`] about GPUs.
 
 pub mod aabb;
+pub mod backend;
 pub mod bvh;
 pub mod camera;
 pub mod color;

@@ -14,20 +14,18 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use clap::Args;
+use raylab::backend::{Backend, RenderError};
 use raylab::bvh::Bvh;
 use raylab::color::Color;
 use raylab::film::Film;
 use raylab::formats::load_any;
 use raylab::formats::toml::default_scene;
 use raylab::gpu::bvh::NodeLayout;
-use raylab::gpu::device::GpuDevice;
-use raylab::gpu::frame::GpuView;
-use raylab::gpu::item_raster::CpuItems;
+use raylab::inspect::DebugView;
 use raylab::large_mesh::{bumpy_sphere_scene, check_bumpy_triangles};
 use raylab::output::{check_writable, write_atomically};
 use raylab::photon::{Caustics, PhotonMap};
-use raylab::progressive::gpu::GpuRenderer;
-use raylab::progressive::{self, RenderControl, RenderStats, Shaded};
+use raylab::progressive::{RenderControl, RenderStats};
 use raylab::render::{Assembled, Device, FirstHit};
 use raylab::scene::Scene;
 use raylab::whitted::Tracer;
@@ -94,43 +92,36 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
         check_writable(path).map_err(|e| format!("{}: {e}", path.display()))?;
     }
     let pool = super::thread_pool(args.threads)?;
-    let gpu = match args.device {
+    let mut backend = Backend::new(Arc::clone(&pool));
+    backend.set_device(args.device);
+    backend.set_first_hit(args.first_hit);
+    backend.set_gpu_nodes(args.gpu_nodes);
+    let device = match args.device {
         Device::Cpu if args.gpu_nodes != NodeLayout::default() => {
             return Err("--gpu-nodes lays out the GPU's BVH: add --device gpu".into());
         }
-        Device::Cpu => None,
+        Device::Cpu => format!("{} threads", pool.current_num_threads()),
         Device::Gpu if args.scaling => {
             return Err("--scaling measures the CPU's threads: leave out --device gpu".into());
         }
         Device::Gpu => {
-            let device = Arc::new(GpuDevice::new()?);
-            eprintln!("{}", super::compiling_notice(&device));
-            Some(device)
+            let gpu = backend.gpu().map_err(|e| e.to_string())?;
+            eprintln!("{}", super::compiling_notice(&gpu));
+            match args.gpu_nodes {
+                NodeLayout::Wide => format!("gpu: {}", gpu.name()),
+                nodes => format!("gpu: {}; BVH nodes: {nodes}", gpu.name()),
+            }
         }
     };
-    // The CPU tracer's item buffers are drawn on a GPU of their own; the GPU tracer draws its
-    // own.
-    let raster_gpu = match (args.first_hit, args.device) {
-        (FirstHit::Raster, Device::Cpu) => Some(super::item_buffer_gpu("--first-hit raster")?),
-        _ => None,
-    };
-    let single = if args.scaling {
-        Some(super::thread_pool(Some(1))?)
-    } else {
-        None
+    // With --scaling, the same renders on one thread.
+    let mut single = match args.scaling {
+        true => Some(Backend::new(super::thread_pool(Some(1))?)),
+        false => None,
     };
     let names: Vec<String> = if args.scenes.is_empty() {
         STANDARD_SCENES.iter().map(|s| s.to_string()).collect()
     } else {
         args.scenes.clone()
-    };
-    let threads = pool.current_num_threads();
-    let device = match &gpu {
-        Some(gpu) if args.gpu_nodes != NodeLayout::default() => {
-            format!("gpu: {}; BVH nodes: {}", gpu.name(), args.gpu_nodes)
-        }
-        Some(gpu) => format!("gpu: {}", gpu.name()),
-        None => format!("{threads} threads"),
     };
     super::print_out(|out| {
         writeln!(out, "{}×{} pixels, {device}", args.size.0, args.size.1)?;
@@ -138,11 +129,11 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
     })?;
     let mut results = Vec::new();
     for name in &names {
-        let devices = (gpu.as_ref(), raster_gpu.as_ref());
-        let result = bench_scene(name, &args, &pool, single.as_ref(), devices)?;
+        let result = bench_scene(name, &args, &mut backend, single.as_mut())?;
         super::print_out(|out| bench_report::write_row(out, &result))?;
         results.push(result);
     }
+    let threads = pool.current_num_threads();
     if let Some(path) = &args.json {
         let json = bench_report::to_json(&results, args.size, threads);
         write_atomically(path, |e| e, |out| out.write_all(json.as_bytes()))
@@ -172,15 +163,15 @@ fn load(name: &str, (width, height): (u32, u32)) -> Result<Scene, String> {
 fn bench_scene(
     name: &str,
     args: &BenchArgs,
-    pool: &rayon::ThreadPool,
-    single: Option<&rayon::ThreadPool>,
-    (gpu, raster_gpu): (Option<&Arc<GpuDevice>>, Option<&Arc<GpuDevice>>),
+    backend: &mut Backend,
+    mut single: Option<&mut Backend>,
 ) -> Result<BenchResult, String> {
     reset_peak_rss();
     let start = Instant::now();
     let scene = load(name, args.size)?;
     let setup = start.elapsed();
     // The render's BVH is the first of the `--repeat` builds timed.
+    let pool = backend.pool();
     let mut assembled = pool.install(|| Assembled::without_caustics(scene));
     let mut builds = vec![assembled.bvh_time];
     for _ in 1..args.repeat {
@@ -191,49 +182,55 @@ fn bench_scene(
     let caustics = match assembled.scene.settings.caustic_photons {
         0 => None,
         _ => {
-            let (map, bench) = bench_caustics(&assembled.tracer(), args, pool, single)?;
+            let (map, bench) = bench_caustics(
+                &assembled.tracer(),
+                args,
+                pool,
+                single.as_ref().map(|s| &**s.pool()),
+            )?;
             assembled.caustics = Some(Arc::new(map));
             Some(bench)
         }
     };
-    let gpu_renderer = match gpu {
-        Some(gpu) => {
-            let mut renderer = GpuRenderer::with_nodes(Arc::clone(gpu), &assembled, args.gpu_nodes)
-                .map_err(|e| format!("{name}: {e}"))?;
-            renderer.set_first_hit(args.first_hit);
-            Some(renderer)
-        }
-        None => None,
-    };
-    let (first_hits, items) = match raster_gpu {
-        Some(raster_gpu) => {
-            let raster = CpuItems::new(Arc::clone(raster_gpu), &assembled)
-                .map_err(|e| format!("{name}: {e}"))?;
+    let view = DebugView::Shaded;
+    let failed = |e| format!("{name}: {}", super::explain(e, view, args.first_hit));
+    backend.prepare(&assembled, view).map_err(failed)?;
+    // The CPU tracer's item buffers are drawn on the GPU before its render; the GPU tracer
+    // draws its own within its render.
+    let first_hits = match (args.first_hit, backend.device()) {
+        (FirstHit::Raster, Device::Cpu) => {
+            let size = (
+                assembled.scene.settings.width,
+                assembled.scene.settings.height,
+            );
+            let pool = Arc::clone(backend.pool());
+            let mut draw = || match backend.item_buffer(&assembled, ((0, 0), size)) {
+                Ok(Some(items)) => Ok(items),
+                Ok(None) => Err(format!("{name}: no item buffer was drawn")),
+                Err(e) => Err(failed(e)),
+            };
             let tracer = assembled.tracer();
-            let (bench, items) =
-                pool.install(|| bench_first_hits(&tracer, &raster, args.repeat))?;
-            (Some(bench), Some(items))
+            Some(pool.install(|| bench_first_hits(&tracer, &mut draw, args.repeat))?)
         }
-        None => (None, None),
+        _ => None,
     };
-    let tracer = assembled.tracer().with_item_buffer(items.as_ref());
-    let plain = tracer.with_caustics(None);
     let (mut renders, mut first_passes, mut single_renders) = (Vec::new(), Vec::new(), Vec::new());
     let mut renders_off = Vec::new();
     let mut rays = Default::default();
+    let plain = Assembled {
+        caustics: None,
+        ..assembled.clone()
+    };
     for _ in 0..args.repeat {
         if caustics.is_some() {
-            renders_off.push(pool.install(|| progressive::render_image(&plain)).1.time);
+            renders_off.push(render(backend, &plain).map_err(failed)?.time);
         }
-        let stats = match &gpu_renderer {
-            Some(renderer) => render_on_gpu(renderer, &tracer)?,
-            None => pool.install(|| progressive::render_image(&tracer)).1,
-        };
+        let stats = render(backend, &assembled).map_err(failed)?;
         renders.push(stats.time);
         first_passes.push(stats.passes.first().map_or(Duration::ZERO, |p| p.time));
         rays = stats.rays;
-        if let Some(single) = single {
-            single_renders.push(single.install(|| progressive::render_image(&tracer)).1.time);
+        if let Some(single) = single.as_deref_mut() {
+            single_renders.push(render(single, &assembled).map_err(failed)?.time);
         }
     }
     Ok(BenchResult {
@@ -255,15 +252,12 @@ fn bench_scene(
     })
 }
 
-/// Renders `tracer`'s scene on the GPU pass after pass, as [`progressive::render_image`] does
-/// on the CPU.
-fn render_on_gpu(renderer: &GpuRenderer, tracer: &Tracer) -> Result<RenderStats, String> {
-    let settings = &tracer.scene.settings;
+/// Renders `assembled`'s scene with `backend` pass after pass, as the viewer does.
+fn render(backend: &mut Backend, assembled: &Assembled) -> Result<RenderStats, RenderError> {
+    let settings = &assembled.scene.settings;
     let film = Film::new(settings.width, settings.height);
     let control = RenderControl::default();
-    renderer
-        .render(tracer, (GpuView::Shaded, &Shaded), &film, &control, |_| {})?
-        .map_err(|_| "the render was cancelled".to_string())
+    backend.render(assembled, DebugView::Shaded, (&film, &control), |_| {})
 }
 
 /// How many estimates the gather cost is the mean of.

@@ -10,7 +10,6 @@ use arrayvec::ArrayVec;
 use raylab::bvh::cost::BvhCost;
 use raylab::bvh::packet::PACKET_SIZE;
 use raylab::camera::PIXEL_CENTRE;
-use raylab::gpu::item_raster::CpuItems;
 use raylab::item_buffer::{Item, ItemBuffer, far_limit};
 use raylab::ray::Ray;
 use raylab::stats::RayCounts;
@@ -36,20 +35,20 @@ pub struct FirstHitBench {
     pub first_hits_raster: Duration,
 }
 
-/// Draws `tracer`'s item buffer with `raster` and times the first hits with and without it,
-/// `repeat` times each, on the current thread pool. Returns the measures and the item buffer.
+/// Draws `tracer`'s item buffer with `draw` and times the first hits with and without it,
+/// `repeat` times each, on the current thread pool.
 pub fn bench_first_hits(
     tracer: &Tracer,
-    raster: &CpuItems,
+    draw: &mut (dyn FnMut() -> Result<ItemBuffer, String> + Send),
     repeat: usize,
-) -> Result<(FirstHitBench, ItemBuffer), String> {
+) -> Result<FirstHitBench, String> {
     let scene = tracer.scene;
     let size = (scene.settings.width, scene.settings.height);
     let mut raster_times = Vec::new();
     let mut items = None;
     for _ in 0..repeat {
         let started = Instant::now();
-        items = Some(raster.draw(scene, ((0, 0), size))?);
+        items = Some(draw()?);
         raster_times.push(started.elapsed());
     }
     let items = items.ok_or("--repeat must be at least 1")?;
@@ -70,7 +69,7 @@ pub fn bench_first_hits(
         first_hits_rays: median(rays_times),
         first_hits_raster: median(raster_first_hits),
     };
-    Ok((bench, items))
+    Ok(bench)
 }
 
 /// The eye ray through the centre of pixel (x, y) of `tracer`'s image.

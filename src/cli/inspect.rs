@@ -4,10 +4,10 @@ use std::io::Write;
 
 use clap::Args;
 
+use raylab::backend::Backend;
 use raylab::formats::SceneFormat;
 use raylab::formats::nff::NffLighting;
-use raylab::gpu::item_raster::CpuItems;
-use raylab::inspect::trace_ray_tree;
+use raylab::inspect::{DebugView, trace_ray_tree};
 use raylab::render::{FirstHit, assemble};
 use raylab::settings::SettingsOverrides;
 
@@ -60,15 +60,11 @@ pub fn run(args: InspectArgs) -> Result<(), String> {
         ));
     }
     let assembled = assemble(scene)?;
-    let items = match args.first_hit {
-        FirstHit::Rays => None,
-        FirstHit::Raster => {
-            let flag = "--first-hit raster";
-            let raster = CpuItems::new(super::item_buffer_gpu(flag)?, &assembled)
-                .map_err(|e| format!("{flag}: {e}"))?;
-            Some(raster.draw(&assembled.scene, ((0, 0), (width, height)))?)
-        }
-    };
+    let mut backend = Backend::new(super::thread_pool(None)?);
+    backend.set_first_hit(args.first_hit);
+    let items = backend
+        .item_buffer(&assembled, ((0, 0), (width, height)))
+        .map_err(|e| super::explain(e, DebugView::Shaded, args.first_hit))?;
     let tracer = assembled.tracer().with_item_buffer(items.as_ref());
     let tree = trace_ray_tree(&tracer, x, y);
     let text = if args.json {

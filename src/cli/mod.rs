@@ -24,13 +24,15 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use clap::{Parser, Subcommand};
+use raylab::backend::{GpuUse, RenderError};
 use raylab::compare::difference::Difference;
 use raylab::formats::image::save_image;
 use raylab::formats::nff::NffLighting;
 use raylab::formats::toml::default_scene;
 use raylab::formats::{SceneFormat, camera_file_beside, load_any_as};
 use raylab::gpu::device::GpuDevice;
-use raylab::inspect::Legend;
+use raylab::inspect::{DebugView, Legend};
+use raylab::render::FirstHit;
 use raylab::scene::Scene;
 
 #[derive(Parser, Debug)]
@@ -158,12 +160,27 @@ fn load_scene(
     Ok(scene)
 }
 
-/// The GPU that draws the item buffer `flag` asks for; the error says that it needs one, and
-/// what to install.
-fn item_buffer_gpu(flag: &str) -> Result<Arc<GpuDevice>, String> {
-    GpuDevice::new()
-        .map(Arc::new)
-        .map_err(|e| format!("{flag} draws the item buffer on the GPU: {e}"))
+/// What the command line says when a render of `view` with first hits found by `first_hit`
+/// does not come: the flags that asked for what could not be done.
+fn explain(error: RenderError, view: DebugView, first_hit: FirstHit) -> String {
+    let items_flag = match first_hit {
+        FirstHit::Raster => "--first-hit raster".to_string(),
+        FirstHit::Rays => format!("--view {view}"),
+    };
+    match error {
+        RenderError::ViewOnCpuOnly(view) => {
+            format!("--view {view} traces on the CPU only: leave out --device gpu")
+        }
+        RenderError::NoGpu {
+            needed_for: GpuUse::ItemBuffer,
+            why,
+        } => format!("{items_flag} draws the item buffer on the GPU: {why}"),
+        RenderError::NotOnGpu {
+            needed_for: GpuUse::ItemBuffer,
+            why,
+        } => format!("{items_flag}: {why}"),
+        error => error.to_string(),
+    }
 }
 
 /// The size of a legend's colour bar image.
@@ -204,10 +221,11 @@ fn median(mut times: Vec<Duration>) -> Duration {
 }
 
 /// A rayon pool of `threads` workers (default: one per core).
-fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, String> {
+fn thread_pool(threads: Option<usize>) -> Result<Arc<rayon::ThreadPool>, String> {
     rayon::ThreadPoolBuilder::new()
         .num_threads(thread_count(threads)?)
         .build()
+        .map(Arc::new)
         .map_err(|e| format!("cannot start worker threads: {e}"))
 }
 

@@ -6,26 +6,24 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::mpsc::{self, RecvTimeoutError};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
+use raylab::backend::Backend;
 use raylab::film::Film;
 use raylab::formats::SceneFormat;
 use raylab::formats::image::{OutputFormat, check_image_path, save_toned_pixels};
 use raylab::formats::nff::NffLighting;
 use raylab::formats::part::{PartInfo, scene_hash, write_part};
-use raylab::gpu::device::GpuDevice;
-use raylab::gpu::item_raster::CpuItems;
 use raylab::inspect::DebugView;
 use raylab::memory;
-use raylab::progressive::gpu::GpuRenderer;
 use raylab::progressive::{self, RenderControl, RenderStats};
 use raylab::render::{Assembled, Device, FirstHit, assemble};
 use raylab::settings::{RenderSettings, SettingsOverrides};
 use raylab::tiles::Rect;
 use raylab::tone::{Tone, ToneCurve};
-use raylab::whitted::{RAY_BUDGET, Tracer};
+use raylab::whitted::RAY_BUDGET;
 
 use super::jobs::{self, TileArgs};
 use super::overrides::OverrideArgs;
@@ -171,32 +169,16 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     )?;
 
     let mut assembled = pool.install(|| assemble(scene))?;
-    let gpu = match args.device {
-        Device::Cpu => None,
-        Device::Gpu => {
-            args.view.on_gpu(&assembled.tracer()).map_err(|_| {
-                format!(
-                    "--view {} traces on the CPU only: leave out --device gpu",
-                    args.view
-                )
-            })?;
-            let device = Arc::new(GpuDevice::new()?);
-            eprintln!("{}", super::compiling_notice(&device));
-            let mut renderer = GpuRenderer::new(device, &assembled)?;
-            renderer.set_first_hit(args.first_hit);
-            Some(renderer)
-        }
-    };
-    // The GPU tracer draws its own item buffers.
-    let raster = match &gpu {
-        Some(_) => None,
-        None => item_raster(args.first_hit, args.view, &assembled)?,
-    };
-    let mut raster_time = Duration::ZERO;
-    let backend = match &gpu {
-        Some(renderer) => Backend::Gpu(renderer),
-        None => Backend::Cpu(&pool),
-    };
+    let mut backend = Backend::new(Arc::clone(&pool));
+    backend.set_device(args.device);
+    backend.set_first_hit(args.first_hit);
+    if args.device == Device::Gpu {
+        let gpu = backend.gpu().map_err(|e| e.to_string())?;
+        eprintln!("{}", super::compiling_notice(&gpu));
+    }
+    backend
+        .prepare(&assembled, args.view)
+        .map_err(|e| super::explain(e, args.view, args.first_hit))?;
     let legend = args.view.legend(&assembled.tracer());
     let legend_path = super::legend_path(&outputs[0]);
     if legend.is_some() {
@@ -208,23 +190,12 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     let mut written = Vec::new();
     for (k, (camera, output)) in cameras.iter().zip(&outputs).enumerate() {
         assembled.scene.camera = *camera;
-        let items = match &raster {
-            Some(raster) => {
-                let started = Instant::now();
-                let film = ((traced.x0, traced.y0), (traced.width(), traced.height()));
-                let items = raster.draw(&assembled.scene, film)?;
-                raster_time += started.elapsed();
-                Some(items)
-            }
-            None => None,
-        };
-        let tracer = assembled.tracer().with_item_buffer(items.as_ref());
-        let scene = tracer.scene;
         let done = per_frame * k as u64;
-        let frame = render_frame(&tracer, &args.view, traced, &backend, |traced| {
+        let rendered = render_frame(&assembled, args.view, traced, &mut backend, |traced| {
             bar.set_position(done + traced)
-        })
-        .and_then(|(film, frame_stats)| {
+        });
+        let scene = &assembled.scene;
+        let frame = rendered.and_then(|(film, frame_stats)| {
             match job.window {
                 Some((rect, tile)) => {
                     let info = PartInfo {
@@ -254,6 +225,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
                 bar.set_position(done + per_frame);
                 stats.rays += frame_stats.rays;
                 stats.time += frame_stats.time;
+                stats.raster_time += frame_stats.raster_time;
             }
             Err(e) => {
                 // No partial sequence: the frames written so far go too.
@@ -290,7 +262,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
                 &assembled.scene.settings,
                 &stats,
                 assembled.bvh_time,
-                &backend.name(),
+                backend.label(),
                 &args.output
             )
         )?;
@@ -301,8 +273,8 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
                 stats.rays.from_item_buffer, stats.rays.primary,
             )?;
             // The GPU tracer's raster pass is part of its render.
-            if raster.is_some() {
-                let ms = raster_time.as_secs_f64() * 1e3;
+            if stats.raster_time > Duration::ZERO {
+                let ms = stats.raster_time.as_secs_f64() * 1e3;
                 write!(out, " (raster pass and read-back: {ms:.1} ms)")?;
             }
             writeln!(out)?;
@@ -323,65 +295,26 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     })
 }
 
-/// The item buffer's raster pass over `assembled`'s scene, where the first hits come from it or
-/// the view shows it; the error says that it needs a GPU, and what to install.
-fn item_raster(
-    first_hit: FirstHit,
-    view: DebugView,
-    assembled: &Assembled,
-) -> Result<Option<CpuItems>, String> {
-    let flag = match (first_hit, view) {
-        (FirstHit::Raster, _) => "--first-hit raster",
-        (_, DebugView::ItemBuffer) => "--view item-buffer",
-        _ => return Ok(None),
-    };
-    CpuItems::new(super::item_buffer_gpu(flag)?, assembled)
-        .map(Some)
-        .map_err(|e| format!("{flag}: {e}"))
-}
-
-/// What traces the frames: the CPU's threads or the GPU.
-enum Backend<'a> {
-    Cpu(&'a rayon::ThreadPool),
-    Gpu(&'a GpuRenderer),
-}
-
-impl Backend<'_> {
-    /// The device as the summary names it: `cpu: N threads` or `gpu: ADAPTER (BACKEND)`.
-    fn name(&self) -> String {
-        match self {
-            Backend::Cpu(pool) => format!("cpu: {} threads", pool.current_num_threads()),
-            Backend::Gpu(renderer) => format!("gpu: {}", renderer.gpu().name()),
-        }
-    }
-}
-
-/// Renders the pixels `window` of an image with `tracer` (its scene, on the GPU), telling
+/// Renders the pixels `window` of an image of `assembled`'s scene with `backend`, telling
 /// `progress` the pixels traced so far now and then.
 fn render_frame(
-    tracer: &Tracer,
-    view: &DebugView,
+    assembled: &Assembled,
+    view: DebugView,
     window: Rect,
-    backend: &Backend,
+    backend: &mut Backend,
     progress: impl Fn(u64),
 ) -> Result<(Film, RenderStats), String> {
-    let settings = &tracer.scene.settings;
+    let first_hit = backend.first_hit();
+    let settings = &assembled.scene.settings;
     let film = Film::window(settings.width, settings.height, window);
     let control = RenderControl::default();
     let stats = std::thread::scope(|s| {
         // Nobody sees the coarse passes: the film is traced in one sweep. The bar moves every
         // 50 ms, and the render's end wakes this thread at once rather than at the next tick.
         let (done, finished) = mpsc::channel();
-        let (film, control) = (&film, &control);
+        let target = (&film, &control);
         let render = s.spawn(move || {
-            let stats = match backend {
-                Backend::Cpu(pool) => {
-                    Ok(pool.install(|| progressive::render_unwatched(tracer, view, film, control)))
-                }
-                Backend::Gpu(renderer) => view.on_gpu(tracer).and_then(|on_gpu| {
-                    renderer.render_unwatched(tracer, (on_gpu, view), film, control)
-                }),
-            };
+            let stats = backend.render_unwatched(assembled, view, target);
             // Should this thread panic instead, dropping `done` ends the wait too.
             let _ = done.send(());
             stats
@@ -391,8 +324,8 @@ fn render_frame(
         }
         render.join()
     })
-    .map_err(|_| "the renderer crashed".to_string())??
-    .map_err(|_| "the render was cancelled".to_string())?;
+    .map_err(|_| "the renderer crashed".to_string())?
+    .map_err(|e| super::explain(e, view, first_hit))?;
     Ok((film, stats))
 }
 

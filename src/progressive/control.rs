@@ -27,6 +27,9 @@ pub struct RenderStats {
     pub passes: Vec<PassStats>,
     pub rays: RayCounts,
     pub time: Duration,
+    /// The item buffer's raster pass and read-back before the render, when the CPU's eye rays
+    /// start from it (not in `time`; the GPU tracer's raster pass is part of its render).
+    pub raster_time: Duration,
 }
 
 impl RenderStats {

@@ -172,23 +172,22 @@ impl GpuRenderer {
         )
     }
 
-    /// [`Self::render`] for a film nobody looks at before it is finished, as
+    /// [`Self::render_into`] for a film nobody looks at before it is finished, as
     /// [`super::render_unwatched`].
     pub fn render_unwatched(
         &self,
         tracer: &Tracer,
         (view, coloring): (GpuView, &dyn SampleColoring),
-        film: &Film,
+        (film, on_gpu): (&Film, &GpuFilm),
         control: &RenderControl,
     ) -> Result<Result<RenderStats, Cancelled>, String> {
         let settings = &tracer.scene.settings;
         let plan = unwatched_passes(settings.samples, settings.aa_threshold > 0.0);
-        let on_gpu = GpuFilm::new(&self.gpu, film)?;
         self.run(
             tracer,
             (view, coloring),
             &plan,
-            (film, &on_gpu),
+            (film, on_gpu),
             control,
             |_| {},
         )

@@ -38,7 +38,8 @@
 //! The plan ([`plan`]: the passes and the samples each takes) and the control ([`control`]:
 //! cancel, pause, progress, statistics) belong to no device; [`cpu`] sweeps the passes on all
 //! of rayon's threads, the eye rays of each 8 × 8 tile traced together; [`gpu`] (with the `gpu`
-//! feature) traces the same passes' samples on the GPU.
+//! feature) traces the same passes' samples on the GPU. A program chooses between them in
+//! one place, [`crate::backend`].
 
 mod coloring;
 pub mod control;

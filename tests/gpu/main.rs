@@ -1,5 +1,5 @@
 //! The GPU tracer against the CPU tracer on the same input: each shape's hits, the film, the
-//! item buffer's first hits and whole images. The tests need a Vulkan, Metal or DX12 adapter
+//! item buffer's first hits, whole images, and the backend that chooses between them. The tests need a Vulkan, Metal or DX12 adapter
 //! (Mesa's software Vulkan, lavapipe, is enough); without one they fail, saying what to install.
 
 use std::sync::{Arc, OnceLock};
@@ -9,6 +9,7 @@ use raylab::gpu::device::GpuDevice;
 #[path = "../common/mod.rs"]
 mod common;
 
+mod backend;
 mod film;
 mod images;
 mod item_buffer;

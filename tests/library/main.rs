@@ -10,6 +10,7 @@ mod camera;
 mod caustics;
 mod csg;
 mod debug_views;
+mod device_seam;
 mod fog;
 mod fuzz_corpus;
 mod images;

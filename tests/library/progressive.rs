@@ -566,3 +566,37 @@ fn a_window_grown_by_the_decision_reach_renders_its_pixels_as_the_whole_image() 
         "the windows' edges matter without a margin"
     );
 }
+
+/// The backend on the CPU runs the CPU sweep: the same passes and the same film, watched or
+/// not, and says what it ran on.
+#[test]
+fn a_backend_on_the_cpu_renders_the_passes_and_film_of_the_cpu_sweep() {
+    use raylab::backend::Backend;
+    use raylab::inspect::DebugView;
+    use raylab::render::assemble;
+
+    let mut scene = crate::common::spheres_on_a_floor(48, 32);
+    scene.settings.block_size = 8;
+    let assembled = assemble(scene).unwrap();
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build();
+    let mut backend = Backend::new(std::sync::Arc::new(pool.unwrap()));
+    let (expected, expected_stats) = progressive::render_image(&assembled.tracer());
+    let (film, control) = (Film::new(48, 32), RenderControl::default());
+    let mut passes = Vec::new();
+    let stats = backend
+        .render(&assembled, DebugView::Shaded, (&film, &control), |p| {
+            passes.push(p.pass)
+        })
+        .unwrap();
+    let expected_passes: Vec<_> = expected_stats.passes.iter().map(|p| p.pass).collect();
+    assert_eq!(passes, expected_passes);
+    assert_eq!(stats.rays, expected_stats.rays);
+    assert!(film.pixels() == expected, "the watched render's film");
+    let (unwatched, unwatched_stats) = backend.render_image(&assembled).unwrap();
+    assert!(
+        unwatched.pixels() == expected,
+        "the unwatched render's film"
+    );
+    assert_eq!(unwatched_stats.passes.len(), 1);
+    assert_eq!(backend.label(), "cpu: 2 threads");
+}

@@ -9,10 +9,19 @@ use raylab::formats::nff::NffLighting;
 use raylab::progressive::render_image;
 use raylab::render::assemble;
 
-/// Each SPD generator, at the size of the reference.
-const SCENES: [&str; 7] = [
-    "balls-2", "gears-2", "mount-6", "rings-7", "teapot-6", "tetra-6", "tree-6",
+/// Each SPD generator raylab has built in (`spd:NAME:SIZE`), at the size of the reference, and
+/// the files of `tests/nff/` of other generators.
+const SCENES: [&str; 8] = [
+    "balls-2",
+    "gears-2",
+    "mount-6",
+    "rings-7",
+    "teapot-6",
+    "tetra-6",
+    "tree-6",
+    "sombrero-1",
 ];
+const FILES: [&str; 1] = ["sombrero-1"];
 
 /// The mean absolute difference per channel, in levels, between raylab's render of `name`
 /// under POV-Ray's conventions, encoded as POV-Ray writes linear values (`clamp(c)·255`,
@@ -22,8 +31,11 @@ fn difference_from_povray(name: &str, lighting: NffLighting) -> f64 {
     let reference = image::open(references.join(format!("{name}.png")))
         .unwrap_or_else(|e| panic!("{name}: {e}"))
         .to_rgb8();
-    let spd = format!("spd:{}", name.replace('-', ":"));
-    let mut scene = load_any_with(&spd, lighting).unwrap_or_else(|e| panic!("{e}"));
+    let source = match FILES.contains(&name) {
+        true => format!("{}/tests/nff/{name}.nff", env!("CARGO_MANIFEST_DIR")),
+        false => format!("spd:{}", name.replace('-', ":")),
+    };
+    let mut scene = load_any_with(&source, lighting).unwrap_or_else(|e| panic!("{e}"));
     scene.settings.width = reference.width();
     scene.settings.height = reference.height();
     let (pixels, _) = render_image(&assemble(scene).unwrap().tracer());

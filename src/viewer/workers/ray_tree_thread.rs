@@ -114,7 +114,9 @@ fn run(
             continue;
         }
         let map = caustics.current(&request.scene, &request.setup);
-        let tracer = working.tracer(&request.scene, &request.setup, map);
+        let tracer = working
+            .assembled(&request.scene, &request.setup, map)
+            .tracer();
         let size = (request.setup.settings.width, request.setup.settings.height);
         let start = Instant::now();
         let answer = if request.object_ids {

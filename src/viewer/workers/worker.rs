@@ -8,15 +8,14 @@ use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
+use raylab::backend::{Backend, RenderError};
 use raylab::film::Film;
 use raylab::gpu::device::GpuDevice;
 use raylab::gpu::film::GpuFilm;
-use raylab::inspect::DebugView;
 use raylab::inspect::Legend;
-use raylab::progressive::{self, PassStats, RenderControl};
-use raylab::render::{Device, FirstHit};
+use raylab::progressive::{PassStats, RenderControl};
 
 use super::caustics::{JobMap, SharedCaustics, Shot};
 use super::working_scene::WorkingScene;
@@ -148,7 +147,7 @@ impl Worker {
         let (jobs, inbox) = mpsc::channel();
         let thread = std::thread::Builder::new()
             .name("render worker".into())
-            .spawn(move || run(&pool, &inbox, &caustics, gpu.map(Ok)))
+            .spawn(move || run(pool, &inbox, &caustics, gpu))
             .map_err(|e| format!("cannot start the render worker: {e}"))?;
         Ok(Worker {
             jobs: Some(jobs),
@@ -175,15 +174,26 @@ impl Drop for Worker {
     }
 }
 
+/// How long one of the GPU tracer's dispatches takes at most in the viewer: the window draws on
+/// the same GPU, and its frame waits for the dispatch in flight, so a dispatch takes about a
+/// frame's share at 60 frames a second.
+const FRAME_SHARE: Duration = Duration::from_millis(12);
+
 /// The worker's loop: take the newest job, make or grow its caustic map, render it, repeat; end
-/// when the channel closes. `gpu` is the GPU, or why it cannot be opened, once a job asked for
-/// it.
+/// when the channel closes. Jobs that ask for the GPU render on `gpu` (the window's), or on one
+/// opened at the first such job; where the GPU cannot, on the CPU, the job's device saying why.
 fn run(
-    pool: &rayon::ThreadPool,
+    pool: rayon::ThreadPool,
     inbox: &Receiver<Job>,
     caustics: &SharedCaustics,
-    mut gpu: Option<Result<Arc<GpuDevice>, String>>,
+    gpu: Option<Arc<GpuDevice>>,
 ) {
+    let mut backend = Backend::new(Arc::new(pool));
+    backend.set_fallback(true);
+    backend.set_dispatch_time(FRAME_SHARE);
+    if let Some(gpu) = gpu {
+        backend.set_gpu(gpu);
+    }
     let mut working = WorkingScene::default();
     while let Ok(mut job) = inbox.recv() {
         // Jobs queued behind this one supersede it.
@@ -195,9 +205,11 @@ fn run(
             job.report.finish(Outcome::Cancelled);
             continue;
         }
-        let tracer = working.tracer(&job.scene, &job.setup, None);
+        let tracer = working.assembled(&job.scene, &job.setup, None).tracer();
         let grown = std::panic::catch_unwind(AssertUnwindSafe(|| {
-            pool.install(|| caustics.grow(&job.scene, &job.setup, &tracer))
+            backend
+                .pool()
+                .install(|| caustics.grow(&job.scene, &job.setup, &tracer))
         }));
         let map = match grown {
             Ok(Ok(grown)) => grown.map(|JobMap { map, shot }| {
@@ -219,86 +231,29 @@ fn run(
                 continue;
             }
         };
-        let tracer = working.tracer(&job.scene, &job.setup, map.clone());
+        let assembled = working.assembled(&job.scene, &job.setup, map);
+        let view = job.setup.debug_view;
         if let Ok(mut legend) = job.report.legend.lock() {
-            *legend = job.setup.debug_view.legend(&tracer);
+            *legend = view.legend(&assembled.tracer());
         }
-        let cpu = format!("cpu: {} threads", pool.current_num_threads());
-        if job.setup.device == Device::Gpu {
-            let view = job.setup.debug_view.on_gpu(&tracer);
-            let gpu = gpu.get_or_insert_with(|| GpuDevice::new().map(Arc::new));
-            let on_gpu = match (gpu, view) {
-                (Ok(gpu), Ok(view)) => working
-                    .on_gpu(gpu, job.setup.first_hit)
-                    .map(|on_gpu| (on_gpu, view)),
-                (Err(e), _) => Err(e.clone()),
-                (_, Err(why)) => Err(why),
-            };
-            match on_gpu {
-                Ok(((copy, renderer), view)) => {
-                    job.report
-                        .set_device(format!("gpu: {}", renderer.gpu().name()));
-                    let cpu_view = &job.setup.debug_view;
-                    let rendered = std::panic::catch_unwind(AssertUnwindSafe(|| {
-                        let (tracer, film) = (&copy.tracer(), &job.film);
-                        let on_gpu = Arc::new(GpuFilm::new(renderer.gpu(), film)?);
-                        if let Ok(mut shown) = job.report.film_on_gpu.lock() {
-                            *shown = Some(Arc::clone(&on_gpu));
-                        }
-                        let target = (film.as_ref(), on_gpu.as_ref());
-                        renderer.render_into(tracer, (view, cpu_view), target, &job.control, |p| {
-                            job.report.push_pass(p)
-                        })
-                    }));
-                    job.report.finish(match rendered {
-                        Ok(Ok(Ok(_))) => Outcome::Finished,
-                        Ok(Ok(Err(_))) => Outcome::Cancelled,
-                        Ok(Err(e)) => Outcome::Failed(format!("the GPU failed: {e}")),
-                        Err(panic) => Outcome::Failed(panic_message(panic.as_ref())),
-                    });
-                    continue;
-                }
-                Err(why) => job.report.set_device(format!("{cpu} (not the GPU: {why})")),
-            }
-        } else {
-            job.report.set_device(cpu.clone());
-        }
-        // The item buffer, where the first hits come from it or the view shows it.
-        let setup = &job.setup;
-        let items = match (setup.first_hit, setup.debug_view) {
-            (FirstHit::Raster, _) | (_, DebugView::ItemBuffer) => {
-                let gpu = gpu.get_or_insert_with(|| GpuDevice::new().map(Arc::new));
-                let drawn = gpu
-                    .clone()
-                    .and_then(|gpu| working.item_buffer(&gpu, &job.film));
-                match drawn {
-                    Ok(items) => Some(items),
-                    Err(why) => {
-                        job.report
-                            .set_device(format!("{cpu} (first hits from the rays: {why})"));
-                        None
-                    }
-                }
-            }
-            _ => None,
-        };
-        let tracer = working
-            .tracer(&job.scene, &job.setup, map)
-            .with_item_buffer(items.as_ref());
+        backend.set_device(job.setup.device);
+        backend.set_first_hit(job.setup.first_hit);
+        let report = &job.report;
         let rendered = std::panic::catch_unwind(AssertUnwindSafe(|| {
-            pool.install(|| {
-                progressive::render(
-                    &tracer,
-                    &job.setup.debug_view,
-                    &job.film,
-                    &job.control,
-                    |pass| job.report.push_pass(pass),
-                )
+            backend.prepare(assembled, view)?;
+            report.set_device(backend.label().to_string());
+            let target = (job.film.as_ref(), job.control.as_ref());
+            let on_pass = |pass: &PassStats| report.push_pass(pass);
+            backend.render_shown(assembled, view, target, on_pass, |film| {
+                if let Ok(mut shown) = report.film_on_gpu.lock() {
+                    *shown = Some(film);
+                }
             })
         }));
-        job.report.finish(match rendered {
+        report.finish(match rendered {
             Ok(Ok(_)) => Outcome::Finished,
-            Ok(Err(_)) => Outcome::Cancelled,
+            Ok(Err(RenderError::Cancelled)) => Outcome::Cancelled,
+            Ok(Err(e)) => Outcome::Failed(e.to_string()),
             Err(panic) => Outcome::Failed(panic_message(panic.as_ref())),
         });
     }
@@ -349,7 +304,7 @@ pub(super) fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {
 
 #[cfg(test)]
 mod tests {
-    use std::time::Duration;
+    use raylab::render::FirstHit;
 
     use super::*;
     use crate::viewer::scene::source;
