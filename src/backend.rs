@@ -197,6 +197,15 @@ impl Backend {
         self.gpu.forget_scene();
     }
 
+    /// Refuses, before anything is opened, uploaded or compiled, what [`Self::prepare`] would
+    /// refuse for `view`: a view the GPU does not draw, asked of the GPU without a fallback.
+    pub fn check(&self, assembled: &Assembled, view: DebugView) -> Result<(), RenderError> {
+        match self.device {
+            Device::Gpu if !self.fallback => OnGpu::draws(assembled, view),
+            _ => Ok(()),
+        }
+    }
+
     /// Gets everything ready for rendering `assembled` in `view` as the backend is set: opens
     /// the GPU, uploads the scene and compiles its programs (a minute or two the first time on a
     /// software adapter), so that the renders that follow time only their rays. A render
@@ -443,6 +452,14 @@ mod on_gpu {
             }
         }
 
+        /// Whether the GPU tracer draws `view` of `assembled`.
+        pub fn draws(assembled: &Assembled, view: DebugView) -> Result<(), RenderError> {
+            match view.on_gpu(&assembled.tracer()) {
+                Ok(_) => Ok(()),
+                Err(_) => Err(RenderError::ViewOnCpuOnly(view)),
+            }
+        }
+
         /// Readies the GPU tracer for `assembled` in `view`: the scene uploaded (once a scene),
         /// its caustic photon map and the first-hit search set. Gives the adapter's name.
         pub fn tracer(
@@ -451,8 +468,7 @@ mod on_gpu {
             view: DebugView,
             first_hit: FirstHit,
         ) -> Result<String, RenderError> {
-            view.on_gpu(&assembled.tracer())
-                .map_err(|_| RenderError::ViewOnCpuOnly(view))?;
+            OnGpu::draws(assembled, view)?;
             let gpu = self.device(GpuUse::Tracer)?;
             self.follow(assembled);
             let (nodes, dispatch_time) = (self.nodes, self.dispatch_time);
@@ -548,6 +564,10 @@ mod without_gpu {
     }
 
     impl OnGpu {
+        pub fn draws(_: &Assembled, _: DebugView) -> Result<(), RenderError> {
+            Err(refused(GpuUse::Tracer))
+        }
+
         pub fn tracer(
             &mut self,
             _: &Assembled,

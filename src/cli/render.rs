@@ -10,7 +10,7 @@ use std::time::Duration;
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use raylab::backend::Backend;
+use raylab::backend::{Backend, RenderError};
 use raylab::film::Film;
 use raylab::formats::SceneFormat;
 use raylab::formats::image::{OutputFormat, check_image_path, save_toned_pixels};
@@ -172,13 +172,13 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     let mut backend = Backend::new(Arc::clone(&pool));
     backend.set_device(args.device);
     backend.set_first_hit(args.first_hit);
+    let explain = |e: RenderError| super::explain(e, args.view, args.first_hit);
+    backend.check(&assembled, args.view).map_err(explain)?;
     if args.device == Device::Gpu {
         let gpu = backend.gpu().map_err(|e| e.to_string())?;
         eprintln!("{}", super::compiling_notice(&gpu));
     }
-    backend
-        .prepare(&assembled, args.view)
-        .map_err(|e| super::explain(e, args.view, args.first_hit))?;
+    backend.prepare(&assembled, args.view).map_err(explain)?;
     let legend = args.view.legend(&assembled.tracer());
     let legend_path = super::legend_path(&outputs[0]);
     if legend.is_some() {

@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::rust_source::{Token, code_only, read, tokens};
+use crate::rust_source::{Token, code_only, read, rust_files_under, tokens};
 
 /// The types only the backend renders with.
 const TRACER_TYPES: [&str; 3] = ["GpuRenderer", "CpuItems", "ItemRaster"];
@@ -22,23 +22,11 @@ const SWEEP_FUNCTIONS: [&str; 6] = [
 /// The programs' Rust files: src/cli, src/viewer, src/main.rs and examples/.
 fn program_files() -> Vec<PathBuf> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut files = vec![root.join("src/main.rs")];
-    let mut folders = vec![
-        root.join("src/cli"),
-        root.join("src/viewer"),
-        root.join("examples"),
-    ];
-    while let Some(folder) = folders.pop() {
-        for entry in std::fs::read_dir(&folder).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                folders.push(path);
-            } else if path.extension().is_some_and(|e| e == "rs") {
-                files.push(path);
-            }
-        }
-    }
-    files
+    let folders = ["src/cli", "src/viewer", "examples"];
+    let under = folders.iter().flat_map(|f| rust_files_under(&root.join(f)));
+    std::iter::once(root.join("src/main.rs"))
+        .chain(under)
+        .collect()
 }
 
 /// Where `tokens` render without the backend: a tracer type named, a sweep function reached

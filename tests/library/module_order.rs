@@ -5,10 +5,11 @@
 //! of `#[cfg(test)] mod`s) may use anything; so may comments, doc links included.
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::fs;
 use std::path::{Path, PathBuf};
 
-use crate::rust_source::{Token, code_only, is, is_ident, read, src, tokens, without_tests};
+use crate::rust_source::{
+    Token, code_only, is, is_ident, read, rust_files_under, src, tokens, without_tests,
+};
 
 /// The modules src/lib.rs declares, each with whether it is `pub`.
 fn declared_modules(lib: &str) -> BTreeMap<String, bool> {
@@ -124,21 +125,7 @@ fn module_files(src: &Path, name: &str) -> Vec<(PathBuf, usize)> {
     if file.is_file() {
         files.push(file);
     }
-    let mut dirs = vec![src.join(name)];
-    while let Some(dir) = dirs.pop() {
-        let Ok(entries) = fs::read_dir(&dir) else {
-            continue;
-        };
-        for entry in entries {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                dirs.push(path);
-            } else if path.extension().is_some_and(|ext| ext == "rs") {
-                files.push(path);
-            }
-        }
-    }
-    files.sort();
+    files.extend(rust_files_under(&src.join(name)));
     files
         .into_iter()
         .map(|path| {
