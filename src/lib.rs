@@ -34,7 +34,8 @@
 //!   CPU pixel sample coloured by a [`progressive::SampleColoring`] (the shaded image is
 //!   [`progressive::Shaded`]); [`formats::image`] saves it.
 //! - Looking inside: [`inspect`] records one pixel's ray tree with a tree observer and renders
-//!   debug views as shaders of the same renderer; [`compare`] measures how another image
+//!   debug views as shaders of the same renderer; [`figure`] draws that ray tree in the scene
+//!   as the lecture's figure, seen from an observer camera; [`compare`] measures how another image
 //!   differs from raylab's. Nothing above depends on them.
 //! - Where the back ends meet: [`backend`] runs a render's passes on the CPU or on the GPU, with
 //!   first hits from the rays or the item buffer, in any of [`inspect`]'s views; every program
@@ -48,6 +49,7 @@ pub mod bvh;
 pub mod camera;
 pub mod color;
 pub mod compare;
+pub mod figure;
 pub mod film;
 pub mod formats;
 #[cfg(feature = "gpu")]

@@ -17,7 +17,7 @@ use exr::meta::{BlockDescription, MetaData};
 use exr::prelude::{ReadChannels, ReadLayers, ReadSpecificChannel, Vec2, read};
 use image::{DynamicImage, ImageDecoder, ImageReader};
 
-use crate::color::{Color, srgb8};
+use crate::color::{Color, srgb_to_linear, srgb8};
 use crate::limits::check_image_size;
 
 /// An image of 8-bit sRGB pixels, row 0 at the top.
@@ -87,6 +87,13 @@ impl SrgbImage {
             height,
             pixels: colors.iter().map(|c| c.to_array().map(srgb8)).collect(),
         }
+    }
+
+    /// The linear colours of the pixels, row by row: [`Self::from_linear`] of them gives the
+    /// same image back, byte for byte.
+    pub fn to_linear(&self) -> Vec<Color> {
+        let linear = |p: &[u8; 3]| Color::from(p.map(|v| srgb_to_linear(v as f32 / 255.0)));
+        self.pixels.iter().map(linear).collect()
     }
 
     /// The pixel at column `x`, row `y` (row 0 at the top).
@@ -255,6 +262,18 @@ mod tests {
             .write_to(&mut Cursor::new(&mut bytes), format)
             .unwrap();
         bytes
+    }
+
+    #[test]
+    fn every_level_goes_to_linear_and_back_unchanged() {
+        let levels = (0..=255u8).map(|v| [v, 255 - v, v / 2]).collect::<Vec<_>>();
+        let image = SrgbImage {
+            width: 16,
+            height: 16,
+            pixels: levels,
+        };
+        let back = SrgbImage::from_linear(16, 16, &image.to_linear());
+        assert_eq!(back, image);
     }
 
     #[test]

@@ -1,4 +1,5 @@
-//! `raylab inspect`: the ray tree of one pixel, as text or JSON.
+//! `raylab inspect`: the ray tree of one pixel, as text or JSON, and as the lecture's figure
+//! ([`super::figure`]).
 
 use std::io::Write;
 
@@ -11,6 +12,7 @@ use raylab::inspect::{DebugView, trace_ray_tree};
 use raylab::render::{FirstHit, assemble};
 use raylab::settings::SettingsOverrides;
 
+use super::figure::FigureArgs;
 use super::overrides::OverrideArgs;
 
 #[derive(Args, Debug)]
@@ -37,6 +39,10 @@ pub struct InspectArgs {
     /// the GPU; the tree says whether the hit came from it).
     #[arg(long, default_value_t = FirstHit::Rays)]
     first_hit: FirstHit,
+    /// The ray-tree figure. With --draw, --look-at is the point the observer looks at (the
+    /// scene camera keeps its own).
+    #[command(flatten)]
+    figure: FigureArgs,
 }
 
 /// `X,Y` as two integers.
@@ -47,7 +53,12 @@ fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
     Ok((number(x)?, number(y)?))
 }
 
-pub fn run(args: InspectArgs) -> Result<(), String> {
+pub fn run(mut args: InspectArgs) -> Result<(), String> {
+    args.figure.check()?;
+    let observer_look_at = match args.figure.draw {
+        Some(_) => args.overrides.take_look_at(),
+        None => None,
+    };
     let mut scene = super::load_scene(args.scene.as_deref(), args.nff_lights, args.format)?;
     let overrides = SettingsOverrides::from(args.overrides);
     overrides.apply(&mut scene.settings)?;
@@ -74,5 +85,7 @@ pub fn run(args: InspectArgs) -> Result<(), String> {
     } else {
         tree.to_text()
     };
-    super::print_out(|out| out.write_all(text.as_bytes()))
+    super::print_out(|out| out.write_all(text.as_bytes()))?;
+    args.figure
+        .write(&tree, &assembled, observer_look_at, &mut backend)
 }

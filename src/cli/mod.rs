@@ -8,6 +8,7 @@ mod bench_first_hits;
 mod bench_report;
 mod check;
 mod diff;
+mod figure;
 mod generate;
 mod inspect;
 mod jobs;

@@ -60,6 +60,13 @@ pub struct OverrideArgs {
     view_angle: Option<f32>,
 }
 
+impl OverrideArgs {
+    /// Takes `--look-at` out: for `inspect --draw`, where it is the observer's.
+    pub fn take_look_at(&mut self) -> Option<Vec3> {
+        self.look_at.take()
+    }
+}
+
 impl From<OverrideArgs> for SettingsOverrides {
     /// `--size` gives both the width and the height.
     fn from(args: OverrideArgs) -> SettingsOverrides {
@@ -101,7 +108,7 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
 }
 
 /// A finite number.
-fn parse_number(text: &str) -> Result<f32, String> {
+pub fn parse_number(text: &str) -> Result<f32, String> {
     match text.trim().parse::<f32>() {
         Ok(x) if x.is_finite() => Ok(x),
         _ => Err(format!("`{text}` is not a finite number")),

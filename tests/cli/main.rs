@@ -8,6 +8,7 @@ mod camera;
 mod check;
 mod cluster;
 mod diff;
+mod figure;
 mod first_hit;
 mod gen_and_bench;
 mod gpu;

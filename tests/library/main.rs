@@ -11,6 +11,7 @@ mod caustics;
 mod csg;
 mod debug_views;
 mod device_seam;
+mod figure;
 mod fog;
 mod fuzz_corpus;
 mod images;
