@@ -81,7 +81,7 @@ impl FigureArgs {
         let generations = self.generations.unwrap_or(u32::MAX);
         let figure = RayFigure::new(
             tree,
-            &assembled.scene,
+            (&assembled.scene, &assembled.scene.camera),
             (settings.width, settings.height),
             generations,
         );

@@ -19,7 +19,7 @@
 //! scene.settings.height = 48;
 //! let assembled = assemble(scene)?;
 //! let tree = trace_ray_tree(&assembled.tracer(), 32, 24);
-//! let figure = RayFigure::new(&tree, &assembled.scene, (64, 48), 3);
+//! let figure = RayFigure::new(&tree, (&assembled.scene, &assembled.scene.camera), (64, 48), 3);
 //!
 //! // The observer, from the side, and the scene as it sees it.
 //! let size = (160, 120);

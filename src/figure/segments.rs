@@ -112,17 +112,16 @@ pub struct RayFigure {
 }
 
 impl RayFigure {
-    /// The figure of `tree`, traced in `scene` on a `width × height` image, up to the ray tree's
-    /// generation `generations` (1: the eye ray and its shadow rays; 2 adds the first reflected
-    /// and transmitted rays and theirs; …).
+    /// The figure of `tree`, traced in `scene` by `camera` on a `width × height` image, up to
+    /// the ray tree's generation `generations` (1: the eye ray and its shadow rays; 2 adds the
+    /// first reflected and transmitted rays and theirs; …).
     pub fn new(
         tree: &RayTree,
-        scene: &Scene,
+        (scene, camera): (&Scene, &Camera),
         (width, height): (u32, u32),
         generations: u32,
     ) -> RayFigure {
-        let camera = &scene.camera;
-        let reach = scene_reach(scene);
+        let reach = scene_reach(scene, camera);
         let mut segments = image_plane_lines(camera, tree.pixel, (width, height));
         let eye_ray_length = tree
             .nodes
@@ -223,15 +222,15 @@ impl RayFigure {
 }
 
 /// The diameter of the bounding sphere of the scene's finite objects; without any, twice the
-/// distance from the eye to the look-at point.
-fn scene_reach(scene: &Scene) -> f32 {
+/// distance from `camera`'s eye to its look-at point.
+fn scene_reach(scene: &Scene, camera: &Camera) -> f32 {
     let bounds = scene.geometry.finite_bounds();
     let diameter = if bounds.is_finite() && !bounds.is_empty() {
         bounds.extent().length()
     } else {
         0.0
     };
-    let camera = &scene.camera.spec;
+    let camera = &camera.spec;
     let fallback = 2.0 * (camera.eye - camera.look_at).length();
     if diameter > 0.0 { diameter } else { fallback }
 }

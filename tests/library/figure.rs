@@ -140,7 +140,12 @@ fn drawn(
     let scene = parse_scene(toml, "figure.toml".as_ref(), ".".as_ref()).unwrap();
     let assembled = assemble(scene).unwrap();
     let tree = trace_ray_tree(&assembled.tracer(), pixel.0, pixel.1);
-    let figure = RayFigure::new(&tree, &assembled.scene, TRACED, generations);
+    let figure = RayFigure::new(
+        &tree,
+        (&assembled.scene, &assembled.scene.camera),
+        TRACED,
+        generations,
+    );
     let aspect = FIGURE.0 as f32 / FIGURE.1 as f32;
     let spec =
         observer.unwrap_or_else(|| side_view(&figure, &assembled.scene.camera, 45.0, aspect));

@@ -9,6 +9,7 @@ mod harness;
 mod command_line;
 mod gpu;
 mod process;
+mod rays3d;
 mod refinement;
 mod scene_files;
 mod tools;

@@ -1,5 +1,6 @@
 //! Carrying out [`Action`]s: navigation moves the camera (through [`navigation`]), picking a
-//! surface point sets the orbit centre, picking a pixel shows its ray tree, skip and pause steer
+//! surface point sets the orbit centre, picking a pixel shows its ray tree (and [`rays3d`] its
+//! figure, seen from outside), skip and pause steer
 //! refinement, the display's actions (exposure, tone curve, snapshot, split view) change how the
 //! image is shown, material and light edits change the controls, and the scene, save and print
 //! actions do what they say.
@@ -8,6 +9,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use raylab::camera::Camera;
+use raylab::formats::toml::camera_table;
 use raylab::srgb_image::SrgbImage;
 
 use super::App;
@@ -48,12 +50,19 @@ impl App {
             Action::PrintCamera => {
                 if let Some(s) = self.scene.shown() {
                     println!("{}", save::camera_snippet(&s.controls.camera));
+                    if let Some(observer) = &s.observer {
+                        println!("{}", camera_table("observer", observer));
+                    }
                     self.ui.panel.message = Some("camera printed on the terminal".into());
                 }
             }
             Action::PickCentre { x, y } => self.pick_centre(x, y),
-            Action::PickPixel { x, y } => self.tracing.picked.pick((x, y)),
-            Action::CloseRayTree => self.tracing.picked.close(),
+            Action::PickPixel { x, y } => self.pick_pixel((x, y)),
+            Action::CloseRayTree => self.close_ray_tree(),
+            Action::Rays3d(_)
+            | Action::ToggleRays3d
+            | Action::Rays3dOrbit { .. }
+            | Action::Rays3dGenerations(_) => self.rays3d(action),
             Action::PrintTree => self.print_tree(),
             Action::Click { x, y } => self.click(x, y, image_rect),
             Action::Skip => {
@@ -308,10 +317,12 @@ impl App {
     }
 }
 
-/// Moves the camera of `s` as a navigation action asks; `image_rect` is where the image is in the
-/// window (physical pixels), for panning.
+/// Moves the camera of `s` as a navigation action asks (the ray-tree figure's observer while it
+/// is shown, else the scene camera); `image_rect` is where the image is in the window (physical
+/// pixels), for panning.
 fn navigate(s: &mut ShownScene, action: Action, image_rect: PixelRect) {
-    let (spec, bounds) = (&s.controls.camera, s.scene.bounds);
+    let spec = s.observer.as_ref().unwrap_or(&s.controls.camera);
+    let bounds = s.scene.bounds;
     let size = (s.controls.settings.width, s.controls.settings.height);
     let new = match action {
         Action::Orbit { yaw, pitch } => Some(navigation::orbit(spec, yaw, pitch)),
@@ -333,6 +344,6 @@ fn navigate(s: &mut ShownScene, action: Action, image_rect: PixelRect) {
         _ => None,
     };
     if let Some(new) = new {
-        s.controls.camera = new;
+        *s.observer.as_mut().unwrap_or(&mut s.controls.camera) = new;
     }
 }

@@ -148,7 +148,9 @@ impl App {
     fn idle(&self) -> bool {
         let resizing = self.gpu.as_ref().is_some_and(|g| g.resizing());
         let settled = self.tracing.settled_on(self.scene.shown());
-        let picking = self.tracing.picked.busy() || self.input.clicking();
+        let picking = self.tracing.picked.busy()
+            || self.tracing.picked.figure_busy()
+            || self.input.clicking();
         !self.scene.loading() && !resizing && settled && !picking && !self.previewing()
     }
 }

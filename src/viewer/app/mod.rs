@@ -18,6 +18,7 @@ use winit::window::WindowId;
 mod apply;
 mod clock;
 mod frame;
+mod rays3d;
 
 use self::clock::FrameClock;
 use super::Options;

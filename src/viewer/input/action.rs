@@ -33,6 +33,15 @@ pub enum Action {
     CloseRayTree,
     /// Print the ray tree panel's node headings on the terminal (scripts only).
     PrintTree,
+    /// Show the picked pixel's ray tree in the scene, seen by an observer (the view area renders
+    /// from the observer, and navigation moves it), or go back to the scene camera.
+    Rays3d(bool),
+    /// Show the ray-tree figure if it is hidden, hide it if shown.
+    ToggleRays3d,
+    /// Orbit the figure's observer around the tree, in degrees.
+    Rays3dOrbit { yaw: f32, pitch: f32 },
+    /// Show the figure's tree up to this generation.
+    Rays3dGenerations(u32),
     /// A left click at the centre of image pixel (x, y), sent as the pointer events of a real
     /// mouse (scripts only).
     Click { x: u32, y: u32 },

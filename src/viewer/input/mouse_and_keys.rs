@@ -162,6 +162,9 @@ fn key_actions(ctx: &egui::Context, seconds: f32) -> Vec<Action> {
         if i.consume_key(Modifiers::NONE, Key::C) {
             actions.push(Action::PrintCamera);
         }
+        if i.consume_key(Modifiers::NONE, Key::R) {
+            actions.push(Action::ToggleRays3d);
+        }
         if i.consume_key(Modifiers::NONE, Key::Escape) {
             actions.push(Action::CloseRayTree);
         }

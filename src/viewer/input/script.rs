@@ -195,6 +195,26 @@ fn parse_step(step: &str) -> Result<Step, String> {
         }
         "tonemap" if args.len() == 1 => once(Action::ToneCurve(args[0].parse::<ToneCurve>()?)),
         "tonemap" => return Err("takes one tone curve name".into()),
+        "rays3d" => match args[..] {
+            ["on"] => once(Action::Rays3d(true)),
+            ["off"] => once(Action::Rays3d(false)),
+            ["orbit", ..] => {
+                let n = count(numbers_of(&args[1..])?, 2, 0)?;
+                once(Action::Rays3dOrbit {
+                    yaw: n[0],
+                    pitch: n[1],
+                })
+            }
+            ["generations", k] => match k.parse::<u32>() {
+                Ok(k) if k >= 1 => once(Action::Rays3dGenerations(k)),
+                _ => {
+                    return Err(format!(
+                        "generations takes a whole number from 1, got `{k}`"
+                    ));
+                }
+            },
+            _ => return Err("takes `on`, `off`, `orbit DX DY` or `generations K`".into()),
+        },
         "close-inspector" if args.is_empty() => once(Action::CloseRayTree),
         "print-tree" if args.is_empty() => once(Action::PrintTree),
         "dolly" => once(Action::Dolly(count(numbers()?, 1, 0)?[0])),
@@ -452,11 +472,37 @@ mod tests {
             ("snapshot now", "takes no arguments"),
             ("compare", "takes `on`, `off` or `diff`"),
             ("compare yes", "takes `on`, `off` or `diff`"),
+            (
+                "rays3d",
+                "takes `on`, `off`, `orbit DX DY` or `generations K`",
+            ),
+            ("rays3d orbit 5", "takes 2 numbers"),
+            ("rays3d generations 0", "a whole number from 1, got `0`"),
             ("divider 1.5", "from 0 to 1"),
         ] {
             let err = Script::parse(text).unwrap_err();
             assert!(err.contains(expected), "{text}: {err}");
         }
+    }
+
+    #[test]
+    fn rays3d_steps_parse() {
+        let mut script =
+            Script::parse("rays3d on; rays3d orbit 30 -10; rays3d generations 2; rays3d off")
+                .unwrap();
+        let expected = [
+            Action::Rays3d(true),
+            Action::Rays3dOrbit {
+                yaw: 30.0,
+                pitch: -10.0,
+            },
+            Action::Rays3dGenerations(2),
+            Action::Rays3d(false),
+        ];
+        for action in expected {
+            assert_eq!(script.next(false, 0), Some(action));
+        }
+        assert!(script.is_done());
     }
 
     #[test]

@@ -56,7 +56,7 @@ pub const STEPS: &[StepHelp] = &[
     },
     StepHelp {
         syntax: "print-camera",
-        does: "prints the camera as a `[camera]` snippet, as C",
+        does: "prints the camera as a `[camera]` snippet, as C (and, while the ray-tree figure is shown, its observer as an `[observer]` table)",
     },
     StepHelp {
         syntax: "open [PATH]",
@@ -73,6 +73,10 @@ pub const STEPS: &[StepHelp] = &[
     StepHelp {
         syntax: "click X Y",
         does: "a left click at the centre of image pixel (X, Y), through the window's input like a mouse's",
+    },
+    StepHelp {
+        syntax: "rays3d MODE",
+        does: "the ray-tree figure: MODE `on` shows the picked pixel's rays drawn in the scene, seen by an observer (as R), `off` goes back to the scene camera (as R or Esc), `orbit DX DY` turns the observer round the tree by DX and DY degrees (as a left drag), `generations K` shows the tree up to generation K",
     },
     StepHelp {
         syntax: "close-inspector",

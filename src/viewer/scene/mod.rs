@@ -9,9 +9,11 @@ pub mod source;
 pub mod views;
 pub mod watch;
 
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use raylab::camera::CameraSpec;
 use raylab::formats::SceneFormat;
 use raylab::formats::toml::{Looks, save_edits};
 use raylab::inspect::DebugView;
@@ -47,6 +49,24 @@ pub struct ShownScene {
     pub file_controls: Controls,
     /// The bookmarked views and their preview.
     pub views: SceneViews,
+    /// The observer of the ray-tree figure while the figure is shown: the image renders from it
+    /// and navigation moves it, while `controls.camera` stays the scene camera the picked
+    /// pixel's tree is traced with.
+    pub observer: Option<CameraSpec>,
+}
+
+impl ShownScene {
+    /// The controls the image renders with: the observer's camera while the figure is shown.
+    pub fn rendered_controls(&self) -> Cow<'_, Controls> {
+        match self.observer {
+            Some(observer) => {
+                let mut controls = self.controls.clone();
+                controls.camera = observer;
+                Cow::Owned(controls)
+            }
+            None => Cow::Borrowed(&self.controls),
+        }
+    }
 }
 
 /// Where the scene stands.
@@ -241,6 +261,7 @@ impl SceneSlot {
             controls,
             file_controls,
             views,
+            observer: None,
         });
         Ok(scene)
     }

@@ -5,6 +5,7 @@
 
 pub mod display;
 pub mod fields;
+pub mod figure_view;
 pub mod legend_bar;
 pub mod materials_panel;
 pub mod overlay;
@@ -12,6 +13,7 @@ pub mod panels;
 pub mod ray_tree_panel;
 pub mod swatch;
 
+use self::figure_view::FigureView;
 use self::overlay::Overlay;
 use self::panels::PanelState;
 use crate::viewer::input::action::Action;
@@ -25,6 +27,7 @@ pub struct Ui {
     pub egui: egui::Context,
     pub panel: PanelState,
     overlay: Overlay,
+    figure_view: FigureView,
     /// The window's size when it opens, in logical pixels.
     pub window_size: (u32, u32),
 }
@@ -35,6 +38,7 @@ impl Ui {
             egui: egui::Context::default(),
             panel,
             overlay: Overlay::default(),
+            figure_view: FigureView::default(),
             window_size,
         }
     }
@@ -69,7 +73,8 @@ impl Ui {
         let picked = &mut tracing.picked;
         let tone = self.panel.display.tone;
         let compared = self.panel.compared.as_deref().map(|image| (image, tone));
-        actions.extend(ray_tree_panel::show(ui, picked, compared));
+        let rays3d = scene.shown().is_some_and(|s| s.observer.is_some());
+        actions.extend(ray_tree_panel::show(ui, picked, compared, rays3d));
         if picked.hovered.is_some() {
             picked.want_object_ids();
         }
@@ -104,7 +109,11 @@ impl Ui {
                 egui::pos2(image_rect.x / ppp, image_rect.y / ppp),
                 egui::vec2(image_rect.width / ppp, image_rect.height / ppp),
             );
-            self.overlay.paint(ui, picked, image, image_size, far);
+            if rays3d {
+                self.figure_view.paint(ui, picked, image, image_size);
+            } else {
+                self.overlay.paint(ui, picked, image, image_size, far);
+            }
             if self.panel.display.drop_stale_snapshot(image_size) {
                 self.panel.compared = None;
                 self.panel.message =

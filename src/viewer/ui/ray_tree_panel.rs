@@ -102,6 +102,7 @@ pub fn show(
     ui: &mut egui::Ui,
     picked: &mut PickedPixel,
     compared: Option<(&SrgbImage, Tone)>,
+    rays3d: bool,
 ) -> Vec<Action> {
     let mut actions = Vec::new();
     picked.hovered = None;
@@ -121,7 +122,35 @@ pub fn show(
                     actions.push(Action::CloseRayTree);
                 }
             });
-            ui.checkbox(&mut picked.show_overlay, "draw the rays over the image");
+            let (label, tip) = if rays3d {
+                (
+                    "Back to the camera",
+                    "R or Esc: the scene camera's image again",
+                )
+            } else {
+                (
+                    "See it from outside",
+                    "R: the rays drawn in the scene, seen by an observer",
+                )
+            };
+            if ui.button(label).on_hover_text(tip).clicked() {
+                actions.push(Action::ToggleRays3d);
+            }
+            if rays3d {
+                let deepest = picked.tree.as_ref().map_or(1, |t| {
+                    t.tree.nodes.iter().map(|n| n.depth).max().unwrap_or(1)
+                });
+                let mut k = picked.figure.generations.unwrap_or(deepest).min(deepest);
+                let slider = egui::Slider::new(&mut k, 1..=deepest.max(1)).text("generations");
+                if ui.add(slider).changed() {
+                    actions.push(Action::Rays3dGenerations(k));
+                }
+                ui.label(
+                    "drag: orbit · wheel: dolly · right drag: pan · click a ray here to mark it",
+                );
+            } else {
+                ui.checkbox(&mut picked.show_overlay, "draw the rays over the image");
+            }
             if let Some(e) = &picked.error {
                 ui.colored_label(Color32::from_rgb(255, 120, 80), e);
             }
@@ -148,20 +177,52 @@ pub fn show(
             }
             ui.label(timing);
             let mut hovered = None;
+            let mut links = NodeLinks {
+                from_figure: picked.figure.hovered_node.filter(|_| rays3d),
+                marked: picked.figure.highlight,
+                clicked: None,
+            };
             egui::ScrollArea::vertical().show(ui, |ui| {
                 if !tree.nodes.is_empty() {
-                    node_ui(ui, tree, 0, &mut hovered);
+                    node_ui(ui, tree, 0, (&mut hovered, &mut links));
                 }
             });
             picked.hovered = hovered;
+            if let Some(node) = links.clicked {
+                let marked = &mut picked.figure.highlight;
+                *marked = (*marked != Some(node)).then_some(node);
+            }
         });
     actions
 }
 
-/// One ray and, nested inside, its shadow rays and children.
-fn node_ui(ui: &mut egui::Ui, tree: &RayTree, index: usize, hovered: &mut Option<u32>) {
+/// How the panel's nodes and the figure's lines point at each other.
+struct NodeLinks {
+    /// The node whose line the cursor is over in the figure: its heading is highlighted.
+    from_figure: Option<usize>,
+    /// The node whose lines the figure draws wider.
+    marked: Option<usize>,
+    /// The node whose heading was clicked this frame.
+    clicked: Option<usize>,
+}
+
+/// One ray and, nested inside, its shadow rays and children. `hovered` is set to the object hit
+/// by the ray whose heading the cursor is over.
+fn node_ui(
+    ui: &mut egui::Ui,
+    tree: &RayTree,
+    index: usize,
+    (hovered, links): (&mut Option<u32>, &mut NodeLinks),
+) {
     let node = &tree.nodes[index];
-    let response = egui::CollapsingHeader::new(heading(node))
+    let mut text = RichText::new(heading(node));
+    if links.from_figure == Some(index) {
+        text = text.background_color(Color32::from_rgb(90, 80, 20));
+    }
+    if links.marked == Some(index) {
+        text = text.strong();
+    }
+    let response = egui::CollapsingHeader::new(text)
         .id_salt(("ray", index))
         .default_open(node.depth <= 2)
         .show(ui, |ui| {
@@ -183,11 +244,14 @@ fn node_ui(ui: &mut egui::Ui, tree: &RayTree, index: usize, hovered: &mut Option
                 ));
             }
             for &child in &node.children {
-                node_ui(ui, tree, child, hovered);
+                node_ui(ui, tree, child, (&mut *hovered, &mut *links));
             }
         });
     if response.header_response.hovered() {
         *hovered = node.hit.as_ref().map(|h| h.object);
+    }
+    if response.header_response.clicked() {
+        links.clicked = Some(index);
     }
 }
 

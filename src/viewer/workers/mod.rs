@@ -17,6 +17,7 @@ pub mod working_scene;
 use std::sync::Arc;
 use std::time::Instant;
 
+use raylab::camera::Camera;
 use raylab::film::Film;
 use raylab::gpu::device::GpuDevice;
 use raylab::progressive::{Progress, RenderControl};
@@ -73,7 +74,8 @@ impl Tracing {
             self.sharpen_caustics(shown, max_side);
             return false;
         }
-        let mut setup = match shown.controls.setup(max_side) {
+        let controls = shown.rendered_controls();
+        let mut setup = match controls.setup(max_side) {
             Ok(setup) => setup,
             Err(e) => {
                 self.control_error = Some(e);
@@ -81,7 +83,7 @@ impl Tracing {
             }
         };
         self.control_error = None;
-        if shown.controls.auto_block {
+        if controls.auto_block {
             let s = &mut setup.settings;
             s.block_size = self.start_block.choose(s.width, s.height, s.block_size);
         }
@@ -102,7 +104,7 @@ impl Tracing {
             self.set_paused(false);
             return;
         }
-        if let Ok(mut setup) = shown.controls.setup(max_side) {
+        if let Ok(mut setup) = shown.rendered_controls().setup(max_side) {
             setup.settings.block_size = 1;
             self.submit(shown, setup, Instant::now());
         }
@@ -148,7 +150,7 @@ impl Tracing {
         if rounds >= MAX_ROUNDS {
             return;
         }
-        if let Ok(mut setup) = shown.controls.setup(max_side) {
+        if let Ok(mut setup) = shown.rendered_controls().setup(max_side) {
             setup.caustic_round = rounds;
             setup.settings.block_size = 1;
             self.submit(shown, setup, Instant::now());
@@ -187,7 +189,7 @@ impl Tracing {
         }
         self.rendering = Some(Rendering {
             scene: shown.scene.clone(),
-            controls: shown.controls.clone(),
+            controls: shown.rendered_controls().into_owned(),
             film,
             control,
             report,
@@ -205,7 +207,10 @@ impl Tracing {
     /// dropped.
     pub fn sync_picked_pixel(&mut self, shown: &ShownScene, max_side: u32) -> Result<(), String> {
         let setup = shown.controls.setup(max_side).ok();
-        self.picked.sync(&shown.scene, &shown.controls, setup)
+        let synced = self.picked.sync(&shown.scene, &shown.controls, setup);
+        let observer = shown.observer.and_then(|spec| Camera::new(spec).ok());
+        self.picked.sync_figure(observer);
+        synced
     }
 
     /// Refinement is under way (not paused): more passes will reach the screen.

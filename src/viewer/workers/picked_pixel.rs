@@ -8,10 +8,32 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use super::caustics::SharedCaustics;
-use super::ray_tree_thread::{Answer, ObjectIds, RayTreeThread, Request, TracedTree};
+use raylab::camera::Camera;
+
+use super::ray_tree_thread::{
+    Answer, Ask, FigureAsk, FigureLayer, ObjectIds, RayTreeThread, Request, TracedTree,
+};
 use crate::viewer::scene::controls::Controls;
 use crate::viewer::scene::controls::TraceSetup;
 use crate::viewer::scene::source::LoadedScene;
+
+/// The ray-tree figure of the picked pixel: how much of the tree it shows, and the newest
+/// drawing of it.
+#[derive(Default)]
+pub struct FigureView {
+    /// Show the tree up to this generation; `None`: all of it.
+    pub generations: Option<u32>,
+    /// The node whose lines are drawn wider (clicked in the ray tree panel).
+    pub highlight: Option<usize>,
+    /// The newest figure drawn (it may be of the observer before while the new one is drawn).
+    pub drawn: Option<FigureLayer>,
+    /// Counts the figures drawn: a new one has a new serial.
+    pub serial: u64,
+    /// The node whose line the cursor is over, this frame.
+    pub hovered_node: Option<usize>,
+    /// The key and figure last asked for.
+    asked: Option<(u64, FigureAsk)>,
+}
 
 /// The picked pixel and what is known of it.
 pub struct PickedPixel {
@@ -25,6 +47,8 @@ pub struct PickedPixel {
     pub show_overlay: bool,
     /// The object whose node the cursor is over, this frame.
     pub hovered: Option<u32>,
+    /// The ray-tree figure, while an observer looks at it.
+    pub figure: FigureView,
     /// What `key` stands for: the scene and controls the pixel was last traced with.
     traced_for: Option<(Arc<LoadedScene>, Controls, (u32, u32))>,
     setup: Option<TraceSetup>,
@@ -51,6 +75,7 @@ impl PickedPixel {
             object_ids: None,
             show_overlay: true,
             hovered: None,
+            figure: FigureView::default(),
             traced_for: None,
             setup: None,
             key: 0,
@@ -67,6 +92,8 @@ impl PickedPixel {
     }
 
     pub fn close(&mut self) {
+        self.figure.drawn = None;
+        self.figure.asked = None;
         self.pixel = None;
         self.tree = None;
         self.error = None;
@@ -125,7 +152,7 @@ impl PickedPixel {
         }
         self.traced_for = Some((scene.clone(), controls.clone(), pixel));
         self.setup = Some(setup);
-        self.send(false);
+        self.send(Ask::Tree);
         Ok(())
     }
 
@@ -133,7 +160,7 @@ impl PickedPixel {
     pub fn want_object_ids(&mut self) {
         if self.ids_key != Some(self.key) && self.ids_asked != Some(self.key) {
             self.ids_asked = Some(self.key);
-            self.send(true);
+            self.send(Ask::ObjectIds);
         }
     }
 
@@ -150,7 +177,35 @@ impl PickedPixel {
         self.pixel.is_some() && (self.tree_key != self.key || asked != self.pixel)
     }
 
-    fn send(&mut self, object_ids: bool) {
+    /// Asks for the figure as `observer` sees it, once the tree of the current pick is traced,
+    /// unless that figure is drawn or coming; `None` forgets the figure.
+    pub fn sync_figure(&mut self, observer: Option<Camera>) {
+        let Some(observer) = observer.filter(|_| self.pixel.is_some()) else {
+            self.figure.drawn = None;
+            self.figure.asked = None;
+            return;
+        };
+        if self.busy() {
+            return;
+        }
+        let ask = FigureAsk {
+            observer,
+            generations: self.figure.generations.unwrap_or(u32::MAX),
+            highlight: self.figure.highlight,
+        };
+        if self.figure.asked != Some((self.key, ask)) {
+            self.figure.asked = Some((self.key, ask));
+            self.send(Ask::Figure(ask));
+        }
+    }
+
+    /// The figure asked for is not drawn yet.
+    pub fn figure_busy(&self) -> bool {
+        let drawn = self.figure.drawn.as_ref().map(|d| (self.key, d.ask));
+        self.figure.asked.is_some() && self.figure.asked != drawn
+    }
+
+    fn send(&mut self, ask: Ask) {
         let (Some((scene, _, pixel)), Some(setup)) = (&self.traced_for, &self.setup) else {
             return;
         };
@@ -159,7 +214,7 @@ impl PickedPixel {
             scene: scene.clone(),
             setup: setup.clone(),
             pixel: *pixel,
-            object_ids,
+            ask,
         };
         if let Err(e) = self.thread.ask(request) {
             self.error = Some(e);
@@ -197,6 +252,13 @@ impl PickedPixel {
                 return Some(time);
             }
             Answer::Ids(_, Err(e)) => self.error = Some(e),
+            Answer::Figure(key, Ok(drawn)) if Some((key, drawn.ask)) == self.figure.asked => {
+                let time = format!("ray-tree figure in {:.1} ms", ms(drawn.time));
+                self.figure.drawn = Some(drawn);
+                self.figure.serial += 1;
+                return Some(time);
+            }
+            Answer::Figure(_, Err(e)) => self.error = Some(e),
             _ => {}
         }
         None

@@ -37,7 +37,7 @@ pub struct Rendering {
 impl Rendering {
     /// Whether this renders `shown`'s scene with its controls as they are.
     pub fn renders(&self, shown: &ShownScene) -> bool {
-        Arc::ptr_eq(&self.scene, &shown.scene) && self.controls == shown.controls
+        Arc::ptr_eq(&self.scene, &shown.scene) && self.controls == *shown.rendered_controls()
     }
 
     /// Number of block passes (the block size 1 pass is the last of them).
