@@ -1,59 +1,34 @@
 //! The picked pixel's ray tree drawn over the image (with egui's painter, on top of the image
-//! quad): each ray projected through the camera as a line coloured by its kind
-//! (eye white, reflected cyan, transmitted orange, shadow rays dashed yellow, or red with a cross
-//! where they are blocked), the picked pixel framed, and a translucent mask over the object of
-//! the hovered node.
+//! quad): each ray projected through the camera as a line in its kind's colour, the colours of
+//! the ray-tree figure ([`SegmentKind::color`]: eye white, reflected cyan, transmitted magenta,
+//! shadow rays dashed yellow, or red with a cross where they are blocked), the picked pixel
+//! framed in the image plane's grey, and a translucent mask over the object of the hovered node.
 
 use egui::{Color32, Pos2, Rect, Shape, Stroke, TextureHandle, TextureOptions, pos2, vec2};
 use glam::Vec2;
 use raylab::aabb::Aabb;
 use raylab::camera::Camera;
+use raylab::figure::SegmentKind;
 use raylab::inspect::RayTree;
-use raylab::whitted::RayKind;
 
 use crate::viewer::workers::picked_pixel::PickedPixel;
 use crate::viewer::workers::ray_tree_thread::ObjectIds;
 
-/// How a projected ray is drawn.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RayStyle {
-    Eye,
-    Reflected,
-    Transmitted,
-    Shadow,
-    BlockedShadow,
+/// Shadow rays are dashed over the image (solid in the figure seen from outside).
+fn dashed(kind: SegmentKind) -> bool {
+    matches!(kind, SegmentKind::Shadow | SegmentKind::ShadowBlocked)
 }
 
-impl RayStyle {
-    pub fn color(self) -> Color32 {
-        match self {
-            RayStyle::Eye => Color32::WHITE,
-            RayStyle::Reflected => Color32::from_rgb(0, 230, 255),
-            RayStyle::Transmitted => Color32::from_rgb(255, 150, 0),
-            RayStyle::Shadow => Color32::from_rgb(255, 230, 0),
-            RayStyle::BlockedShadow => Color32::from_rgb(255, 40, 40),
-        }
-    }
-
-    fn dashed(self) -> bool {
-        matches!(self, RayStyle::Shadow | RayStyle::BlockedShadow)
-    }
-}
-
-impl From<RayKind> for RayStyle {
-    fn from(kind: RayKind) -> RayStyle {
-        match kind {
-            RayKind::Eye => RayStyle::Eye,
-            RayKind::Reflected => RayStyle::Reflected,
-            RayKind::Transmitted => RayStyle::Transmitted,
-        }
-    }
+/// A line's colour as egui paints it.
+fn color32(kind: SegmentKind) -> Color32 {
+    let [r, g, b] = kind.color();
+    Color32::from_rgb(r, g, b)
 }
 
 /// A ray projected onto the image, in image pixels (x right, y down).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Segment {
-    pub style: RayStyle,
+    pub kind: SegmentKind,
     pub from: Vec2,
     pub to: Vec2,
     /// Where a blocked shadow ray was stopped, if that point is in front of the eye.
@@ -77,9 +52,8 @@ pub fn segments(
             .as_ref()
             .map_or(node.origin + node.dir * far, |h| h.point);
         if let Some((from, to)) = project(node.origin, end) {
-            let style = node.kind.into();
             out.push(Segment {
-                style,
+                kind: SegmentKind::of_ray(node.kind),
                 from,
                 to,
                 blocker: None,
@@ -94,12 +68,15 @@ pub fn segments(
             let length = stop.unwrap_or(shadow.distance).min(far);
             let end = shadow.origin + shadow.dir * length;
             if let Some((from, to)) = project(shadow.origin, end) {
-                let (style, blocker) = match stop {
-                    Some(_) => (RayStyle::BlockedShadow, camera.project(end, width, height)),
-                    None => (RayStyle::Shadow, None),
+                let (kind, blocker) = match stop {
+                    Some(_) => (
+                        SegmentKind::ShadowBlocked,
+                        camera.project(end, width, height),
+                    ),
+                    None => (SegmentKind::Shadow, None),
                 };
                 out.push(Segment {
-                    style,
+                    kind,
                     from,
                     to,
                     blocker,
@@ -170,9 +147,9 @@ impl Overlay {
             return;
         }
         for s in segments(&traced.tree, &traced.camera, size, far) {
-            let stroke = Stroke::new(1.5, s.style.color());
+            let stroke = Stroke::new(1.5, color32(s.kind));
             let (a, b) = (to_screen(s.from), to_screen(s.to));
-            if s.style.dashed() {
+            if dashed(s.kind) {
                 painter.extend(Shape::dashed_line(&[a, b], stroke, 6.0, 4.0));
             } else {
                 painter.line_segment([a, b], stroke);
@@ -189,7 +166,7 @@ impl Overlay {
         painter.rect_stroke(
             frame,
             0.0,
-            Stroke::new(1.5, Color32::from_rgb(255, 0, 255)),
+            Stroke::new(1.5, color32(SegmentKind::ImagePlane)),
             egui::StrokeKind::Outside,
         );
     }
@@ -226,23 +203,17 @@ mod tests {
     use crate::viewer::scene::source;
 
     #[test]
-    fn each_kind_has_its_own_colour_and_only_shadow_rays_are_dashed() {
-        let styles = [
-            RayStyle::Eye,
-            RayStyle::Reflected,
-            RayStyle::Transmitted,
-            RayStyle::Shadow,
-            RayStyle::BlockedShadow,
-        ];
-        for (i, a) in styles.iter().enumerate() {
-            for b in &styles[i + 1..] {
-                assert_ne!(a.color(), b.color(), "{a:?} {b:?}");
-            }
+    fn the_overlay_uses_the_figures_colours_and_dashes_only_shadow_rays() {
+        use strum::IntoEnumIterator;
+        for kind in SegmentKind::iter() {
+            let [r, g, b] = kind.color();
+            assert_eq!(color32(kind), Color32::from_rgb(r, g, b));
         }
-        assert_eq!(RayStyle::Eye.color(), Color32::WHITE);
-        assert_eq!(RayStyle::from(RayKind::Reflected), RayStyle::Reflected);
-        let dashed: Vec<_> = styles.into_iter().filter(|s| s.dashed()).collect();
-        assert_eq!(dashed, vec![RayStyle::Shadow, RayStyle::BlockedShadow]);
+        let dashed: Vec<_> = SegmentKind::iter().filter(|&k| dashed(k)).collect();
+        assert_eq!(
+            dashed,
+            vec![SegmentKind::Shadow, SegmentKind::ShadowBlocked]
+        );
     }
 
     #[test]
@@ -260,17 +231,17 @@ mod tests {
             let tree = trace_ray_tree(&tracer, x, y);
             let segments = segments(&tree, &camera, (size, size), far(loaded.bounds));
             let eye = segments[0];
-            assert_eq!(eye.style, RayStyle::Eye);
+            assert_eq!(eye.kind, SegmentKind::Eye);
             let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
             for end in [eye.from, eye.to] {
                 assert!(end.distance(centre) < 0.01, "({x}, {y}): {eye:?}");
             }
             for s in &segments {
-                assert_eq!(s.blocker.is_some(), s.style == RayStyle::BlockedShadow);
+                assert_eq!(s.blocker.is_some(), s.kind == SegmentKind::ShadowBlocked);
             }
             blocked += segments
                 .iter()
-                .filter(|s| s.style == RayStyle::BlockedShadow)
+                .filter(|s| s.kind == SegmentKind::ShadowBlocked)
                 .count();
         }
         assert!(blocked > 0, "the default scene has shadows");
