@@ -2,6 +2,8 @@
 //! scene as an observer sees it, each line in its kind's colour where no surface hides it, and
 //! the scene camera's image again once the figure is left.
 
+use std::path::{Path, PathBuf};
+
 use glam::{Vec2, Vec3};
 use raylab::camera::{Camera, CameraSpec, PIXEL_CENTRE};
 use raylab::figure::{RayFigure, SegmentKind, line_width, view_depth};
@@ -10,7 +12,7 @@ use raylab::inspect::trace_ray_tree;
 use raylab::render::assemble;
 use raylab::whitted::EYE_RAY_T_MIN;
 
-use crate::harness::{cpu_render, image_rect, mismatches, printed_camera, run_to_screenshot};
+use crate::harness::{Run, cpu_render, image_rect, mismatches, printed_camera, run_to_screenshot};
 
 /// The image's side, and the pixel picked.
 const SIZE: u32 = 200;
@@ -39,23 +41,24 @@ fn segment_distance(p: Vec2, (a, b): (Vec2, Vec2)) -> f32 {
     p.distance(a + ab * t)
 }
 
+/// The viewer at the default window, `PIXEL` picked and its figure shown, the observer orbited,
+/// then the script's `rest`: the run and its screenshot.
+fn orbited(dir: &Path, rest: &str) -> (Run, PathBuf) {
+    let (x, y) = PIXEL;
+    let script =
+        format!("wait; pick {x} {y}; wait; rays3d on; wait; rays3d orbit 20 5; wait; {rest}");
+    let size = SIZE.to_string();
+    run_to_screenshot(
+        dir,
+        &["--size", &size, "--samples", "1", "--script", &script],
+    )
+}
+
 #[test]
 fn the_figure_shows_each_ray_where_the_observer_sees_it() {
     let dir = tempfile::tempdir().unwrap();
+    let (run, shot) = orbited(dir.path(), "print-camera");
     let (x, y) = PIXEL;
-    let script =
-        format!("wait; pick {x} {y}; wait; rays3d on; wait; rays3d orbit 20 5; wait; print-camera");
-    let (run, shot) = run_to_screenshot(
-        dir.path(),
-        &[
-            "--size",
-            &SIZE.to_string(),
-            "--samples",
-            "1",
-            "--script",
-            &script,
-        ],
-    );
     let observer = Camera::new(printed_table(&run.stdout, "observer")).unwrap();
     let mut scene = default_scene().unwrap();
     (scene.settings.width, scene.settings.height) = (SIZE, SIZE);
@@ -162,22 +165,7 @@ fn the_figure_shows_each_ray_where_the_observer_sees_it() {
 #[test]
 fn leaving_the_figure_shows_the_scene_cameras_image_again() {
     let dir = tempfile::tempdir().unwrap();
-    let (x, y) = PIXEL;
-    let script = format!(
-        "wait; pick {x} {y}; wait; rays3d on; wait; rays3d orbit 20 5; wait; rays3d off; wait; \
-         close-inspector; wait"
-    );
-    let (run, shot) = run_to_screenshot(
-        dir.path(),
-        &[
-            "--size",
-            &SIZE.to_string(),
-            "--samples",
-            "1",
-            "--script",
-            &script,
-        ],
-    );
+    let (run, shot) = orbited(dir.path(), "rays3d off; wait; close-inspector; wait");
     let scene = default_scene().unwrap();
     let expected = cpu_render(&scene, SIZE, scene.camera.spec);
     assert_eq!(

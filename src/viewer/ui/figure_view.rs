@@ -1,14 +1,16 @@
 //! The ray-tree figure over the image while an observer looks at it: the layer the ray tree
-//! thread drew (the image plane, the lines and the markers, in their exact colours) painted over
-//! the observer's render, and the line under the cursor, whose node the ray tree panel then
-//! highlights.
+//! thread drew (the image plane, the lines and the markers, in their exact colours, hidden behind
+//! surfaces) painted over the observer's render; while the observer moves on from the one it was
+//! drawn for, its lines projected at once through the new observer instead; and the line under
+//! the cursor, whose node the ray tree panel then highlights.
 
-use egui::{Color32, Rect, TextureHandle, TextureOptions, pos2};
+use egui::{Color32, Rect, Stroke, TextureHandle, TextureOptions, pos2, vec2};
 use glam::Vec2;
 use raylab::camera::Camera;
 use raylab::figure::Layer;
 
 use crate::viewer::workers::picked_pixel::PickedPixel;
+use crate::viewer::workers::ray_tree_thread::FigureLayer;
 
 /// How near the cursor must come to a line, in points, to hover it.
 const HOVER_DISTANCE: f32 = 6.0;
@@ -27,8 +29,8 @@ impl FigureView {
         &mut self,
         ui: &egui::Ui,
         picked: &mut PickedPixel,
-        image: Rect,
-        size: (u32, u32),
+        (image, size): (Rect, (u32, u32)),
+        observer: Camera,
     ) {
         picked.figure.hovered_node = None;
         let Some(drawn) = &picked.figure.drawn else {
@@ -36,6 +38,10 @@ impl FigureView {
         };
         let layer = &drawn.layer;
         if (layer.width, layer.height) != size {
+            return;
+        }
+        if drawn.ask.observer != observer {
+            paint_lines(ui, drawn, (image, size), &observer);
             return;
         }
         let serial = picked.figure.serial;
@@ -65,10 +71,30 @@ impl FigureView {
     }
 }
 
+/// The figure's lines projected through `observer`, unlit and in front of everything: what the
+/// figure shows while its drawing for this observer is on its way.
+fn paint_lines(
+    ui: &egui::Ui,
+    drawn: &FigureLayer,
+    (image, size): (Rect, (u32, u32)),
+    observer: &Camera,
+) {
+    let painter = ui.painter_at(image);
+    let scale = image.width() / size.0.max(1) as f32;
+    let to_screen = |p: Vec2| image.min + vec2(p.x, p.y) * scale;
+    for segment in &drawn.figure.segments {
+        if let Some((a, b)) = observer.project_segment(segment.from, segment.to, size.0, size.1) {
+            let [r, g, b_] = segment.kind.color();
+            let stroke = Stroke::new(2.0, Color32::from_rgb(r, g, b_));
+            painter.line_segment([to_screen(a), to_screen(b)], stroke);
+        }
+    }
+}
+
 /// The node of the line nearest to the image point `at` (pixels), within `within` pixels.
 fn nearest_node(
     observer: &Camera,
-    drawn: &crate::viewer::workers::ray_tree_thread::FigureLayer,
+    drawn: &FigureLayer,
     (width, height): (u32, u32),
     at: Vec2,
     within: f32,

@@ -13,6 +13,8 @@ pub mod panels;
 pub mod ray_tree_panel;
 pub mod swatch;
 
+use raylab::camera::Camera;
+
 use self::figure_view::FigureView;
 use self::overlay::Overlay;
 use self::panels::PanelState;
@@ -73,7 +75,8 @@ impl Ui {
         let picked = &mut tracing.picked;
         let tone = self.panel.display.tone;
         let compared = self.panel.compared.as_deref().map(|image| (image, tone));
-        let rays3d = scene.shown().is_some_and(|s| s.observer.is_some());
+        let observer = scene.shown().and_then(|s| s.observer);
+        let rays3d = observer.is_some();
         actions.extend(ray_tree_panel::show(ui, picked, compared, rays3d));
         if picked.hovered.is_some() {
             picked.want_object_ids();
@@ -109,8 +112,10 @@ impl Ui {
                 egui::pos2(image_rect.x / ppp, image_rect.y / ppp),
                 egui::vec2(image_rect.width / ppp, image_rect.height / ppp),
             );
-            if rays3d {
-                self.figure_view.paint(ui, picked, image, image_size);
+            let observer = observer.and_then(|spec| Camera::new(spec).ok());
+            if let Some(observer) = observer {
+                self.figure_view
+                    .paint(ui, picked, (image, image_size), observer);
             } else {
                 self.overlay.paint(ui, picked, image, image_size, far);
             }

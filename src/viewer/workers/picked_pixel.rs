@@ -252,7 +252,8 @@ impl PickedPixel {
                 return Some(time);
             }
             Answer::Ids(_, Err(e)) => self.error = Some(e),
-            Answer::Figure(key, Ok(drawn)) if Some((key, drawn.ask)) == self.figure.asked => {
+            // A figure of an observer since moved is shown until the newest comes.
+            Answer::Figure(key, Ok(drawn)) if key == self.key && self.figure.asked.is_some() => {
                 let time = format!("ray-tree figure in {:.1} ms", ms(drawn.time));
                 self.figure.drawn = Some(drawn);
                 self.figure.serial += 1;
