@@ -169,12 +169,19 @@ impl Canvas {
         };
         let (za, zb) = (view_depth(&self.camera, a), view_depth(&self.camera, b));
         let length = pa.distance(pb);
-        // Clipped to a generous box around the image, so that a line running far off it costs
-        // no more than one across it.
-        let steps = (2.0 * length.min(4.0 * (width_px + height_px) as f32)).ceil() as u32 + 1;
+        // Only the part over the image (and a line's width around it) is stepped along.
+        let margin = Vec2::splat(width as f32);
+        let (low, high) = (
+            -margin,
+            Vec2::new(width_px as f32, height_px as f32) + margin,
+        );
+        let Some((first, last)) = clip_2d(pa, pb, low, high) else {
+            return;
+        };
+        let steps = (2.0 * length * (last - first)).ceil() as u32 + 1;
         let color = segment.kind.color();
         for k in 0..=steps {
-            let s = k as f32 / steps as f32;
+            let s = first + (last - first) * k as f32 / steps as f32;
             let at = pa + (pb - pa) * s;
             // Depth is not linear across the screen, its reciprocal is.
             let depth = 1.0 / ((1.0 - s) / za + s / zb);
@@ -229,5 +236,40 @@ impl Canvas {
                 }
             }
         }
+    }
+}
+
+/// The part of the screen segment `a → b` inside the box from `low` to `high`, as the range of
+/// its parameter (0 at `a`, 1 at `b`); `None` if it misses the box.
+fn clip_2d(a: Vec2, b: Vec2, low: Vec2, high: Vec2) -> Option<(f32, f32)> {
+    let d = b - a;
+    let (mut first, mut last) = (0.0f32, 1.0f32);
+    for axis in 0..2 {
+        if d[axis] == 0.0 {
+            if a[axis] < low[axis] || a[axis] > high[axis] {
+                return None;
+            }
+            continue;
+        }
+        let t0 = (low[axis] - a[axis]) / d[axis];
+        let t1 = (high[axis] - a[axis]) / d[axis];
+        first = first.max(t0.min(t1));
+        last = last.min(t0.max(t1));
+    }
+    (first <= last).then_some((first, last))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_screen_segment_is_clipped_to_the_box() {
+        let (low, high) = (Vec2::ZERO, Vec2::new(10.0, 10.0));
+        let clip = |a: [f32; 2], b: [f32; 2]| clip_2d(a.into(), b.into(), low, high);
+        assert_eq!(clip([2.0, 2.0], [8.0, 8.0]), Some((0.0, 1.0)));
+        assert_eq!(clip([-10.0, 5.0], [30.0, 5.0]), Some((0.25, 0.5)));
+        assert_eq!(clip([-10.0, -10.0], [-1.0, 20.0]), None);
+        assert_eq!(clip([5.0, 20.0], [5.0, 30.0]), None);
     }
 }
