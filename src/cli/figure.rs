@@ -12,19 +12,27 @@ use raylab::camera::{Camera, CameraSpec};
 use raylab::figure::{
     FigureStyle, OBSERVER_ANGLE, RayFigure, draw, observed, observer_depths, side_view,
 };
+use raylab::film::Film;
 use raylab::formats::image::{check_image_path, save_image};
 use raylab::inspect::{DebugView, RayTree};
 use raylab::limits::check_image_size;
+use raylab::memory;
 use raylab::output::write_atomically;
 use raylab::render::{Assembled, Device, FirstHit};
 use raylab::srgb_image::SrgbImage;
 
 use super::overrides::{parse_number, parse_size, parse_vector};
 
+/// What drawing a figure takes a pixel beyond the observer's film: its depth (4 bytes), the
+/// layer (4), the render and the figure as 8-bit images (3 each) and as linear colours to write
+/// (12).
+const FIGURE_BYTES_PER_PIXEL: u64 = 26;
+
 #[derive(Args, Debug)]
 pub struct FigureArgs {
     /// Draw the pixel's ray tree in the scene, seen from an observer camera: the lecture's
-    /// figure, as a PNG (or PPM, EXR, HDR) image.
+    /// figure, as a PNG (or PPM, EXR, HDR) image. With --draw, --look-at is the point the
+    /// observer looks at (the scene camera keeps its own).
     #[arg(long, value_name = "FIGURE.png")]
     pub draw: Option<PathBuf>,
     /// Write the pixel's rays as OBJ polylines, one group per kind (eye, shadow,
@@ -63,6 +71,11 @@ impl FigureArgs {
         }
         let (width, height) = self.draw_size;
         check_image_size(width, height).map_err(|e| format!("--draw-size: {e}"))?;
+        // The observer's film, its depths, the layer and the image written from them.
+        let pixels = u64::from(width) * u64::from(height);
+        let bytes = Film::memory_bytes(width, height) + pixels * FIGURE_BYTES_PER_PIXEL;
+        memory::check(&format!("a {width}×{height} figure"), bytes)
+            .map_err(|e| format!("--draw-size: {e}"))?;
         if let Some(path) = &self.draw {
             check_image_path(path).map_err(|e| format!("--draw: {e}"))?;
         }
@@ -150,6 +163,6 @@ impl FigureArgs {
 }
 
 /// The film as 8-bit sRGB.
-fn image(film: &raylab::film::Film) -> SrgbImage {
+fn image(film: &Film) -> SrgbImage {
     SrgbImage::from_linear(film.width(), film.height(), &film.pixels())
 }

@@ -39,8 +39,7 @@ pub struct InspectArgs {
     /// the GPU; the tree says whether the hit came from it).
     #[arg(long, default_value_t = FirstHit::Rays)]
     first_hit: FirstHit,
-    /// The ray-tree figure. With --draw, --look-at is the point the observer looks at (the
-    /// scene camera keeps its own).
+    /// The ray-tree figure.
     #[command(flatten)]
     figure: FigureArgs,
 }

@@ -248,3 +248,24 @@ fn a_wrong_figure_request_is_refused_with_what_to_do() {
         assert!(!dir.path().join("f.png").exists(), "{extra:?}");
     }
 }
+
+#[test]
+fn a_figure_too_large_for_the_memory_limit_is_refused_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene_in(dir.path());
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .args(["inspect", scene, "--pixel", "16,12", "--draw", "f.png"])
+        .args(["--draw-size", "16384x16384"])
+        .env("RAYLAB_MAX_MEMORY", "256M")
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let text = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{text}");
+    assert!(
+        text.contains("--draw-size: a 16384×16384 figure would take about")
+            && text.contains("RAYLAB_MAX_MEMORY"),
+        "{text}"
+    );
+    assert!(!dir.path().join("f.png").exists());
+}
