@@ -210,6 +210,9 @@ fn header(bytes: &[u8]) -> Result<(Encoding, Vec<Element>, usize), PlyError> {
                 ));
             }
             [] | ["comment", ..] | ["obj_info", ..] => {}
+            ["format", ..] if encoding.is_some() => {
+                return Err(at(n, 1, "a second `format` line".into()));
+            }
             ["format", kind, _version] => {
                 encoding = Some(match *kind {
                     "ascii" => Encoding::Ascii,
@@ -225,6 +228,9 @@ fn header(bytes: &[u8]) -> Result<(Encoding, Vec<Element>, usize), PlyError> {
                         ));
                     }
                 })
+            }
+            ["element", name, _] if elements.iter().any(|e| e.name == *name) => {
+                return Err(at(n, column(1), format!("a second `{name}` element")));
             }
             ["element", name, count] => {
                 let count = count.parse::<usize>().map_err(|_| {
@@ -439,15 +445,18 @@ fn slot(name: &str) -> Slot {
 
 fn vertices(body: &mut Body, element: &Element, mesh: &mut PlyMesh) -> Result<(), PlyError> {
     let slots: Vec<Slot> = element.properties.iter().map(|p| slot(&p.name)).collect();
-    let has = |f: fn(&Slot) -> bool, n: usize| slots.iter().filter(|s| f(s)).count() == n;
-    if !has(|s| matches!(s, Slot::Position(_)), 3) {
-        return Err(body.error("vertex", 0, "the vertex element needs x, y and z".into()));
+    // An attribute is read when each of its parts is a property once.
+    let has = |part: fn(usize) -> Slot, parts: usize| {
+        (0..parts).all(|k| slots.iter().filter(|&&s| s == part(k)).count() == 1)
+    };
+    if !has(Slot::Position, 3) {
+        return Err(body.error(
+            "vertex",
+            0,
+            "the vertex element needs x, y and z, once each".into(),
+        ));
     }
-    let (normals, uvs, colors) = (
-        has(|s| matches!(s, Slot::Normal(_)), 3),
-        has(|s| matches!(s, Slot::Uv(_)), 2),
-        has(|s| matches!(s, Slot::Color(_)), 3),
-    );
+    let (normals, uvs, colors) = (has(Slot::Normal, 3), has(Slot::Uv, 2), has(Slot::Color, 3));
     let n = element.count;
     mesh.positions.reserve_exact(n);
     mesh.normals.reserve_exact(if normals { n } else { 0 });
