@@ -77,6 +77,23 @@ pub fn obj(data: &[u8]) -> Result<(), String> {
     Ok(())
 }
 
+/// Reads `data` as a PLY file; a mesh read must have its faces' vertices and one of each
+/// attribute per vertex, or none.
+pub fn ply(data: &[u8]) -> Result<(), String> {
+    let mesh = raylab::formats::ply::parse_ply(data).map_err(|e| e.to_string())?;
+    let vertices = mesh.positions.len();
+    let per_vertex = |n: usize| n == 0 || n == vertices;
+    assert!(per_vertex(mesh.normals.len()) && per_vertex(mesh.uvs.len()));
+    assert!(per_vertex(mesh.colors.len()));
+    assert!(
+        mesh.faces
+            .iter()
+            .flatten()
+            .all(|&v| (v as usize) < vertices)
+    );
+    Ok(())
+}
+
 /// Reads `data` as an NFF file, checks that the document written back as NFF reads back the
 /// same, builds the scene and renders it.
 pub fn nff(data: &[u8]) -> Result<(), String> {

@@ -12,6 +12,7 @@ mod load_any;
 pub mod nff;
 mod obj;
 pub mod part;
+pub mod ply;
 pub mod sdl;
 mod sniff;
 pub mod spd;

@@ -60,6 +60,16 @@ fn the_kept_obj_files_read_or_fail_cleanly() {
 }
 
 #[test]
+fn the_kept_ply_files_read_or_fail_cleanly() {
+    replay("ply", harness::ply);
+    let seeds = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/regressions/ply");
+    for seed in ["seed_ascii.ply", "seed_binary_le.ply", "seed_binary_be.ply"] {
+        let bytes = std::fs::read(seeds.join(seed)).unwrap();
+        assert_eq!(harness::ply(&bytes), Ok(()), "{seed}");
+    }
+}
+
+#[test]
 fn the_kept_sdl_files_read_or_fail_cleanly() {
     replay("sdl", harness::sdl);
 }
