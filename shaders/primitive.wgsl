@@ -10,6 +10,8 @@ struct SurfacePoint {
     // Unit geometric normal, on the same side as `normal`.
     geometric_normal: vec3<f32>,
     uv: vec2<f32>,
+    // The mesh's vertex colour here (`Mesh::color`), white on objects and meshes without.
+    vertex_color: vec3<f32>,
     material: u32,
 }
 
@@ -31,7 +33,7 @@ fn surface_at(origin: vec3<f32>, dir: vec3<f32>, hit: Hit) -> SurfacePoint {
     if (hit.prim & OBJECT_BIT) != 0u {
         let o = objects[hit.prim & ~OBJECT_BIT];
         let s = object_surface(o, origin, dir, hit.t, hit.part);
-        return SurfacePoint(point, s.object_point, s.normal, s.normal, s.uv, material_of(hit));
+        return SurfacePoint(point, s.object_point, s.normal, s.normal, s.uv, vec3<f32>(1.0), material_of(hit));
     }
     return triangle_surface(point, hit);
 }
@@ -56,10 +58,14 @@ fn triangle_surface(point: vec3<f32>, hit: Hit) -> SurfacePoint {
     if (shading.material & HAS_UVS) != 0u {
         uv = vec2<f32>(a0.u, a0.v) * b0 + vec2<f32>(a1.u, a1.v) * hit.bary.x + vec2<f32>(a2.u, a2.v) * hit.bary.y;
     }
+    var vertex_color = vec3<f32>(1.0);
+    if (shading.material & HAS_COLORS) != 0u {
+        vertex_color = vec3<f32>(a0.red, a0.green, a0.blue) * b0 + vec3<f32>(a1.red, a1.green, a1.blue) * hit.bary.x + vec3<f32>(a2.red, a2.green, a2.blue) * hit.bary.y;
+    }
     // Vertex normals say which side is out; the winding may disagree.
     var geometric_normal = geometric;
     if dot(geometric, normal) < 0.0 {
         geometric_normal = -geometric;
     }
-    return SurfacePoint(point, point, normal, geometric_normal, uv, shading.material & MATERIAL_BITS);
+    return SurfacePoint(point, point, normal, geometric_normal, uv, vertex_color, shading.material & MATERIAL_BITS);
 }

@@ -111,16 +111,16 @@ struct Light {
 // mesh has vertex normals or texture coordinates), its material, and which it has.
 struct TriangleShading {
     corners: vec3<u32>,
-    // The material, with `HAS_NORMALS` and `HAS_UVS` set as the mesh has them.
+    // The material, with `HAS_NORMALS`, `HAS_UVS` and `HAS_COLORS` set as the mesh has them.
     material: u32,
 }
 
-// A mesh vertex's normal and texture coordinates.
+// A mesh vertex's normal, texture coordinates and colour.
 struct VertexAttributes {
     normal: vec3<f32>,
     u: f32,
     v: f32,
-    pad0: f32,
-    pad1: f32,
-    pad2: f32,
+    red: f32,
+    green: f32,
+    blue: f32,
 }

@@ -1,8 +1,9 @@
-//! Triangle meshes: shared vertices with optional per-vertex normals (smooth shading) and
-//! texture coordinates, already placed in world space.
+//! Triangle meshes: shared vertices with optional per-vertex normals (smooth shading), texture
+//! coordinates and colours, already placed in world space.
 
 use glam::{Vec2, Vec3};
 
+use crate::color::Color;
 use crate::limits;
 use crate::shapes::Triangle;
 use crate::transform::Transform;
@@ -14,9 +15,15 @@ pub struct Mesh {
     pub normals: Vec<Vec3>,
     /// Per-vertex texture coordinates, empty when the mesh has none.
     pub uvs: Vec<Vec2>,
+    /// Per-vertex colours (linear RGB), empty when the mesh has none. They multiply the
+    /// surface's colour (see [`crate::whitted::Tracer::base_color`]).
+    pub colors: Vec<Color>,
     pub faces: Vec<[u32; 3]>,
     pub material: u32,
 }
+
+/// The colours of a surface the mesh's vertex colours multiply by where a mesh has none.
+pub const NO_VERTEX_COLOR: Color = Color::ONE;
 
 /// Why a mesh cannot be used.
 #[derive(Clone, Debug, PartialEq)]
@@ -33,7 +40,11 @@ pub enum MeshError {
         uvs: usize,
         positions: usize,
     },
-    /// A normal that is not a finite number.
+    ColorCount {
+        colors: usize,
+        positions: usize,
+    },
+    /// A normal or colour that is not a finite number.
     NotFinite,
     /// A vertex past [`limits::MAX_COORDINATE`] (or not a number).
     OutOfRange(Vec3),
@@ -53,7 +64,11 @@ impl std::fmt::Display for MeshError {
                 f,
                 "{uvs} texture coordinates for {positions} vertices (need one per vertex, or none)"
             ),
-            MeshError::NotFinite => write!(f, "a normal is not a finite number"),
+            MeshError::ColorCount { colors, positions } => write!(
+                f,
+                "{colors} vertex colours for {positions} vertices (need one per vertex, or none)"
+            ),
+            MeshError::NotFinite => write!(f, "a normal or a colour is not a finite number"),
             MeshError::OutOfRange(p) => {
                 write!(f, "{}", limits::out_of_range_message("a vertex", *p))
             }
@@ -77,10 +92,17 @@ impl Mesh {
                 positions: n,
             });
         }
+        if !self.colors.is_empty() && self.colors.len() != n {
+            return Err(MeshError::ColorCount {
+                colors: self.colors.len(),
+                positions: n,
+            });
+        }
         if let Some(&p) = self.positions.iter().find(|&&p| !limits::within_range(p)) {
             return Err(MeshError::OutOfRange(p));
         }
-        if !self.normals.iter().all(|n| n.is_finite()) {
+        let finite = |v: &Vec3| v.is_finite();
+        if !self.normals.iter().all(finite) || !self.colors.iter().all(finite) {
             return Err(MeshError::NotFinite);
         }
         for (face, f) in self.faces.iter().enumerate() {
@@ -126,5 +148,16 @@ impl Mesh {
             self.uvs[i0] * b0 + self.uvs[i1] * bary.x + self.uvs[i2] * bary.y
         };
         (normal, uv)
+    }
+
+    /// The vertex colour of face `face` at barycentric `(b1, b2)`; [`NO_VERTEX_COLOR`] when
+    /// the mesh has none.
+    pub fn color(&self, face: u32, bary: Vec2) -> Color {
+        if self.colors.is_empty() {
+            return NO_VERTEX_COLOR;
+        }
+        let [i0, i1, i2] = self.faces[face as usize].map(|i| i as usize);
+        let b0 = 1.0 - bary.x - bary.y;
+        self.colors[i0] * b0 + self.colors[i1] * bary.x + self.colors[i2] * bary.y
     }
 }

@@ -5,7 +5,8 @@
 use glam::{Vec2, Vec3};
 
 use crate::aabb::Aabb;
-use crate::mesh::Mesh;
+use crate::color::Color;
+use crate::mesh::{Mesh, NO_VERTEX_COLOR};
 use crate::ray::Ray;
 use crate::shapes::{LocalSurface, Shape, ShearedRay, Triangle};
 use crate::transform::Transform;
@@ -89,6 +90,9 @@ pub struct SurfacePoint {
     /// Texture coordinates; zero where the caller of [`Geometry::surface_with`] did not ask
     /// for them.
     pub uv: Vec2,
+    /// The mesh's vertex colour here ([`Mesh::color`]); [`NO_VERTEX_COLOR`] on objects and
+    /// meshes without colours.
+    pub vertex_color: Color,
     pub material: u32,
 }
 
@@ -163,6 +167,7 @@ impl Geometry {
                 m.positions.capacity() * size_of::<Vec3>()
                     + m.normals.capacity() * size_of::<Vec3>()
                     + m.uvs.capacity() * size_of::<Vec2>()
+                    + m.colors.capacity() * size_of::<Color>()
                     + m.faces.capacity() * size_of::<[u32; 3]>()
             })
             .sum();
@@ -377,6 +382,7 @@ impl Geometry {
                     normal,
                     geometric_normal: normal,
                     uv: local.uv,
+                    vertex_color: NO_VERTEX_COLOR,
                     material: object.material_at(hit.part),
                 }
             }
@@ -397,6 +403,7 @@ impl Geometry {
                     normal,
                     geometric_normal,
                     uv,
+                    vertex_color: mesh.color(tri.face, hit.bary),
                     material: mesh.material,
                 }
             }

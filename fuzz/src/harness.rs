@@ -38,20 +38,14 @@ const SCENE_FILES: &[(&str, &[u8])] = &[
     ("../textures/sky.bmp", GRID_PNG),
 ];
 
-/// The scene the `obj` target loads its input in, as a scene file's `type = "obj"` object.
-const OBJ_SCENE: &str = r#"
-[camera]
-eye = [0, 1.5, 4]
-look_at = [0, 0, 0]
-
-[[lights]]
-type = "point"
-position = [2, 5, 4]
-
-[[objects]]
-type = "obj"
-file = "model.obj"
-"#;
+/// The scene the `obj` and `ply` targets load their input in, as a scene file's object of
+/// type `kind` (`obj`, `ply`) whose file is `model.KIND`.
+fn model_scene(kind: &str) -> String {
+    format!(
+        "[camera]\neye = [0, 1.5, 4]\nlook_at = [0, 0, 0]\n\n[[lights]]\ntype = \"point\"\n\
+         position = [2, 5, 4]\n\n[[objects]]\ntype = \"{kind}\"\nfile = \"model.{kind}\"\n"
+    )
+}
 
 /// Reads `data` as a TOML scene file, which may name [`SCENE_FILES`], and renders it.
 pub fn toml_scene(data: &[u8]) -> Result<(), String> {
@@ -68,7 +62,7 @@ pub fn toml_scene(data: &[u8]) -> Result<(), String> {
 pub fn obj(data: &[u8]) -> Result<(), String> {
     let files = [("model.obj", data), ("tetra.mtl", TETRA_MTL)];
     let scene = parse_scene_with(
-        OBJ_SCENE,
+        &model_scene("obj"),
         Path::new("fuzz-obj.toml"),
         SceneFiles::Builtin(&files),
     )
@@ -77,8 +71,9 @@ pub fn obj(data: &[u8]) -> Result<(), String> {
     Ok(())
 }
 
-/// Reads `data` as a PLY file; a mesh read must have its faces' vertices and one of each
-/// attribute per vertex, or none.
+/// Reads `data` as a PLY file: a mesh read must have its faces' vertices and one of each
+/// attribute per vertex (or none); then loads it the way a scene file's `type = "ply"` object
+/// does, and renders it.
 pub fn ply(data: &[u8]) -> Result<(), String> {
     let mesh = raylab::formats::ply::parse_ply(data).map_err(|e| e.to_string())?;
     let vertices = mesh.positions.len();
@@ -91,6 +86,14 @@ pub fn ply(data: &[u8]) -> Result<(), String> {
             .flatten()
             .all(|&v| (v as usize) < vertices)
     );
+    let files = [("model.ply", data)];
+    let scene = parse_scene_with(
+        &model_scene("ply"),
+        Path::new("fuzz-ply.toml"),
+        SceneFiles::Builtin(&files),
+    )
+    .map_err(|e| e.to_string())?;
+    render_tiny(scene);
     Ok(())
 }
 

@@ -51,12 +51,14 @@ fn miss_color(dir: vec3<f32>) -> vec3<f32> {
     return frame.background;
 }
 
-// `Tracer::base_color`: the surface's colour, its texture's if it has one and textures are on.
+// `Tracer::base_color`: the surface's colour, its texture's if it has one and textures are on,
+// else the material's, times the mesh's vertex colour.
 fn base_color(m: Material, surface: SurfacePoint) -> vec3<f32> {
+    var color = m.color;
     if m.texture != NO_TEXTURE && (frame.flags & TEXTURES) != 0u {
-        return texture_color(m.texture, surface.uv, surface.object_point);
+        color = texture_color(m.texture, surface.uv, surface.object_point);
     }
-    return m.color;
+    return color * surface.vertex_color;
 }
 
 // Whether a child ray carrying `weight` goes on: its kind is on and its weight reaches

@@ -22,7 +22,7 @@ use super::overrides::OverrideArgs;
 
 #[derive(Args, Debug)]
 pub struct CheckArgs {
-    /// The scene the image is of: a .toml, .nff, SDL (.dat, .sdl) or .obj file, or `spd:NAME[:SIZE]`.
+    /// The scene the image is of: a .toml, .nff, SDL (.dat, .sdl), .obj or .ply file, or `spd:NAME[:SIZE]`.
     scene: String,
     /// The image to check: PNG, PPM, BMP, JPEG, OpenEXR or Radiance HDR. raylab renders the
     /// scene at its size.
@@ -33,7 +33,7 @@ pub struct CheckArgs {
     /// Print the findings as JSON instead of text.
     #[arg(long)]
     json: bool,
-    /// The scene file's format, whatever its name ends in: toml, nff, sdl or obj.
+    /// The scene file's format, whatever its name ends in: toml, nff, sdl, obj or ply.
     #[arg(long)]
     format: Option<SceneFormat>,
     /// Overrides of the scene's render settings (the size is the image's).

@@ -17,10 +17,10 @@ use super::overrides::OverrideArgs;
 
 #[derive(Args, Debug)]
 pub struct InspectArgs {
-    /// Scene: a .toml, .nff, SDL (.dat, .sdl) or .obj file, or `spd:NAME[:SIZE]`; the built-in default scene when left
+    /// Scene: a .toml, .nff, SDL (.dat, .sdl), .obj or .ply file, or `spd:NAME[:SIZE]`; the built-in default scene when left
     /// out.
     scene: Option<String>,
-    /// The scene file's format, whatever its name ends in: toml, nff, sdl or obj.
+    /// The scene file's format, whatever its name ends in: toml, nff, sdl, obj or ply.
     #[arg(long)]
     format: Option<SceneFormat>,
     /// The pixel, `X,Y`: X from the left, Y from the top of the image, from 0.

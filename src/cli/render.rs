@@ -31,10 +31,10 @@ use super::sequence::{SequenceArgs, frame_paths};
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// Scene: a .toml, .nff, SDL (.dat, .sdl) or .obj file, or a built-in SPD scene `spd:NAME[:SIZE]` (balls, gears,
+    /// Scene: a .toml, .nff, SDL (.dat, .sdl), .obj or .ply file, or a built-in SPD scene `spd:NAME[:SIZE]` (balls, gears,
     /// mount, rings, teapot, tetra, tree); the built-in default scene when left out.
     scene: Option<String>,
-    /// The scene file's format, whatever its name ends in: toml, nff, sdl or obj.
+    /// The scene file's format, whatever its name ends in: toml, nff, sdl, obj or ply.
     #[arg(long)]
     format: Option<SceneFormat>,
     /// Output image: .png or .ppm (8-bit sRGB), .exr or .hdr (linear floats).

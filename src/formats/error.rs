@@ -24,6 +24,9 @@ pub struct SceneError {
     pub source_line: Option<String>,
     /// How many characters from `column` on the caret underlines (at least 1).
     pub underline: usize,
+    /// The offset of an error in a binary file, which has no lines: then the message is
+    /// printed `file: byte N: message`.
+    pub byte: Option<usize>,
 }
 
 impl SceneError {
@@ -36,6 +39,15 @@ impl SceneError {
             message: message.into(),
             source_line: None,
             underline: 1,
+            byte: None,
+        }
+    }
+
+    /// An error at byte `offset` of a binary file.
+    pub fn at_byte(file: &Path, offset: usize, message: impl Into<String>) -> SceneError {
+        SceneError {
+            byte: Some(offset),
+            ..SceneError::whole_file(file, message)
         }
     }
 }
@@ -48,13 +60,11 @@ impl fmt::Display for SceneError {
             .map(printable)
             .collect::<Vec<_>>()
             .join("\n");
-        write!(
-            f,
-            "{}:{}:{}: {message}",
-            printable(&self.file.display().to_string()),
-            self.line,
-            self.column,
-        )?;
+        let file = printable(&self.file.display().to_string());
+        if let Some(byte) = self.byte {
+            return write!(f, "{file}: byte {byte}: {message}");
+        }
+        write!(f, "{file}:{}:{}: {message}", self.line, self.column,)?;
         if let Some(source_line) = &self.source_line {
             let number = self.line.to_string();
             let gutter = " ".repeat(number.len());
@@ -157,6 +167,7 @@ impl Source<'_> {
             message: message.into(),
             source_line: Some(source_line.to_string()),
             underline,
+            byte: None,
         }
     }
 

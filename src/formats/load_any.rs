@@ -1,7 +1,7 @@
 //! The one entry point for every scene raylab reads, for the command line and the viewer alike:
 //! a built-in SPD scene by name (`spd:balls`, `spd:tree:6`), an NFF file (by its `.nff`
-//! extension), an SDL file (`.dat` or `.sdl`), an OBJ model (`.obj`, framed and lit by a light
-//! at the eye), or a TOML scene file; with the camera of a
+//! extension), an SDL file (`.dat` or `.sdl`), an OBJ or PLY model (`.obj`, `.ply`, framed and
+//! lit by a light at the eye), or a TOML scene file; with the camera of a
 //! `NAME.camera.toml` beside the file, and the default framing ([`with_framing_camera`]) for a
 //! format that has no camera (SDL).
 
@@ -13,7 +13,7 @@ use super::SceneError;
 use super::nff::{NffLighting, load_nff};
 use super::sdl::load_sdl;
 use super::spd::{SCENE_PREFIX, load_spd};
-use super::toml::{load_camera, load_obj_scene, load_scene};
+use super::toml::{ModelFormat, load_camera, load_model_scene, load_scene};
 use crate::scene::Scene;
 
 /// Reads the scene `name` names, NFF lights as bright as the SPD readme suggests.
@@ -63,23 +63,29 @@ pub enum SceneFormat {
     Sdl,
     /// A Wavefront OBJ model on its own.
     Obj,
+    /// A PLY model (the Stanford format) on its own.
+    Ply,
 }
 
+/// The extensions of the scene files raylab reads, in lower case, and their formats.
+pub const SCENE_EXTENSIONS: [(&str, SceneFormat); 6] = [
+    ("toml", SceneFormat::Toml),
+    ("nff", SceneFormat::Nff),
+    ("dat", SceneFormat::Sdl),
+    ("sdl", SceneFormat::Sdl),
+    ("obj", SceneFormat::Obj),
+    ("ply", SceneFormat::Ply),
+];
+
 impl SceneFormat {
-    /// The format a file's extension names: `.nff`, `.dat`, `.sdl` and `.obj`; TOML for any
+    /// The format a file's extension names ([`SCENE_EXTENSIONS`], in any case); TOML for any
     /// other.
     pub fn of(path: &Path) -> SceneFormat {
         let extension = path.extension().and_then(|ext| ext.to_str());
-        let is = |wanted: &str| extension.is_some_and(|ext| ext.eq_ignore_ascii_case(wanted));
-        if is("nff") {
-            SceneFormat::Nff
-        } else if is("dat") || is("sdl") {
-            SceneFormat::Sdl
-        } else if is("obj") {
-            SceneFormat::Obj
-        } else {
-            SceneFormat::Toml
-        }
+        SCENE_EXTENSIONS
+            .iter()
+            .find(|(name, _)| extension.is_some_and(|ext| ext.eq_ignore_ascii_case(name)))
+            .map_or(SceneFormat::Toml, |&(_, format)| format)
     }
 }
 
@@ -109,7 +115,8 @@ pub fn load_any_as(
         SceneFormat::Nff => load_nff(path, lighting),
         SceneFormat::Sdl => load_sdl(path).map(with_framing_camera),
         SceneFormat::Toml => load_scene(path),
-        SceneFormat::Obj => load_obj_scene(path),
+        SceneFormat::Obj => load_model_scene(path, ModelFormat::Obj),
+        SceneFormat::Ply => load_model_scene(path, ModelFormat::Ply),
     }?;
     if let Some(camera_file) = camera_file_beside(name) {
         scene.camera = load_camera(&camera_file, scene.camera.spec)?;
@@ -158,10 +165,13 @@ mod tests {
         for format in SceneFormat::iter() {
             assert_eq!(format.to_string().parse::<SceneFormat>(), Ok(format));
         }
-        assert_eq!(SceneFormat::VARIANTS, ["toml", "nff", "sdl", "obj"]);
+        assert_eq!(SceneFormat::VARIANTS, ["toml", "nff", "sdl", "obj", "ply"]);
         assert_eq!(
-            "ply".parse::<SceneFormat>(),
-            Err("unknown scene format `ply` (expected toml, nff, sdl or obj)".to_string())
+            "stl".parse::<SceneFormat>(),
+            Err("unknown scene format `stl` (expected toml, nff, sdl, obj or ply)".to_string())
         );
+        assert_eq!(SceneFormat::of(Path::new("Bunny.PLY")), SceneFormat::Ply);
+        assert_eq!(SceneFormat::of(Path::new("room.dat")), SceneFormat::Sdl);
+        assert_eq!(SceneFormat::of(Path::new("room")), SceneFormat::Toml);
     }
 }

@@ -22,7 +22,7 @@ pub(crate) use error::Source;
 pub use error::{SceneError, printable};
 pub use files::{SceneFiles, ascii_text, utf8_text};
 pub use load_any::{
-    SceneFormat, camera_file_beside, camera_path, load_any, load_any_as, load_any_with, views_path,
-    with_framing_camera,
+    SCENE_EXTENSIONS, SceneFormat, camera_file_beside, camera_path, load_any, load_any_as,
+    load_any_with, views_path, with_framing_camera,
 };
 pub use sniff::{known_format, not_the_format};

@@ -115,6 +115,7 @@ pub fn load_obj(path: &Path, files: SceneFiles, uses_mtl: bool) -> Result<ObjCon
                     positions: m.positions.chunks_exact(3).map(Vec3::from_slice).collect(),
                     normals: m.normals.chunks_exact(3).map(Vec3::from_slice).collect(),
                     uvs: m.texcoords.chunks_exact(2).map(Vec2::from_slice).collect(),
+                    colors: Vec::new(),
                     faces: m
                         .indices
                         .chunks_exact(3)

@@ -1,25 +1,16 @@
-//! PLY (the Stanford polygon format) read into a [`PlyMesh`]: ASCII, binary little endian and
+//! PLY (the Stanford polygon format) read into a [`Mesh`]: ASCII, binary little endian and
 //! binary big endian. The `vertex` element gives positions (`x y z`), and when present normals
 //! (`nx ny nz`), texture coordinates (`u v`, `s t` or `texture_u texture_v`) and colours
-//! (`red green blue`, 8-bit or float); the `face` element's `vertex_indices` (or `vertex_index`)
+//! (`red green blue`, sRGB as 8-bit, 16-bit or float values, read into linear RGB); the `face` element's `vertex_indices` (or `vertex_index`)
 //! lists, of any length, are cut into triangles as fans. Other elements and properties are
 //! skipped. Every count is checked against the bytes left before anything is allocated for it,
 //! and an error says where: `line:column` in ASCII, the byte offset and the element in binary.
 
-use glam::{Vec2, Vec3};
+use std::path::Path;
 
-use crate::color::Color;
-
-/// A PLY file's mesh, its attributes one per vertex or empty.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct PlyMesh {
-    pub positions: Vec<Vec3>,
-    pub normals: Vec<Vec3>,
-    pub uvs: Vec<Vec2>,
-    /// Vertex colours, linear RGB (8-bit values are read as sRGB).
-    pub colors: Vec<Color>,
-    pub faces: Vec<[u32; 3]>,
-}
+use super::error::SceneError;
+use crate::color::{Color, srgb_to_linear};
+use crate::mesh::Mesh;
 
 /// Where in the file an error is.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -52,6 +43,40 @@ impl std::fmt::Display for PlyError {
             } => write!(f, "byte {offset} ({element} {index}): {}", self.message),
         }
     }
+}
+
+impl PlyError {
+    /// The error as a [`SceneError`] of the PLY file at `path`, whose bytes are `bytes`: at its
+    /// line and column, with the line shown, or at its byte offset in a binary body.
+    pub fn in_file(self, path: &Path, bytes: &[u8]) -> SceneError {
+        match self.place {
+            PlyPlace::Text { line, column } => {
+                let text = line_text(bytes, line);
+                SceneError {
+                    line,
+                    column,
+                    source_line: Some(text),
+                    ..SceneError::whole_file(path, self.message)
+                }
+            }
+            PlyPlace::Binary {
+                offset,
+                element,
+                index,
+            } => SceneError::at_byte(path, offset, format!("{element} {index}: {}", self.message)),
+        }
+    }
+}
+
+/// The text of line `line` (1-based) of `bytes`, each byte that is not UTF-8 shown as U+FFFD.
+fn line_text(bytes: &[u8], line: usize) -> String {
+    let text = bytes
+        .split(|&b| b == b'\n')
+        .nth(line - 1)
+        .unwrap_or_default();
+    String::from_utf8_lossy(text)
+        .trim_end_matches('\r')
+        .to_string()
 }
 
 /// The most bytes a header may take.
@@ -91,6 +116,19 @@ impl Scalar {
             Scalar::I16 | Scalar::U16 => 2,
             Scalar::I32 | Scalar::U32 | Scalar::F32 => 4,
             Scalar::F64 => 8,
+        }
+    }
+
+    /// The value that stands for 1 in a colour of this type: 255 for `uchar`, 1 for floats.
+    fn full_scale(self) -> f32 {
+        match self {
+            Scalar::I8 => i8::MAX as f32,
+            Scalar::U8 => u8::MAX as f32,
+            Scalar::I16 => i16::MAX as f32,
+            Scalar::U16 => u16::MAX as f32,
+            Scalar::I32 => i32::MAX as f32,
+            Scalar::U32 => u32::MAX as f32,
+            Scalar::F32 | Scalar::F64 => 1.0,
         }
     }
 
@@ -136,15 +174,17 @@ enum Encoding {
 }
 
 /// Reads a PLY file's bytes.
-pub fn parse_ply(bytes: &[u8]) -> Result<PlyMesh, PlyError> {
+pub fn parse_ply(bytes: &[u8]) -> Result<Mesh, PlyError> {
     let (encoding, elements, body) = header(bytes)?;
     let mut body = Body::new(bytes, body, encoding);
-    let mut mesh = PlyMesh::default();
+    let mut mesh = Mesh::default();
     for element in &elements {
         let needed = element
             .count
             .checked_mul(element.min_bytes(encoding != Encoding::Ascii));
-        if needed.is_none_or(|n| n > body.left()) {
+        // The last ASCII value of the file may end it without a space or a newline after it.
+        let slack = usize::from(encoding == Encoding::Ascii);
+        if needed.is_none_or(|n| n > body.left() + slack) {
             return Err(body.error(
                 &element.name,
                 0,
@@ -373,7 +413,12 @@ impl<'a> Body<'a> {
         let text = String::from_utf8_lossy(&self.bytes[self.token..self.at]);
         let value = text.parse::<f64>().ok().filter(|v| v.is_finite());
         let value = value.filter(|v| !kind.is_integer() || v.fract() == 0.0);
-        value.ok_or_else(|| format!("`{text}` is not a {kind:?} number"))
+        let expected = if kind.is_integer() {
+            "an integer"
+        } else {
+            "a finite number"
+        };
+        value.ok_or_else(|| format!("`{text}` is not {expected}"))
     }
 
     fn binary(&mut self, kind: Scalar) -> Result<f64, String> {
@@ -443,7 +488,7 @@ fn slot(name: &str) -> Slot {
     }
 }
 
-fn vertices(body: &mut Body, element: &Element, mesh: &mut PlyMesh) -> Result<(), PlyError> {
+fn vertices(body: &mut Body, element: &Element, mesh: &mut Mesh) -> Result<(), PlyError> {
     let slots: Vec<Slot> = element.properties.iter().map(|p| slot(&p.name)).collect();
     // An attribute is read when each of its parts is a property once.
     let has = |part: fn(usize) -> Slot, parts: usize| {
@@ -480,10 +525,7 @@ fn vertices(body: &mut Body, element: &Element, mesh: &mut PlyMesh) -> Result<()
                 Slot::Position(k) => p[k] = v as f32,
                 Slot::Normal(k) => nrm[k] = v as f32,
                 Slot::Uv(k) => uv[k] = v as f32,
-                Slot::Color(k) if property.kind == Scalar::U8 => {
-                    c[k] = crate::color::srgb_to_linear(v as f32 / 255.0)
-                }
-                Slot::Color(k) => c[k] = v as f32,
+                Slot::Color(k) => c[k] = srgb_to_linear(v as f32 / property.kind.full_scale()),
                 Slot::Other => {}
             }
         }
@@ -501,7 +543,7 @@ fn vertices(body: &mut Body, element: &Element, mesh: &mut PlyMesh) -> Result<()
     Ok(())
 }
 
-fn faces(body: &mut Body, element: &Element, mesh: &mut PlyMesh) -> Result<(), PlyError> {
+fn faces(body: &mut Body, element: &Element, mesh: &mut Mesh) -> Result<(), PlyError> {
     let is_indices = |p: &Property| {
         p.list.is_some() && matches!(p.name.as_str(), "vertex_indices" | "vertex_index")
     };
@@ -513,6 +555,8 @@ fn faces(body: &mut Body, element: &Element, mesh: &mut PlyMesh) -> Result<(), P
         ));
     }
     let vertex_count = mesh.positions.len();
+    // One triangle a face, as most files have; polygons of more corners grow it.
+    mesh.faces.reserve_exact(element.count);
     let mut polygon: Vec<u32> = Vec::new();
     for index in 0..element.count {
         for property in &element.properties {
@@ -567,6 +611,7 @@ fn skip(body: &mut Body, element: &Element) -> Result<(), PlyError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::{Vec2, Vec3};
 
     const HEADER: &str = "element vertex 5\nproperty float x\nproperty float y\nproperty float z\n\
         property uchar red\nproperty uchar green\nproperty uchar blue\n\
@@ -681,7 +726,7 @@ mod tests {
     }
 
     #[test]
-    fn other_elements_and_properties_are_skipped_and_float_colours_kept() {
+    fn other_elements_and_properties_are_skipped_and_float_colours_read_as_srgb() {
         let text = "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n\
             property double z\nproperty float nx\nproperty float ny\nproperty float nz\n\
             property float s\nproperty float t\nproperty float red\nproperty float green\n\
@@ -694,6 +739,9 @@ mod tests {
         assert_eq!(mesh.faces, vec![[0, 1, 2]]);
         assert_eq!(mesh.normals, vec![Vec3::Z; 3]);
         assert_eq!(mesh.uvs[2], Vec2::new(0.0, 1.0));
-        assert_eq!(mesh.colors[1], Color::splat(0.5));
+        assert_eq!(mesh.colors[1], Color::splat(srgb_to_linear(0.5)));
+        // The file may end right after its last value.
+        let mesh = parse_ply(text.trim_end().as_bytes()).unwrap();
+        assert_eq!(mesh.faces, vec![[0, 1, 2]]);
     }
 }

@@ -100,24 +100,29 @@ impl From<&Light> for GpuLight {
 
 gpu_record! {
     /// WGSL's `TriangleShading`: which vertices of [`super::scene::GpuScene`]'s vertex attributes a triangle's
-    /// corners are, and its material with [`HAS_NORMALS`] and [`HAS_UVS`].
+    /// corners are, and its material with [`HAS_NORMALS`], [`HAS_UVS`] and [`HAS_COLORS`].
     pub struct GpuTriangleShading {
         pub corners: [u32; 3],
         pub material: u32,
     }
 }
 
+pub const HAS_COLORS: u32 = 1 << 29;
 pub const HAS_NORMALS: u32 = 1 << 30;
 pub const HAS_UVS: u32 = 1 << 31;
 
+/// The low bits of a triangle's material word that hold the material (the top three are
+/// [`HAS_COLORS`], [`HAS_NORMALS`] and [`HAS_UVS`]).
+pub const MATERIAL_BITS: u32 = HAS_COLORS - 1;
+
 gpu_record! {
-    /// WGSL's `VertexAttributes`.
+    /// WGSL's `VertexAttributes`: a mesh vertex's normal, texture coordinates and colour.
     pub struct GpuVertexAttributes {
         pub normal: [f32; 3],
         pub u: f32,
         pub v: f32,
-        pub pad0: f32,
-        pub pad1: f32,
-        pub pad2: f32,
+        pub red: f32,
+        pub green: f32,
+        pub blue: f32,
     }
 }

@@ -19,7 +19,7 @@ use super::caustics::MAX_PHOTON_TREE_DEPTH;
 use super::frame::{
     BALL_BACKDROP, CAUSTICS, OPAQUE, REFLECTIONS, SHADOWS, TEXTURES, TRANSMISSION, ViewKind,
 };
-use super::materials::{HAS_NORMALS, HAS_UVS};
+use super::materials::{HAS_COLORS, HAS_NORMALS, HAS_UVS, MATERIAL_BITS};
 use super::scene::SceneBinding;
 use super::shapes::{CSG_COMBINE, CSG_COMPLEMENTED, GPU_MAX_CSG_OPERANDS, NO_TRANSFORM};
 use super::texture::NO_TEXTURE;
@@ -72,10 +72,6 @@ pub const MAX_CROSSINGS: u32 = 4 * GPU_MAX_CSG_OPERANDS as u32;
 
 /// Entries of the ray tree's explicit stack: the rays waiting to be traced.
 pub const TREE_STACK: u32 = 64;
-
-/// The low bits of a triangle's material word that hold the material (the top two are
-/// [`HAS_NORMALS`] and [`HAS_UVS`]).
-pub const MATERIAL_BITS: u32 = HAS_NORMALS - 1;
 
 /// The item buffer's near clipping plane, as a share of the image plane's distance: a little
 /// nearer than every eye ray's first point (`t` = [`EYE_RAY_T_MIN`]), so that no surface an eye
@@ -190,7 +186,7 @@ pub fn prelude() -> String {
         PIXEL_CENTRE = crate::camera::PIXEL_CENTRE,
         // The scene's records.
         SHADOWS, REFLECTIONS, TRANSMISSION, OPAQUE, TEXTURES, BALL_BACKDROP, CAUSTICS,
-        NO_TRANSFORM, NO_TEXTURE, HAS_NORMALS, HAS_UVS, MATERIAL_BITS,
+        NO_TRANSFORM, NO_TEXTURE, HAS_COLORS, HAS_NORMALS, HAS_UVS, MATERIAL_BITS,
         // The shapes' parts and the CSG programs.
         TAPERED_SIDE = TaperedCylinder::SIDE,
         TAPERED_BASE_CAP = TaperedCylinder::BASE_CAP,

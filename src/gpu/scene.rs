@@ -14,7 +14,8 @@ use super::frame::{
     TRANSMISSION, ViewKind,
 };
 use super::materials::{
-    GpuLight, GpuMaterial, GpuTriangleShading, GpuVertexAttributes, HAS_NORMALS, HAS_UVS,
+    GpuLight, GpuMaterial, GpuTriangleShading, GpuVertexAttributes, HAS_COLORS, HAS_NORMALS,
+    HAS_UVS, MATERIAL_BITS,
 };
 use super::shapes::{GpuObject, ObjectTable, Word};
 use super::storage::storage_entry_in;
@@ -24,6 +25,7 @@ use crate::bvh::Bvh;
 use crate::camera::Camera;
 use crate::color::Color;
 use crate::medium::{Backdrop, Fog, Medium};
+use crate::mesh::{Mesh, NO_VERTEX_COLOR};
 use crate::photon_map::PhotonMap;
 use crate::render::Assembled;
 use crate::scene::Scene;
@@ -51,6 +53,12 @@ impl SceneRecords {
                 "the BVH is {depth} levels deep; the GPU's walk takes at most {MAX_TREE_DEPTH}"
             ));
         }
+        if scene.materials.len() > MATERIAL_BITS as usize {
+            return Err(format!(
+                "the scene has {} materials; the GPU tracer takes at most {MATERIAL_BITS}",
+                scene.materials.len()
+            ));
+        }
         let table = ObjectTable::new(&scene.geometry.objects)?;
         let gpu_bvh = GpuBvh::new(bvh, &scene.geometry);
         let geometry = &scene.geometry;
@@ -59,21 +67,22 @@ impl SceneRecords {
         let mut attribute_starts = Vec::with_capacity(geometry.meshes.len());
         for mesh in &geometry.meshes {
             attribute_starts.push(vertex_attributes.len() as u32);
-            if mesh.normals.is_empty() && mesh.uvs.is_empty() {
-                continue;
+            if attribute_flags(mesh) != 0 {
+                vertex_attributes.extend((0..mesh.positions.len()).map(|v| {
+                    let normal = mesh.normals.get(v).map_or([0.0; 3], |n| n.to_array());
+                    let uv = mesh.uvs.get(v).copied().unwrap_or_default();
+                    let [red, green, blue] =
+                        mesh.colors.get(v).unwrap_or(&NO_VERTEX_COLOR).to_array();
+                    GpuVertexAttributes {
+                        normal,
+                        u: uv.x,
+                        v: uv.y,
+                        red,
+                        green,
+                        blue,
+                    }
+                }));
             }
-            vertex_attributes.extend((0..mesh.positions.len()).map(|v| {
-                let normal = mesh.normals.get(v).map_or([0.0; 3], |n| n.to_array());
-                let uv = mesh.uvs.get(v).copied().unwrap_or_default();
-                GpuVertexAttributes {
-                    normal,
-                    u: uv.x,
-                    v: uv.y,
-                    pad0: 0.0,
-                    pad1: 0.0,
-                    pad2: 0.0,
-                }
-            }));
         }
         let triangle_shading = gpu_bvh
             .triangles
@@ -83,14 +92,9 @@ impl SceneRecords {
                 let (mesh_index, face) = geometry.triangle_face(index);
                 let mesh = &geometry.meshes[mesh_index];
                 let start = attribute_starts[mesh_index];
-                let flags = if mesh.normals.is_empty() {
-                    0
-                } else {
-                    HAS_NORMALS
-                } | if mesh.uvs.is_empty() { 0 } else { HAS_UVS };
                 GpuTriangleShading {
                     corners: mesh.faces[face as usize].map(|v| start + v),
-                    material: mesh.material | flags,
+                    material: mesh.material | attribute_flags(mesh),
                 }
             })
             .collect();
@@ -104,6 +108,14 @@ impl SceneRecords {
             textures: TextureRecords::new(scene)?,
         })
     }
+}
+
+/// Which vertex attributes `mesh` has, as the flags of its triangles' material words.
+fn attribute_flags(mesh: &Mesh) -> u32 {
+    let flag = |has: bool, flag: u32| if has { flag } else { 0 };
+    flag(!mesh.normals.is_empty(), HAS_NORMALS)
+        | flag(!mesh.uvs.is_empty(), HAS_UVS)
+        | flag(!mesh.colors.is_empty(), HAS_COLORS)
 }
 
 /// The scene's buffers on the GPU and the bind group that binds them.

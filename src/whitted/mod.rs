@@ -253,14 +253,16 @@ impl<'a> Tracer<'a> {
         background
     }
 
-    /// The surface's colour: its texture's if it has one (and textures are on).
+    /// The surface's colour: its texture's if it has one (and textures are on), else the
+    /// material's, times the mesh's vertex colour.
     pub fn base_color(&self, material: &Material, surface: &SurfacePoint) -> Color {
-        match material.texture {
+        let color = match material.texture {
             Some(t) if self.scene.settings.textures => {
                 self.scene.textures[t as usize].color(surface.uv, surface.object_point)
             }
             _ => material.color,
-        }
+        };
+        color * surface.vertex_color
     }
 
     /// The colour at a hit: the local (Phong) colour plus the reflected and transmitted rays.

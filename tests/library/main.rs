@@ -19,6 +19,7 @@ mod inspect;
 mod inspect_image;
 mod limits;
 mod media;
+mod models;
 mod module_cycles;
 mod module_order;
 mod nff;

@@ -20,7 +20,9 @@ use crate::camera::{Camera, CameraError, CameraSpec};
 use crate::color::Color;
 use crate::formats::SceneFiles;
 use crate::formats::obj::{ObjError, load_obj};
+use crate::formats::ply::parse_ply;
 use crate::formats::{SceneError, Source};
+use crate::formats::{known_format, not_the_format};
 use crate::light::{Light, Spot};
 use crate::limits;
 use crate::material::Material;
@@ -137,14 +139,25 @@ pub(crate) fn build_scene(
     Ok(scene)
 }
 
-/// The colour of the light an OBJ file opened as a scene is lit by: white, at the eye.
-const OBJ_LIGHT: Color = Color::splat(1.0);
+/// The colour of the light a model file opened as a scene is lit by: white, at the eye.
+const MODEL_LIGHT: Color = Color::splat(1.0);
 
-/// The OBJ file at `path` as a scene of its own: its meshes with their MTL materials (the
-/// default material where they name none), the default render settings, the camera framing the
-/// model as the viewer's F does, and a white point light at the eye (OBJ has no lights), which a
-/// warning tells of.
-pub(crate) fn build_obj_scene(path: &Path, files: SceneFiles) -> Result<Scene, SceneError> {
+/// The formats of model files, which hold meshes but no lights or camera.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModelFormat {
+    Obj,
+    Ply,
+}
+
+/// The model file at `path` as a scene of its own: its meshes with their materials (OBJ's MTL
+/// materials; the default material where there are none), the default render settings, the
+/// camera framing the model as the viewer's F does, and a white point light at the eye (model
+/// files have no lights), which a warning tells of.
+pub(crate) fn build_model_scene(
+    path: &Path,
+    files: SceneFiles,
+    format: ModelFormat,
+) -> Result<Scene, SceneError> {
     let source = Source {
         origin: path,
         text: "",
@@ -160,7 +173,11 @@ pub(crate) fn build_obj_scene(path: &Path, files: SceneFiles) -> Result<Scene, S
     };
     let name = path.file_name().unwrap_or(path.as_os_str());
     let name = Spanned::new(0..0, name.to_string_lossy().into_owned());
-    builder.add_obj(name, None, None).map_err(|error| {
+    let added = match format {
+        ModelFormat::Obj => builder.add_obj(name, None, None),
+        ModelFormat::Ply => builder.add_ply(name, None, None),
+    };
+    added.map_err(|error| {
         // An error about the whole file has no line of its own to show.
         match error.source_line.as_deref() {
             Some("") => SceneError::whole_file(path, error.message),
@@ -175,10 +192,14 @@ pub(crate) fn build_obj_scene(path: &Path, files: SceneFiles) -> Result<Scene, S
     scene.camera = scene.framing_camera();
     scene.lights.push(Light::Point {
         position: scene.camera.eye,
-        color: OBJ_LIGHT,
+        color: MODEL_LIGHT,
     });
+    let kind = match format {
+        ModelFormat::Obj => "an OBJ",
+        ModelFormat::Ply => "a PLY",
+    };
     scene.warnings.push(format!(
-        "{}: an OBJ file has no lights or camera: raylab framed the model and lit it with a \
+        "{}: {kind} file has no lights or camera: raylab framed the model and lit it with a \
          white point light at the eye",
         path.display()
     ));
@@ -529,6 +550,7 @@ fn triangle_mesh(
         positions: positions.to_vec(),
         normals: normals.map_or(Vec::new(), |n| n.0.map(|n| n.0).to_vec()),
         uvs: uvs.map_or(Vec::new(), |uv| uv.0.map(|uv| uv.0).to_vec()),
+        colors: Vec::new(),
         faces: vec![[0, 1, 2]],
         material: DEFAULT_MATERIAL,
     })
@@ -557,7 +579,9 @@ impl MeshSpans {
             MeshError::IndexOutOfRange { .. } => self.faces.clone(),
             MeshError::NormalCount { .. } => self.normals.clone(),
             MeshError::UvCount { .. } => self.uvs.clone(),
-            MeshError::NotFinite | MeshError::OutOfRange(_) => self.whole.clone(),
+            MeshError::ColorCount { .. } | MeshError::NotFinite | MeshError::OutOfRange(_) => {
+                self.whole.clone()
+            }
         }
     }
 }
@@ -612,6 +636,7 @@ impl GeometryBuilder<'_> {
                     uvs: uvs.map_or(Vec::new(), |uv| {
                         uv.get_ref().iter().map(|uv| uv.0).collect()
                     }),
+                    colors: Vec::new(),
                     faces: faces.into_inner().into_iter().map(|f| f.0).collect(),
                     material: DEFAULT_MATERIAL,
                 };
@@ -619,6 +644,7 @@ impl GeometryBuilder<'_> {
                 self.add_mesh(mesh, material, transform, &spans)
             }
             ShapeFile::Obj { file } => self.add_obj(file, material, transform),
+            ShapeFile::Ply { file } => self.add_ply(file, material, transform),
             shape => {
                 let (shape, blame) = self.analytic_shape(shape, span, material)?;
                 self.add_shape(shape, blame, material, transform)
@@ -666,6 +692,7 @@ impl GeometryBuilder<'_> {
                 let kind = match shape {
                     ShapeFile::Triangle { .. } => "triangle",
                     ShapeFile::Mesh { .. } => "mesh",
+                    ShapeFile::Ply { .. } => "PLY mesh",
                     _ => "OBJ mesh",
                 };
                 return Err(source.error(
@@ -824,5 +851,30 @@ impl GeometryBuilder<'_> {
                 .map_err(|e| fail(e.message))?;
         }
         Ok(())
+    }
+
+    /// Adds the mesh of a PLY file, in `material` or the default one.
+    fn add_ply(
+        &mut self,
+        file: Spanned<String>,
+        material: Option<u32>,
+        transform: Option<Transform>,
+    ) -> Result<(), SceneError> {
+        let path = self.files.path(file.get_ref());
+        let source = self.source;
+        let fail = |message: String| {
+            let path = path.display();
+            let message = format!("cannot load PLY file `{path}`: {message}");
+            source.error(file.span(), message)
+        };
+        let bytes = self.files.read(&path).map_err(fail)?;
+        if let Some(what) = known_format(&bytes).filter(|what| !what.contains("PLY")) {
+            return Err(fail(not_the_format(&path, what, "PLY")));
+        }
+        let mesh = parse_ply(&bytes).map_err(|e| e.in_file(&path, &bytes))?;
+        let spans = MeshSpans::all(file.span());
+        let material = material.unwrap_or(DEFAULT_MATERIAL);
+        self.add_mesh(mesh, material, transform, &spans)
+            .map_err(|e| fail(e.message))
     }
 }

@@ -8,7 +8,7 @@ use serde::Deserialize;
 use toml::Spanned;
 use toml::de::DeTable;
 
-use super::build::{build_camera, build_obj_scene, build_scene};
+use super::build::{ModelFormat, build_camera, build_model_scene, build_scene};
 use super::file::{CameraSnippetFile, SceneFile};
 use super::object_file::OBJECT_KEYS;
 use super::retag::retag_document;
@@ -24,23 +24,23 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
     let bytes = memory::read_file(path)
         .map_err(|e| SceneError::whole_file(path, format!("cannot read the scene file: {e}")))?;
     if let Some(what) = known_format(&bytes) {
-        let message = not_the_format(path, what, "a scene raylab reads");
-        return Err(SceneError::whole_file(
-            path,
-            format!("{message} (TOML, NFF, SDL or OBJ: convert the model to OBJ)"),
-        ));
+        let message = not_the_format(path, what, "a scene file");
+        let hint = if what.contains("PLY") {
+            "raylab reads it when its name ends in .ply"
+        } else {
+            "raylab reads TOML, NFF, SDL, OBJ and PLY"
+        };
+        return Err(SceneError::whole_file(path, format!("{message}: {hint}")));
     }
     let text = utf8_text(&bytes, path)?;
     parse_scene(text, path, path.parent().unwrap_or(Path::new("")))
 }
 
-/// Reads the OBJ file at `path` as a scene of its own: the model framed by the camera and lit
-/// by a white point light at the eye, which a warning in the scene tells of.
-pub fn load_obj_scene(path: &Path) -> Result<Scene, SceneError> {
-    build_obj_scene(
-        path,
-        SceneFiles::Folder(path.parent().unwrap_or(Path::new(""))),
-    )
+/// Reads the model file at `path` (OBJ or PLY) as a scene of its own: the model framed by the
+/// camera and lit by a white point light at the eye, which a warning in the scene tells of.
+pub fn load_model_scene(path: &Path, format: ModelFormat) -> Result<Scene, SceneError> {
+    let files = SceneFiles::Folder(path.parent().unwrap_or(Path::new("")));
+    build_model_scene(path, files, format)
 }
 
 /// Reads the `[camera]` table of the file at `path` (a `NAME.camera.toml`, as the viewer saves

@@ -1,5 +1,5 @@
-//! raylab's own scene files, in TOML ([`load_scene`], [`parse_scene`]), and an OBJ model opened as
-//! a scene of its own ([`load_obj_scene`]); the camera files saved
+//! raylab's own scene files, in TOML ([`load_scene`], [`parse_scene`]), and a model file opened as
+//! a scene of its own ([`load_model_scene`]: OBJ or PLY); the camera files saved
 //! beside them ([`load_camera`]), the views files saved beside them ([`load_views`],
 //! [`views_text`]), and the built-in default scene written in one
 //! ([`default_scene`]). `load` reads a file in four steps: the
@@ -18,8 +18,8 @@ mod retag;
 mod values;
 mod views;
 
-pub use build::DEFAULT_MATERIAL;
+pub use build::{DEFAULT_MATERIAL, ModelFormat};
 pub use builtin::{DEFAULT_SCENE_TEXT, default_scene};
 pub use edit::{Looks, SavedEdits, edit_text, save_edits};
-pub use load::{load_camera, load_obj_scene, load_scene, parse_scene, parse_scene_with};
+pub use load::{load_camera, load_model_scene, load_scene, parse_scene, parse_scene_with};
 pub use views::{camera_table, load_views, parse_views, views_text};

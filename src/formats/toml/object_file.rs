@@ -65,6 +65,8 @@ pub enum ShapeFile {
     },
     /// A Wavefront OBJ file, relative to the scene file's folder.
     Obj { file: Spanned<String> },
+    /// A PLY file (the Stanford format), relative to the scene file's folder.
+    Ply { file: Spanned<String> },
     /// A planar polygon, convex or concave, counter-clockwise seen from its front.
     Polygon { vertices: Vec<Vector> },
     /// An axis-aligned box (turn it with a transform).
@@ -122,7 +124,7 @@ pub enum CsgOperationFile {
 impl ShapeFile {
     /// The analytic shape the keys describe (the result of its constructor) and the position
     /// to blame for what is wrong with it (`span`, the table's, or a key's); `None` for what
-    /// the builder makes: csg nodes, triangles, meshes and OBJ files.
+    /// the builder makes: csg nodes, triangles, meshes and model files.
     pub fn analytic(&self, span: Range<usize>) -> Option<(Result<Shape, String>, Range<usize>)> {
         Some(match self {
             ShapeFile::Sphere { center, radius } => {
@@ -210,7 +212,8 @@ impl ShapeFile {
             ShapeFile::Csg { .. }
             | ShapeFile::Triangle { .. }
             | ShapeFile::Mesh { .. }
-            | ShapeFile::Obj { .. } => return None,
+            | ShapeFile::Obj { .. }
+            | ShapeFile::Ply { .. } => return None,
         })
     }
 }

@@ -9,7 +9,7 @@ use raylab::aabb::Aabb;
 use raylab::formats::nff::NffLighting;
 use raylab::formats::toml::load_views;
 use raylab::formats::toml::{default_scene, load_scene};
-use raylab::formats::{SceneFormat, load_any_as, views_path};
+use raylab::formats::{SCENE_EXTENSIONS, SceneFormat, load_any_as, views_path};
 use raylab::render::Assembled;
 use raylab::scene::Scene;
 use raylab::views::Views;
@@ -110,11 +110,13 @@ pub fn scene_files_beside(path: Option<&Path>) -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| {
-            let ext = p
-                .extension()
-                .and_then(|x| x.to_str())
-                .map(str::to_ascii_lowercase);
-            p.is_file() && matches!(ext.as_deref(), Some("toml" | "nff" | "dat" | "sdl" | "obj"))
+            let ext = p.extension().and_then(|x| x.to_str());
+            let known = |ext: &str| {
+                SCENE_EXTENSIONS
+                    .iter()
+                    .any(|(name, _)| ext.eq_ignore_ascii_case(name))
+            };
+            p.is_file() && ext.is_some_and(known)
         })
         .filter(|p| {
             p.file_name().and_then(|n| n.to_str()).is_some_and(|n| {

@@ -142,7 +142,7 @@ fn scene_section(
                 let field = ui.add(
                     egui::TextEdit::singleline(&mut state.open_field)
                         .hint_text(
-                            "scene file (.toml, .nff, .dat, .obj) or spd:NAME, or drop a file here",
+                            "scene file (.toml, .nff, .dat, .obj, .ply) or spd:NAME, or drop a file here",
                         )
                         .desired_width(190.0),
                 );
