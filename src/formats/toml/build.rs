@@ -206,6 +206,23 @@ pub(crate) fn build_model_scene(
     Ok(scene)
 }
 
+/// How an error about the file at `path`, which the scene names at `file`, is reported: at that
+/// value, `cannot load WHAT `PATH`: message`.
+fn file_error<'s>(
+    source: Source<'s>,
+    file: &Spanned<String>,
+    path: &Path,
+    what: &str,
+) -> impl Fn(String) -> SceneError + use<'s> {
+    let (span, path, what) = (file.span(), path.display().to_string(), what.to_string());
+    move |message| {
+        source.error(
+            span.clone(),
+            format!("cannot load {what} `{path}`: {message}"),
+        )
+    }
+}
+
 /// The names a file gives textures or materials, and the indices they stand for.
 struct Names {
     /// What is named, for messages.
@@ -415,14 +432,8 @@ fn load_image(
     files: SceneFiles,
 ) -> Result<Arc<SrgbImage>, SceneError> {
     let path = files.path(file.get_ref());
-    let fail = |message: String| {
-        let path = path.display();
-        source.error(
-            file.span(),
-            format!("cannot load {what} `{path}`: {message}"),
-        )
-    };
-    let bytes = files.read(&path).map_err(fail)?;
+    let fail = file_error(source, file, &path, what);
+    let bytes = files.read(&path).map_err(&fail)?;
     Ok(Arc::new(SrgbImage::decode(&bytes).map_err(fail)?))
 }
 
@@ -811,14 +822,7 @@ impl GeometryBuilder<'_> {
         transform: Option<Transform>,
     ) -> Result<(), SceneError> {
         let path = self.files.path(file.get_ref());
-        let source = self.source;
-        let fail = |message: String| {
-            let path = path.display();
-            source.error(
-                file.span(),
-                format!("cannot load OBJ file `{path}`: {message}"),
-            )
-        };
+        let fail = file_error(self.source, &file, &path, "OBJ file");
         let contents = load_obj(&path, self.files, material.is_none()).map_err(|e| match e {
             ObjError::At(error) => error,
             ObjError::Whole(message) => fail(message),
@@ -861,13 +865,8 @@ impl GeometryBuilder<'_> {
         transform: Option<Transform>,
     ) -> Result<(), SceneError> {
         let path = self.files.path(file.get_ref());
-        let source = self.source;
-        let fail = |message: String| {
-            let path = path.display();
-            let message = format!("cannot load PLY file `{path}`: {message}");
-            source.error(file.span(), message)
-        };
-        let bytes = self.files.read(&path).map_err(fail)?;
+        let fail = file_error(self.source, &file, &path, "PLY file");
+        let bytes = self.files.read(&path).map_err(&fail)?;
         if let Some(what) = known_format(&bytes).filter(|what| !what.contains("PLY")) {
             return Err(fail(not_the_format(&path, what, "PLY")));
         }
