@@ -1,7 +1,7 @@
 //! Affine transforms of objects: translate, rotate about any axis and scale, composed in file
 //! order, with the inverse and the inverse transpose (for normals) kept alongside.
 
-use glam::{Affine3A, Mat3A, Vec3};
+use glam::{Affine3A, Mat3A, Mat4, Vec3};
 
 use crate::aabb::Aabb;
 use crate::ray::Ray;
@@ -55,6 +55,14 @@ impl Transform {
             object_from_world,
             normal_to_world: object_from_world.matrix3.transpose(),
         }
+    }
+
+    /// The transform of a 4×4 matrix (a model file's node matrix; its last row is taken to be
+    /// `0 0 0 1`), or `None` when it is not finite or squashes space flat (no inverse).
+    pub fn from_matrix(world_from_object: Mat4) -> Option<Self> {
+        let affine = Affine3A::from_mat4(world_from_object);
+        let det = affine.matrix3.determinant();
+        (affine.is_finite() && det.is_normal()).then(|| Transform::from_affine(affine))
     }
 
     /// Composes the steps in file order: the first step is applied to the object first.

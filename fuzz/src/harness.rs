@@ -13,7 +13,9 @@ use raylab::compare::difference::{DEFAULT_TOLERANCE, HeatMap, difference};
 use raylab::formats::nff::{NffDocument, NffLighting, parse_nff_document};
 use raylab::formats::part::read_part_bytes;
 use raylab::formats::sdl::parse_sdl;
-use raylab::formats::toml::{parse_scene_with, parse_views, views_text};
+use raylab::formats::toml::{
+    ModelFormat, build_model_scene, parse_scene_with, parse_views, views_text,
+};
 use raylab::formats::{SceneError, SceneFiles, ascii_text, utf8_text};
 use raylab::inspect::trace_ray_tree;
 use raylab::progressive::render_image;
@@ -91,6 +93,20 @@ pub fn ply(data: &[u8]) -> Result<(), String> {
         &model_scene("ply"),
         Path::new("fuzz-ply.toml"),
         SceneFiles::Builtin(&files),
+    )
+    .map_err(|e| e.to_string())?;
+    render_tiny(scene);
+    Ok(())
+}
+
+/// Reads `data` as a glTF or GLB file opened on its own (its lights and first camera used),
+/// with the buffer `model.bin` beside it for a `.gltf` that names one, and renders it.
+pub fn gltf(data: &[u8]) -> Result<(), String> {
+    let files = [("model.gltf", data), ("model.bin", &data[data.len() / 2..])];
+    let scene = build_model_scene(
+        Path::new("model.gltf"),
+        SceneFiles::Builtin(&files),
+        ModelFormat::Gltf,
     )
     .map_err(|e| e.to_string())?;
     render_tiny(scene);

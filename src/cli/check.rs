@@ -22,7 +22,7 @@ use super::overrides::OverrideArgs;
 
 #[derive(Args, Debug)]
 pub struct CheckArgs {
-    /// The scene the image is of: a .toml, .nff, SDL (.dat, .sdl), .obj or .ply file, or `spd:NAME[:SIZE]`.
+    /// The scene the image is of: a .toml, .nff, SDL (.dat, .sdl), .obj, .ply, .gltf or .glb file, or `spd:NAME[:SIZE]`.
     scene: String,
     /// The image to check: PNG, PPM, BMP, JPEG, OpenEXR or Radiance HDR. raylab renders the
     /// scene at its size.

@@ -17,7 +17,7 @@ use super::overrides::OverrideArgs;
 
 #[derive(Args, Debug)]
 pub struct InspectArgs {
-    /// Scene: a .toml, .nff, SDL (.dat, .sdl), .obj or .ply file, or `spd:NAME[:SIZE]`; the built-in default scene when left
+    /// Scene: a .toml, .nff, SDL (.dat, .sdl), .obj, .ply, .gltf or .glb file, or `spd:NAME[:SIZE]`; the built-in default scene when left
     /// out.
     scene: Option<String>,
     /// The scene file's format, whatever its name ends in: toml, nff, sdl, obj or ply.

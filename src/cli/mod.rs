@@ -155,6 +155,9 @@ fn load_scene(
     for warning in &scene.warnings {
         eprintln!("warning: {warning}");
     }
+    for note in &scene.notes {
+        eprintln!("note: {note}");
+    }
     if let Some(camera_file) = name.and_then(camera_file_beside) {
         eprintln!("note: the camera is from {}", camera_file.display());
     }

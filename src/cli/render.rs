@@ -31,7 +31,7 @@ use super::sequence::{SequenceArgs, frame_paths};
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// Scene: a .toml, .nff, SDL (.dat, .sdl), .obj or .ply file, or a built-in SPD scene `spd:NAME[:SIZE]` (balls, gears,
+    /// Scene: a .toml, .nff, SDL (.dat, .sdl), .obj, .ply, .gltf or .glb file, or a built-in SPD scene `spd:NAME[:SIZE]` (balls, gears,
     /// mount, rings, teapot, tetra, tree); the built-in default scene when left out.
     scene: Option<String>,
     /// The scene file's format, whatever its name ends in: toml, nff, sdl, obj or ply.

@@ -18,7 +18,7 @@ use crate::viewer::{self, Options, Script, script_steps};
 
 #[derive(Args, Debug)]
 pub struct ViewArgs {
-    /// Scene to open: a .toml, .nff, SDL (.dat, .sdl), .obj or .ply file, or spd:NAME[:SIZE]; the built-in
+    /// Scene to open: a .toml, .nff, SDL (.dat, .sdl), .obj, .ply, .gltf or .glb file, or spd:NAME[:SIZE]; the built-in
     /// default scene when left out.
     scene: Option<PathBuf>,
     /// The scene file's format, whatever its name ends in: toml, nff, sdl, obj or ply.

@@ -50,6 +50,30 @@ impl SceneError {
             ..SceneError::whole_file(file, message)
         }
     }
+
+    /// An error at `line` and `column` (1-based) of a text file whose bytes are `bytes`, the
+    /// line shown under the message (each byte that is not UTF-8 as U+FFFD).
+    pub fn at_line(
+        file: &Path,
+        bytes: &[u8],
+        line: usize,
+        column: usize,
+        message: impl Into<String>,
+    ) -> SceneError {
+        let text = bytes
+            .split(|&b| b == b'\n')
+            .nth(line.saturating_sub(1))
+            .unwrap_or_default();
+        let text = String::from_utf8_lossy(text)
+            .trim_end_matches('\r')
+            .to_string();
+        SceneError {
+            line,
+            column,
+            source_line: Some(text),
+            ..SceneError::whole_file(file, message)
+        }
+    }
 }
 
 impl fmt::Display for SceneError {

@@ -1,7 +1,8 @@
 //! The one entry point for every scene raylab reads, for the command line and the viewer alike:
 //! a built-in SPD scene by name (`spd:balls`, `spd:tree:6`), an NFF file (by its `.nff`
-//! extension), an SDL file (`.dat` or `.sdl`), an OBJ or PLY model (`.obj`, `.ply`, framed and
-//! lit by a light at the eye), or a TOML scene file; with the camera of a
+//! extension), an SDL file (`.dat` or `.sdl`), an OBJ, PLY or glTF model (`.obj`, `.ply`,
+//! `.gltf`, `.glb`: framed and lit by a light at the eye where the file has no camera or
+//! lights), or a TOML scene file; with the camera of a
 //! `NAME.camera.toml` beside the file, and the default framing ([`with_framing_camera`]) for a
 //! format that has no camera (SDL).
 
@@ -65,16 +66,20 @@ pub enum SceneFormat {
     Obj,
     /// A PLY model (the Stanford format) on its own.
     Ply,
+    /// A glTF 2.0 model on its own, `.gltf` or `.glb`.
+    Gltf,
 }
 
 /// The extensions of the scene files raylab reads, in lower case, and their formats.
-pub const SCENE_EXTENSIONS: [(&str, SceneFormat); 6] = [
+pub const SCENE_EXTENSIONS: [(&str, SceneFormat); 8] = [
     ("toml", SceneFormat::Toml),
     ("nff", SceneFormat::Nff),
     ("dat", SceneFormat::Sdl),
     ("sdl", SceneFormat::Sdl),
     ("obj", SceneFormat::Obj),
     ("ply", SceneFormat::Ply),
+    ("gltf", SceneFormat::Gltf),
+    ("glb", SceneFormat::Gltf),
 ];
 
 impl SceneFormat {
@@ -117,6 +122,7 @@ pub fn load_any_as(
         SceneFormat::Toml => load_scene(path),
         SceneFormat::Obj => load_model_scene(path, ModelFormat::Obj),
         SceneFormat::Ply => load_model_scene(path, ModelFormat::Ply),
+        SceneFormat::Gltf => load_model_scene(path, ModelFormat::Gltf),
     }?;
     if let Some(camera_file) = camera_file_beside(name) {
         scene.camera = load_camera(&camera_file, scene.camera.spec)?;
@@ -165,13 +171,20 @@ mod tests {
         for format in SceneFormat::iter() {
             assert_eq!(format.to_string().parse::<SceneFormat>(), Ok(format));
         }
-        assert_eq!(SceneFormat::VARIANTS, ["toml", "nff", "sdl", "obj", "ply"]);
+        assert_eq!(
+            SceneFormat::VARIANTS,
+            ["toml", "nff", "sdl", "obj", "ply", "gltf"]
+        );
         assert_eq!(
             "stl".parse::<SceneFormat>(),
-            Err("unknown scene format `stl` (expected toml, nff, sdl, obj or ply)".to_string())
+            Err(
+                "unknown scene format `stl` (expected toml, nff, sdl, obj, ply or gltf)"
+                    .to_string()
+            )
         );
         assert_eq!(SceneFormat::of(Path::new("Bunny.PLY")), SceneFormat::Ply);
         assert_eq!(SceneFormat::of(Path::new("room.dat")), SceneFormat::Sdl);
+        assert_eq!(SceneFormat::of(Path::new("duck.GLB")), SceneFormat::Gltf);
         assert_eq!(SceneFormat::of(Path::new("room")), SceneFormat::Toml);
     }
 }

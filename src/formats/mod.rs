@@ -1,12 +1,14 @@
 //! Scene formats: everything raylab reads a [`Scene`](crate::scene::Scene) from or writes an
 //! image to. [`load_any`] reads any scene raylab knows by its name: a built-in SPD scene
-//! ([`spd`]), an NFF file ([`nff`]), an SDL file ([`sdl`]) or a TOML scene file ([`toml`], which reads
-//! OBJ models with `obj`); [`image`] writes the rendered picture. Every reader reports bad input as a
+//! ([`spd`]), an NFF file ([`nff`]), an SDL file ([`sdl`]), a model ([`ply`], [`gltf`] or OBJ)
+//! or a TOML scene file ([`toml`], which places models in its scenes); [`image`] writes the
+//! rendered picture. Every reader reports bad input as a
 //! [`SceneError`] at its `file:line:column`. The formats depend on the scene; the scene knows
 //! none of them.
 
 mod error;
 mod files;
+pub mod gltf;
 pub mod image;
 mod load_any;
 pub mod nff;

@@ -51,13 +51,7 @@ impl PlyError {
     pub fn in_file(self, path: &Path, bytes: &[u8]) -> SceneError {
         match self.place {
             PlyPlace::Text { line, column } => {
-                let text = line_text(bytes, line);
-                SceneError {
-                    line,
-                    column,
-                    source_line: Some(text),
-                    ..SceneError::whole_file(path, self.message)
-                }
+                SceneError::at_line(path, bytes, line, column, self.message)
             }
             PlyPlace::Binary {
                 offset,
@@ -66,17 +60,6 @@ impl PlyError {
             } => SceneError::at_byte(path, offset, format!("{element} {index}: {}", self.message)),
         }
     }
-}
-
-/// The text of line `line` (1-based) of `bytes`, each byte that is not UTF-8 shown as U+FFFD.
-fn line_text(bytes: &[u8], line: usize) -> String {
-    let text = bytes
-        .split(|&b| b == b'\n')
-        .nth(line - 1)
-        .unwrap_or_default();
-    String::from_utf8_lossy(text)
-        .trim_end_matches('\r')
-        .to_string()
 }
 
 /// The most bytes a header may take.

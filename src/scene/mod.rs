@@ -37,6 +37,9 @@ pub struct Scene {
     /// material an OBJ file names but never defines, a face it dropped. The scene renders as
     /// read; the command line prints these, the viewer shows them.
     pub warnings: Vec<String>,
+    /// What the reader made of the file that is not wrong but worth a line (`file: message`):
+    /// what a glTF model's materials became. Printed as notes, shown in the viewer.
+    pub notes: Vec<String>,
 }
 
 impl Scene {
@@ -53,6 +56,7 @@ impl Scene {
             background_image: None,
             geometry: Geometry::default(),
             warnings: Vec::new(),
+            notes: Vec::new(),
         }
     }
 

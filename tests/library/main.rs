@@ -14,6 +14,7 @@ mod device_seam;
 mod figure;
 mod fog;
 mod fuzz_corpus;
+mod gltf_models;
 mod images;
 mod inspect;
 mod inspect_image;

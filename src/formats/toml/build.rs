@@ -19,10 +19,7 @@ use super::values::{ColorValue, Direction, Exact, NonNegative, TexCoord, Vector}
 use crate::camera::{Camera, CameraError, CameraSpec};
 use crate::color::Color;
 use crate::formats::SceneFiles;
-use crate::formats::obj::{ObjError, load_obj};
-use crate::formats::ply::parse_ply;
 use crate::formats::{SceneError, Source};
-use crate::formats::{known_format, not_the_format};
 use crate::light::{Light, Spot};
 use crate::limits;
 use crate::material::Material;
@@ -116,6 +113,7 @@ pub(crate) fn build_scene(
         names,
         geometry: Geometry::default(),
         warnings,
+        notes: Vec::new(),
     };
     for object in file.objects {
         builder.add_object(object)?;
@@ -131,6 +129,7 @@ pub(crate) fn build_scene(
         background_image,
         geometry: builder.geometry,
         warnings: builder.warnings,
+        notes: builder.notes,
     };
     // A file without a camera is seen as the viewer's F frames it.
     if !has_camera {
@@ -139,76 +138,9 @@ pub(crate) fn build_scene(
     Ok(scene)
 }
 
-/// The colour of the light a model file opened as a scene is lit by: white, at the eye.
-const MODEL_LIGHT: Color = Color::splat(1.0);
-
-/// The formats of model files, which hold meshes but no lights or camera.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ModelFormat {
-    Obj,
-    Ply,
-}
-
-/// The model file at `path` as a scene of its own: its meshes with their materials (OBJ's MTL
-/// materials; the default material where there are none), the default render settings, the
-/// camera framing the model as the viewer's F does, and a white point light at the eye (model
-/// files have no lights), which a warning tells of.
-pub(crate) fn build_model_scene(
-    path: &Path,
-    files: SceneFiles,
-    format: ModelFormat,
-) -> Result<Scene, SceneError> {
-    let source = Source {
-        origin: path,
-        text: "",
-    };
-    let mut builder = GeometryBuilder {
-        source,
-        files,
-        material_names: Names::new("material", std::iter::empty(), DEFAULT_MATERIAL + 1),
-        materials: vec![Material::default()],
-        names: vec!["default".to_string()],
-        geometry: Geometry::default(),
-        warnings: Vec::new(),
-    };
-    let name = path.file_name().unwrap_or(path.as_os_str());
-    let name = Spanned::new(0..0, name.to_string_lossy().into_owned());
-    let added = match format {
-        ModelFormat::Obj => builder.add_obj(name, None, None),
-        ModelFormat::Ply => builder.add_ply(name, None, None),
-    };
-    added.map_err(|error| {
-        // An error about the whole file has no line of its own to show.
-        match error.source_line.as_deref() {
-            Some("") => SceneError::whole_file(path, error.message),
-            _ => error,
-        }
-    })?;
-    let mut scene = Scene::new(RenderSettings::default(), Camera::default());
-    scene.materials = builder.materials;
-    scene.material_names = builder.names;
-    scene.geometry = builder.geometry;
-    scene.warnings = builder.warnings;
-    scene.camera = scene.framing_camera();
-    scene.lights.push(Light::Point {
-        position: scene.camera.eye,
-        color: MODEL_LIGHT,
-    });
-    let kind = match format {
-        ModelFormat::Obj => "an OBJ",
-        ModelFormat::Ply => "a PLY",
-    };
-    scene.warnings.push(format!(
-        "{}: {kind} file has no lights or camera: raylab framed the model and lit it with a \
-         white point light at the eye",
-        path.display()
-    ));
-    Ok(scene)
-}
-
 /// How an error about the file at `path`, which the scene names at `file`, is reported: at that
 /// value, `cannot load WHAT `PATH`: message`.
-fn file_error<'s>(
+pub(super) fn file_error<'s>(
     source: Source<'s>,
     file: &Spanned<String>,
     path: &Path,
@@ -224,7 +156,7 @@ fn file_error<'s>(
 }
 
 /// The names a file gives textures or materials, and the indices they stand for.
-struct Names {
+pub(super) struct Names {
     /// What is named, for messages.
     what: &'static str,
     indices: BTreeMap<String, u32>,
@@ -232,7 +164,11 @@ struct Names {
 
 impl Names {
     /// Numbers `names` in order from `first`.
-    fn new<'a>(what: &'static str, names: impl Iterator<Item = &'a String>, first: u32) -> Self {
+    pub(super) fn new<'a>(
+        what: &'static str,
+        names: impl Iterator<Item = &'a String>,
+        first: u32,
+    ) -> Self {
         let indices = names.cloned().zip(first..).collect();
         Names { what, indices }
     }
@@ -568,7 +504,7 @@ fn triangle_mesh(
 }
 
 /// Where the parts of a mesh are in the file, to point a [`MeshError`] at.
-struct MeshSpans {
+pub(super) struct MeshSpans {
     whole: Range<usize>,
     faces: Range<usize>,
     normals: Range<usize>,
@@ -576,7 +512,7 @@ struct MeshSpans {
 }
 
 impl MeshSpans {
-    fn all(span: Range<usize>) -> Self {
+    pub(super) fn all(span: Range<usize>) -> Self {
         MeshSpans {
             whole: span.clone(),
             faces: span.clone(),
@@ -597,17 +533,19 @@ impl MeshSpans {
     }
 }
 
-/// Collects the objects' geometry, and the materials OBJ files bring along.
-struct GeometryBuilder<'a> {
-    source: Source<'a>,
-    files: SceneFiles<'a>,
-    material_names: Names,
-    materials: Vec<Material>,
+/// Collects the objects' geometry, and the materials model files bring along.
+pub(super) struct GeometryBuilder<'a> {
+    pub(super) source: Source<'a>,
+    pub(super) files: SceneFiles<'a>,
+    pub(super) material_names: Names,
+    pub(super) materials: Vec<Material>,
     /// The materials' names, index for index.
-    names: Vec<String>,
-    geometry: Geometry,
-    /// What the OBJ files hold that is worth a warning (`file:line: message`).
-    warnings: Vec<String>,
+    pub(super) names: Vec<String>,
+    pub(super) geometry: Geometry,
+    /// What the model files hold that is worth a warning (`file:line: message`).
+    pub(super) warnings: Vec<String>,
+    /// What the model files became (`file: glTF: 3 materials → …`).
+    pub(super) notes: Vec<String>,
 }
 
 impl GeometryBuilder<'_> {
@@ -656,6 +594,7 @@ impl GeometryBuilder<'_> {
             }
             ShapeFile::Obj { file } => self.add_obj(file, material, transform),
             ShapeFile::Ply { file } => self.add_ply(file, material, transform),
+            ShapeFile::Gltf { file } => self.add_gltf(file, material, transform).map(drop),
             shape => {
                 let (shape, blame) = self.analytic_shape(shape, span, material)?;
                 self.add_shape(shape, blame, material, transform)
@@ -704,6 +643,7 @@ impl GeometryBuilder<'_> {
                     ShapeFile::Triangle { .. } => "triangle",
                     ShapeFile::Mesh { .. } => "mesh",
                     ShapeFile::Ply { .. } => "PLY mesh",
+                    ShapeFile::Gltf { .. } => "glTF model",
                     _ => "OBJ mesh",
                 };
                 return Err(source.error(
@@ -796,7 +736,7 @@ impl GeometryBuilder<'_> {
     }
 
     /// Moves a mesh into the world, checks it and adds it.
-    fn add_mesh(
+    pub(super) fn add_mesh(
         &mut self,
         mut mesh: Mesh,
         material: u32,
@@ -811,69 +751,5 @@ impl GeometryBuilder<'_> {
             .map_err(|e| self.source.error(spans.of(&e), e.to_string()))?;
         self.geometry.add_mesh(mesh);
         Ok(())
-    }
-
-    /// Adds each part of an OBJ file as a mesh. Without a `material` key, parts use their MTL
-    /// materials, which are added to the scene's.
-    fn add_obj(
-        &mut self,
-        file: Spanned<String>,
-        material: Option<u32>,
-        transform: Option<Transform>,
-    ) -> Result<(), SceneError> {
-        let path = self.files.path(file.get_ref());
-        let fail = file_error(self.source, &file, &path, "OBJ file");
-        let contents = load_obj(&path, self.files, material.is_none()).map_err(|e| match e {
-            ObjError::At(error) => error,
-            ObjError::Whole(message) => fail(message),
-        })?;
-        // A file used twice warns once.
-        for warning in contents.warnings {
-            if !self.warnings.contains(&warning) {
-                self.warnings.push(warning);
-            }
-        }
-        let first_mtl = self.materials.len();
-        let mut mtl_count = 0;
-        if material.is_none() && contents.parts.iter().any(|p| p.mtl_material.is_some()) {
-            let mtl = contents
-                .materials
-                .map_err(|e| fail(format!("its MTL materials: {e}")))?;
-            mtl_count = mtl.len();
-            let obj_name = file.get_ref();
-            self.names
-                .extend((0..mtl_count).map(|i| format!("{obj_name} MTL #{i}")));
-            self.materials.extend(mtl);
-        }
-        for part in contents.parts {
-            let part_material = material.unwrap_or_else(|| match part.mtl_material {
-                Some(i) if i < mtl_count => (first_mtl + i) as u32,
-                _ => DEFAULT_MATERIAL,
-            });
-            let spans = MeshSpans::all(file.span());
-            self.add_mesh(part.mesh, part_material, transform, &spans)
-                .map_err(|e| fail(e.message))?;
-        }
-        Ok(())
-    }
-
-    /// Adds the mesh of a PLY file, in `material` or the default one.
-    fn add_ply(
-        &mut self,
-        file: Spanned<String>,
-        material: Option<u32>,
-        transform: Option<Transform>,
-    ) -> Result<(), SceneError> {
-        let path = self.files.path(file.get_ref());
-        let fail = file_error(self.source, &file, &path, "PLY file");
-        let bytes = self.files.read(&path).map_err(&fail)?;
-        if let Some(what) = known_format(&bytes).filter(|what| !what.contains("PLY")) {
-            return Err(fail(not_the_format(&path, what, "PLY")));
-        }
-        let mesh = parse_ply(&bytes).map_err(|e| e.in_file(&path, &bytes))?;
-        let spans = MeshSpans::all(file.span());
-        let material = material.unwrap_or(DEFAULT_MATERIAL);
-        self.add_mesh(mesh, material, transform, &spans)
-            .map_err(|e| fail(e.message))
     }
 }

@@ -8,8 +8,9 @@ use serde::Deserialize;
 use toml::Spanned;
 use toml::de::DeTable;
 
-use super::build::{ModelFormat, build_camera, build_model_scene, build_scene};
+use super::build::{build_camera, build_scene};
 use super::file::{CameraSnippetFile, SceneFile};
+use super::models::{ModelFormat, build_model_scene};
 use super::object_file::OBJECT_KEYS;
 use super::retag::retag_document;
 use crate::camera::{Camera, CameraSpec};
@@ -36,8 +37,8 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
     parse_scene(text, path, path.parent().unwrap_or(Path::new("")))
 }
 
-/// Reads the model file at `path` (OBJ or PLY) as a scene of its own: the model framed by the
-/// camera and lit by a white point light at the eye, which a warning in the scene tells of.
+/// Reads the model file at `path` (OBJ, PLY or glTF) as a scene of its own, see
+/// [`build_model_scene`].
 pub fn load_model_scene(path: &Path, format: ModelFormat) -> Result<Scene, SceneError> {
     let files = SceneFiles::Folder(path.parent().unwrap_or(Path::new("")));
     build_model_scene(path, files, format)

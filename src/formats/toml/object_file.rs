@@ -67,6 +67,10 @@ pub enum ShapeFile {
     Obj { file: Spanned<String> },
     /// A PLY file (the Stanford format), relative to the scene file's folder.
     Ply { file: Spanned<String> },
+    /// A glTF 2.0 model (`.gltf` or `.glb`), relative to the scene file's folder: its default
+    /// scene's meshes where its nodes place them, in its own materials unless the object names
+    /// one.
+    Gltf { file: Spanned<String> },
     /// A planar polygon, convex or concave, counter-clockwise seen from its front.
     Polygon { vertices: Vec<Vector> },
     /// An axis-aligned box (turn it with a transform).
@@ -213,7 +217,8 @@ impl ShapeFile {
             | ShapeFile::Triangle { .. }
             | ShapeFile::Mesh { .. }
             | ShapeFile::Obj { .. }
-            | ShapeFile::Ply { .. } => return None,
+            | ShapeFile::Ply { .. }
+            | ShapeFile::Gltf { .. } => return None,
         })
     }
 }

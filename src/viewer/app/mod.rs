@@ -177,6 +177,9 @@ impl App {
                 for warning in &loaded.scene().warnings {
                     eprintln!("warning: {warning}");
                 }
+                for note in &loaded.scene().notes {
+                    eprintln!("note: {note}");
+                }
                 if let Some(gfx) = &self.gpu {
                     gfx.window()
                         .set_title(&format!("raylab — {}", loaded.name()));

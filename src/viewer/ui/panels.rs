@@ -138,11 +138,14 @@ fn scene_section(
                     format!("warning: {warning}"),
                 );
             }
+            for note in &scene.scene.scene().notes {
+                ui.label(format!("note: {note}"));
+            }
             ui.horizontal(|ui| {
                 let field = ui.add(
                     egui::TextEdit::singleline(&mut state.open_field)
                         .hint_text(
-                            "scene file (.toml, .nff, .dat, .obj, .ply) or spd:NAME, or drop a file here",
+                            "scene file (.toml, .nff, .dat, .obj, .ply, .gltf, .glb) or spd:NAME, or drop a file here",
                         )
                         .desired_width(190.0),
                 );
