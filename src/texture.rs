@@ -12,11 +12,27 @@ use crate::color::{Color, srgb_to_linear};
 use crate::noise::turbulence;
 use crate::srgb_image::SrgbImage;
 
-/// What happens to texture coordinates outside [0, 1].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, strum::EnumIter)]
+/// What happens to texture coordinates outside [0, 1], along one axis of an image.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, strum::EnumIter)]
 pub enum Wrap {
     Repeat,
     Clamp,
+    /// Repeat, every other copy mirrored (glTF's MIRRORED_REPEAT).
+    Mirror,
+}
+
+impl Wrap {
+    /// Texel `i` of a row or column of `n` texels, wrapped into `0..n`.
+    pub fn texel(self, i: i64, n: i64) -> i64 {
+        match self {
+            Wrap::Repeat => i.rem_euclid(n),
+            Wrap::Clamp => i.clamp(0, n - 1),
+            Wrap::Mirror => {
+                let m = i.rem_euclid(2 * n);
+                if m < n { m } else { 2 * n - 1 - m }
+            }
+        }
+    }
 }
 
 /// A texture: a colour for each point of a surface.
@@ -43,10 +59,10 @@ pub enum Texture {
     /// veins (by [`marble_spline`]).
     Marble { color: Color },
     /// An image at texture coordinates `uv · scale + offset` (so repeated `scale` times over
-    /// the unit square of texture space).
+    /// the unit square of texture space), wrapped along u and v by `wrap`.
     Image {
         image: Arc<SrgbImage>,
-        wrap: Wrap,
+        wrap: [Wrap; 2],
         scale: Vec2,
         offset: Vec2,
     },
@@ -122,19 +138,17 @@ pub fn marble_spline(x: f32) -> f32 {
 }
 
 impl SrgbImage {
-    /// The linear colour of texel (x, y), wrapped into the image.
-    fn texel(&self, x: i64, y: i64, wrap: Wrap) -> Color {
+    /// The linear colour of texel (x, y), wrapped into the image along x by `wrap[0]` and
+    /// along y by `wrap[1]`.
+    fn texel(&self, x: i64, y: i64, wrap: [Wrap; 2]) -> Color {
         let (w, h) = (self.width as i64, self.height as i64);
-        let (x, y) = match wrap {
-            Wrap::Repeat => (x.rem_euclid(w), y.rem_euclid(h)),
-            Wrap::Clamp => (x.clamp(0, w - 1), y.clamp(0, h - 1)),
-        };
+        let (x, y) = (wrap[0].texel(x, w), wrap[1].texel(y, h));
         let linear = &*SRGB8_TO_LINEAR;
         Color::from_array(self.pixels[(y * w + x) as usize].map(|c| linear[c as usize]))
     }
 
     /// Bilinear sample at `uv`; `v = 0` is the bottom of the image.
-    pub fn sample(&self, uv: Vec2, wrap: Wrap) -> Color {
+    pub fn sample(&self, uv: Vec2, wrap: [Wrap; 2]) -> Color {
         let x = uv.x * self.width as f32 - 0.5;
         let y = (1.0 - uv.y) * self.height as f32 - 0.5;
         let (x0, y0) = (x.floor(), y.floor());
@@ -170,14 +184,20 @@ mod tests {
     fn texel_centres_sample_exactly() {
         let img = two_by_two();
         // Top-left texel centre is (0.25, 0.75) in uv (v up).
-        assert_eq!(img.sample(Vec2::new(0.25, 0.75), Wrap::Clamp), Color::X);
-        assert_eq!(img.sample(Vec2::new(0.75, 0.25), Wrap::Clamp), Color::ONE);
+        assert_eq!(
+            img.sample(Vec2::new(0.25, 0.75), [Wrap::Clamp; 2]),
+            Color::X
+        );
+        assert_eq!(
+            img.sample(Vec2::new(0.75, 0.25), [Wrap::Clamp; 2]),
+            Color::ONE
+        );
     }
 
     #[test]
     fn bilinear_blends_between_texels() {
         let img = two_by_two();
-        let mid = img.sample(Vec2::new(0.5, 0.75), Wrap::Clamp);
+        let mid = img.sample(Vec2::new(0.5, 0.75), [Wrap::Clamp; 2]);
         assert!((mid - Color::new(0.5, 0.5, 0.0)).length() < 1e-6, "{mid}");
     }
 
@@ -185,8 +205,31 @@ mod tests {
     fn repeat_and_clamp_differ_outside_the_unit_square() {
         let img = two_by_two();
         let uv = Vec2::new(1.25, 0.75);
-        assert_eq!(img.sample(uv, Wrap::Repeat), Color::X);
-        assert_eq!(img.sample(uv, Wrap::Clamp), Color::Y);
+        assert_eq!(img.sample(uv, [Wrap::Repeat; 2]), Color::X);
+        assert_eq!(img.sample(uv, [Wrap::Clamp; 2]), Color::Y);
+    }
+
+    #[test]
+    fn mirror_reflects_every_other_copy_and_each_axis_wraps_on_its_own() {
+        for n in [1, 2, 5] {
+            let wrapped: Vec<i64> = (-2 * n..3 * n).map(|i| Wrap::Mirror.texel(i, n)).collect();
+            // …, n−1 … 0 | 0 … n−1 | n−1 … 0 | 0 …: each copy mirrors its neighbours.
+            for (k, &t) in wrapped.iter().enumerate() {
+                let i = k as i64 - 2 * n;
+                let copy = i.div_euclid(n);
+                let within = i.rem_euclid(n);
+                let expected = if copy % 2 == 0 {
+                    within
+                } else {
+                    n - 1 - within
+                };
+                assert_eq!(t, expected, "texel {i} of {n}");
+            }
+        }
+        let img = two_by_two();
+        let uv = Vec2::new(1.25, 0.75);
+        assert_eq!(img.sample(uv, [Wrap::Mirror, Wrap::Clamp]), Color::Y);
+        assert_eq!(img.sample(uv, [Wrap::Repeat, Wrap::Clamp]), Color::X);
     }
 
     #[test]
@@ -216,7 +259,7 @@ mod tests {
             height: 1,
             pixels: vec![[0, 128, 255]],
         };
-        let c = img.sample(Vec2::splat(0.5), Wrap::Clamp);
+        let c = img.sample(Vec2::splat(0.5), [Wrap::Clamp; 2]);
         assert_eq!(c, Color::new(0.0, srgb_to_linear(128.0 / 255.0), 1.0));
         assert!((c.y - 0.2158605).abs() < 1e-6, "{c}");
     }
@@ -278,7 +321,7 @@ mod tests {
     fn image_coordinates_are_scaled_then_offset() {
         let t = Texture::Image {
             image: Arc::new(two_by_two()),
-            wrap: Wrap::Clamp,
+            wrap: [Wrap::Clamp; 2],
             scale: Vec2::splat(0.5),
             offset: Vec2::new(0.5, 0.0),
         };

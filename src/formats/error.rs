@@ -51,8 +51,9 @@ impl SceneError {
         }
     }
 
-    /// An error at `line` and `column` (1-based) of a text file whose bytes are `bytes`, the
-    /// line shown under the message (each byte that is not UTF-8 as U+FFFD).
+    /// An error at `line` and `column` (1-based; 0, as serde_json gives at a line's start, is
+    /// taken for 1) of a text file whose bytes are `bytes`, the line shown under the message
+    /// (each byte that is not UTF-8 as U+FFFD).
     pub fn at_line(
         file: &Path,
         bytes: &[u8],
@@ -68,8 +69,8 @@ impl SceneError {
             .trim_end_matches('\r')
             .to_string();
         SceneError {
-            line,
-            column,
+            line: line.max(1),
+            column: column.max(1),
             source_line: Some(text),
             ..SceneError::whole_file(file, message)
         }

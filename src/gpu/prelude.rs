@@ -22,7 +22,7 @@ use super::frame::{
 use super::materials::{HAS_COLORS, HAS_NORMALS, HAS_UVS, MATERIAL_BITS};
 use super::scene::SceneBinding;
 use super::shapes::{CSG_COMBINE, CSG_COMPLEMENTED, GPU_MAX_CSG_OPERANDS, NO_TRANSFORM};
-use super::texture::NO_TEXTURE;
+use super::texture::{NO_TEXTURE, WRAP_V_SHIFT};
 use super::wgsl_names::snake_case;
 use crate::bvh::WideNode;
 use crate::color::BUCKET_SHIFT;
@@ -186,7 +186,7 @@ pub fn prelude() -> String {
         PIXEL_CENTRE = crate::camera::PIXEL_CENTRE,
         // The scene's records.
         SHADOWS, REFLECTIONS, TRANSMISSION, OPAQUE, TEXTURES, BALL_BACKDROP, CAUSTICS,
-        NO_TRANSFORM, NO_TEXTURE, HAS_COLORS, HAS_NORMALS, HAS_UVS, MATERIAL_BITS,
+        NO_TRANSFORM, NO_TEXTURE, WRAP_V_SHIFT, HAS_COLORS, HAS_NORMALS, HAS_UVS, MATERIAL_BITS,
         // The shapes' parts and the CSG programs.
         TAPERED_SIDE = TaperedCylinder::SIDE,
         TAPERED_BASE_CAP = TaperedCylinder::BASE_CAP,

@@ -12,6 +12,9 @@ use crate::scene::Scene;
 use crate::srgb_image::SrgbImage;
 use crate::texture::{SRGB8_TO_LINEAR, Texture, TextureKind, Wrap};
 
+/// Where [`GpuTexture::wrap`] keeps the wrap along v.
+pub const WRAP_V_SHIFT: u32 = 8;
+
 /// A material's [`super::materials::GpuMaterial::texture`] or the frame's background image when
 /// there is none.
 pub const NO_TEXTURE: u32 = u32::MAX;
@@ -34,7 +37,7 @@ gpu_record! {
         pub first: u32,
         pub width: u32,
         pub height: u32,
-        /// [`Wrap`]: 0 Repeat, 1 Clamp.
+        /// The [`Wrap`] along u, and along v shifted left by [`WRAP_V_SHIFT`].
         pub wrap: u32,
     }
 }
@@ -61,7 +64,7 @@ impl TextureRecords {
             records.textures.push(record);
         }
         if let Some(image) = &scene.background_image {
-            let record = records.image(image, Wrap::Clamp, Vec2::ONE, Vec2::ZERO);
+            let record = records.image(image, [Wrap::Clamp; 2], Vec2::ONE, Vec2::ZERO);
             records.textures.push(record);
         }
         let count = records.texels.len();
@@ -108,7 +111,13 @@ impl TextureRecords {
     }
 
     /// The record of `image` seen at `uv · scale + offset`, its texels appended.
-    fn image(&mut self, image: &SrgbImage, wrap: Wrap, scale: Vec2, offset: Vec2) -> GpuTexture {
+    fn image(
+        &mut self,
+        image: &SrgbImage,
+        wrap: [Wrap; 2],
+        scale: Vec2,
+        offset: Vec2,
+    ) -> GpuTexture {
         let first = self.texels.len() as u32;
         self.texels.extend(
             image
@@ -123,7 +132,7 @@ impl TextureRecords {
             first,
             width: image.width,
             height: image.height,
-            wrap: wrap as u32,
+            wrap: wrap[0] as u32 | (wrap[1] as u32) << WRAP_V_SHIFT,
             ..GpuTexture::zeroed()
         }
     }

@@ -246,7 +246,7 @@ impl<'a> Tracer<'a> {
         let on_image = scene.background_image.as_ref().and_then(|image| {
             let aspect = image.width as f32 / image.height as f32;
             let uv = scene.camera.backdrop_uv(ray.dir, aspect)?;
-            Some(image.sample(uv, Wrap::Clamp))
+            Some(image.sample(uv, [Wrap::Clamp; 2]))
         });
         let background = on_image.unwrap_or(scene.settings.background);
         observer.miss(background);

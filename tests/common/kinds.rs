@@ -129,7 +129,7 @@ pub fn example_texture(kind: TextureKind) -> Texture {
                     height,
                     pixels,
                 }),
-                wrap: Wrap::Repeat,
+                wrap: [Wrap::Repeat; 2],
                 scale: Vec2::new(2.0, 1.0),
                 offset: Vec2::new(0.25, 0.0),
             }

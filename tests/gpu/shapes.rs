@@ -833,15 +833,21 @@ fn every_kind_of_texture_gives_the_cpus_colours_at_random_points() {
         },
         Texture::Image {
             image: random_image(&mut rng, 7, 5),
-            wrap: Wrap::Repeat,
+            wrap: [Wrap::Repeat, Wrap::Mirror],
             scale: Vec2::new(2.5, 1.5),
             offset: Vec2::new(0.3, -0.2),
         },
         Texture::Image {
             image: random_image(&mut rng, 4, 6),
-            wrap: Wrap::Clamp,
+            wrap: [Wrap::Clamp, Wrap::Repeat],
             scale: Vec2::new(0.8, 1.2),
             offset: Vec2::new(0.1, 0.05),
+        },
+        Texture::Image {
+            image: random_image(&mut rng, 5, 3),
+            wrap: [Wrap::Mirror, Wrap::Clamp],
+            scale: Vec2::new(3.5, 2.5),
+            offset: Vec2::new(-0.7, 0.4),
         },
     ];
     let background = random_image(&mut rng, 9, 4);
@@ -856,7 +862,7 @@ fn every_kind_of_texture_gives_the_cpus_colours_at_random_points() {
     // The CPU's colour of each texture record: the scene's textures, then the background image.
     let cpu_color = |texture: usize, uv: Vec2, point: Vec3| match textures.get(texture) {
         Some(t) => t.color(uv, point),
-        None => background.sample(uv, Wrap::Clamp),
+        None => background.sample(uv, [Wrap::Clamp; 2]),
     };
     let per_texture = 10_000;
     let probes: Vec<TextureProbe> = (0..=textures.len())

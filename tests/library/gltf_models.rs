@@ -889,3 +889,189 @@ fn broken_and_refused_files_get_errors_that_say_where_and_what() {
         "{error}"
     );
 }
+
+/// A 5 × 4 PNG of distinct colours, so that every wrap and turn of it shows.
+fn texture_png() -> Vec<u8> {
+    let image = image::RgbImage::from_fn(5, 4, |x, y| {
+        image::Rgb([
+            (x * 60) as u8,
+            (y * 80) as u8,
+            255 - (x * 20 + y * 30) as u8,
+        ])
+    });
+    let mut png = std::io::Cursor::new(Vec::new());
+    image.write_to(&mut png, image::ImageFormat::Png).unwrap();
+    png.into_inner()
+}
+
+/// A quad facing +z, corners `(±1, ±1, 0)`, with texture coordinates in set 1 running from −1
+/// to 2 (so that the image wraps), in a material whose base colour texture is the PNG with
+/// `wrap` (glTF's codes) and, when given, `transform`; its base colour factor `factor`; with
+/// COLOR_0 `colour` when given.
+fn textured_quad(
+    wrap: [u32; 2],
+    transform: Option<Value>,
+    factor: [f32; 3],
+    colour: Option<[f32; 3]>,
+) -> Writer {
+    let mut w = Writer::new();
+    let corners = [
+        Vec3::new(-1.0, -1.0, 0.0),
+        Vec3::new(1.0, -1.0, 0.0),
+        Vec3::new(1.0, 1.0, 0.0),
+        Vec3::new(-1.0, 1.0, 0.0),
+    ];
+    let positions = w.vec3s(&corners);
+    let uvs: Vec<u8> = QUAD_UVS
+        .iter()
+        .flatten()
+        .flat_map(|c: &f32| c.to_le_bytes())
+        .collect();
+    let uv_view = w.view(&uvs, None);
+    let uv_accessor = w.push(
+        "accessors",
+        json!({"bufferView": uv_view, "componentType": F32, "count": 4, "type": "VEC2"}),
+    );
+    let png = w.view(&texture_png(), None);
+    w.json["images"] = json!([{"bufferView": png, "mimeType": "image/png"}]);
+    w.json["samplers"] = json!([{"wrapS": wrap[0], "wrapT": wrap[1]}]);
+    w.json["textures"] = json!([{"source": 0, "sampler": 0}]);
+    let mut info = json!({"index": 0, "texCoord": 0});
+    if let Some(transform) = transform {
+        info["extensions"] = json!({"KHR_texture_transform": transform});
+        w.json["extensionsUsed"] = json!(["KHR_texture_transform"]);
+    }
+    w.json["materials"] = json!([{"pbrMetallicRoughness": {
+        "baseColorTexture": info, "baseColorFactor": [factor[0], factor[1], factor[2], 1.0],
+        "metallicFactor": 0, "roughnessFactor": 1}}]);
+    let mut attributes = json!({"POSITION": positions, "TEXCOORD_1": uv_accessor});
+    if let Some(c) = colour {
+        let bytes: Vec<u8> = (0..4).flat_map(|_| c).flat_map(f32::to_le_bytes).collect();
+        let view = w.view(&bytes, None);
+        let accessor = w.push(
+            "accessors",
+            json!({"bufferView": view, "componentType": F32, "count": 4, "type": "VEC3"}),
+        );
+        attributes["COLOR_0"] = json!(accessor);
+    }
+    let indices = w.indices(&[0, 1, 2, 0, 2, 3], U8);
+    let mesh = w.mesh(attributes, Some(indices), TRIANGLES, Some(0));
+    w.node(json!({"mesh": mesh}), true);
+    w
+}
+
+/// The quad's texture coordinates, in glTF's texture space.
+const QUAD_UVS: [[f32; 2]; 4] = [[-1.0, 2.0], [2.0, 2.0], [2.0, -1.0], [-1.0, -1.0]];
+
+/// A scene file facing the quad of the glTF file `file` (in its own materials), lit from the
+/// front.
+fn facing(file: &str) -> String {
+    format!(
+        "[render]\nambient = [0, 0, 0]\n[camera]\neye = [0, 0, 3.2]\nlook_at = [0, 0, 0]\n\
+         view_angle = 40\n[[lights]]\ntype = \"directional\"\ndirection = [0, 0, 1]\n\
+         [[objects]]\ntype = \"gltf\"\nfile = \"{file}\"\n"
+    )
+}
+
+#[test]
+fn a_base_colour_texture_wraps_turns_and_is_tinted_as_gltf_says() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    const MIRRORED_REPEAT: u32 = 33648;
+    const REPEAT: u32 = 10497;
+    const CLAMP_TO_EDGE: u32 = 33071;
+    let transform =
+        json!({"offset": [0.2, -0.1], "rotation": 0.5, "scale": [1.5, 0.75], "texCoord": 1});
+    let w = textured_quad([MIRRORED_REPEAT; 2], Some(transform), [1.0; 3], None);
+    let scene = facing("quad.glb");
+    let from_gltf = rendered(load_written(
+        dir,
+        &[("quad.glb", &w.glb()), ("quad.toml", scene.as_bytes())],
+        "quad.toml",
+    ));
+
+    // The same quad in a scene file: the texture transform applied and the texture space
+    // turned upright by the test, the image mirrored along both axes.
+    let (c, s) = (0.5f32.cos(), 0.5f32.sin());
+    let uvs: Vec<String> = QUAD_UVS
+        .iter()
+        .map(|&[u, v]| {
+            let (u, v) = (1.5 * u, 0.75 * v);
+            let (u, v) = (0.2 + c * u - s * v, -0.1 + s * u + c * v);
+            format!("[{u}, {}]", 1.0 - v)
+        })
+        .collect();
+    std::fs::write(dir.join("texture.png"), texture_png()).unwrap();
+    let by_hand = format!(
+        "[render]\nambient = [0, 0, 0]\n[camera]\neye = [0, 0, 3.2]\nlook_at = [0, 0, 0]\n\
+         view_angle = 40\n[[lights]]\ntype = \"directional\"\ndirection = [0, 0, 1]\n\
+         [textures.image]\ntype = \"image\"\nfile = \"texture.png\"\nwrap = \"mirror\"\n\
+         [materials.quad]\ntexture = \"image\"\nambient = 0.1\ndiffuse = 1\nspecular = 0\nshininess = 1\n\
+         [[objects]]\ntype = \"mesh\"\nmaterial = \"quad\"\n\
+         positions = [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]]\nfaces = [[0, 1, 2], [0, 2, 3]]\n\
+         uvs = [{}]\n",
+        uvs.join(", ")
+    );
+    let by_hand = rendered(load_written(
+        dir,
+        &[("by_hand.toml", by_hand.as_bytes())],
+        "by_hand.toml",
+    ));
+    let differing = pixels_apart(&from_gltf, &by_hand);
+    // The test turns the coordinates with its own roundings: a texel edge may move a pixel.
+    assert!(
+        differing <= 30,
+        "{differing} pixels differ from the scene file's texture"
+    );
+    let distinct: std::collections::HashSet<&[u8]> = from_gltf.chunks(3).collect();
+    assert!(
+        distinct.len() > 30,
+        "the texture shows: {} colours",
+        distinct.len()
+    );
+
+    // Each axis wraps as its sampler says.
+    let w = textured_quad([REPEAT, CLAMP_TO_EDGE], None, [1.0; 3], None);
+    let scene = load_written(
+        dir,
+        &[
+            ("axes.glb", &w.glb()),
+            ("axes.toml", facing("axes.glb").as_bytes()),
+        ],
+        "axes.toml",
+    );
+    let [raylab::texture::Texture::Image { wrap, .. }] = scene.textures.as_slice() else {
+        panic!("one image texture")
+    };
+    assert_eq!(
+        *wrap,
+        [raylab::texture::Wrap::Repeat, raylab::texture::Wrap::Clamp]
+    );
+
+    // The base colour factor multiplies the texture as COLOR_0 does.
+    let tint = [0.5, 1.0, 0.25];
+    let images: Vec<Vec<u8>> = [
+        textured_quad([REPEAT; 2], None, tint, None),
+        textured_quad([REPEAT; 2], None, [1.0; 3], Some(tint)),
+        textured_quad([REPEAT; 2], None, [1.0; 3], None),
+    ]
+    .iter()
+    .enumerate()
+    .map(|(k, w)| {
+        let (file, scene) = (format!("tint{k}.glb"), format!("tint{k}.toml"));
+        rendered(load_written(
+            dir,
+            &[(&file, &w.glb()), (&scene, facing(&file).as_bytes())],
+            &scene,
+        ))
+    })
+    .collect();
+    assert!(
+        images[0] == images[1],
+        "the factor does not multiply as a vertex colour"
+    );
+    assert!(
+        pixels_apart(&images[0], &images[2]) > 96 * 72 / 4,
+        "the factor is not applied"
+    );
+}

@@ -127,7 +127,7 @@ fn full_feature_file_numbers_materials_and_textures_by_name() {
     ));
     assert!(matches!(
         &scene.textures[2],
-        Texture::Image { wrap: Wrap::Clamp, scale, .. } if *scale == Vec2::new(3.0, 2.0)
+        Texture::Image { wrap: [Wrap::Clamp, Wrap::Clamp], scale, .. } if *scale == Vec2::new(3.0, 2.0)
     ));
     let objects = &scene.geometry.objects;
     assert_eq!(

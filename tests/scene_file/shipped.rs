@@ -70,7 +70,7 @@ fn textures_scene_loads_the_image_relative_to_the_scene_file() {
             image, wrap, scale, ..
         } => {
             assert_eq!((image.width, image.height), (64, 64));
-            assert_eq!(*wrap, Wrap::Repeat);
+            assert_eq!(*wrap, [Wrap::Repeat; 2]);
             assert_eq!(*scale, Vec2::new(2.0, 1.0));
         }
         other => panic!("expected the grid image, got {other:?}"),

@@ -8,6 +8,7 @@ use glam::{Mat4, Vec2, Vec3};
 use gltf::mesh::Mode;
 
 use super::buffers::{COLORS, NORMALS, POSITIONS, TEX_COORDS, read_floats, read_indices};
+use super::textures::UvMap;
 use crate::color::Color;
 use crate::mesh::Mesh;
 
@@ -83,10 +84,13 @@ pub fn placements(document: &gltf::Document) -> Result<Placements, String> {
 
 /// The triangles of one primitive as a mesh in the model's own space, its `material` the
 /// glTF material index or [`NO_MATERIAL`].
+///
+/// A primitive in a textured material reads the texture coordinates and tint `map` gives.
 pub fn primitive_mesh(
     mesh: &gltf::Mesh,
     primitive: &gltf::Primitive,
     buffers: &[Cow<[u8]>],
+    map: Option<&UvMap>,
 ) -> Result<Mesh, String> {
     let what = format!(
         "mesh {}{} primitive {}",
@@ -135,18 +139,23 @@ pub fn primitive_mesh(
     };
     // glTF's texture space starts at the image's top left; raylab's, as OBJ's, at its bottom
     // left.
-    let uvs = match attribute(gltf::Semantic::TexCoords(0)) {
+    let set = map.map_or(0, |m| m.set);
+    let uvs = match attribute(gltf::Semantic::TexCoords(set)) {
         Some(a) => per_vertex(
             read_floats(&a, buffers, &TEX_COORDS).map_err(fail)?,
             2,
-            "TEXCOORD_0",
+            "TEXCOORD",
         )?
         .chunks_exact(2)
-        .map(|uv| Vec2::new(uv[0], 1.0 - uv[1]))
+        .map(|uv| {
+            let uv = Vec2::new(uv[0], uv[1]);
+            let uv = map.map_or(uv, |m| m.apply(uv));
+            Vec2::new(uv.x, 1.0 - uv.y)
+        })
         .collect(),
         None => Vec::new(),
     };
-    let colors = match attribute(gltf::Semantic::Colors(0)) {
+    let mut colors: Vec<Color> = match attribute(gltf::Semantic::Colors(0)) {
         Some(a) => {
             let width = a.dimensions().multiplicity();
             per_vertex(
@@ -160,6 +169,15 @@ pub fn primitive_mesh(
         }
         None => Vec::new(),
     };
+    // A texture is multiplied by the base colour factor: raylab multiplies it by the vertex
+    // colours.
+    if let Some(tint) = map.map(|m| m.tint).filter(|&t| t != Color::ONE) {
+        if colors.is_empty() {
+            colors = vec![tint; vertex_count];
+        } else {
+            colors.iter_mut().for_each(|c| *c *= tint);
+        }
+    }
     let corners = match primitive.indices() {
         Some(indices) => read_indices(&indices, buffers).map_err(fail)?,
         None => (0..vertex_count as u32).collect(),

@@ -12,12 +12,14 @@ mod buffers;
 pub mod geometry;
 pub mod lights;
 pub mod materials;
+pub mod textures;
 
 use std::path::Path;
 
 use crate::formats::{SceneError, SceneFiles};
 use crate::material::Material;
 use crate::mesh::Mesh;
+use crate::texture::Texture;
 use geometry::{Placements, placements, primitive_mesh};
 use materials::{PbrValues, materials_report, whitted_material};
 
@@ -46,10 +48,13 @@ pub struct GltfModel {
     /// each's `material` the index into [`Self::materials`] or [`NO_MATERIAL`].
     pub meshes: Vec<Vec<Mesh>>,
     pub placements: Placements,
-    /// The file's materials by the rule, with their glTF values and names.
+    /// The file's materials by the rule, with their glTF values and names; a material's
+    /// `texture` is an index into [`Self::textures`].
     pub materials: Vec<Material>,
     pub pbr_values: Vec<PbrValues>,
     pub material_names: Vec<String>,
+    /// The materials' base colour textures.
+    pub textures: Vec<Texture>,
     /// What became what: `glTF: 3 materials → 1 mirror, 2 Phong; not used: KHR_materials_sheen (1)`.
     pub report: String,
 }
@@ -95,19 +100,28 @@ pub fn read_gltf(path: &Path, bytes: &[u8], files: SceneFiles) -> Result<GltfMod
     let folder = path.parent().unwrap_or(Path::new(""));
     let buffers = buffers::load_buffers(&document, blob, folder, files).map_err(whole)?;
     let placements = placements(&document).map_err(whole)?;
+    let textured =
+        textures::base_color_textures(&document, &buffers, folder, files).map_err(whole)?;
+    let map_of = |primitive: &gltf::Primitive| {
+        let material = primitive.material().index()?;
+        textured.maps.get(material)?.as_ref().map(|(_, map)| map)
+    };
 
     let mut meshes: Vec<Vec<Mesh>> = vec![Vec::new(); document.meshes().len()];
     for mesh in document.meshes() {
         if placements.meshes.iter().any(|&(i, _)| i == mesh.index()) {
             meshes[mesh.index()] = mesh
                 .primitives()
-                .map(|p| primitive_mesh(&mesh, &p, &buffers))
+                .map(|p| primitive_mesh(&mesh, &p, &buffers, map_of(&p)))
                 .collect::<Result<_, _>>()
                 .map_err(whole)?;
         }
     }
     let pbr_values: Vec<PbrValues> = document.materials().map(|m| PbrValues::of(&m)).collect();
-    let materials: Vec<Material> = pbr_values.iter().map(whitted_material).collect();
+    let mut materials: Vec<Material> = pbr_values.iter().map(whitted_material).collect();
+    for (material, map) in materials.iter_mut().zip(&textured.maps) {
+        material.texture = map.as_ref().map(|&(texture, _)| texture);
+    }
     let material_names = document
         .materials()
         .map(|m| match m.name() {
@@ -123,6 +137,7 @@ pub fn read_gltf(path: &Path, bytes: &[u8], files: SceneFiles) -> Result<GltfMod
         materials,
         pbr_values,
         material_names,
+        textures: textured.textures,
         report,
     })
 }

@@ -241,7 +241,7 @@ impl Builder {
                     let (scale, offset) = pixmap_mapping(mapping, &self.material.parameters)?;
                     Some(Texture::Image {
                         image: image.clone(),
-                        wrap: Wrap::Repeat,
+                        wrap: [Wrap::Repeat; 2],
                         scale,
                         offset,
                     })

@@ -114,6 +114,7 @@ pub(crate) fn build_scene(
         geometry: Geometry::default(),
         warnings,
         notes: Vec::new(),
+        textures,
     };
     for object in file.objects {
         builder.add_object(object)?;
@@ -125,7 +126,7 @@ pub(crate) fn build_scene(
         atmosphere,
         materials: builder.materials,
         material_names: builder.names,
-        textures,
+        textures: builder.textures,
         background_image,
         geometry: builder.geometry,
         warnings: builder.warnings,
@@ -407,10 +408,11 @@ fn build_texture(
             let image = load_image(&file, "texture image", source, files)?;
             Texture::Image {
                 image,
-                wrap: match wrap {
+                wrap: [match wrap {
                     None | Some(WrapFile::Repeat) => Wrap::Repeat,
                     Some(WrapFile::Clamp) => Wrap::Clamp,
-                },
+                    Some(WrapFile::Mirror) => Wrap::Mirror,
+                }; 2],
                 scale: scale.map_or(Vec2::ONE, |Exact([u, v])| Vec2::new(u.0, v.0)),
                 offset: Vec2::ZERO,
             }
@@ -546,6 +548,8 @@ pub(super) struct GeometryBuilder<'a> {
     pub(super) warnings: Vec<String>,
     /// What the model files became (`file: glTF: 3 materials → …`).
     pub(super) notes: Vec<String>,
+    /// The scene's textures, and those model files bring along.
+    pub(super) textures: Vec<Texture>,
 }
 
 impl GeometryBuilder<'_> {

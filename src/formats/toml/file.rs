@@ -175,12 +175,13 @@ pub enum TextureFile {
     },
 }
 
-/// `wrap = "repeat" | "clamp"`.
+/// `wrap = "repeat" | "clamp" | "mirror"`.
 #[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum WrapFile {
     Repeat,
     Clamp,
+    Mirror,
 }
 
 /// `[materials.NAME]`: the fields of [`crate::material::Material`], each optional.

@@ -66,6 +66,7 @@ pub fn build_model_scene(
         geometry: Geometry::default(),
         warnings: Vec::new(),
         notes: Vec::new(),
+        textures: Vec::new(),
     };
     let name = path.file_name().unwrap_or(path.as_os_str());
     let name = Spanned::new(0..0, name.to_string_lossy().into_owned());
@@ -87,6 +88,7 @@ pub fn build_model_scene(
     scene.geometry = builder.geometry;
     scene.warnings = builder.warnings;
     scene.notes = builder.notes;
+    scene.textures = builder.textures;
     let has_camera = match &gltf {
         Some(model) => use_gltf_camera_and_lights(&mut scene, model)
             .map_err(|e| SceneError::whole_file(path, e))?,
@@ -218,7 +220,13 @@ impl GeometryBuilder<'_> {
             let name = file.get_ref();
             self.names
                 .extend(model.material_names.iter().map(|n| format!("{name} › {n}")));
-            self.materials.extend(model.materials.iter().cloned());
+            let first_texture = self.textures.len() as u32;
+            self.materials
+                .extend(model.materials.iter().map(|m| Material {
+                    texture: m.texture.map(|t| first_texture + t),
+                    ..m.clone()
+                }));
+            self.textures.extend(model.textures.iter().cloned());
         }
         let spans = MeshSpans::all(file.span());
         for &(mesh, world) in &model.placements.meshes {
