@@ -1,14 +1,19 @@
 //! `raylab inspect`: the ray tree of one pixel, as text or JSON, and as the lecture's figure
-//! ([`super::figure`]).
+//! ([`super::figure`]); or, with `--materials`, the scene's materials (a glTF model's beside
+//! the glTF values they were made from).
 
 use std::io::Write;
+use std::path::Path;
 
 use clap::Args;
 
 use raylab::backend::Backend;
-use raylab::formats::SceneFormat;
+use raylab::formats::gltf::materials::Kind;
+use raylab::formats::gltf::read_gltf;
 use raylab::formats::nff::NffLighting;
+use raylab::formats::{SceneFiles, SceneFormat, printable};
 use raylab::inspect::{DebugView, trace_ray_tree};
+use raylab::material::Material;
 use raylab::render::{FirstHit, assemble};
 use raylab::settings::SettingsOverrides;
 
@@ -20,12 +25,16 @@ pub struct InspectArgs {
     /// Scene: a .toml, .nff, SDL (.dat, .sdl), .obj, .ply, .gltf or .glb file, or `spd:NAME[:SIZE]`; the built-in default scene when left
     /// out.
     scene: Option<String>,
-    /// The scene file's format, whatever its name ends in: toml, nff, sdl, obj or ply.
+    /// The scene file's format, whatever its name ends in: toml, nff, sdl, obj, ply or gltf.
     #[arg(long)]
     format: Option<SceneFormat>,
     /// The pixel, `X,Y`: X from the left, Y from the top of the image, from 0.
-    #[arg(long, value_parser = parse_pixel)]
-    pixel: (u32, u32),
+    #[arg(long, value_parser = parse_pixel, required_unless_present = "materials")]
+    pixel: Option<(u32, u32)>,
+    /// List the scene's materials instead: for a glTF model, each material's glTF values
+    /// beside the raylab material they became.
+    #[arg(long, conflicts_with_all = ["pixel", "json"])]
+    materials: bool,
     /// Print the tree as JSON instead of text.
     #[arg(long)]
     json: bool,
@@ -53,6 +62,10 @@ fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
 }
 
 pub fn run(mut args: InspectArgs) -> Result<(), String> {
+    if args.materials {
+        let text = materials_text(args.scene.as_deref(), args.nff_lights, args.format)?;
+        return super::print_out(|out| out.write_all(text.as_bytes()));
+    }
     args.figure.check()?;
     let observer_look_at = match args.figure.draw {
         Some(_) => args.overrides.take_look_at(),
@@ -63,7 +76,9 @@ pub fn run(mut args: InspectArgs) -> Result<(), String> {
     overrides.apply(&mut scene.settings)?;
     scene.camera = overrides.apply_camera(scene.camera.spec)?;
     let (width, height) = (scene.settings.width, scene.settings.height);
-    let (x, y) = args.pixel;
+    let (x, y) = args
+        .pixel
+        .ok_or("--pixel X,Y names the pixel whose ray tree to show")?;
     if x >= width || y >= height {
         return Err(format!(
             "pixel ({x}, {y}) is outside the {width}×{height} image (x < {width}, y < {height})"
@@ -87,4 +102,96 @@ pub fn run(mut args: InspectArgs) -> Result<(), String> {
     super::print_out(|out| out.write_all(text.as_bytes()))?;
     args.figure
         .write(&tree, &assembled, observer_look_at, &mut backend)
+}
+
+/// `--materials`: each material of the scene `name` as raylab has it; for a glTF model, with
+/// the glTF values it was made from and the report line first.
+fn materials_text(
+    name: Option<&str>,
+    lighting: NffLighting,
+    format: Option<SceneFormat>,
+) -> Result<String, String> {
+    let path = name.map(Path::new);
+    let is_gltf = match (format, path) {
+        (Some(format), _) => format == SceneFormat::Gltf,
+        (None, Some(path)) => SceneFormat::of(path) == SceneFormat::Gltf,
+        (None, None) => false,
+    };
+    let mut text = String::new();
+    if let (true, Some(path)) = (is_gltf, path) {
+        let files = SceneFiles::Folder(path.parent().unwrap_or(Path::new("")));
+        let bytes = files
+            .read(path)
+            .map_err(|e| format!("{}: cannot read it: {e}", path.display()))?;
+        let model = read_gltf(path, &bytes, files).map_err(|e| e.to_string())?;
+        text += &format!("{}\n", model.report);
+        for (k, (values, material)) in model.pbr_values.iter().zip(&model.materials).enumerate() {
+            let name = &model.material_names[k];
+            let [r, g, b, a] = values.base_color;
+            let texture = match material.texture {
+                Some(t) => format!(", base colour texture {t}"),
+                None => String::new(),
+            };
+            text += &format!(
+                "material {k} `{}` → {}\n  glTF:   base colour {r} {g} {b} {a}{texture}, metallic {}, \
+                 roughness {}, transmission {}, ior {}, emissive {} × {}\n  raylab: {}\n",
+                printable(name),
+                kind_name(Kind::of(material)),
+                values.metallic,
+                values.roughness,
+                values.transmission,
+                values.ior,
+                triple(values.emissive),
+                values.emissive_strength,
+                raylab_values(material),
+            );
+        }
+        return Ok(text);
+    }
+    let scene = super::load_scene(name, lighting, format)?;
+    for (k, material) in scene.materials.iter().enumerate() {
+        text += &format!(
+            "material {k} `{}`\n  raylab: {}\n",
+            printable(&scene.material_names[k]),
+            raylab_values(material)
+        );
+    }
+    Ok(text)
+}
+
+/// A report kind's name.
+fn kind_name(kind: Kind) -> &'static str {
+    match kind {
+        Kind::Mirror => "mirror",
+        Kind::Glass => "glass",
+        Kind::Phong => "Phong",
+    }
+}
+
+/// Three numbers, space-separated.
+fn triple(c: [f32; 3]) -> String {
+    format!("{} {} {}", c[0], c[1], c[2])
+}
+
+/// A raylab material's numbers, in the scene file's names.
+fn raylab_values(m: &Material) -> String {
+    let texture = match m.texture {
+        Some(t) => format!(" × texture {t}"),
+        None => String::new(),
+    };
+    format!(
+        "color {}{texture}, ambient {}, diffuse {}, specular {} in {}, shininess {}, \
+         reflectivity {}, transparency {}, ior {}, fresnel {}, emission {}",
+        triple(m.color.to_array()),
+        m.ambient,
+        m.diffuse,
+        m.specular,
+        triple(m.specular_color.to_array()),
+        m.shininess,
+        m.reflectivity,
+        m.transparency,
+        m.ior,
+        m.fresnel,
+        triple(m.emission.to_array()),
+    )
 }

@@ -67,3 +67,67 @@ fn inspect_mistakes_are_errors_not_panics() {
         assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn inspect_materials_lists_a_gltf_models_values_beside_raylabs_and_render_prints_the_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/regressions/gltf/seed_cubes.glb");
+    let model = model.to_str().unwrap();
+    let out = raylab(&["inspect", model, "--materials"], dir.path());
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(
+        lines[0], "glTF: 3 materials → 1 mirror, 1 glass, 1 Phong",
+        "{text}"
+    );
+    assert_eq!(lines[1], "material 0 `mirror` → mirror", "{text}");
+    assert!(
+        lines[2].starts_with("  glTF:   base colour 1 1 1 1, metallic 1, roughness 0,"),
+        "{text}"
+    );
+    assert!(
+        lines[3].contains("diffuse 0,") && lines[3].contains("reflectivity 1,"),
+        "{text}"
+    );
+    assert!(text.contains("material 1 `glass` → glass\n"), "{text}");
+    assert!(text.contains("transmission 1, ior 1.4"), "{text}");
+    assert!(
+        text.contains("transparency 1, ior 1.4, fresnel true"),
+        "{text}"
+    );
+
+    // A scene of another format lists raylab's materials alone.
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/glass.toml");
+    let out = raylab(
+        &["inspect", scene.to_str().unwrap(), "--materials"],
+        dir.path(),
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.starts_with("material 0 `default`\n  raylab: color 0.8 0.8 0.8,"),
+        "{text}"
+    );
+
+    // Rendering the model prints the report as a note.
+    let out = raylab(
+        &[
+            "render",
+            model,
+            "-o",
+            "cubes.png",
+            "--width",
+            "64",
+            "--height",
+            "48",
+        ],
+        dir.path(),
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("seed_cubes.glb: glTF: 3 materials → 1 mirror, 1 glass, 1 Phong"),
+        "{}",
+        stderr(&out)
+    );
+}

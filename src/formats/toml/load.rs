@@ -28,8 +28,10 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
         let message = not_the_format(path, what, "a scene file");
         let hint = if what.contains("PLY") {
             "raylab reads it when its name ends in .ply"
+        } else if what.contains("glTF") {
+            "raylab reads it when its name ends in .gltf or .glb"
         } else {
-            "raylab reads TOML, NFF, SDL, OBJ and PLY"
+            "raylab reads TOML, NFF, SDL, OBJ, PLY and glTF"
         };
         return Err(SceneError::whole_file(path, format!("{message}: {hint}")));
     }
