@@ -52,27 +52,23 @@ fn lerp(a: vec3<f32>, b: vec3<f32>, s: f32) -> vec3<f32> {
 
 // `Wrap::texel`: texel i of a row or column of n, wrapped into 0..n.
 fn wrapped(i: i32, n: i32, wrap: u32) -> i32 {
-    // rem_euclid: `%` keeps the sign of i, as Rust's does.
-    switch wrap {
-        case WRAP_REPEAT: {
-            return ((i % n) + n) % n;
-        }
-        case WRAP_MIRROR: {
-            let m = ((i % (2 * n)) + 2 * n) % (2 * n);
-            return select(2 * n - 1 - m, m, m < n);
-        }
-        default: {
-            return clamp(i, 0, n - 1);
-        }
+    if wrap == WRAP_CLAMP {
+        return clamp(i, 0, n - 1);
     }
+    // rem_euclid: `%` keeps the sign of i, as Rust's does.
+    if wrap == WRAP_MIRROR {
+        let m = ((i % (2 * n)) + 2 * n) % (2 * n);
+        return select(2 * n - 1 - m, m, m < n);
+    }
+    return ((i % n) + n) % n;
 }
 
 // `TextureImage::texel`: the linear colour of texel (x, y) of image `t`, wrapped into it. The
 // CPU wraps in i64, this in i32: the same for texel coordinates within ±2³¹ (|uv| below 2³¹
 // over the image's size).
 fn texel(t: Texture, x: i32, y: i32) -> vec3<f32> {
-    let wrap_u = t.wrap & ((1u << WRAP_V_SHIFT) - 1u);
-    let wrap_v = t.wrap >> WRAP_V_SHIFT;
+    let wrap_u = extractBits(t.wrap, 0u, WRAP_V_SHIFT);
+    let wrap_v = extractBits(t.wrap, WRAP_V_SHIFT, WRAP_V_SHIFT);
     let at = vec2<i32>(wrapped(x, i32(t.width), wrap_u), wrapped(y, i32(t.height), wrap_v));
     let packed = texels[t.first + u32(at.y) * t.width + u32(at.x)];
     // The decode table's entries are the first 256 of `texels`.

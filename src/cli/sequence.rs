@@ -12,6 +12,7 @@ use std::str::FromStr;
 use clap::Args;
 use raylab::camera::{Camera, CameraSpec};
 use raylab::formats::toml::load_views;
+use raylab::formats::{SceneFormat, load_any};
 use raylab::views::{path, turntable};
 
 use super::jobs::FrameArg;
@@ -25,8 +26,9 @@ pub struct SequenceArgs {
     #[arg(long, value_name = "FRAMES", conflicts_with = "path")]
     turntable: Option<u32>,
     /// Render a camera path through the views of a views file (NAME.views.toml, as the viewer
-    /// saves them with Ctrl+1…9) in the order of their numbers, in --frames images: the first
-    /// is the first view, the last the last view. -o as with --turntable.
+    /// saves them with Ctrl+1…9), or through the cameras of a glTF model (.gltf, .glb), in the
+    /// order of their numbers, in --frames images: the first is the first view, the last the
+    /// last view. -o as with --turntable.
     #[arg(long, value_name = "FILE")]
     path: Option<PathBuf>,
     /// How many images the --path sequence has (at least 2); or A..B: render only frames A to
@@ -104,7 +106,14 @@ impl SequenceArgs {
             }
             (_, None) => return Err("--path FILE needs its number of frames: --frames N".into()),
         };
-        let views = load_views(file, camera).map_err(|e| e.to_string())?;
+        let views = if SceneFormat::of(file) == SceneFormat::Gltf {
+            let name = file
+                .to_str()
+                .ok_or("--path: the file's name is not UTF-8")?;
+            load_any(name).map_err(|e| e.to_string())?.views
+        } else {
+            load_views(file, camera).map_err(|e| e.to_string())?
+        };
         path(&views.cameras(), length)
             .map(Some)
             .map_err(|e| format!("--path {}: {e}", file.display()))

@@ -14,6 +14,7 @@ use crate::shapes::Shape;
 use crate::srgb_image::SrgbImage;
 use crate::texture::Texture;
 use crate::transform::Transform;
+use crate::views::Views;
 
 #[derive(Clone, Debug)]
 pub struct Scene {
@@ -40,6 +41,9 @@ pub struct Scene {
     /// What the reader made of the file that is not wrong but worth a line (`file: message`):
     /// what a glTF model's materials became. Printed as notes, shown in the viewer.
     pub notes: Vec<String>,
+    /// The bookmarked views the file brings: a glTF model's cameras, numbered from 1. A views
+    /// file beside the scene (`NAME.views.toml`) takes their place in the viewer.
+    pub views: Views,
 }
 
 impl Scene {
@@ -57,6 +61,7 @@ impl Scene {
             geometry: Geometry::default(),
             warnings: Vec::new(),
             notes: Vec::new(),
+            views: Views::default(),
         }
     }
 

@@ -183,3 +183,50 @@ fn render_help_names_the_sequence_flags() {
         assert!(help.contains(flag), "{flag}: {help}");
     }
 }
+
+#[test]
+fn a_path_through_a_gltf_models_cameras_starts_on_its_first_camera() {
+    let dir = tempfile::tempdir().unwrap();
+    let seed = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/regressions/gltf/seed_cubes.gltf");
+    let mut model: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(seed).unwrap()).unwrap();
+    // A second camera, up and to the side, after the model's own.
+    let nodes = model["nodes"].as_array_mut().unwrap();
+    nodes.push(
+        serde_json::json!({"camera": 0, "translation": [3.0, 2.0, 4.0],
+        "rotation": [-0.1, 0.3, 0.0, 0.95]}),
+    );
+    let second = nodes.len() - 1;
+    model["scenes"][0]["nodes"]
+        .as_array_mut()
+        .unwrap()
+        .push(serde_json::json!(second));
+    std::fs::write(dir.path().join("cubes.gltf"), model.to_string()).unwrap();
+    let size = ["--size", "24x16"];
+    let args = [
+        "render",
+        "cubes.gltf",
+        "--path",
+        "cubes.gltf",
+        "--frames",
+        "3",
+        "-o",
+        "p%d.png",
+    ];
+    let out = raylab(&[&args[..], &size[..]].concat(), dir.path());
+    assert!(out.status.success(), "{}", stderr(&out));
+    let args = ["render", "cubes.gltf", "-o", "first.png"];
+    let out = raylab(&[&args[..], &size[..]].concat(), dir.path());
+    assert!(out.status.success(), "{}", stderr(&out));
+    let read = |name: &str| std::fs::read(dir.path().join(name)).unwrap();
+    assert_eq!(
+        read("p0.png"),
+        read("first.png"),
+        "the path starts on camera 1"
+    );
+    assert_ne!(
+        read("p2.png"),
+        read("first.png"),
+        "the path ends on camera 2"
+    );
+}

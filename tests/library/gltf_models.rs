@@ -722,6 +722,8 @@ fn lit_cube(lights: Value, light_nodes: &[Value], camera: bool) -> Writer {
             json!({"camera": 0, "rotation": turn.to_array(), "translation": [6.0, 0.0, 0.0]}),
             true,
         );
+        // …and the same camera again at (0, 1, 5), looking down −z.
+        w.node(json!({"camera": 0, "translation": [0.0, 1.0, 5.0]}), true);
     }
     w
 }
@@ -776,6 +778,19 @@ fn lights_and_the_camera_come_from_their_nodes_with_the_written_conversion() {
     assert!(scene.camera.v.abs_diff_eq(Vec3::Y, 1e-5));
     assert!((scene.camera.spec.view_angle - 0.7f32.to_degrees()).abs() < 1e-4);
     assert_eq!(scene.settings.width, 2 * scene.settings.height);
+    // Every camera is a bookmarked view, in the file's order.
+    let views: Vec<(u8, Vec3)> = scene.views.iter().map(|(k, v)| (k, v.eye)).collect();
+    assert_eq!(views.len(), 2, "{views:?}");
+    assert_eq!(views[0].0, 1);
+    assert!(views[0].1.abs_diff_eq(Vec3::new(6.0, 0.0, 0.0), 1e-5));
+    assert_eq!(views[1].0, 2);
+    assert!(views[1].1.abs_diff_eq(Vec3::new(0.0, 1.0, 5.0), 1e-5));
+    let second = scene.views.get(2).unwrap();
+    assert!(
+        (second.look_at - second.eye)
+            .normalize()
+            .abs_diff_eq(Vec3::NEG_Z, 1e-5)
+    );
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
     let image = rendered(scene);
     assert!(image.iter().any(|&b| b > 60), "the lit cube shows");

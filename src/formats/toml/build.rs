@@ -32,6 +32,7 @@ use crate::shapes::{Csg, CsgOperation, Operand, Shape, Triangle};
 use crate::srgb_image::SrgbImage;
 use crate::texture::{Texture, WOOD_COLORS, Wrap};
 use crate::transform::{Transform, TransformStep};
+use crate::views::Views;
 
 /// Index of the material of objects that name none: `Material::default()`. The named materials
 /// follow it in name order.
@@ -131,6 +132,7 @@ pub(crate) fn build_scene(
         geometry: builder.geometry,
         warnings: builder.warnings,
         notes: builder.notes,
+        views: Views::default(),
     };
     // A file without a camera is seen as the viewer's F frames it.
     if !has_camera {

@@ -25,6 +25,7 @@ use crate::primitive::Geometry;
 use crate::scene::Scene;
 use crate::settings::RenderSettings;
 use crate::transform::Transform;
+use crate::views::VIEW_NUMBERS;
 
 /// What a triangle and a vertex of a placed glTF mesh take in memory until the BVH is built,
 /// at most: the mesh's vertices and faces, the triangles' records and the build's working set.
@@ -257,7 +258,8 @@ impl GeometryBuilder<'_> {
 }
 
 /// Sets the scene's camera to the glTF file's first perspective camera (its aspect ratio the
-/// image's, when the file gives one) and adds the file's lights; true if there was a camera.
+/// image's, when the file gives one), its views to the first nine, and adds the file's lights;
+/// true if there was a camera.
 fn use_gltf_camera_and_lights(scene: &mut Scene, model: &GltfModel) -> Result<bool, String> {
     let centre = scene.geometry.finite_bounds().center();
     for &(index, world) in &model.placements.lights {
@@ -265,12 +267,16 @@ fn use_gltf_camera_and_lights(scene: &mut Scene, model: &GltfModel) -> Result<bo
             .lights
             .push(whitted_light(&model.document, index, world, centre)?);
     }
-    let first = model
+    let cameras: Vec<_> = model
         .placements
         .cameras
         .iter()
-        .find_map(|&(index, world)| camera_view(&model.document, index, world, centre));
-    let Some((spec, aspect)) = first else {
+        .filter_map(|&(index, world)| camera_view(&model.document, index, world, centre))
+        .collect();
+    for (number, (spec, _)) in VIEW_NUMBERS.zip(&cameras) {
+        scene.views.set(number, *spec)?;
+    }
+    let Some(&(spec, aspect)) = cameras.first() else {
         return Ok(false);
     };
     if let Some(aspect) = aspect {

@@ -59,7 +59,7 @@ pub fn load(path: Option<&Path>, format: Option<SceneFormat>) -> Result<LoadedSc
     .map_err(|e| e.to_string())?;
     let views = match path.map(views_path).filter(|file| file.is_file()) {
         Some(file) => load_views(&file, scene.camera.spec).map_err(|e| e.to_string())?,
-        None => Views::default(),
+        None => scene.views.clone(),
     };
     let assembled = Assembled::without_caustics(scene);
     let bounds = assembled.bvh.bounds().unwrap_or(Aabb::EMPTY);
