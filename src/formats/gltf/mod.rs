@@ -26,11 +26,12 @@ use materials::{PbrValues, materials_report, whitted_material};
 pub use geometry::NO_MATERIAL;
 
 /// The extensions raylab reads; a file may require these and no others.
-pub const HONOURED: [&str; 4] = [
+pub const HONOURED: [&str; 5] = [
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
     "KHR_materials_transmission",
+    "KHR_texture_transform",
 ];
 
 /// The GLB header's magic, and its chunk types (little-endian `JSON` and `BIN\0`).
@@ -203,11 +204,11 @@ fn glb_chunks(bytes: &[u8]) -> Result<GlbChunks<'_>, (usize, String)> {
 fn check_positions_indices(root: &gltf::json::Root) -> Result<(), String> {
     for (m, mesh) in root.meshes.iter().enumerate() {
         for (p, primitive) in mesh.primitives.iter().enumerate() {
-            for (semantic, index) in &primitive.attributes {
+            for index in primitive.attributes.values() {
                 if index.value() >= root.accessors.len() {
                     return Err(format!(
-                        "mesh {m} primitive {p}: attribute {semantic:?} names accessor {}, but \
-                         the file has {}",
+                        "mesh {m} primitive {p}: an attribute names accessor {}, but the file \
+                         has {} accessors",
                         index.value(),
                         root.accessors.len()
                     ));
