@@ -93,7 +93,8 @@ pub fn spheres_on_a_floor(width: u32, height: u32) -> Scene {
     scene
 }
 
-/// The scene files of `folder` (of the repository), by file name, in order.
+/// The scene files of `folder` (of the repository), by file name, in order: TOML, SDL and
+/// glTF models (`.glb`) on their own.
 pub fn scene_files(folder: &str) -> Vec<(String, Scene)> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(folder);
     let mut files: Vec<_> = std::fs::read_dir(&dir)
@@ -101,7 +102,9 @@ pub fn scene_files(folder: &str) -> Vec<(String, Scene)> {
         .map(|entry| entry.unwrap().path())
         .filter(|path| {
             let name = path.file_name().unwrap().to_string_lossy();
-            (name.ends_with(".toml") && !name.ends_with(".camera.toml")) || name.ends_with(".dat")
+            (name.ends_with(".toml") && !name.ends_with(".camera.toml"))
+                || name.ends_with(".dat")
+                || name.ends_with(".glb")
         })
         .collect();
     files.sort();
