@@ -1,6 +1,6 @@
 //! glTF 2.0 models, `.gltf` (JSON with its buffers in files beside it or in `data:` URIs) and
 //! `.glb` (binary): read with the `gltf` crate's schema and validation, every accessor read by
-//! [`buffers`] after its ranges are checked. [`read_gltf`] gives the triangles of each mesh, the
+//! `buffers` after its ranges are checked. [`read_gltf`] gives the triangles of each mesh, the
 //! default scene's placements of meshes, cameras and lights ([`geometry`]), the materials by
 //! the rule in [`materials`], and the one-line report of what became what. Lights and camera
 //! views are made from the placements by [`lights`] once the caller knows the model's centre.
