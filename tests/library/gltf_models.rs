@@ -9,13 +9,11 @@ use std::path::Path;
 
 use base64::Engine;
 use glam::{Quat, Vec3};
-use raylab::color::to_srgb8;
 use raylab::formats::load_any;
 use raylab::light::Light;
-use raylab::progressive::render_image;
-use raylab::render::assemble;
-use raylab::scene::Scene;
 use serde_json::{Value, json};
+
+use super::models::{load_written, rendered};
 
 /// glTF's component types.
 const U8: u32 = 5121;
@@ -249,22 +247,6 @@ fn placing(file: &str, material: &str) -> String {
     ))
 }
 
-/// The 8-bit image of `scene` at 96 × 72.
-fn rendered(mut scene: Scene) -> Vec<u8> {
-    scene.settings.width = 96;
-    scene.settings.height = 72;
-    let assembled = assemble(scene).unwrap();
-    to_srgb8(&render_image(&assembled.tracer()).0)
-}
-
-/// Writes `files` into `dir` and loads `name` among them.
-fn load_written(dir: &Path, files: &[(&str, &[u8])], name: &str) -> Scene {
-    for (file, bytes) in files {
-        std::fs::write(dir.join(file), bytes).unwrap();
-    }
-    load_any(dir.join(name).to_str().unwrap()).unwrap_or_else(|e| panic!("{e}"))
-}
-
 /// Writes `files` into `dir` and the error of loading `name` among them.
 fn error_of(dir: &Path, files: &[(&str, &[u8])], name: &str) -> String {
     for (file, bytes) in files {
@@ -355,6 +337,20 @@ fn ribbon(n: usize) -> Vec<Vec3> {
         .collect()
 }
 
+/// The triangles of a strip of `n` vertices, cut by the test as the specification says: odd
+/// ones swap their last two corners.
+fn strip_triangles(n: u32) -> Vec<u32> {
+    (0..n - 2)
+        .flat_map(|i| {
+            if i % 2 == 0 {
+                [i, i + 1, i + 2]
+            } else {
+                [i, i + 2, i + 1]
+            }
+        })
+        .collect()
+}
+
 /// The image of one primitive of `mode` through `indices` (stored as `component`, or none)
 /// over `corners`, placed in a scene file.
 fn primitive_image(
@@ -380,17 +376,7 @@ fn primitive_image(
 fn every_index_type_strips_and_fans_draw_the_triangles_the_specification_cuts() {
     let dir = tempfile::tempdir().unwrap();
     let corners = ribbon(10);
-    // The strip's triangles, cut by the test as the specification says: odd ones swap their
-    // last two corners.
-    let strip: Vec<u32> = (0..8u32)
-        .flat_map(|i| {
-            if i % 2 == 0 {
-                [i, i + 1, i + 2]
-            } else {
-                [i, i + 2, i + 1]
-            }
-        })
-        .collect();
+    let strip = strip_triangles(10);
     let listed = primitive_image(dir.path(), &corners, Some((&strip, U32)), TRIANGLES);
     assert!(listed.chunks(3).any(|p| p[0] > 100), "the ribbon shows");
     for component in [U8, U16] {
@@ -433,15 +419,7 @@ fn every_index_type_strips_and_fans_draw_the_triangles_the_specification_cuts() 
 fn a_sparse_accessor_replaces_the_elements_it_names() {
     let dir = tempfile::tempdir().unwrap();
     let corners = ribbon(8);
-    let strip: Vec<u32> = (0..6u32)
-        .flat_map(|i| {
-            if i % 2 == 0 {
-                [i, i + 1, i + 2]
-            } else {
-                [i, i + 2, i + 1]
-            }
-        })
-        .collect();
+    let strip = strip_triangles(8);
     let dense = primitive_image(dir.path(), &corners, Some((&strip, U16)), TRIANGLES);
 
     // The same positions with two of them wrong in the base view, put right by the sparse part.
@@ -495,15 +473,7 @@ fn a_sparse_accessor_replaces_the_elements_it_names() {
 fn vertex_colours_multiply_the_material_colour() {
     let dir = tempfile::tempdir().unwrap();
     let corners = ribbon(8);
-    let strip: Vec<u32> = (0..6u32)
-        .flat_map(|i| {
-            if i % 2 == 0 {
-                [i, i + 1, i + 2]
-            } else {
-                [i, i + 2, i + 1]
-            }
-        })
-        .collect();
+    let strip = strip_triangles(8);
     let tint = [0.25f32, 0.5, 1.0];
     let mut w = Writer::new();
     let positions = w.vec3s(&corners);

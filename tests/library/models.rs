@@ -210,7 +210,7 @@ fn scene_around(object: &str) -> String {
 }
 
 /// The 8-bit image of `scene` at 96 × 72.
-fn rendered(mut scene: Scene) -> Vec<u8> {
+pub fn rendered(mut scene: Scene) -> Vec<u8> {
     scene.settings.width = 96;
     scene.settings.height = 72;
     let assembled = assemble(scene).unwrap();
@@ -218,7 +218,7 @@ fn rendered(mut scene: Scene) -> Vec<u8> {
 }
 
 /// Writes `files` into `dir` and loads the scene file `name` among them.
-fn load_written(dir: &Path, files: &[(&str, &[u8])], name: &str) -> Scene {
+pub fn load_written(dir: &Path, files: &[(&str, &[u8])], name: &str) -> Scene {
     for (file, bytes) in files {
         std::fs::write(dir.join(file), bytes).unwrap();
     }
