@@ -73,7 +73,7 @@ fn the_kept_ply_files_read_or_fail_cleanly() {
 fn the_kept_gltf_files_read_or_fail_cleanly() {
     replay("gltf", harness::gltf);
     let seeds = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/regressions/gltf");
-    for seed in ["seed_cubes.gltf", "seed_cubes.glb"] {
+    for seed in ["seed_cubes.gltf", "seed_cubes.glb", "seed_textured.glb"] {
         let bytes = std::fs::read(seeds.join(seed)).unwrap();
         assert_eq!(harness::gltf(&bytes), Ok(()), "{seed}");
     }
