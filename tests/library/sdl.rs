@@ -738,7 +738,8 @@ fn format_sdl_reads_a_file_whatever_its_name() {
     let refused = run(&["render", name, "--format", "stl"]);
     assert!(!refused.status.success());
     assert!(
-        String::from_utf8_lossy(&refused.stderr).contains("expected toml, nff, sdl, obj or ply")
+        String::from_utf8_lossy(&refused.stderr)
+            .contains("expected toml, nff, sdl, obj, ply or gltf")
     );
 }
 
