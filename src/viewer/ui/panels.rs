@@ -138,8 +138,9 @@ fn scene_section(
                     format!("warning: {warning}"),
                 );
             }
+            // Monospace: its font has the report's arrow (→), egui's proportional one not.
             for note in &scene.scene.scene().notes {
-                ui.label(format!("note: {note}"));
+                ui.label(egui::RichText::new(format!("note: {note}")).monospace());
             }
             ui.horizontal(|ui| {
                 let field = ui.add(
