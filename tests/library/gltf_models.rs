@@ -862,6 +862,14 @@ fn broken_and_refused_files_get_errors_that_say_where_and_what() {
         "{error}"
     );
 
+    // A file of another format, named for what it is.
+    let ply = b"ply\nformat ascii 1.0\nelement vertex 0\nend_header\n";
+    let error = error_of(dir, &[("scan.glb", ply)], "scan.glb");
+    assert!(
+        error.contains("scan.glb is a PLY file, not glTF"),
+        "{error}"
+    );
+
     // A missing buffer file, and a missing model named by a scene file (at its `file` key).
     let (w, _) = two_cubes();
     let (text, _) = w.gltf("gone.bin");

@@ -203,6 +203,9 @@ impl GeometryBuilder<'_> {
         let path = self.files.path(file.get_ref());
         let fail = file_error(self.source, &file, &path, "glTF file");
         let bytes = self.files.read(&path).map_err(&fail)?;
+        if let Some(what) = known_format(&bytes).filter(|what| !what.contains("glTF")) {
+            return Err(fail(not_the_format(&path, what, "glTF")));
+        }
         let model = read_gltf(&path, &bytes, self.files)?;
         let (mut vertices, mut triangles) = (0u64, 0u64);
         for &(mesh, _) in &model.placements.meshes {
