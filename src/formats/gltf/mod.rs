@@ -108,9 +108,13 @@ pub fn read_gltf(path: &Path, bytes: &[u8], files: SceneFiles) -> Result<GltfMod
         textured.maps.get(material)?.as_ref().map(|(_, map)| map)
     };
 
+    let mut placed = vec![false; document.meshes().len()];
+    for &(mesh, _) in &placements.meshes {
+        placed[mesh] = true;
+    }
     let mut meshes: Vec<Vec<Mesh>> = vec![Vec::new(); document.meshes().len()];
     for mesh in document.meshes() {
-        if placements.meshes.iter().any(|&(i, _)| i == mesh.index()) {
+        if placed[mesh.index()] {
             meshes[mesh.index()] = mesh
                 .primitives()
                 .map(|p| primitive_mesh(&mesh, &p, &buffers, map_of(&p)))
