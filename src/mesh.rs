@@ -132,14 +132,26 @@ impl Mesh {
     }
 
     /// Shading normal and texture coordinates of face `face` at barycentric `(b1, b2)`. Without
-    /// vertex normals the shading normal is the geometric one.
-    pub fn shading(&self, face: u32, bary: Vec2, geometric_normal: Vec3) -> (Vec3, Vec2) {
+    /// vertex normals the shading normal is the geometric one. A mesh kept in its own space and
+    /// placed by `placement` has its vertex normals moved into the world one by one, as
+    /// [`Self::transform`] moves a copy's, so that both shade alike to the last bit.
+    pub fn shading(
+        &self,
+        face: u32,
+        bary: Vec2,
+        geometric_normal: Vec3,
+        placement: Option<&Transform>,
+    ) -> (Vec3, Vec2) {
         let [i0, i1, i2] = self.faces[face as usize].map(|i| i as usize);
         let b0 = 1.0 - bary.x - bary.y;
         let normal = if self.normals.is_empty() {
             geometric_normal
         } else {
-            let n = self.normals[i0] * b0 + self.normals[i1] * bary.x + self.normals[i2] * bary.y;
+            let [n0, n1, n2] = [i0, i1, i2].map(|i| match placement {
+                Some(transform) => transform.normal_to_world(self.normals[i]),
+                None => self.normals[i],
+            });
+            let n = n0 * b0 + n1 * bary.x + n2 * bary.y;
             n.normalize_or(geometric_normal)
         };
         let uv = if self.uvs.is_empty() {

@@ -47,6 +47,13 @@ impl std::fmt::Display for TransformError {
 }
 
 impl Transform {
+    /// The transform that leaves everything where it stands.
+    pub const IDENTITY: Transform = Transform {
+        world_from_object: Affine3A::IDENTITY,
+        object_from_world: Affine3A::IDENTITY,
+        normal_to_world: Mat3A::IDENTITY,
+    };
+
     /// The transform that maps object space to the world by `world_from_object`.
     pub(crate) fn from_affine(world_from_object: Affine3A) -> Self {
         let object_from_world = world_from_object.inverse();
@@ -112,6 +119,31 @@ impl Transform {
     /// An object-space normal in world space, unit length.
     pub fn normal_to_world(&self, n: Vec3) -> Vec3 {
         (self.normal_to_world * n).normalize()
+    }
+
+    /// How far, in object space, a point may lie from where exact arithmetic puts it when it is
+    /// computed in single precision along the ray from the world point `origin` moved into
+    /// object space ([`Self::ray_to_object`]), or moved into the world and back, for points
+    /// within `extent` of the object's origin (on every axis): a few units in the last place
+    /// of the numbers each move adds up. A box grown by it holds every point of what it bounds
+    /// as either space computes it.
+    pub fn rounding_slack(&self, origin: Vec3, extent: f32) -> f32 {
+        /// Units in the last place allowed for: each move is a sum of four products.
+        const ULPS: f32 = 16.0;
+        // The largest row sum of absolute values: how much the linear part can grow a vector.
+        let norm = |m: &Mat3A| {
+            let t = m.transpose();
+            [t.x_axis, t.y_axis, t.z_axis]
+                .map(|row| row.abs().element_sum())
+                .into_iter()
+                .fold(0.0, f32::max)
+        };
+        let (inverse, forward) = (&self.object_from_world, &self.world_from_object);
+        let inverse_norm = norm(&inverse.matrix3);
+        let origin_scale =
+            inverse_norm * origin.abs().max_element() + inverse.translation.abs().max_element();
+        let world_scale = norm(&forward.matrix3) * extent + forward.translation.abs().max_element();
+        ULPS * f32::EPSILON * (origin_scale + inverse_norm * world_scale + extent)
     }
 
     /// World-space bounds of an object-space box.

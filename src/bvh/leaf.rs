@@ -1,13 +1,13 @@
 //! What the leaves of the BVH hold and how a ray tests them. A leaf holds one [`LeafKind`] of
 //! primitive: mesh triangles, or spheres, open cylinders or small polygons placed in the world,
-//! each kind in packs
-//! of four tested at once ([`Pack`]), or any other objects, tested one by one through their
-//! shape. Whatever the kind, a ray gets exactly the hits the one-by-one tests would give.
+//! each kind in packs of four tested at once ([`Pack`]), or any other objects, tested one by
+//! one through their shape, or instances, which a walk enters (`instances`). Whatever the
+//! kind, a ray gets exactly the hits the one-by-one tests would give.
 
 use std::ops::ControlFlow;
 
 use super::Bvh;
-use crate::primitive::{Geometry, Hit, Object, PrimId};
+use crate::primitive::{Geometry, Hit, Object, PrimId, PrimKind};
 use crate::ray::Ray;
 use crate::shapes::{
     CylinderPack, LaneHits, ObjectPack, PACK_SIZE, PolygonPack, Shape, ShearedRay, SpherePack,
@@ -28,16 +28,20 @@ pub(super) enum LeafKind {
     Polygons,
     /// Mesh triangles, in [`TrianglePack`]s.
     Triangles,
+    /// Instances of models, each walked into.
+    Instances,
 }
 
 impl LeafKind {
     /// How many kinds there are.
-    pub(super) const COUNT: usize = 5;
+    pub(super) const COUNT: usize = 6;
 
     /// The kind of leaf that primitive `id` goes in.
     pub(super) fn of(geometry: &Geometry, id: PrimId) -> LeafKind {
-        let Ok(object) = id.kind() else {
-            return LeafKind::Triangles;
+        let object = match id.kind() {
+            PrimKind::Object(object) => object,
+            PrimKind::Triangle(_) => return LeafKind::Triangles,
+            PrimKind::Instance(_) => return LeafKind::Instances,
         };
         match &geometry.objects[object] {
             Object {
@@ -62,7 +66,7 @@ impl LeafKind {
     /// How many primitives one test takes.
     pub(super) fn block(self) -> u32 {
         match self {
-            LeafKind::Objects => 1,
+            LeafKind::Objects | LeafKind::Instances => 1,
             _ => PACK_SIZE as u32,
         }
     }
@@ -74,7 +78,8 @@ impl LeafKind {
             1 => LeafKind::Spheres,
             2 => LeafKind::Cylinders,
             3 => LeafKind::Polygons,
-            _ => LeafKind::Triangles,
+            4 => LeafKind::Triangles,
+            _ => LeafKind::Instances,
         }
     }
 }
@@ -89,19 +94,39 @@ pub enum Leaf<'a> {
     Triangles(&'a [TrianglePack]),
 }
 
-impl Leaf<'_> {
+/// What a walk reaches at a leaf of the tree: primitives to test, or instances to walk into.
+#[derive(Clone, Copy, Debug)]
+pub enum Reached<'a> {
+    Prims(Leaf<'a>),
+    /// Instances, listed in the BVH's `objects`.
+    Instances(&'a [PrimId]),
+}
+
+impl Reached<'_> {
     /// The leaf of `kind` with `count` entries from `first` in the BVH's array of that kind.
     #[inline(always)]
-    pub(super) fn in_bvh(bvh: &Bvh, kind: LeafKind, first: usize, count: usize) -> Leaf<'_> {
-        match kind {
+    pub(super) fn in_bvh(bvh: &Bvh, kind: LeafKind, first: usize, count: usize) -> Reached<'_> {
+        let leaf = match kind {
             LeafKind::Objects => Leaf::Objects(&bvh.objects[first..][..count]),
             LeafKind::Spheres => Leaf::Spheres(&bvh.spheres[first..][..count]),
             LeafKind::Cylinders => Leaf::Cylinders(&bvh.cylinders[first..][..count]),
             LeafKind::Polygons => Leaf::Polygons(&bvh.polygons[first..][..count]),
             LeafKind::Triangles => Leaf::Triangles(&bvh.packs[first..][..count]),
-        }
+            LeafKind::Instances => return Reached::Instances(&bvh.objects[first..][..count]),
+        };
+        Reached::Prims(leaf)
     }
 
+    /// The primitives (or instances) of the leaf.
+    pub fn prims(&self) -> Vec<PrimId> {
+        match self {
+            Reached::Prims(leaf) => leaf.prims(),
+            Reached::Instances(instances) => instances.to_vec(),
+        }
+    }
+}
+
+impl Leaf<'_> {
     /// Primitive tests the leaf takes, for counting: four lanes to a pack.
     pub fn tests(&self) -> usize {
         match self {
@@ -244,7 +269,7 @@ fn closest_in_packs<P: Pack>(
 /// earlier in the scene) and nearer than `t_limit`, which an earlier lane of the same pack may
 /// have lowered since the test; the limit moves to just past it.
 #[inline(always)]
-fn keep_if_closer(hit: Hit, t_limit: &mut f32, best: &mut Option<Hit>) {
+pub(super) fn keep_if_closer(hit: Hit, t_limit: &mut f32, best: &mut Option<Hit>) {
     // Below the limit, which lies just past the best so far, `t` is at most the best's.
     let beats = best.is_none_or(|b| hit.t < b.t || hit.prim.scene_order() < b.prim.scene_order());
     if hit.t < *t_limit && beats {

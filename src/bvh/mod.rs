@@ -5,18 +5,22 @@
 //! (`ray_box`), with the widest instruction set the processor has (`simd`); a tile of coherent
 //! eye rays walks the tree once, together ([`packet`]). A leaf holds one kind of primitive,
 //! tested its own way (`leaf`). Unbounded primitives (planes) are kept in a list beside the
-//! tree and tested against every ray.
+//! tree and tested against every ray. A model that instances place has a tree of its own, over
+//! its triangles in its own space; the scene's tree holds the instances, which a ray walks into
+//! (`instances`): a two-level tree.
 
 mod build;
 pub mod cost;
+mod instances;
 mod leaf;
 pub mod packet;
 mod ray_box;
 mod simd;
 mod traverse;
+mod walk;
 mod wide;
 
-pub use leaf::Leaf;
+pub use leaf::{Leaf, Reached};
 pub use simd::Simd;
 
 use crate::aabb::Aabb;
@@ -113,12 +117,12 @@ impl Child {
         self.count != WideNode::INTERIOR
     }
 
-    /// A leaf's primitives (it must be a leaf).
+    /// A leaf's primitives or instances (it must be a leaf).
     #[inline(always)]
-    fn leaf<'a>(&self, bvh: &'a Bvh) -> Leaf<'a> {
+    fn leaf<'a>(&self, bvh: &'a Bvh) -> Reached<'a> {
         let kind = LeafKind::from_bits(self.count >> Child::KIND_SHIFT);
         let count = self.count & ((1 << Child::KIND_SHIFT) - 1);
-        Leaf::in_bvh(bvh, kind, self.first as usize, count as usize)
+        Reached::in_bvh(bvh, kind, self.first as usize, count as usize)
     }
 }
 
@@ -137,10 +141,13 @@ pub struct Bvh {
     pub cylinders: Vec<CylinderPack>,
     /// The polygons of the leaves of polygons, likewise.
     pub polygons: Vec<PolygonPack>,
-    /// The other bounded objects, in leaf order.
+    /// The other bounded objects, and the instances, in leaf order.
     pub objects: Vec<PrimId>,
     /// Primitives without bounds, tested against every ray.
     pub unbounded: Vec<PrimId>,
+    /// The trees of the geometry's models, index for index, each over the model's triangles
+    /// in its own space.
+    pub models: Vec<Bvh>,
     /// The instruction set the traversal uses.
     simd: Simd,
 }
@@ -153,6 +160,7 @@ impl Bvh {
         binary: &[Node],
         prims: &[PrimId],
         unbounded: Vec<PrimId>,
+        models: Vec<Bvh>,
     ) -> Bvh {
         let wide::Collapsed {
             nodes,
@@ -173,14 +181,18 @@ impl Bvh {
             polygons,
             objects,
             unbounded,
+            models,
             simd: Simd::best(),
         }
     }
 
-    /// Bytes held by the tree and its leaves.
+    /// Bytes held by the tree and its leaves, and by the models' trees.
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
-        self.nodes.capacity() * size_of::<WideNode>()
+        let models: usize = self.models.iter().map(Bvh::memory_bytes).sum();
+        models
+            + self.models.capacity() * size_of::<Bvh>()
+            + self.nodes.capacity() * size_of::<WideNode>()
             + self.packs.capacity() * size_of::<TrianglePack>()
             + self.spheres.capacity() * size_of::<SpherePack>()
             + self.cylinders.capacity() * size_of::<CylinderPack>()
@@ -209,6 +221,9 @@ impl Bvh {
             return Err(format!("this processor cannot run the {simd} path"));
         }
         self.simd = simd;
+        for model in &mut self.models {
+            model.simd = simd;
+        }
         Ok(())
     }
 

@@ -14,11 +14,12 @@ use std::array;
 use arrayvec::ArrayVec;
 use glam::{Vec3, Vec4};
 
+use super::instances::closest_in_instances;
 use super::leaf::{closest_in_leaf, ones};
 use super::ray_box::RayBoxTest;
 use super::simd::{Kernel, LANES, Lanes, dispatch};
-use super::traverse::STACK_SIZE;
-use super::{Bvh, Child, Leaf, WIDTH, WideNode};
+use super::walk::STACK_SIZE;
+use super::{Bvh, Child, Leaf, Reached, WIDTH, WideNode};
 use crate::primitive::{Geometry, Hit};
 use crate::ray::Ray;
 use crate::shapes::ShearedRay;
@@ -158,10 +159,25 @@ impl Kernel for Packet<'_> {
                 continue;
             }
             if child.is_leaf() {
-                let leaf = child.leaf(bvh);
                 for r in ones(active) {
+                    let (ray, sheared) = (&rays[r], &sheared[r]);
                     let (limit, best) = (&mut t_limit[r], &mut hits[r]);
-                    closest_in_leaf(geometry, leaf, &rays[r], &sheared[r], t_min, limit, best);
+                    match child.leaf(bvh) {
+                        Reached::Prims(leaf) => {
+                            closest_in_leaf(geometry, leaf, ray, sheared, t_min, limit, best);
+                        }
+                        Reached::Instances(ids) => closest_in_instances::<L, ()>(
+                            geometry,
+                            &bvh.models,
+                            ids,
+                            ray,
+                            sheared,
+                            t_min,
+                            limit,
+                            best,
+                            &mut (),
+                        ),
+                    }
                 }
                 continue;
             }

@@ -5,21 +5,16 @@
 
 use std::ops::ControlFlow;
 
-use arrayvec::ArrayVec;
-
-use super::build::MAX_DEPTH;
 use super::cost::TraversalCost;
+use super::instances::{closest_in_instances, each_in_instances};
 use super::leaf::{closest_in_leaf, each_in_leaf};
 use super::ray_box::RayBoxTest;
 use super::simd::{Kernel, Lanes, dispatch};
-use super::{Bvh, Child, Leaf, WIDTH};
+use super::walk::VisitLeaf;
+use super::{Bvh, Leaf, Reached};
 use crate::primitive::{Geometry, Hit};
 use crate::ray::Ray;
 use crate::shapes::ShearedRay;
-
-/// Most entries the traversal stack can need: each level of the tree leaves at most
-/// `WIDTH − 1` siblings waiting.
-pub(super) const STACK_SIZE: usize = (WIDTH - 1) * (MAX_DEPTH + 1) + 1;
 
 impl Bvh {
     /// The closest hit of `ray` with `t` in `(t_min, t_max)`. When several primitives are hit
@@ -108,20 +103,13 @@ impl<'a, C> Walk<'a, C> {
     }
 }
 
-/// What a walk does at each leaf it reaches: test the leaf's primitives, shrinking the walk's
-/// far limit `t_max` (closest hit) or breaking off the walk (any hit). A trait with inlined
-/// methods rather than a closure, so that the leaf tests are compiled into each kernel with its
-/// instruction set instead of being called apart.
-trait VisitLeaf<C> {
-    fn visit(&mut self, leaf: Leaf, t_max: &mut f32, cost: &mut C) -> ControlFlow<()>;
-}
-
 /// The closest-hit query as a [`Kernel`].
 struct ClosestHit<'a, C>(Walk<'a, C>);
 
 /// The closest hit's leaf tests: the best hit so far.
 struct Closest<'a> {
     geometry: &'a Geometry,
+    models: &'a [Bvh],
     ray: &'a Ray,
     sheared: ShearedRay,
     t_min: f32,
@@ -130,17 +118,38 @@ struct Closest<'a> {
 
 impl<C: TraversalCost> VisitLeaf<C> for Closest<'_> {
     #[inline(always)]
-    fn visit(&mut self, leaf: Leaf, t_limit: &mut f32, cost: &mut C) -> ControlFlow<()> {
-        cost.prims_tested(leaf.tests());
-        closest_in_leaf(
-            self.geometry,
-            leaf,
-            self.ray,
-            &self.sheared,
-            self.t_min,
-            t_limit,
-            &mut self.best,
-        );
+    fn visit<L: Lanes>(
+        &mut self,
+        reached: Reached,
+        t_limit: &mut f32,
+        cost: &mut C,
+    ) -> ControlFlow<()> {
+        let (geometry, ray, sheared) = (self.geometry, self.ray, &self.sheared);
+        match reached {
+            Reached::Prims(leaf) => {
+                cost.prims_tested(leaf.tests());
+                closest_in_leaf(
+                    geometry,
+                    leaf,
+                    ray,
+                    sheared,
+                    self.t_min,
+                    t_limit,
+                    &mut self.best,
+                );
+            }
+            Reached::Instances(ids) => closest_in_instances::<L, C>(
+                geometry,
+                self.models,
+                ids,
+                ray,
+                sheared,
+                self.t_min,
+                t_limit,
+                &mut self.best,
+                cost,
+            ),
+        }
         ControlFlow::Continue(())
     }
 }
@@ -153,15 +162,18 @@ impl<C: TraversalCost> Kernel for ClosestHit<'_, C> {
         let w = self.0;
         let mut closest = Closest {
             geometry: w.geometry,
+            models: &w.bvh.models,
             ray: w.ray,
             sheared: ShearedRay::new(w.ray),
             t_min: w.t_min,
             best: None,
         };
         let mut t_limit = w.t_max;
-        let _ = closest.visit(Leaf::Objects(&w.bvh.unbounded), &mut t_limit, w.cost);
+        let unbounded = Reached::Prims(Leaf::Objects(&w.bvh.unbounded));
+        let _ = closest.visit::<L>(unbounded, &mut t_limit, w.cost);
+        let test = RayBoxTest::new(w.ray);
         w.bvh
-            .walk::<L, C, true>(w.ray, w.t_min, t_limit, w.cost, &mut closest);
+            .walk::<L, C, true>(&test, w.t_min, &mut t_limit, w.cost, &mut closest);
         closest.best
     }
 }
@@ -172,6 +184,7 @@ struct AnyHit<'a, C, F>(Walk<'a, C>, F);
 /// The any-hit search's leaf tests: every hit goes to `on_hit`.
 struct Each<'a, F> {
     geometry: &'a Geometry,
+    models: &'a [Bvh],
     ray: &'a Ray,
     sheared: ShearedRay,
     t_min: f32,
@@ -181,17 +194,20 @@ struct Each<'a, F> {
 
 impl<C: TraversalCost, F: FnMut(&Hit) -> ControlFlow<()>> VisitLeaf<C> for Each<'_, F> {
     #[inline(always)]
-    fn visit(&mut self, leaf: Leaf, _: &mut f32, cost: &mut C) -> ControlFlow<()> {
-        cost.prims_tested(leaf.tests());
+    fn visit<L: Lanes>(&mut self, reached: Reached, _: &mut f32, cost: &mut C) -> ControlFlow<()> {
+        let (geometry, ray, sheared) = (self.geometry, self.ray, &self.sheared);
         let range = (self.t_min, self.t_max);
-        each_in_leaf(
-            self.geometry,
-            leaf,
-            self.ray,
-            &self.sheared,
-            range,
-            &mut self.on_hit,
-        )
+        match reached {
+            Reached::Prims(leaf) => {
+                cost.prims_tested(leaf.tests());
+                each_in_leaf(geometry, leaf, ray, sheared, range, &mut self.on_hit)
+            }
+            Reached::Instances(ids) => {
+                let on_hit = &mut self.on_hit;
+                let models = self.models;
+                each_in_instances::<L, C>(geometry, models, ids, ray, sheared, range, on_hit, cost)
+            }
+        }
     }
 }
 
@@ -203,6 +219,7 @@ impl<C: TraversalCost, F: FnMut(&Hit) -> ControlFlow<()>> Kernel for AnyHit<'_, 
         let AnyHit(w, on_hit) = self;
         let mut each = Each {
             geometry: w.geometry,
+            models: &w.bvh.models,
             ray: w.ray,
             sheared: ShearedRay::new(w.ray),
             t_min: w.t_min,
@@ -210,104 +227,12 @@ impl<C: TraversalCost, F: FnMut(&Hit) -> ControlFlow<()>> Kernel for AnyHit<'_, 
             on_hit,
         };
         let mut t_max = w.t_max;
-        if each
-            .visit(Leaf::Objects(&w.bvh.unbounded), &mut t_max, w.cost)
-            .is_break()
-        {
+        let unbounded = Reached::Prims(Leaf::Objects(&w.bvh.unbounded));
+        if each.visit::<L>(unbounded, &mut t_max, w.cost).is_break() {
             return;
         }
+        let test = RayBoxTest::new(w.ray);
         w.bvh
-            .walk::<L, C, false>(w.ray, w.t_min, w.t_max, w.cost, &mut each);
-    }
-}
-
-impl Bvh {
-    /// Visits the leaves whose boxes `ray` enters: nearest child first when `NEAREST_FIRST`,
-    /// else in the order of the node's slots. `leaf` may shrink `t_max` (closest hit) or break
-    /// (any hit). `cost` hears of each interior node visited.
-    ///
-    /// The order pays only where a hit prunes the rest of the walk, which the closest hit's
-    /// does; an any-hit search that finds nothing visits every entered box in any order, so it
-    /// spends nothing on sorting (as Embree's occlusion walk does).
-    #[inline(always)]
-    fn walk<L: Lanes, C: TraversalCost, const NEAREST_FIRST: bool>(
-        &self,
-        ray: &Ray,
-        t_min: f32,
-        t_max: f32,
-        cost: &mut C,
-        leaf: &mut impl VisitLeaf<C>,
-    ) {
-        if self.nodes.is_empty() {
-            return;
-        }
-        // No test of the root's own box: the root's children's boxes lie inside it, so a ray
-        // that misses it misses them all, at the cost of one node's test.
-        let test = RayBoxTest::new(ray);
-        // A finite far limit keeps the unused slots of a node, whose boxes lie at +∞, shut.
-        let mut t_max = t_max.min(f32::MAX);
-        // Children still to visit, with the distance at which the ray enters them.
-        let mut stack: ArrayVec<(Child, f32), STACK_SIZE> = ArrayVec::new();
-        let mut next = Child::node(0);
-        loop {
-            if next.is_leaf() {
-                if leaf.visit(next.leaf(self), &mut t_max, cost).is_break() {
-                    return;
-                }
-            } else {
-                cost.node_visited();
-                let node = &self.nodes[next.first as usize];
-                let (t, entered) = test.enter8::<L>(node, t_min, t_max);
-                let child = |k: u32| Child {
-                    first: node.first[k as usize],
-                    count: node.count[k as usize],
-                };
-                if entered.count_ones() == 1 {
-                    next = child(entered.trailing_zeros());
-                    continue;
-                }
-                if entered != 0 && !NEAREST_FIRST {
-                    // The lowest slot is visited next; the others wait on the stack.
-                    next = child(entered.trailing_zeros());
-                    let mut left = entered & (entered - 1);
-                    while left != 0 {
-                        let k = left.trailing_zeros();
-                        left &= left - 1;
-                        stack.push((child(k), t[k as usize]));
-                    }
-                    continue;
-                }
-                if entered != 0 {
-                    // The children the ray enters, farthest first (insertion sort of at most
-                    // eight), go on the stack; the nearest comes off again at once.
-                    let base = stack.len();
-                    let mut left = entered;
-                    while left != 0 {
-                        let k = left.trailing_zeros();
-                        left &= left - 1;
-                        stack.push((child(k), t[k as usize]));
-                        let mut i = stack.len() - 1;
-                        while i > base && stack[i - 1].1 < stack[i].1 {
-                            stack.swap(i - 1, i);
-                            i -= 1;
-                        }
-                    }
-                    if let Some((nearest, _)) = stack.pop() {
-                        next = nearest;
-                    }
-                    continue;
-                }
-            }
-            // Pop the next child still nearer than the best hit so far.
-            loop {
-                let Some((child, t_enter)) = stack.pop() else {
-                    return;
-                };
-                if t_enter < t_max {
-                    next = child;
-                    break;
-                }
-            }
-        }
+            .walk::<L, C, false>(&test, w.t_min, &mut t_max, w.cost, &mut each);
     }
 }

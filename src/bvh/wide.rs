@@ -7,8 +7,8 @@
 //! visit move up.
 //!
 //! A binary leaf holds one [`LeafKind`] of primitive (the builder makes sure of it): triangles,
-//! spheres, cylinders or polygons, copied into packs of four in leaf order, or other objects,
-//! listed in leaf order. The walk down the tree only counts out the triangle packs; they are
+//! spheres, cylinders or polygons, copied into packs of four in leaf order, or other objects or
+//! instances, listed in leaf order. The walk down the tree only counts out the triangle packs; they are
 //! filled afterwards on all threads, since a large mesh's copy of its triangles is most of the
 //! work. Below the root, the subtrees are walked on all threads, each into arrays of its own
 //! ([`Part`]), joined in order afterwards.
@@ -21,7 +21,7 @@ use rayon::prelude::*;
 use super::leaf::LeafKind;
 use super::{Child, Node, WIDTH, WideNode};
 use crate::aabb::Aabb;
-use crate::primitive::{Geometry, PrimId};
+use crate::primitive::{Geometry, PrimId, PrimKind};
 use crate::shapes::{CylinderPack, PACK_SIZE, PolygonPack, Shape, SpherePack, TrianglePack};
 
 /// A node with no children yet. An unused slot's box lies at +∞ on every axis: the slab test
@@ -68,9 +68,10 @@ pub(super) fn collapse(binary: &[Node], prims: &[PrimId], geometry: &Geometry) -
             let ids = &prims[range];
             // A pack's triangles are read together; a pack of fewer reads its last one again.
             let triangle = |k: usize| {
-                let id = ids[k.min(ids.len() - 1)];
-                id.kind()
-                    .expect_err("a leaf of triangles holds only triangles")
+                let PrimKind::Triangle(t) = ids[k.min(ids.len() - 1)].kind() else {
+                    unreachable!("a leaf of triangles holds only triangles")
+                };
+                t
             };
             let triangles = geometry.triangles(std::array::from_fn::<_, PACK_SIZE, _>(triangle));
             let lanes: ArrayVec<_, PACK_SIZE> = triangles
@@ -114,10 +115,12 @@ impl Part {
         }
     }
 
-    /// How many entries it has in the array of each [`LeafKind`].
+    /// How many entries it has in the array of each [`LeafKind`] (objects and instances share
+    /// one).
     fn lengths(&self) -> [usize; LeafKind::COUNT] {
         let mut lengths = [0; LeafKind::COUNT];
         lengths[LeafKind::Objects as usize] = self.objects.len();
+        lengths[LeafKind::Instances as usize] = self.objects.len();
         lengths[LeafKind::Spheres as usize] = self.spheres.len();
         lengths[LeafKind::Cylinders as usize] = self.cylinders.len();
         lengths[LeafKind::Polygons as usize] = self.polygons.len();
@@ -238,14 +241,14 @@ impl Collapse<'_> {
         let kind = LeafKind::of(geometry, prims[0]);
         // The shape of object `id`, which the builder put in a leaf of its kind.
         let shape = |id: PrimId| {
-            let object = id
-                .kind()
-                .expect("a leaf of packed objects holds only objects");
+            let PrimKind::Object(object) = id.kind() else {
+                unreachable!("a leaf of packed objects holds only objects")
+            };
             &geometry.objects[object].shape
         };
         let mixed = || unreachable!("a leaf holds one kind of primitive");
         let (first, count) = match kind {
-            LeafKind::Objects => {
+            LeafKind::Objects | LeafKind::Instances => {
                 out.objects.extend_from_slice(prims);
                 (out.objects.len() - prims.len(), prims.len())
             }

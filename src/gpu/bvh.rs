@@ -10,7 +10,7 @@ use bytemuck::Zeroable;
 
 use crate::aabb::Aabb;
 use crate::bvh::{Bvh, WIDTH, WideNode};
-use crate::primitive::Geometry;
+use crate::primitive::{Geometry, PrimKind};
 
 /// How the GPU holds the BVH's nodes.
 #[derive(
@@ -132,12 +132,16 @@ impl GpuBvh {
                     continue;
                 };
                 let prims = bvh.leaf_prims(child);
-                let triangles = prims.first().is_some_and(|p| p.kind().is_err());
+                let triangles = prims
+                    .first()
+                    .is_some_and(|p| matches!(p.kind(), PrimKind::Triangle(_)));
                 if triangles {
                     copy.first[k] = gpu.triangles.len() as u32;
                     copy.count[k] = prims.len() as u32 | TRIANGLE_LEAF;
                     gpu.triangles.extend(prims.iter().map(|p| {
-                        let index = p.kind().expect_err("a leaf holds one kind");
+                        let PrimKind::Triangle(index) = p.kind() else {
+                            unreachable!("a leaf holds one kind")
+                        };
                         let t = geometry.triangle(index);
                         GpuTriangle {
                             p0: t.p0.to_array(),
@@ -275,8 +279,11 @@ impl GpuBvh {
 }
 
 /// The object index of a primitive that is an object.
-fn object_index(kind: Result<usize, usize>) -> u32 {
-    kind.expect("a leaf of objects holds only objects") as u32
+fn object_index(kind: PrimKind) -> u32 {
+    let PrimKind::Object(index) = kind else {
+        unreachable!("a leaf of objects holds only objects")
+    };
+    index as u32
 }
 
 #[cfg(test)]

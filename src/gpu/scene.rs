@@ -59,6 +59,13 @@ impl SceneRecords {
                 scene.materials.len()
             ));
         }
+        if !scene.geometry.instances().is_empty() {
+            return Err(format!(
+                "the scene places {} instances of models; the GPU tracer traces meshes stored \
+                 where they stand",
+                scene.geometry.instances().len()
+            ));
+        }
         let table = ObjectTable::new(&scene.geometry.objects)?;
         let gpu_bvh = GpuBvh::new(bvh, &scene.geometry);
         let geometry = &scene.geometry;

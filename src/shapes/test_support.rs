@@ -15,16 +15,14 @@ pub fn hit_in_world(
     steps: &[TransformStep],
     ray: &Ray,
 ) -> Option<(Hit, SurfacePoint)> {
-    let geometry = Geometry {
-        objects: vec![Object {
-            shape,
-            transform: Some(Box::new(
-                Transform::from_steps(steps).expect("valid transform"),
-            )),
-            material: 0,
-        }],
-        ..Geometry::default()
-    };
+    let mut geometry = Geometry::default();
+    geometry.objects.push(Object {
+        shape,
+        transform: Some(Box::new(
+            Transform::from_steps(steps).expect("valid transform"),
+        )),
+        material: 0,
+    });
     let hit = geometry.intersect(PrimId::object(0), ray, 1e-4, f32::INFINITY)?;
     Some((hit, geometry.surface(ray, &hit)))
 }

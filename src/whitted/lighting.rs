@@ -13,7 +13,7 @@ use super::shadow_cache;
 use super::{LightTerms, LocalTerms, ShadowEvent, Tracer, TreeObserver, reflect};
 use crate::color::Color;
 use crate::material::Material;
-use crate::primitive::{Hit, PrimId, SurfacePoint};
+use crate::primitive::{Hit, PrimId, PrimKind, SurfacePoint};
 use crate::ray::{Ray, offset_origin};
 use crate::shapes::Shape;
 use crate::stats::RayCounts;
@@ -212,9 +212,9 @@ impl Tracer<'_> {
         let has_medium = materials[geometry.material(hit) as usize].medium.is_some();
         let length = ray.dir.length();
         let object = match hit.prim.kind() {
-            Ok(o) => &geometry.objects[o],
-            Err(_) if !has_medium => return 0.0,
-            Err(_) => {
+            PrimKind::Object(o) => &geometry.objects[o],
+            PrimKind::Triangle(_) | PrimKind::Instance(_) if !has_medium => return 0.0,
+            PrimKind::Triangle(_) | PrimKind::Instance(_) => {
                 let (density, leaving) = crossing(hit);
                 let sign = if leaving { 1.0 } else { -1.0 };
                 return sign * density * hit.t * length;

@@ -25,7 +25,7 @@ use raylab::gpu::tracer::tracer_wgsl;
 use raylab::material::Material;
 use raylab::memory::Bytes;
 use raylab::mesh::Mesh;
-use raylab::primitive::PrimId;
+use raylab::primitive::{PrimId, PrimKind};
 use raylab::ray::Ray;
 use raylab::render::{Assembled, assemble};
 use raylab::scene::Scene;
@@ -691,9 +691,9 @@ fn the_bvh_walk_finds_the_cpus_closest_hits_among_triangles_and_spheres() {
         let on_gpu = closest_hits(&gpu, &scene, Search::Bvh, &rays).unwrap();
         let compared = compare(&assembled, Search::Bvh, &rays, &on_gpu);
         assert!(compared >= 10_000, "{nodes}: {compared} hits compared");
-        let triangles = on_gpu
-            .iter()
-            .filter(|h| h.prim != NO_PRIM && PrimId(h.prim).kind().is_err());
+        let triangles = on_gpu.iter().filter(|h| {
+            h.prim != NO_PRIM && matches!(PrimId(h.prim).kind(), PrimKind::Triangle(_))
+        });
         assert!(
             triangles.count() >= 5_000,
             "{nodes}: most hits are triangles"

@@ -11,7 +11,7 @@ use raylab::bvh::packet::PACKET_SIZE;
 use raylab::bvh::{Bvh, Simd};
 use raylab::camera::{Camera, CameraSpec, PIXEL_CENTRE};
 use raylab::mesh::Mesh;
-use raylab::primitive::{Geometry, Hit, Object, PrimId};
+use raylab::primitive::{Geometry, Hit, Object, PrimId, PrimKind};
 use raylab::ray::Ray;
 use raylab::shapes::{Plane, Polygon, Shape, Sphere, TaperedCylinder};
 use raylab::transform::{Transform, TransformStep};
@@ -243,7 +243,10 @@ fn tree_is_shallow_and_covers_every_primitive_once() {
             if child.is_leaf() {
                 let prims = bvh.leaf_prims(child);
                 assert!(!prims.is_empty());
-                let kinds: BTreeSet<bool> = prims.iter().map(|id| id.kind().is_ok()).collect();
+                let kinds: BTreeSet<bool> = prims
+                    .iter()
+                    .map(|id| matches!(id.kind(), PrimKind::Object(_)))
+                    .collect();
                 assert_eq!(kinds.len(), 1, "a leaf holds one kind of primitive");
                 for &id in &prims {
                     assert!(inside(g.bounds(id).unwrap(), outer));

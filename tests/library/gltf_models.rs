@@ -288,6 +288,11 @@ fn gltf_with_a_bin_file_with_a_data_uri_and_as_glb_render_the_triangles_a_scene_
             rendered(load_written(dir.path(), &all, &scene_file))
         })
         .collect();
+    // The mesh two nodes place is stored once, as a model placed by two instances.
+    let cubes = load_written(dir.path(), &[], "cubes.glb.toml");
+    assert_eq!(cubes.geometry.models().len(), 1);
+    assert_eq!(cubes.geometry.instances().len(), 2);
+    assert!(cubes.geometry.meshes.is_empty());
     assert!(images[0] == images[1], "the data: URI changes the image");
     assert!(images[0] == images[2], "the GLB changes the image");
 

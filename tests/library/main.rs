@@ -18,6 +18,7 @@ mod gltf_models;
 mod images;
 mod inspect;
 mod inspect_image;
+mod instances;
 mod limits;
 mod media;
 mod models;

@@ -26,7 +26,7 @@ use self::prims::{BuildPrim, Extent};
 use super::leaf::LeafKind;
 use super::{Bvh, Node};
 use crate::aabb::Aabb;
-use crate::primitive::{Geometry, PrimId};
+use crate::primitive::{Geometry, PrimId, PrimKind};
 
 /// Relative cost of visiting a node against testing one primitive.
 pub(super) const TRAVERSAL_COST: f32 = 1.0;
@@ -52,7 +52,10 @@ struct Split {
 }
 
 impl Bvh {
+    /// The tree over `geometry`'s primitives, with a tree of its own for each model its
+    /// instances place.
     pub fn build(geometry: &Geometry) -> Bvh {
+        let models = geometry.models().iter().map(Bvh::build).collect();
         let (mut prims, extent, unbounded) = build_prims(geometry);
         let binary = if prims.is_empty() {
             Vec::new()
@@ -60,7 +63,7 @@ impl Bvh {
             subtree(&mut prims, 0, extent, 0)
         };
         let ids: Vec<PrimId> = prims.par_iter().map(BuildPrim::id).collect();
-        Bvh::from_binary(geometry, &binary, &ids, unbounded)
+        Bvh::from_binary(geometry, &binary, &ids, unbounded, models)
     }
 }
 
@@ -80,6 +83,7 @@ pub(super) fn binary_tree(geometry: &Geometry) -> Option<(Vec<Node>, Vec<LeafKin
 /// unbounded ones, all in scene order.
 fn build_prims(geometry: &Geometry) -> (Vec<BuildPrim>, Extent, Vec<PrimId>) {
     let objects = geometry.objects.len();
+    let triangles = objects + geometry.triangle_count();
     // Nearly every primitive is bounded: make them all (an unbounded one with the empty box),
     // straight into place, and take out the few unbounded ones after.
     let mut prims: Vec<BuildPrim> = (0..geometry.len())
@@ -87,11 +91,13 @@ fn build_prims(geometry: &Geometry) -> (Vec<BuildPrim>, Extent, Vec<PrimId>) {
         .map(|i| {
             let id = if i < objects {
                 PrimId::object(i)
-            } else {
+            } else if i < triangles {
                 PrimId::triangle(i - objects)
+            } else {
+                PrimId::instance(i - triangles)
             };
             // A triangle's box is made in SIMD registers, unless a corner is not finite.
-            if let Err(t) = id.kind()
+            if let PrimKind::Triangle(t) = id.kind()
                 && let Some(prim) = BuildPrim::of_triangle(&geometry.triangle(t), id)
             {
                 return prim;

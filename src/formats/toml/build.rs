@@ -2,9 +2,9 @@
 //! checks that need more than one value, and textures and OBJ files loaded from disk. Every
 //! error points at the value it is about.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::ops::Range;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use glam::Vec2;
@@ -15,6 +15,7 @@ use super::file::{
     TextureFile, WrapFile,
 };
 use super::object_file::{CsgOperationFile, ObjectFile, ShapeFile, TransformStepFile};
+use super::placing::{ModelFile, ModelFormat, Placed, Target};
 use super::values::{ColorValue, Direction, Exact, NonNegative, TexCoord, Vector};
 use crate::camera::{Camera, CameraError, CameraSpec};
 use crate::color::Color;
@@ -106,17 +107,15 @@ pub(crate) fn build_scene(
         }
     }
 
-    let mut builder = GeometryBuilder {
+    let mut builder = GeometryBuilder::new(
         source,
         files,
         material_names,
-        materials,
-        names,
-        geometry: Geometry::default(),
-        warnings,
-        notes: Vec::new(),
+        (materials, names),
         textures,
-    };
+        warnings,
+    );
+    builder.count_placements(&file.objects)?;
     for object in file.objects {
         builder.add_object(object)?;
     }
@@ -509,7 +508,7 @@ fn triangle_mesh(
 
 /// Where the parts of a mesh are in the file, to point a [`MeshError`] at.
 pub(super) struct MeshSpans {
-    whole: Range<usize>,
+    pub(super) whole: Range<usize>,
     faces: Range<usize>,
     normals: Range<usize>,
     uvs: Range<usize>,
@@ -525,7 +524,7 @@ impl MeshSpans {
         }
     }
 
-    fn of(&self, error: &MeshError) -> Range<usize> {
+    pub(super) fn of(&self, error: &MeshError) -> Range<usize> {
         match error {
             MeshError::IndexOutOfRange { .. } => self.faces.clone(),
             MeshError::NormalCount { .. } => self.normals.clone(),
@@ -552,11 +551,55 @@ pub(super) struct GeometryBuilder<'a> {
     pub(super) notes: Vec<String>,
     /// The scene's textures, and those model files bring along.
     pub(super) textures: Vec<Texture>,
+    /// The model files read so far, by path.
+    pub(super) model_files: HashMap<PathBuf, ModelFile>,
+    /// How often the scene places each thing (one when not counted).
+    pub(super) uses: HashMap<Target, usize>,
+    /// What each object of the scene placed so far became, for instances of it, with its name.
+    pub(super) placed: Vec<(Option<String>, Placed)>,
+}
+
+impl<'a> GeometryBuilder<'a> {
+    /// A builder of no geometry yet, with the scene's materials (and their names), textures
+    /// and warnings so far.
+    pub(super) fn new(
+        source: Source<'a>,
+        files: SceneFiles<'a>,
+        material_names: Names,
+        (materials, names): (Vec<Material>, Vec<String>),
+        textures: Vec<Texture>,
+        warnings: Vec<String>,
+    ) -> Self {
+        GeometryBuilder {
+            source,
+            files,
+            material_names,
+            materials,
+            names,
+            geometry: Geometry::default(),
+            warnings,
+            notes: Vec::new(),
+            textures,
+            model_files: HashMap::new(),
+            uses: HashMap::new(),
+            placed: Vec::new(),
+        }
+    }
 }
 
 impl GeometryBuilder<'_> {
-    /// Adds one object: a mesh, or an analytic shape (see [`Self::analytic_shape`]).
+    /// Adds one object: a mesh, a model file, an instance of an object above it, or an analytic
+    /// shape (see [`Self::analytic_shape`]).
     fn add_object(&mut self, object: ObjectFile) -> Result<(), SceneError> {
+        let name = object.name.as_ref().map(|name| name.get_ref().clone());
+        let index = self.placed.len();
+        let placed = self.add_shape_of(object, index)?;
+        self.placed.push((name, placed));
+        Ok(())
+    }
+
+    /// Adds the shape of object `index`, and says what it became.
+    fn add_shape_of(&mut self, object: ObjectFile, index: usize) -> Result<Placed, SceneError> {
         let source = self.source;
         let (material, transform) = self.placement(object.material, object.transform, None)?;
         let span = object.shape.span();
@@ -569,8 +612,8 @@ impl GeometryBuilder<'_> {
                 let vertices_span = vertices.span();
                 let mesh = triangle_mesh(vertices.into_inner().0, normals, uvs)
                     .map_err(|message| source.error(vertices_span.clone(), message))?;
-                let material = material.unwrap_or(DEFAULT_MATERIAL);
-                self.add_mesh(mesh, material, transform, &MeshSpans::all(vertices_span))
+                let spans = MeshSpans::all(vertices_span);
+                self.add_scene_mesh(index, mesh, material, transform, &spans)
             }
             ShapeFile::Mesh {
                 positions,
@@ -595,17 +638,35 @@ impl GeometryBuilder<'_> {
                     faces: faces.into_inner().into_iter().map(|f| f.0).collect(),
                     material: DEFAULT_MATERIAL,
                 };
-                let material = material.unwrap_or(DEFAULT_MATERIAL);
-                self.add_mesh(mesh, material, transform, &spans)
+                self.add_scene_mesh(index, mesh, material, transform, &spans)
             }
-            ShapeFile::Obj { file } => self.add_obj(file, material, transform),
-            ShapeFile::Ply { file } => self.add_ply(file, material, transform),
-            ShapeFile::Gltf { file } => self.add_gltf(file, material, transform).map(drop),
+            ShapeFile::Obj { file } => self.add_file(ModelFormat::Obj, file, material, transform),
+            ShapeFile::Ply { file } => self.add_file(ModelFormat::Ply, file, material, transform),
+            ShapeFile::Gltf { file } => self.add_file(ModelFormat::Gltf, file, material, transform),
+            ShapeFile::Instance { of } => self.add_instance_of(&of, material, transform),
             shape => {
                 let (shape, blame) = self.analytic_shape(shape, span, material)?;
-                self.add_shape(shape, blame, material, transform)
+                self.add_shape(shape, blame, material, transform)?;
+                Ok(Placed::Object(self.geometry.objects.len() - 1))
             }
         }
+    }
+
+    /// Adds a model file as an object of the scene.
+    fn add_file(
+        &mut self,
+        format: ModelFormat,
+        file: Spanned<String>,
+        material: Option<u32>,
+        transform: Option<Transform>,
+    ) -> Result<Placed, SceneError> {
+        self.add_model_file(format, &file, material, transform)?;
+        let path = self.files.path(file.get_ref());
+        Ok(Placed::File {
+            path,
+            file,
+            material,
+        })
     }
 
     /// The material (the object's own, else `inherited`) and the transform of an object.
@@ -650,6 +711,12 @@ impl GeometryBuilder<'_> {
                     ShapeFile::Mesh { .. } => "mesh",
                     ShapeFile::Ply { .. } => "PLY mesh",
                     ShapeFile::Gltf { .. } => "glTF model",
+                    ShapeFile::Instance { .. } => {
+                        return Err(source.error(
+                            span,
+                            "an instance cannot be a csg operand: write the shape itself",
+                        ));
+                    }
                     _ => "OBJ mesh",
                 };
                 return Err(source.error(
@@ -709,7 +776,7 @@ impl GeometryBuilder<'_> {
 
     /// Adds an analytic shape; the shape reaching past [`limits::MAX_COORDINATE`] is reported
     /// at `span`.
-    fn add_shape(
+    pub(super) fn add_shape(
         &mut self,
         shape: Shape,
         span: Range<usize>,

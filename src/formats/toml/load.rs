@@ -10,8 +10,9 @@ use toml::de::DeTable;
 
 use super::build::{build_camera, build_scene};
 use super::file::{CameraSnippetFile, SceneFile};
-use super::models::{ModelFormat, build_model_scene};
+use super::models::build_model_scene;
 use super::object_file::OBJECT_KEYS;
+use super::placing::ModelFormat;
 use super::retag::retag_document;
 use crate::camera::{Camera, CameraSpec};
 use crate::formats::{SceneError, Source};
@@ -91,7 +92,8 @@ pub fn parse_scene_with(text: &str, origin: &Path, files: SceneFiles) -> Result<
         // shape's own keys as known.
         if e.span().is_some_and(|span| shape_keys.contains(&span)) {
             let common: Vec<String> = OBJECT_KEYS.iter().map(|k| format!("`{k}`")).collect();
-            error.message += &format!("; every object also takes {}", common.join(" and "));
+            let (last, rest) = common.split_last().expect("objects have common keys");
+            error.message += &format!("; every object also takes {} and {last}", rest.join(", "));
         }
         error
     })?;

@@ -8,6 +8,7 @@ use std::path::Path;
 use toml::Spanned;
 
 use super::build::{DEFAULT_MATERIAL, GeometryBuilder, MeshSpans, Names, file_error};
+use super::placing::{ModelFile, ModelFormat, Target};
 use crate::camera::Camera;
 use crate::color::Color;
 use crate::formats::SceneFiles;
@@ -21,27 +22,20 @@ use crate::light::Light;
 use crate::limits;
 use crate::material::Material;
 use crate::memory;
-use crate::primitive::Geometry;
+use crate::mesh::Mesh;
 use crate::scene::Scene;
 use crate::settings::RenderSettings;
 use crate::transform::Transform;
 use crate::views::VIEW_NUMBERS;
 
-/// What a triangle and a vertex of a placed glTF mesh take in memory until the BVH is built,
-/// at most: the mesh's vertices and faces, the triangles' records and the build's working set.
+/// What a triangle and a vertex of a mesh copied into the world take in memory until the BVH is
+/// built, at most: the mesh's vertices and faces, the triangles' records and the build's
+/// working set.
 const PLACED_BYTES_PER_TRIANGLE: u64 = 100;
 const PLACED_BYTES_PER_VERTEX: u64 = 48;
 
 /// The colour of the light a model file opened as a scene is lit by: white, at the eye.
 const MODEL_LIGHT: Color = Color::splat(1.0);
-
-/// The formats of model files.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ModelFormat {
-    Obj,
-    Ply,
-    Gltf,
-}
 
 /// The model file at `path` as a scene of its own: its meshes with their materials (OBJ's MTL
 /// materials, glTF's by the rule of [`crate::formats::gltf::materials`]; the default material
@@ -58,24 +52,17 @@ pub fn build_model_scene(
         origin: path,
         text: "",
     };
-    let mut builder = GeometryBuilder {
+    let mut builder = GeometryBuilder::new(
         source,
         files,
-        material_names: Names::new("material", std::iter::empty(), DEFAULT_MATERIAL + 1),
-        materials: vec![Material::default()],
-        names: vec!["default".to_string()],
-        geometry: Geometry::default(),
-        warnings: Vec::new(),
-        notes: Vec::new(),
-        textures: Vec::new(),
-    };
+        Names::new("material", std::iter::empty(), DEFAULT_MATERIAL + 1),
+        (vec![Material::default()], vec!["default".to_string()]),
+        Vec::new(),
+        Vec::new(),
+    );
     let name = path.file_name().unwrap_or(path.as_os_str());
     let name = Spanned::new(0..0, name.to_string_lossy().into_owned());
-    let added = match format {
-        ModelFormat::Obj => builder.add_obj(name, None, None).map(|()| None),
-        ModelFormat::Ply => builder.add_ply(name, None, None).map(|()| None),
-        ModelFormat::Gltf => builder.add_gltf(name, None, None).map(Some),
-    };
+    let added = builder.add_model_file(format, &name, None, None);
     let gltf = added.map_err(|error| {
         // An error about the whole file has no line of its own to show.
         match error.source_line.as_deref() {
@@ -127,29 +114,132 @@ pub fn build_model_scene(
 }
 
 impl GeometryBuilder<'_> {
-    /// Adds each part of an OBJ file as a mesh. Without a `material` key, parts use their MTL
-    /// materials, which are added to the scene's.
-    pub(super) fn add_obj(
+    /// Adds the model file `file` of `format` where it places its meshes, moved by `transform`,
+    /// in `material` or else in the file's own materials (added to the scene's once). A file
+    /// placed more than once in the scene, and a glTF mesh its nodes place more than once, is
+    /// stored once and placed by instances. Returns a glTF file's model, for its camera and
+    /// lights.
+    pub(super) fn add_model_file(
         &mut self,
-        file: Spanned<String>,
+        format: ModelFormat,
+        file: &Spanned<String>,
+        material: Option<u32>,
+        transform: Option<Transform>,
+    ) -> Result<Option<GltfModel>, SceneError> {
+        let path = self.files.path(file.get_ref());
+        let mut gltf = None;
+        if !self.model_files.contains_key(&path) {
+            let with_materials = material.is_none() || self.uses(&path) > 1;
+            let read = match format {
+                ModelFormat::Obj => self.read_obj(file, &path, with_materials)?,
+                ModelFormat::Ply => self.read_ply(file, &path)?,
+                ModelFormat::Gltf => {
+                    let (read, model) = self.read_gltf(file, &path, with_materials)?;
+                    gltf = Some(model);
+                    read
+                }
+            };
+            self.model_files.insert(path.clone(), read);
+        }
+        self.place_model_file(&path, file, material, transform)?;
+        Ok(gltf)
+    }
+
+    /// How often the scene places the model file at `path`: by objects naming it and by
+    /// instances of those.
+    fn uses(&self, path: &Path) -> usize {
+        let file = Target::File(path.to_path_buf());
+        self.uses.get(&file).copied().unwrap_or(1)
+    }
+
+    /// Places the model file at `path` (already read) again, as [`Self::add_model_file`] does;
+    /// errors are reported at `file`.
+    pub(super) fn place_model_file(
+        &mut self,
+        path: &Path,
+        file: &Spanned<String>,
         material: Option<u32>,
         transform: Option<Transform>,
     ) -> Result<(), SceneError> {
-        let path = self.files.path(file.get_ref());
-        let fail = file_error(self.source, &file, &path, "OBJ file");
-        let contents = load_obj(&path, self.files, material.is_none()).map_err(|e| match e {
+        let uses = self.uses(path);
+        let Some(mut model_file) = self.model_files.remove(path) else {
+            unreachable!("a model file is read before it is placed")
+        };
+        let placed = self.place_parts(&mut model_file, uses, file, path, material, transform);
+        self.model_files.insert(path.to_path_buf(), model_file);
+        placed
+    }
+
+    /// Places each part of `model_file`: as copies moved into the world when the scene places
+    /// the part once, or as instances of one model when more often.
+    fn place_parts(
+        &mut self,
+        model_file: &mut ModelFile,
+        uses: usize,
+        file: &Spanned<String>,
+        path: &Path,
+        material: Option<u32>,
+        transform: Option<Transform>,
+    ) -> Result<(), SceneError> {
+        let fail = file_error(self.source, file, path, model_file.what);
+        let spans = MeshSpans::all(file.span());
+        let copied = (model_file.placements.iter())
+            .filter(|&&(part, _)| uses * model_file.placed(part) == 1)
+            .flat_map(|&(part, _)| &model_file.parts[part]);
+        let (vertices, triangles) = copied.fold((0, 0), |(v, t), mesh| {
+            (v + mesh.positions.len() as u64, t + mesh.faces.len() as u64)
+        });
+        memory::check(
+            &format!("placing its {triangles} triangles"),
+            vertices * PLACED_BYTES_PER_VERTEX + triangles * PLACED_BYTES_PER_TRIANGLE,
+        )
+        .map_err(&fail)?;
+        for k in 0..model_file.placements.len() {
+            let (part, node) = model_file.placements[k];
+            let placed = match (node, &transform) {
+                (Some(node), Some(outer)) => Some(node.then(outer)),
+                (node, outer) => node.or(*outer),
+            };
+            if uses * model_file.placed(part) == 1 {
+                for mesh in &model_file.parts[part] {
+                    let own = mesh.material;
+                    self.add_mesh(mesh.clone(), material.unwrap_or(own), placed, &spans)
+                        .map_err(|e| fail(e.message))?;
+                }
+                continue;
+            }
+            let model = match model_file.models[part] {
+                Some(model) => model,
+                None => {
+                    let model = self
+                        .add_model(model_file.parts[part].clone(), &spans)
+                        .map_err(|e| fail(e.message))?;
+                    model_file.models[part] = Some(model);
+                    model
+                }
+            };
+            self.add_instance(model, material, placed, file.span())?;
+        }
+        Ok(())
+    }
+
+    /// Reads an OBJ file, each part of it a mesh: in its MTL materials, added to the scene's,
+    /// when `with_materials` asks for them (else the default).
+    fn read_obj(
+        &mut self,
+        file: &Spanned<String>,
+        path: &Path,
+        with_materials: bool,
+    ) -> Result<ModelFile, SceneError> {
+        let fail = file_error(self.source, file, path, "OBJ file");
+        let contents = load_obj(path, self.files, with_materials).map_err(|e| match e {
             ObjError::At(error) => error,
             ObjError::Whole(message) => fail(message),
         })?;
-        // A file used twice warns once.
-        for warning in contents.warnings {
-            if !self.warnings.contains(&warning) {
-                self.warnings.push(warning);
-            }
-        }
+        self.warnings.extend(contents.warnings);
         let first_mtl = self.materials.len();
         let mut mtl_count = 0;
-        if material.is_none() && contents.parts.iter().any(|p| p.mtl_material.is_some()) {
+        if with_materials && contents.parts.iter().any(|p| p.mtl_material.is_some()) {
             let mtl = contents
                 .materials
                 .map_err(|e| fail(format!("its MTL materials: {e}")))?;
@@ -159,68 +249,48 @@ impl GeometryBuilder<'_> {
                 .extend((0..mtl_count).map(|i| format!("{obj_name} MTL #{i}")));
             self.materials.extend(mtl);
         }
-        for part in contents.parts {
-            let part_material = material.unwrap_or_else(|| match part.mtl_material {
+        let meshes = contents.parts.into_iter().map(|part| Mesh {
+            material: match part.mtl_material {
                 Some(i) if i < mtl_count => (first_mtl + i) as u32,
                 _ => DEFAULT_MATERIAL,
-            });
-            let spans = MeshSpans::all(file.span());
-            self.add_mesh(part.mesh, part_material, transform, &spans)
-                .map_err(|e| fail(e.message))?;
-        }
-        Ok(())
+            },
+            ..part.mesh
+        });
+        Ok(ModelFile::one_part(meshes.collect(), "OBJ file"))
     }
 
-    /// Adds the mesh of a PLY file, in `material` or the default one.
-    pub(super) fn add_ply(
-        &mut self,
-        file: Spanned<String>,
-        material: Option<u32>,
-        transform: Option<Transform>,
-    ) -> Result<(), SceneError> {
-        let path = self.files.path(file.get_ref());
-        let fail = file_error(self.source, &file, &path, "PLY file");
-        let bytes = self.files.read(&path).map_err(&fail)?;
+    /// Reads the mesh of a PLY file, in the default material.
+    fn read_ply(&mut self, file: &Spanned<String>, path: &Path) -> Result<ModelFile, SceneError> {
+        let fail = file_error(self.source, file, path, "PLY file");
+        let bytes = self.files.read(path).map_err(&fail)?;
         if let Some(what) = known_format(&bytes).filter(|what| !what.contains("PLY")) {
-            return Err(fail(not_the_format(&path, what, "PLY")));
+            return Err(fail(not_the_format(path, what, "PLY")));
         }
-        let mesh = parse_ply(&bytes).map_err(|e| e.in_file(&path, &bytes))?;
-        let spans = MeshSpans::all(file.span());
-        let material = material.unwrap_or(DEFAULT_MATERIAL);
-        self.add_mesh(mesh, material, transform, &spans)
-            .map_err(|e| fail(e.message))
+        let mesh = parse_ply(&bytes).map_err(|e| e.in_file(path, &bytes))?;
+        let mesh = Mesh {
+            material: DEFAULT_MATERIAL,
+            ..mesh
+        };
+        Ok(ModelFile::one_part(vec![mesh], "PLY file"))
     }
 
-    /// Adds the meshes of a glTF file where its default scene's nodes place them, then moved
-    /// by `transform`; in `material`, or else in the file's own materials, which are added to
-    /// the scene's (named `FILE › NAME`). Returns the model, for its camera and lights.
-    pub(super) fn add_gltf(
+    /// Reads a glTF file: its meshes, and where its default scene's nodes place them; in the
+    /// file's own materials, added to the scene's (named `FILE › NAME`) with their textures,
+    /// when `with_materials` asks for them (else the default).
+    fn read_gltf(
         &mut self,
-        file: Spanned<String>,
-        material: Option<u32>,
-        transform: Option<Transform>,
-    ) -> Result<GltfModel, SceneError> {
-        let path = self.files.path(file.get_ref());
-        let fail = file_error(self.source, &file, &path, "glTF file");
-        let bytes = self.files.read(&path).map_err(&fail)?;
+        file: &Spanned<String>,
+        path: &Path,
+        with_materials: bool,
+    ) -> Result<(ModelFile, GltfModel), SceneError> {
+        let fail = file_error(self.source, file, path, "glTF file");
+        let bytes = self.files.read(path).map_err(&fail)?;
         if let Some(what) = known_format(&bytes).filter(|what| !what.contains("glTF")) {
-            return Err(fail(not_the_format(&path, what, "glTF")));
+            return Err(fail(not_the_format(path, what, "glTF")));
         }
-        let model = read_gltf(&path, &bytes, self.files)?;
-        let (mut vertices, mut triangles) = (0u64, 0u64);
-        for &(mesh, _) in &model.placements.meshes {
-            for primitive in &model.meshes[mesh] {
-                vertices += primitive.positions.len() as u64;
-                triangles += primitive.faces.len() as u64;
-            }
-        }
-        memory::check(
-            &format!("placing its {triangles} triangles"),
-            vertices * PLACED_BYTES_PER_VERTEX + triangles * PLACED_BYTES_PER_TRIANGLE,
-        )
-        .map_err(&fail)?;
+        let model = read_gltf(path, &bytes, self.files)?;
         let first = self.materials.len() as u32;
-        if material.is_none() {
+        if with_materials {
             let name = file.get_ref();
             self.names
                 .extend(model.material_names.iter().map(|n| format!("{name} › {n}")));
@@ -232,31 +302,36 @@ impl GeometryBuilder<'_> {
                 }));
             self.textures.extend(model.textures.iter().cloned());
         }
-        let spans = MeshSpans::all(file.span());
+        let mut placements = Vec::with_capacity(model.placements.meshes.len());
         for &(mesh, world) in &model.placements.meshes {
             let node = Transform::from_matrix(world).ok_or_else(|| {
                 fail(format!(
                     "a node placing mesh {mesh} has a matrix that squashes it flat"
                 ))
             })?;
-            let placed = match &transform {
-                Some(outer) => node.then(outer),
-                None => node,
-            };
-            for primitive in &model.meshes[mesh] {
-                let part_material = material.unwrap_or(match primitive.material {
-                    NO_MATERIAL => DEFAULT_MATERIAL,
-                    index => first + index,
-                });
-                self.add_mesh(primitive.clone(), part_material, Some(placed), &spans)
-                    .map_err(|e| fail(e.message))?;
-            }
+            placements.push((mesh, Some(node)));
         }
+        let parts = (model.meshes.iter())
+            .map(|primitives| {
+                let in_material = |primitive: &Mesh| Mesh {
+                    material: match primitive.material {
+                        index if with_materials && index != NO_MATERIAL => first + index,
+                        _ => DEFAULT_MATERIAL,
+                    },
+                    ..primitive.clone()
+                };
+                primitives.iter().map(in_material).collect()
+            })
+            .collect();
         let note = format!("{}: {}", path.display(), model.report);
-        if !self.notes.contains(&note) {
-            self.notes.push(note);
-        }
-        Ok(model)
+        self.notes.push(note);
+        let model_file = ModelFile {
+            parts,
+            placements,
+            models: vec![None; model.meshes.len()],
+            what: "glTF file",
+        };
+        Ok((model_file, model))
     }
 }
 

@@ -17,6 +17,8 @@ use crate::shapes::{
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectFile {
+    /// The object's own name, for instances to place it again (`of = "NAME"`).
+    pub name: Option<Spanned<String>>,
     /// A name from `[materials]`; the default material when absent.
     pub material: Option<Spanned<String>>,
     /// Steps applied in file order.
@@ -26,7 +28,7 @@ pub struct ObjectFile {
 }
 
 /// The keys of [`ObjectFile`] that the file writes next to the shape's own keys.
-pub const OBJECT_KEYS: [&str; 2] = ["material", "transform"];
+pub const OBJECT_KEYS: [&str; 3] = ["name", "material", "transform"];
 
 /// One step of `transform = [ … ]`.
 #[derive(Debug, Deserialize)]
@@ -71,6 +73,10 @@ pub enum ShapeFile {
     /// scene's meshes where its nodes place them, in its own materials unless the object names
     /// one.
     Gltf { file: Spanned<String> },
+    /// The object named `of` (above this one) placed again, by this object's own transform
+    /// instead of that one's, in this object's material if it names one: a model file or a
+    /// mesh placed again shares its triangles with the first.
+    Instance { of: Spanned<String> },
     /// A planar polygon, convex or concave, counter-clockwise seen from its front.
     Polygon { vertices: Vec<Vector> },
     /// An axis-aligned box (turn it with a transform).
@@ -218,7 +224,8 @@ impl ShapeFile {
             | ShapeFile::Mesh { .. }
             | ShapeFile::Obj { .. }
             | ShapeFile::Ply { .. }
-            | ShapeFile::Gltf { .. } => return None,
+            | ShapeFile::Gltf { .. }
+            | ShapeFile::Instance { .. } => return None,
         })
     }
 }

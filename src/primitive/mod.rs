@@ -1,6 +1,7 @@
 //! Primitives: what the BVH stores and the tracer hits. An object is an analytic shape placed in
 //! the world by a transform, with a material; a triangle belongs to a mesh. [`Geometry`] holds
-//! them all and answers, for a hit, the world-space surface point the shading needs.
+//! them all and answers, for a hit, the world-space surface point the shading needs. A model
+//! placed many times is stored once and placed by instances (`instance`).
 
 use glam::{Vec2, Vec3};
 
@@ -10,6 +11,10 @@ use crate::mesh::{Mesh, NO_VERTEX_COLOR};
 use crate::ray::Ray;
 use crate::shapes::{LocalSurface, Shape, ShearedRay, Triangle};
 use crate::transform::Transform;
+
+pub mod instance;
+
+pub use instance::Instance;
 
 /// An analytic shape in the world.
 #[derive(Clone, Debug, PartialEq)]
@@ -32,13 +37,25 @@ impl Object {
     }
 }
 
-/// A reference to one primitive: an object or a mesh triangle, told apart by the top bit.
+/// A reference to one primitive of the BVH: an object, a triangle or an instance, told apart
+/// by the top two bits. A hit is always on an object or a triangle: an instance's triangles
+/// are numbered after the world's own ([`Geometry::instance_of`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct PrimId(pub u32);
 
+/// What a [`PrimId`] names, with its index among its kind.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PrimKind {
+    Object(usize),
+    Triangle(usize),
+    Instance(usize),
+}
+
 impl PrimId {
-    /// The bit that tells an object's id from a triangle's.
+    /// The bit that tells an object's or an instance's id from a triangle's.
     pub const OBJECT_BIT: u32 = 1 << 31;
+    /// The bit, beside [`Self::OBJECT_BIT`], that tells an instance's id from an object's.
+    pub const INSTANCE_BIT: u32 = 1 << 30;
 
     pub fn object(index: usize) -> Self {
         PrimId(index as u32 | Self::OBJECT_BIT)
@@ -48,20 +65,26 @@ impl PrimId {
         PrimId(index as u32)
     }
 
+    pub fn instance(index: usize) -> Self {
+        PrimId(index as u32 | Self::OBJECT_BIT | Self::INSTANCE_BIT)
+    }
+
     /// A key that orders primitives as [`Geometry::prim_ids`] lists them: objects first, in
-    /// the order they were added, then triangles.
+    /// the order they were added, then instances, then triangles.
     #[inline(always)]
     pub fn scene_order(self) -> u32 {
         self.0 ^ Self::OBJECT_BIT
     }
 
-    /// `Ok(object index)` or `Err(triangle index)`.
     #[inline(always)]
-    pub fn kind(self) -> Result<usize, usize> {
-        if self.0 & Self::OBJECT_BIT != 0 {
-            Ok((self.0 & !Self::OBJECT_BIT) as usize)
+    pub fn kind(self) -> PrimKind {
+        let index = (self.0 & !(Self::OBJECT_BIT | Self::INSTANCE_BIT)) as usize;
+        if self.0 & Self::OBJECT_BIT == 0 {
+            PrimKind::Triangle(self.0 as usize)
+        } else if self.0 & Self::INSTANCE_BIT == 0 {
+            PrimKind::Object(index)
         } else {
-            Err(self.0 as usize)
+            PrimKind::Instance(index)
         }
     }
 }
@@ -100,12 +123,22 @@ pub struct SurfacePoint {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Geometry {
     pub objects: Vec<Object>,
+    /// The world's own meshes, each stored in world space where it stands.
     pub meshes: Vec<Mesh>,
-    /// The triangles of all meshes, mesh after mesh, as the face of their mesh each one is
-    /// (degenerate faces have no triangle). The vertices stay in the mesh: [`Self::triangle`].
+    /// The triangles of the world's own meshes, mesh after mesh, as the face of their mesh
+    /// each one is (degenerate faces have no triangle). The vertices stay in the mesh:
+    /// [`Self::triangle`].
     pub triangle_faces: Vec<u32>,
     /// Where each mesh's triangles start in `triangle_faces`.
     pub mesh_starts: Vec<u32>,
+    /// Models stored once, in their own space: geometries of meshes alone, each placed in the
+    /// world by one or more instances ([`instance`]).
+    models: Vec<Geometry>,
+    /// Each model's bounds in its own space.
+    model_bounds: Vec<Aabb>,
+    instances: Vec<Instance>,
+    /// Where each instance's triangles start, counted from the end of the world's own.
+    instance_starts: Vec<u32>,
 }
 
 impl Geometry {
@@ -120,29 +153,42 @@ impl Geometry {
         self.meshes.push(mesh);
     }
 
-    /// Number of primitives (objects and triangles).
+    /// Number of primitives the BVH holds: objects, the world's own triangles and instances.
     pub fn len(&self) -> usize {
-        self.objects.len() + self.triangle_faces.len()
+        self.objects.len() + self.triangle_faces.len() + self.instances.len()
     }
 
-    /// Number of triangles, all meshes together.
+    /// Number of the world's own triangles, all meshes together (instances' not counted:
+    /// [`Self::placed_triangle_count`]).
     pub fn triangle_count(&self) -> usize {
         self.triangle_faces.len()
     }
 
-    /// Triangle `t` in world space, read from its mesh.
+    /// Triangle `t` in world space: one of the world's own, read from its mesh, or one an
+    /// instance places ([`Self::instance_of`]), moved into the world.
     pub fn triangle(&self, t: usize) -> Triangle {
+        match self.instance_of(t) {
+            None => self.own_triangle(t),
+            Some((i, local)) => {
+                let instance = &self.instances[i];
+                instance.place(&self.models[instance.model as usize].own_triangle(local))
+            }
+        }
+    }
+
+    /// The world's own triangle `t`, read from its mesh.
+    fn own_triangle(&self, t: usize) -> Triangle {
         let mesh = self.mesh_of(t);
         let face = self.triangle_faces[t];
         let corners = mesh.faces[face as usize].map(|v| mesh.positions[v as usize]);
         Triangle::new(corners, face)
     }
 
-    /// Triangles `ts`, each as [`Self::triangle`] makes it, read stage by stage: every face
-    /// first, then every face's vertex indices, then the positions. Reading a triangle is three
-    /// dependent loads, each likely a cache miss when the triangles are far apart in their
-    /// mesh; a stage's loads do not wait on one another, so the processor overlaps their
-    /// misses.
+    /// The world's own triangles `ts`, each as [`Self::triangle`] makes it, read stage by
+    /// stage: every face first, then every face's vertex indices, then the positions. Reading a
+    /// triangle is three dependent loads, each likely a cache miss when the triangles are far
+    /// apart in their mesh; a stage's loads do not wait on one another, so the processor
+    /// overlaps their misses.
     pub fn triangles<const N: usize>(&self, ts: [usize; N]) -> [Triangle; N] {
         let meshes = ts.map(|t| self.mesh_of(t));
         let faces = ts.map(|t| self.triangle_faces[t]);
@@ -157,7 +203,7 @@ impl Geometry {
         self.len() == 0
     }
 
-    /// Bytes held by the primitives and meshes (not counting textures).
+    /// Bytes held by the primitives, meshes, models and instances (not counting textures).
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
         let meshes: usize = self
@@ -177,32 +223,40 @@ impl Geometry {
             .iter()
             .filter(|o| o.transform.is_some())
             .count();
+        let models: usize = self.models.iter().map(Geometry::memory_bytes).sum();
         self.objects.capacity() * size_of::<Object>()
             + transforms * size_of::<Transform>()
             + self.triangle_faces.capacity() * size_of::<u32>()
             + self.mesh_starts.capacity() * size_of::<u32>()
             + meshes
+            + models
+            + self.model_bounds.capacity() * size_of::<Aabb>()
+            + self.instances.capacity() * size_of::<Instance>()
+            + self.instance_starts.capacity() * size_of::<u32>()
     }
 
     /// Whether `id` names a primitive of this geometry.
     pub fn contains(&self, id: PrimId) -> bool {
         match id.kind() {
-            Ok(o) => o < self.objects.len(),
-            Err(t) => t < self.triangle_faces.len(),
+            PrimKind::Object(o) => o < self.objects.len(),
+            PrimKind::Triangle(t) => t < self.triangle_faces.len() + self.placed_triangle_count(),
+            PrimKind::Instance(i) => i < self.instances.len(),
         }
     }
 
-    /// Every primitive's id.
+    /// Every primitive's id, as the BVH holds them: objects, the world's own triangles,
+    /// instances.
     pub fn prim_ids(&self) -> impl Iterator<Item = PrimId> + '_ {
         (0..self.objects.len())
             .map(PrimId::object)
             .chain((0..self.triangle_faces.len()).map(PrimId::triangle))
+            .chain((0..self.instances.len()).map(PrimId::instance))
     }
 
     /// World-space bounds, `None` for unbounded primitives.
     pub fn bounds(&self, id: PrimId) -> Option<Aabb> {
         match id.kind() {
-            Ok(o) => {
+            PrimKind::Object(o) => {
                 let object = &self.objects[o];
                 let b = object.shape.bounds()?;
                 Some(match &object.transform {
@@ -210,7 +264,8 @@ impl Geometry {
                     None => b,
                 })
             }
-            Err(t) => Some(self.triangle(t).bounds()),
+            PrimKind::Triangle(t) => Some(self.triangle(t).bounds()),
+            PrimKind::Instance(i) => Some(self.instance_bounds(i)),
         }
     }
 
@@ -229,6 +284,7 @@ impl Geometry {
     }
 
     /// [`Self::intersect`] with the ray's preparation for triangle tests done once, outside.
+    /// An instance's hit is the closest of its triangles', each tested in turn.
     #[inline(always)]
     pub fn intersect_prepared(
         &self,
@@ -239,7 +295,7 @@ impl Geometry {
         t_max: f32,
     ) -> Option<Hit> {
         match id.kind() {
-            Err(t) => self
+            PrimKind::Triangle(t) => self
                 .triangle(t)
                 .intersect_sheared(sheared, t_min, t_max)
                 .map(|h| Hit {
@@ -248,7 +304,7 @@ impl Geometry {
                     part: 0,
                     bary: h.bary,
                 }),
-            Ok(o) => {
+            PrimKind::Object(o) => {
                 let object = &self.objects[o];
                 let h = match &object.transform {
                     Some(tr) => object.shape.intersect(&tr.ray_to_object(ray), t_min, t_max),
@@ -261,27 +317,36 @@ impl Geometry {
                     bary: Vec2::ZERO,
                 })
             }
+            PrimKind::Instance(i) => self.intersect_instance(i, sheared, t_min, t_max),
         }
     }
 
     /// The object a primitive belongs to, numbered for the inspector and the object-id view:
-    /// objects `0..n` in the order they were added, then meshes `n..`.
+    /// objects `0..n` in the order they were added, then the world's meshes, then instances.
     pub fn object_id(&self, prim: PrimId) -> u32 {
-        match prim.kind() {
-            Ok(o) => o as u32,
-            Err(t) => (self.objects.len() + self.mesh_index(t)) as u32,
-        }
+        let instances_from = self.objects.len() + self.meshes.len();
+        let id = match prim.kind() {
+            PrimKind::Object(o) => o,
+            PrimKind::Triangle(t) => match self.instance_of(t) {
+                None => self.objects.len() + self.mesh_index(t),
+                Some((i, _)) => instances_from + i,
+            },
+            PrimKind::Instance(i) => instances_from + i,
+        };
+        id as u32
     }
 
-    /// What the object `object_id` is, e.g. "sphere #2" or "mesh #0" (numbered as
-    /// [`Self::object_id`] numbers them), or "no object #k" for an id out of range.
+    /// What the object `object_id` is, e.g. "sphere #2", "mesh #0" or "instance #7"
+    /// (numbered as [`Self::object_id`] numbers them), or "no object #k" for an id out of
+    /// range.
     pub fn object_label(&self, object_id: u32) -> String {
         let id = object_id as usize;
+        let meshes_from = self.objects.len();
+        let instances_from = meshes_from + self.meshes.len();
         match self.objects.get(id) {
             Some(object) => format!("{} #{id}", object.shape.name()),
-            None if id - self.objects.len() < self.meshes.len() => {
-                format!("mesh #{id}")
-            }
+            None if id < instances_from => format!("mesh #{id}"),
+            None if id - instances_from < self.instances.len() => format!("instance #{id}"),
             None => format!("no object #{id}"),
         }
     }
@@ -291,8 +356,8 @@ impl Geometry {
     pub fn prim_label(&self, prim: PrimId) -> String {
         let object = self.object_label(self.object_id(prim));
         match prim.kind() {
-            Ok(_) => object,
-            Err(t) => format!("{object}, triangle {}", self.triangle_faces[t]),
+            PrimKind::Triangle(t) => format!("{object}, triangle {}", self.triangle(t).face),
+            PrimKind::Object(_) | PrimKind::Instance(_) => object,
         }
     }
 
@@ -301,11 +366,11 @@ impl Geometry {
     pub fn hit_label(&self, hit: &Hit) -> String {
         let label = self.prim_label(hit.prim);
         match hit.prim.kind() {
-            Ok(o) => match &self.objects[o].shape {
+            PrimKind::Object(o) => match &self.objects[o].shape {
                 Shape::Csg(csg) => format!("{label} › {}", csg.leaf(hit.part).label),
                 _ => label,
             },
-            Err(_) => label,
+            PrimKind::Triangle(_) | PrimKind::Instance(_) => label,
         }
     }
 
@@ -314,20 +379,21 @@ impl Geometry {
     pub fn part_id(&self, hit: &Hit) -> u32 {
         let object = self.object_id(hit.prim);
         match hit.prim.kind() {
-            Ok(o) => match &self.objects[o].shape {
+            PrimKind::Object(o) => match &self.objects[o].shape {
                 Shape::Csg(csg) => object ^ ((csg.leaf_index(hit.part) as u32 + 1) << 20),
                 _ => object,
             },
-            Err(_) => object,
+            PrimKind::Triangle(_) | PrimKind::Instance(_) => object,
         }
     }
 
-    /// The mesh that triangle `t` belongs to (its index in [`Self::meshes`]) and its face there.
+    /// The mesh that the world's own triangle `t` belongs to (its index in [`Self::meshes`])
+    /// and its face there.
     pub fn triangle_face(&self, t: usize) -> (usize, u32) {
         (self.mesh_index(t), self.triangle_faces[t])
     }
 
-    /// The index of the mesh that triangle `t` belongs to.
+    /// The index of the mesh that the world's own triangle `t` belongs to.
     fn mesh_index(&self, t: usize) -> usize {
         let later = self
             .mesh_starts
@@ -335,16 +401,37 @@ impl Geometry {
         later - 1
     }
 
-    /// The mesh that triangle `t` belongs to.
+    /// The mesh that the world's own triangle `t` belongs to.
     fn mesh_of(&self, t: usize) -> &Mesh {
         &self.meshes[self.mesh_index(t)]
+    }
+
+    /// The mesh that triangle `t` belongs to, with the instance that places it, if any, and
+    /// the triangle's material.
+    fn triangle_mesh(&self, t: usize) -> (&Mesh, Option<&Instance>, u32) {
+        match self.instance_of(t) {
+            None => {
+                let mesh = self.mesh_of(t);
+                (mesh, None, mesh.material)
+            }
+            Some((i, local)) => {
+                let instance = &self.instances[i];
+                let mesh = self.models[instance.model as usize].mesh_of(local);
+                (
+                    mesh,
+                    Some(instance),
+                    instance.material.unwrap_or(mesh.material),
+                )
+            }
+        }
     }
 
     /// The material at `hit`.
     pub fn material(&self, hit: &Hit) -> u32 {
         match hit.prim.kind() {
-            Ok(o) => self.objects[o].material_at(hit.part),
-            Err(t) => self.mesh_of(t).material,
+            PrimKind::Object(o) => self.objects[o].material_at(hit.part),
+            PrimKind::Triangle(t) => self.triangle_mesh(t).2,
+            PrimKind::Instance(_) => unreachable!("a hit names the instance's triangle"),
         }
     }
 
@@ -358,7 +445,7 @@ impl Geometry {
     pub fn surface_with(&self, ray: &Ray, hit: &Hit, uv: bool) -> SurfacePoint {
         let point = ray.at(hit.t);
         match hit.prim.kind() {
-            Ok(o) => {
+            PrimKind::Object(o) => {
                 let object = &self.objects[o];
                 let object_point = match &object.transform {
                     Some(tr) => tr.ray_to_object(ray).at(hit.t),
@@ -386,11 +473,12 @@ impl Geometry {
                     material: object.material_at(hit.part),
                 }
             }
-            Err(t) => {
+            PrimKind::Triangle(t) => {
                 let tri = self.triangle(t);
-                let mesh = self.mesh_of(t);
+                let (mesh, instance, material) = self.triangle_mesh(t);
                 let geometric = tri.normal();
-                let (normal, uv) = mesh.shading(tri.face, hit.bary, geometric);
+                let placement = instance.map(|i| &i.transform);
+                let (normal, uv) = mesh.shading(tri.face, hit.bary, geometric, placement);
                 // Vertex normals say which side is out; the winding may disagree.
                 let geometric_normal = if geometric.dot(normal) < 0.0 {
                     -geometric
@@ -404,9 +492,10 @@ impl Geometry {
                     geometric_normal,
                     uv,
                     vertex_color: mesh.color(tri.face, hit.bary),
-                    material: mesh.material,
+                    material,
                 }
             }
+            PrimKind::Instance(_) => unreachable!("a hit names the instance's triangle"),
         }
     }
 }
