@@ -9,12 +9,13 @@
 // nearest exact surface. Eye rays see only what lies beyond the image plane (t ≥ 1), so the
 // depth lies in (0, 1], and no fragment nearer than the image plane is drawn.
 
-// An object's proxy: its bounding box, or the whole film where `full_film` is 1.
+// An object's proxy: its bounding box (PROXY_BOX), or the whole film (PROXY_FULL_FILM); or an
+// instance's bounding box (PROXY_INSTANCE), `object` then where its record starts in `refs`.
 struct Proxy {
     lo: vec3<f32>,
     object: u32,
     hi: vec3<f32>,
-    full_film: u32,
+    kind: u32,
 }
 
 // The film's size in pixels (where it lies in the image is the frame's `film_left`, `film_top`).
@@ -83,7 +84,7 @@ struct ProxyCorner {
 @vertex
 fn proxy_corner(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> ProxyCorner {
     let proxy = proxies[instance];
-    if proxy.full_film != 0u {
+    if proxy.kind == PROXY_FULL_FILM {
         var corner = vec2<f32>(-1.0, -1.0);
         if vertex == 1u {
             corner = vec2<f32>(3.0, -1.0);
@@ -97,11 +98,20 @@ fn proxy_corner(@builtin(vertex_index) vertex: u32, @builtin(instance_index) ins
     return ProxyCorner(clip_position(p), instance);
 }
 
-// An object's fragment: where its exact shape meets the pixel's eye ray, if it does.
+// An object's fragment: where its exact shape meets the pixel's eye ray, if it does; an
+// instance's: the nearest of its triangles the ray meets, found by walking into it.
 @fragment
 fn proxy_item(corner: ProxyCorner) -> ItemOutput {
     let dir = fragment_ray_dir(corner.position);
     let proxy = proxies[corner.instance];
+    if proxy.kind == PROXY_INSTANCE {
+        let hit = walk_from(frame.eye, dir, EYE_RAY_T_MIN, T_FAR, FIND_CLOSEST, proxy.object).hit;
+        if !hit.found {
+            discard;
+        }
+        let item = vec4<u32>(hit.prim, bitcast<u32>(hit.t), 0u, hit.slot);
+        return ItemOutput(item, 1.0 / hit.t);
+    }
     let h = intersect_object(objects[proxy.object], frame.eye, dir, EYE_RAY_T_MIN, T_FAR);
     if !h.found {
         discard;

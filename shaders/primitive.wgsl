@@ -15,8 +15,12 @@ struct SurfacePoint {
     material: u32,
 }
 
-// The material at `hit`: a CSG operand's own, or the object's.
+// The material at `hit`: a CSG operand's own, or the object's; an instance's, where it has one,
+// else its mesh's.
 fn material_of(hit: Hit) -> u32 {
+    if hit.instance != NO_INSTANCE && refs[hit.instance + 3u] != NO_MATERIAL {
+        return refs[hit.instance + 3u];
+    }
     if (hit.prim & OBJECT_BIT) != 0u {
         let o = objects[hit.prim & ~OBJECT_BIT];
         if o.kind == SHAPE_CSG {
@@ -39,10 +43,21 @@ fn surface_at(origin: vec3<f32>, dir: vec3<f32>, hit: Hit) -> SurfacePoint {
 }
 
 // The surface at `hit`, a mesh triangle's, whose point is `point`: its corners are in the leaf
-// copy, its shading record beside it says which mesh vertices they are (`Mesh::shading`).
+// copy, its shading record beside it says which mesh vertices they are (`Mesh::shading`). An
+// instance's triangle lies in its model's space: its normals are moved into the world.
 fn triangle_surface(point: vec3<f32>, hit: Hit) -> SurfacePoint {
     let shading = triangle_shading[hit.slot];
-    let geometric = triangle_normal(triangles[hit.slot]);
+    var geometric = triangle_normal(triangles[hit.slot]);
+    var n0 = vertex_attributes[shading.corners.x].normal;
+    var n1 = vertex_attributes[shading.corners.y].normal;
+    var n2 = vertex_attributes[shading.corners.z].normal;
+    if hit.instance != NO_INSTANCE {
+        let to_world = load_transform(refs[hit.instance + 2u]).normal_to_world;
+        geometric = normalize(to_world * geometric);
+        n0 = normalize(to_world * n0);
+        n1 = normalize(to_world * n1);
+        n2 = normalize(to_world * n2);
+    }
     let b0 = 1.0 - hit.bary.x - hit.bary.y;
     var normal = geometric;
     var uv = hit.bary;
@@ -50,7 +65,7 @@ fn triangle_surface(point: vec3<f32>, hit: Hit) -> SurfacePoint {
     let a1 = vertex_attributes[shading.corners.y];
     let a2 = vertex_attributes[shading.corners.z];
     if (shading.material & HAS_NORMALS) != 0u {
-        let n = a0.normal * b0 + a1.normal * hit.bary.x + a2.normal * hit.bary.y;
+        let n = n0 * b0 + n1 * hit.bary.x + n2 * hit.bary.y;
         if dot(n, n) > 0.0 {
             normal = normalize(n);
         }
@@ -67,5 +82,5 @@ fn triangle_surface(point: vec3<f32>, hit: Hit) -> SurfacePoint {
     if dot(geometric, normal) < 0.0 {
         geometric_normal = -geometric;
     }
-    return SurfacePoint(point, point, normal, geometric_normal, uv, vertex_color, shading.material & MATERIAL_BITS);
+    return SurfacePoint(point, point, normal, geometric_normal, uv, vertex_color, material_of(hit));
 }

@@ -39,11 +39,11 @@ fn probe_objects(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let ray = probe_rays[i];
-    var best = Hit(ray.t_max, 0u, 0u, 0u, vec2<f32>(0.0), false);
+    var best = Hit(ray.t_max, 0u, 0u, 0u, vec2<f32>(0.0), false, NO_INSTANCE);
     for (var k = 0u; k < frame.object_count; k++) {
         let h = intersect_object(objects[k], ray.origin, ray.dir, ray.t_min, best.t);
         if h.found {
-            best = Hit(h.t, k | OBJECT_BIT, h.part, 0u, vec2<f32>(0.0), true);
+            best = Hit(h.t, k | OBJECT_BIT, h.part, 0u, vec2<f32>(0.0), true, NO_INSTANCE);
         }
     }
     probe_hits[i] = probe_result(ray, best);

@@ -9,9 +9,12 @@ fn id_color(id: u32) -> vec3<f32> {
     return 0.15 + 0.85 * vec3<f32>(channels) / 255.0;
 }
 
-// `Geometry::part_id`: the object's id (a mesh's for its triangles), with a CSG solid's leaf
-// told apart.
+// `Geometry::part_id`: the object's id (a mesh's or an instance's for its triangles), with a
+// CSG solid's leaf told apart.
 fn part_id(hit: Hit) -> u32 {
+    if hit.instance != NO_INSTANCE {
+        return refs[hit.instance + 4u];
+    }
     if (hit.prim & OBJECT_BIT) == 0u {
         return triangles[hit.slot].object;
     }

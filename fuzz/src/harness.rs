@@ -27,6 +27,7 @@ use raylab::whitted::Tracer;
 const TETRA_OBJ: &[u8] = include_bytes!("../../assets/models/tetra.obj");
 const TETRA_MTL: &[u8] = include_bytes!("../../assets/models/tetra.mtl");
 const GRID_PNG: &[u8] = include_bytes!("../../assets/textures/grid.png");
+const PAWN_GLB: &[u8] = include_bytes!("../../assets/models/pawn.glb");
 
 /// The files a fuzzed TOML scene may name: the shipped scenes' models and textures, by the
 /// names the shipped scenes use. The large ones (the torus, the bricks, the sky) are played by
@@ -35,6 +36,7 @@ const SCENE_FILES: &[(&str, &[u8])] = &[
     ("../models/tetra.obj", TETRA_OBJ),
     ("../models/tetra.mtl", TETRA_MTL),
     ("../models/torus.obj", TETRA_OBJ),
+    ("../models/pawn.glb", PAWN_GLB),
     ("../textures/grid.png", GRID_PNG),
     ("../textures/bricks.png", GRID_PNG),
     ("../textures/sky.bmp", GRID_PNG),

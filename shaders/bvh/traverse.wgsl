@@ -2,7 +2,9 @@
 // layouts src/gpu/bvh.rs makes (the CPU's eight-wide nodes, `wide_node.wgsl`, or two-wide ones,
 // `binary_node.wgsl`: each gives `Node`, its `WIDTH` and its children), the leaves' tests of
 // src/bvh/leaf.rs, and the closest-hit and shadow searches built on them (`Bvh::closest_hit`,
-// `Bvh::any_hit`). The unbounded objects (planes) are tested first, against every ray.
+// `Bvh::any_hit`). The unbounded objects (planes) are tested first, against every ray. A leaf
+// of instances puts them on the stack; walking into one (src/bvh/instances.rs) moves the ray
+// into its model's space and goes down the model's tree, until the stack is back where it was.
 
 // A child of a node, as the layout gives it (`node_child`): its box, and an interior child's
 // node or a leaf's entries (count 0: no child in this slot).
@@ -22,6 +24,9 @@ struct Hit {
     slot: u32,
     bary: vec2<f32>,
     found: bool,
+    // Where the record of the instance whose triangle it is starts in `refs` (NO_INSTANCE: the
+    // world's own).
+    instance: u32,
 }
 
 // A ray with what its box and triangle tests need, prepared once.
@@ -110,7 +115,7 @@ fn visit_objects(first: u32, count: u32, ray: WalkRay, t_min: f32, find: u32, re
         let index = refs[i];
         let o = objects[index];
         let h = intersect_object(o, ray.origin, ray.dir, search_from, *t_max);
-        let at = Hit(h.t, index | OBJECT_BIT, h.part, 0u, vec2<f32>(0.0), true);
+        let at = Hit(h.t, index | OBJECT_BIT, h.part, 0u, vec2<f32>(0.0), true, NO_INSTANCE);
         var follow = h.found && crossings < MAX_CROSSINGS;
         if crossings == 0u && h.found {
             if meet(at, find, result, t_max) {
@@ -148,21 +153,26 @@ fn visit_objects(first: u32, count: u32, ray: WalkRay, t_min: f32, find: u32, re
     return false;
 }
 
-// Tests the `count` triangles from `first`; returns whether the walk can stop. A shadow ray's
-// walk adds the optical depth of a mesh's medium at each triangle it passes.
-fn visit_triangles(first: u32, count: u32, ray: WalkRay, t_min: f32, find: u32, result: ptr<function, WalkResult>, t_max: ptr<function, f32>) -> bool {
+// Tests the `count` triangles from `first` against `ray`, in the space of `instance`'s model
+// (NO_INSTANCE: the world's); returns whether the walk can stop. A shadow ray's walk adds the
+// optical depth of a mesh's medium at each triangle it passes, along the ray in the world.
+fn visit_triangles(first: u32, count: u32, ray: WalkRay, world: WalkRay, instance: u32, t_min: f32, find: u32, result: ptr<function, WalkResult>, t_max: ptr<function, f32>) -> bool {
+    var first_triangle = 0u;
+    if instance != NO_INSTANCE {
+        first_triangle = refs[instance + 1u];
+    }
     for (var i = first; i < first + count; i++) {
         let tri = triangles[i];
         let h = intersect_triangle(tri, ray.sheared, t_min, *t_max);
         if !h.found {
             continue;
         }
-        let hit = Hit(h.t, tri.index, 0u, i, h.bary, true);
+        let hit = Hit(h.t, first_triangle + tri.index, 0u, i, h.bary, true, instance);
         if meet(hit, find, result, t_max) {
             return true;
         }
         if find == FIND_SHADOW {
-            (*result).depth += triangle_optical_depth(ray.origin, ray.dir, hit);
+            (*result).depth += triangle_optical_depth(world.origin, world.dir, hit);
         }
     }
     return false;
@@ -173,26 +183,60 @@ fn visit_triangles(first: u32, count: u32, ray: WalkRay, t_min: f32, find: u32, 
 // in its range unless something opaque stops it). The unbounded objects are visited as a leaf
 // of their own before the root, so that each kind of leaf is tested at one place only.
 fn walk(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max_in: f32, find: u32) -> WalkResult {
-    var result = WalkResult(Hit(t_max_in, 0u, 0u, 0u, vec2<f32>(0.0), false), vec3<f32>(1.0), 0.0);
-    let ray = walk_ray(origin, dir);
+    return walk_from(origin, dir, t_min, t_max_in, find, NO_INSTANCE);
+}
+
+// The walk, from the scene's root (`only` NO_INSTANCE), or into the instance whose record starts
+// at `only` in `refs` alone (the item buffer's proxy of an instance).
+fn walk_from(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max_in: f32, find: u32, only: u32) -> WalkResult {
+    var result = WalkResult(Hit(t_max_in, 0u, 0u, 0u, vec2<f32>(0.0), false, NO_INSTANCE), vec3<f32>(1.0), 0.0);
+    let world = walk_ray(origin, dir);
+    var ray = world;
+    // The instance whose model's tree the walk is in (NO_INSTANCE: the scene's), and the size of
+    // the stack when it went in: the entries below are the scene's.
+    var instance = NO_INSTANCE;
+    var instance_base = 0u;
     var t_max = min(t_max_in, T_FAR);
     var stack_first: array<u32, WALK_STACK>;
     var stack_count: array<u32, WALK_STACK>;
     var stack_t: array<f32, WALK_STACK>;
     var size = 0u;
-    if frame.node_count != 0u {
+    var next_first = frame.unbounded_first;
+    var next_count = frame.unbounded;
+    if only != NO_INSTANCE {
+        next_first = only;
+        next_count = INSTANCE_ENTRY;
+    } else if frame.node_count != 0u {
         stack_first[0] = 0u;
         stack_count[0] = INTERIOR;
         stack_t[0] = t_min;
         size = 1u;
     }
-    var next_first = frame.unbounded_first;
-    var next_count = frame.unbounded;
     loop {
+        if next_count == INSTANCE_ENTRY {
+            // Into the instance: its model's tree, with the ray in the model's space (its
+            // direction not renormalised, so that `t` means the same point).
+            instance = next_first;
+            instance_base = size;
+            let object_ray = ray_to_object(refs[instance + 2u], origin, dir);
+            ray = walk_ray(object_ray.origin, object_ray.dir);
+            next_first = refs[refs[instance]];
+            next_count = INTERIOR;
+            continue;
+        }
         if next_count != INTERIOR {
             var stop = false;
             if (next_count & TRIANGLE_LEAF) != 0u {
-                stop = visit_triangles(next_first, next_count & ~TRIANGLE_LEAF, ray, t_min, find, &result, &t_max);
+                stop = visit_triangles(next_first, next_count & ~TRIANGLE_LEAF, ray, world, instance, t_min, find, &result, &t_max);
+            } else if (next_count & INSTANCE_LEAF) != 0u {
+                // The leaf's instances wait on the stack, the first on top.
+                let n = next_count & ~INSTANCE_LEAF;
+                for (var k = n; k > 0u; k--) {
+                    stack_first[size] = next_first + (k - 1u) * INSTANCE_WORDS;
+                    stack_count[size] = INSTANCE_ENTRY;
+                    stack_t[size] = t_min;
+                    size++;
+                }
             } else {
                 stop = visit_objects(next_first, next_count, ray, t_min, find, &result, &t_max);
             }
@@ -237,9 +281,14 @@ fn walk(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max_in: f32, find: u32)
                 continue;
             }
         }
-        // Pop the next child still nearer than the best hit so far.
+        // Pop the next child still nearer than the best hit so far; out of the instance, back
+        // into the world, where the scene's entries begin.
         var found_next = false;
         while size > 0u {
+            if size == instance_base && instance != NO_INSTANCE {
+                instance = NO_INSTANCE;
+                ray = world;
+            }
             size--;
             if stack_t[size] < t_max {
                 next_first = stack_first[size];

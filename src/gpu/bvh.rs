@@ -10,7 +10,7 @@ use bytemuck::Zeroable;
 
 use crate::aabb::Aabb;
 use crate::bvh::{Bvh, WIDTH, WideNode};
-use crate::primitive::{Geometry, PrimKind};
+use crate::primitive::{Geometry, PrimId, PrimKind};
 
 /// How the GPU holds the BVH's nodes.
 #[derive(
@@ -80,6 +80,25 @@ gpu_record! {
 /// The bit of a leaf's count that says its entries are triangles (else object indices).
 pub const TRIANGLE_LEAF: u32 = 1 << 30;
 
+/// The bit of a leaf's count that says its entries are instances: records of
+/// [`INSTANCE_WORDS`] words in [`GpuBvh::refs`] (see [`GpuBvh`]).
+pub const INSTANCE_LEAF: u32 = 1 << 29;
+
+/// The words of an instance's record in [`GpuBvh::refs`]: its model, the number of its first
+/// triangle ([`Geometry::placed_triangle`]), where its transform starts in the shape words, its
+/// material ([`NO_MATERIAL`]: its meshes' own), and the id the object view colours it by.
+pub const INSTANCE_WORDS: u32 = 5;
+
+/// An instance's material word when its meshes keep their own materials.
+pub const NO_MATERIAL: u32 = u32::MAX;
+
+/// A `count` of an entry of the walk's stack that is an instance to walk into, its `first`
+/// where the instance's record starts in the references.
+pub const INSTANCE_ENTRY: u32 = 1 << 28;
+
+/// A hit's instance where it is on the world's own triangles or objects.
+pub const NO_INSTANCE: u32 = u32::MAX;
+
 /// Entries of the stack of the BVH's walk on the GPU: a visited node of the eight-wide tree
 /// leaves at most seven siblings waiting, so a tree up to [`MAX_TREE_DEPTH`] levels deep fits;
 /// the two-wide tree made of it is at most seven times as deep, with one sibling waiting per
@@ -103,23 +122,66 @@ gpu_record! {
     }
 }
 
-/// The tree and its leaves' entries as the GPU reads them.
+/// The tree and its leaves' entries as the GPU reads them: the scene's tree, then each model's
+/// tree, in one array of nodes, one of triangles (a model's in the model's own space) and one of
+/// references.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct GpuBvh {
     pub nodes: Vec<GpuWideNode>,
-    /// The triangles of the leaves of triangles, in leaf order.
+    /// The triangles of the leaves of triangles, in leaf order: the scene's tree's first.
     pub triangles: Vec<GpuTriangle>,
-    /// The object indices of the other leaves, in leaf order, then the unbounded objects
-    /// (planes), which every ray tests: the last [`Self::unbounded`] entries.
+    /// How many of `triangles` are the scene's tree's, in the world.
+    pub world_triangles: usize,
+    /// Where each model's triangles start in `triangles`.
+    pub model_triangles: Vec<usize>,
+    /// First the root node of each model's tree, model by model; then the object indices of
+    /// the leaves of objects and the instance records of the leaves of instances, in leaf
+    /// order; then the unbounded objects (planes), which every ray tests: the last
+    /// [`Self::unbounded`] entries.
     pub refs: Vec<u32>,
+    /// How many models the references start with.
+    pub models: usize,
+    /// Where each instance's record starts in the references.
+    pub instance_records: Vec<u32>,
     pub unbounded: u32,
 }
 
 impl GpuBvh {
-    /// The GPU's copy of `bvh`, built over `geometry`.
-    pub fn new(bvh: &Bvh, geometry: &Geometry) -> GpuBvh {
-        let mut gpu = GpuBvh::default();
-        gpu.nodes.reserve_exact(bvh.nodes.len());
+    /// The GPU's copy of `bvh`, built over `geometry`, whose instances' transforms start at
+    /// `instance_transforms` in the shape words.
+    pub fn new(bvh: &Bvh, geometry: &Geometry, instance_transforms: &[u32]) -> GpuBvh {
+        let models = geometry.models();
+        let mut gpu = GpuBvh {
+            refs: vec![0; models.len()],
+            models: models.len(),
+            ..GpuBvh::default()
+        };
+        let leaves = Leaves {
+            geometry,
+            instance_transforms,
+        };
+        gpu.instance_records = vec![0; geometry.instances().len()];
+        gpu.copy_tree(bvh, &leaves);
+        gpu.world_triangles = gpu.triangles.len();
+        for (m, tree) in bvh.models.iter().enumerate() {
+            gpu.refs[m] = gpu.nodes.len() as u32;
+            gpu.model_triangles.push(gpu.triangles.len());
+            let model = Leaves {
+                geometry: &models[m],
+                instance_transforms: &[],
+            };
+            gpu.copy_tree(tree, &model);
+        }
+        gpu.unbounded = bvh.unbounded.len() as u32;
+        gpu.refs
+            .extend(bvh.unbounded.iter().map(|p| object_index(p.kind())));
+        gpu
+    }
+
+    /// Appends the nodes of `bvh` and the entries of its leaves, over `leaves`' geometry.
+    fn copy_tree(&mut self, bvh: &Bvh, leaves: &Leaves) {
+        let base = self.nodes.len() as u32;
+        self.nodes.reserve_exact(bvh.nodes.len());
         for node in &bvh.nodes {
             let mut copy = GpuWideNode {
                 lo: node.min,
@@ -128,43 +190,81 @@ impl GpuBvh {
                 count: node.count,
             };
             for k in 0..WIDTH {
-                let Some(child) = node.child(k).filter(|c| c.is_leaf()) else {
+                let Some(child) = node.child(k) else {
                     continue;
                 };
-                let prims = bvh.leaf_prims(child);
-                let triangles = prims
-                    .first()
-                    .is_some_and(|p| matches!(p.kind(), PrimKind::Triangle(_)));
-                if triangles {
-                    copy.first[k] = gpu.triangles.len() as u32;
-                    copy.count[k] = prims.len() as u32 | TRIANGLE_LEAF;
-                    gpu.triangles.extend(prims.iter().map(|p| {
-                        let PrimKind::Triangle(index) = p.kind() else {
-                            unreachable!("a leaf holds one kind")
-                        };
-                        let t = geometry.triangle(index);
-                        GpuTriangle {
-                            p0: t.p0.to_array(),
-                            index: index as u32,
-                            p1: t.p1.to_array(),
-                            object: geometry.object_id(*p),
-                            p2: t.p2.to_array(),
-                            pad2: 0,
-                        }
-                    }));
-                } else {
-                    copy.first[k] = gpu.refs.len() as u32;
-                    copy.count[k] = prims.len() as u32;
-                    gpu.refs
-                        .extend(prims.iter().map(|p| object_index(p.kind())));
+                if !child.is_leaf() {
+                    copy.first[k] += base;
+                    continue;
                 }
+                let prims = bvh.leaf_prims(child);
+                let count = prims.len() as u32;
+                (copy.first[k], copy.count[k]) = match prims.first().map(|p| p.kind()) {
+                    Some(PrimKind::Triangle(_)) => {
+                        let first = self.triangles.len() as u32;
+                        self.triangles
+                            .extend(prims.iter().map(|&p| leaves.triangle(p)));
+                        (first, count | TRIANGLE_LEAF)
+                    }
+                    Some(PrimKind::Instance(_)) => {
+                        let first = self.refs.len() as u32;
+                        for &p in &prims {
+                            if let PrimKind::Instance(i) = p.kind() {
+                                self.instance_records[i] = self.refs.len() as u32;
+                            }
+                            self.refs.extend(leaves.instance_record(p));
+                        }
+                        (first, count | INSTANCE_LEAF)
+                    }
+                    _ => {
+                        let first = self.refs.len() as u32;
+                        self.refs
+                            .extend(prims.iter().map(|p| object_index(p.kind())));
+                        (first, count)
+                    }
+                };
             }
-            gpu.nodes.push(copy);
+            self.nodes.push(copy);
         }
-        gpu.unbounded = bvh.unbounded.len() as u32;
-        gpu.refs
-            .extend(bvh.unbounded.iter().map(|p| object_index(p.kind())));
-        gpu
+    }
+}
+
+/// What the leaves of a tree copied to the GPU read their entries from.
+struct Leaves<'a> {
+    geometry: &'a Geometry,
+    instance_transforms: &'a [u32],
+}
+
+impl Leaves<'_> {
+    /// Triangle `prim`, its corners as the geometry holds them (a model's in its own space).
+    fn triangle(&self, prim: PrimId) -> GpuTriangle {
+        let PrimKind::Triangle(index) = prim.kind() else {
+            unreachable!("a leaf holds one kind")
+        };
+        let t = self.geometry.triangle(index);
+        GpuTriangle {
+            p0: t.p0.to_array(),
+            index: index as u32,
+            p1: t.p1.to_array(),
+            object: self.geometry.object_id(prim),
+            p2: t.p2.to_array(),
+            pad2: 0,
+        }
+    }
+
+    /// The record of instance `prim` ([`INSTANCE_WORDS`]).
+    fn instance_record(&self, prim: PrimId) -> [u32; INSTANCE_WORDS as usize] {
+        let PrimKind::Instance(i) = prim.kind() else {
+            unreachable!("a leaf holds one kind")
+        };
+        let instance = &self.geometry.instances()[i];
+        [
+            instance.model,
+            self.geometry.placed_triangle(i, 0).0,
+            self.instance_transforms[i],
+            instance.material.unwrap_or(NO_MATERIAL),
+            self.geometry.object_id(prim),
+        ]
     }
 }
 
@@ -196,15 +296,20 @@ fn half_area(b: &Aabb) -> f32 {
 }
 
 impl GpuBvh {
-    /// The tree as two-wide nodes over the same leaves, root first: each eight-wide node
-    /// becomes a small tree over its children, made by joining, again and again, the two parts
-    /// whose joint box has the least surface area (the most likely to be entered together).
-    pub fn binary_nodes(&self) -> Vec<GpuBinaryNode> {
+    /// The trees as two-wide nodes over the same leaves, the scene's root first: each
+    /// eight-wide node becomes a small tree over its children, made by joining, again and
+    /// again, the two parts whose joint box has the least surface area (the most likely to be
+    /// entered together). With them, the references with the models' roots in those nodes.
+    pub fn binary_nodes(&self) -> (Vec<GpuBinaryNode>, Vec<u32>) {
         let mut out = Vec::with_capacity(self.nodes.len() * 3);
+        let mut refs = self.refs.clone();
         if !self.nodes.is_empty() {
             self.push_wide(0, &mut out);
         }
-        out
+        for root in &mut refs[..self.models] {
+            *root = self.push_wide(*root as usize, &mut out);
+        }
+        (out, refs)
     }
 
     /// Pushes the small tree of wide node `w` (and below it, its subtrees); returns its root.
@@ -320,8 +425,8 @@ mod tests {
     #[test]
     fn the_two_wide_tree_holds_every_leaf_of_the_eight_wide_one_once_inside_its_boxes() {
         let assembled = assemble(bumpy_sphere_scene(20_000, 8, 8)).unwrap();
-        let gpu = GpuBvh::new(&assembled.bvh, &assembled.scene.geometry);
-        let binary = gpu.binary_nodes();
+        let gpu = GpuBvh::new(&assembled.bvh, &assembled.scene.geometry, &[]);
+        let (binary, _) = gpu.binary_nodes();
         let mut wide_leaves: Vec<(u32, u32)> = gpu
             .nodes
             .iter()

@@ -15,7 +15,7 @@ use wgpu::util::DeviceExt;
 use super::bvh::NodeLayout;
 use super::device::{GpuDevice, read_buffer};
 use super::frame::GpuView;
-use super::prelude::WorkBinding;
+use super::prelude::{PROXY_BOX, PROXY_FULL_FILM, PROXY_INSTANCE, WorkBinding};
 use super::scene::{GpuScene, scene_layout};
 use super::storage::storage_entry_in;
 use super::tracer::tracer_wgsl;
@@ -29,13 +29,14 @@ use crate::scene::Scene;
 pub const ITEM_BUFFER_WGSL: &str = include_str!("../../shaders/item_buffer.wgsl");
 
 gpu_record! {
-    /// WGSL's `Proxy`: an object's bounding box, or the whole film (`full_film` 1) for an object
-    /// without finite bounds.
+    /// WGSL's `Proxy`: an object's bounding box, or the whole film for an object without
+    /// finite bounds, or an instance's bounding box, by its `kind` (`PROXY_BOX`, …).
     pub struct GpuProxy {
         pub lo: [f32; 3],
+        /// The object's index, or where the instance's record starts in the references.
         pub object: u32,
         pub hi: [f32; 3],
-        pub full_film: u32,
+        pub kind: u32,
     }
 }
 
@@ -54,31 +55,38 @@ struct RasterFilm {
 /// plane of the axes).
 pub const PROXY_MARGIN: f32 = 1e-3;
 
-/// The proxy box of object `o` of `geometry` seen from `eye`: its bounding box grown by
-/// [`PROXY_MARGIN`]; `None` where it has no finite bounds (its proxy is the whole film).
-pub fn proxy_box(geometry: &Geometry, o: usize, eye: Vec3) -> Option<Aabb> {
-    let b = geometry
-        .bounds(PrimId::object(o))
-        .filter(|b| b.is_finite())?;
+/// The proxy box of the object or instance `id` of `geometry` seen from `eye`: its bounding
+/// box grown by [`PROXY_MARGIN`]; `None` where it has no finite bounds (its proxy is the whole
+/// film).
+pub fn proxy_box(geometry: &Geometry, id: PrimId, eye: Vec3) -> Option<Aabb> {
+    let b = geometry.bounds(id).filter(|b| b.is_finite())?;
     let reach = eye.distance(b.center()) + 0.5 * b.extent().length();
     let margin = Vec3::splat(PROXY_MARGIN * reach);
     Some(Aabb::new(b.min - margin, b.max + margin))
 }
 
-/// The proxy of every object of `geometry` seen from `eye` ([`proxy_box`]).
-fn proxies(geometry: &Geometry, eye: Vec3) -> Vec<GpuProxy> {
-    (0..geometry.objects.len())
-        .map(|o| {
-            let bounds = proxy_box(geometry, o, eye);
-            let (lo, hi) = bounds.map_or((Vec3::ZERO, Vec3::ZERO), |b| (b.min, b.max));
-            GpuProxy {
-                lo: lo.to_array(),
-                object: o as u32,
-                hi: hi.to_array(),
-                full_film: u32::from(bounds.is_none()),
-            }
-        })
-        .collect()
+/// The proxy of every object of `geometry` seen from `eye` ([`proxy_box`]), then of every
+/// instance, whose record starts at `instance_records` in the references.
+fn proxies(geometry: &Geometry, instance_records: &[u32], eye: Vec3) -> Vec<GpuProxy> {
+    let proxy = |id: PrimId, object: u32, kind: u32| {
+        let bounds = proxy_box(geometry, id, eye);
+        let (lo, hi) = bounds.map_or((Vec3::ZERO, Vec3::ZERO), |b| (b.min, b.max));
+        GpuProxy {
+            lo: lo.to_array(),
+            object,
+            hi: hi.to_array(),
+            kind: if bounds.is_none() {
+                PROXY_FULL_FILM
+            } else {
+                kind
+            },
+        }
+    };
+    let objects =
+        (0..geometry.objects.len()).map(|o| proxy(PrimId::object(o), o as u32, PROXY_BOX));
+    let instances = (instance_records.iter().enumerate())
+        .map(|(i, &record)| proxy(PrimId::instance(i), record, PROXY_INSTANCE));
+    objects.chain(instances).collect()
 }
 
 /// The item buffer's pipelines, compiled for one device and BVH node layout.
@@ -199,7 +207,11 @@ impl ItemRaster {
                  {most} in one buffer"
             ));
         }
-        let objects = proxies(&scene.geometry, scene.camera.eye);
+        let objects = proxies(
+            &scene.geometry,
+            gpu_scene.instance_records(),
+            scene.camera.eye,
+        );
         gpu.check_storage(
             "the item buffer's proxies",
             std::mem::size_of_val(objects.as_slice()) as u64,

@@ -14,7 +14,10 @@ use std::fmt::{Debug, Write};
 
 use strum::IntoEnumIterator;
 
-use super::bvh::{TRIANGLE_LEAF, WALK_STACK};
+use super::bvh::{
+    INSTANCE_ENTRY, INSTANCE_LEAF, INSTANCE_WORDS, NO_INSTANCE, NO_MATERIAL, TRIANGLE_LEAF,
+    WALK_STACK,
+};
 use super::caustics::MAX_PHOTON_TREE_DEPTH;
 use super::frame::{
     BALL_BACKDROP, CAUSTICS, OPAQUE, REFLECTIONS, SHADOWS, TEXTURES, TRANSMISSION, ViewKind,
@@ -51,6 +54,14 @@ pub enum WorkBinding {
     Proxies,
     RasterFilm,
 }
+
+/// The kinds of the item buffer's proxies (`GpuProxy::kind` in `item_raster.rs`): an object's
+/// box.
+pub const PROXY_BOX: u32 = 0;
+/// A proxy of the whole film, for an object without finite bounds.
+pub const PROXY_FULL_FILM: u32 = 1;
+/// An instance's box, whose fragments walk into the instance.
+pub const PROXY_INSTANCE: u32 = 2;
 
 /// The bindings of the film's module (`shaders/film.wgsl`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, strum::EnumIter)]
@@ -199,7 +210,7 @@ pub fn prelude() -> String {
         CSG_MAX_LISTS = MAX_CSG_DEPTH + 2,
         // The BVH's walk.
         INTERIOR = WideNode::INTERIOR,
-        TRIANGLE_LEAF,
+        TRIANGLE_LEAF, INSTANCE_LEAF, INSTANCE_WORDS, INSTANCE_ENTRY, NO_INSTANCE, NO_MATERIAL,
         OBJECT_BIT = PrimId::OBJECT_BIT,
         WALK_STACK, MAX_CROSSINGS,
         T_FAR = f32::MAX,
@@ -211,6 +222,7 @@ pub fn prelude() -> String {
         PHOTON_STACK = MAX_PHOTON_TREE_DEPTH,
         // The ray tree, the item buffer and the film.
         EYE_RAY_T_MIN, RAY_BUDGET, TREE_STACK, FAR_MARGIN, NEAR_SHARE,
+        PROXY_BOX, PROXY_FULL_FILM, PROXY_INSTANCE,
         SRGB_BUCKET_SHIFT = BUCKET_SHIFT,
         CURVE_INPUT_MAX,
     }

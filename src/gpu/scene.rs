@@ -27,6 +27,7 @@ use crate::color::Color;
 use crate::medium::{Backdrop, Fog, Medium};
 use crate::mesh::{Mesh, NO_VERTEX_COLOR};
 use crate::photon_map::PhotonMap;
+use crate::primitive::Geometry;
 use crate::render::Assembled;
 use crate::scene::Scene;
 
@@ -47,10 +48,14 @@ impl SceneRecords {
     /// The records of `scene` and its BVH `bvh`; the error says what of the scene the GPU
     /// tracer does not trace.
     pub fn new(scene: &Scene, bvh: &Bvh) -> Result<SceneRecords, String> {
-        let depth = bvh.depth();
+        // A walk into an instance goes down the scene's tree, then its model's, with the
+        // instances of a leaf waiting on the stack.
+        let model_depth = bvh.models.iter().map(Bvh::depth).max().map_or(0, |d| d + 1);
+        let depth = bvh.depth() + model_depth;
         if depth > MAX_TREE_DEPTH {
             return Err(format!(
-                "the BVH is {depth} levels deep; the GPU's walk takes at most {MAX_TREE_DEPTH}"
+                "the BVH is {depth} levels deep with its models' trees; the GPU's walk takes at \
+                 most {MAX_TREE_DEPTH}"
             ));
         }
         if scene.materials.len() > MATERIAL_BITS as usize {
@@ -59,52 +64,66 @@ impl SceneRecords {
                 scene.materials.len()
             ));
         }
-        if !scene.geometry.instances().is_empty() {
-            return Err(format!(
-                "the scene places {} instances of models; the GPU tracer traces meshes stored \
-                 where they stand",
-                scene.geometry.instances().len()
-            ));
-        }
-        let table = ObjectTable::new(&scene.geometry.objects)?;
-        let gpu_bvh = GpuBvh::new(bvh, &scene.geometry);
         let geometry = &scene.geometry;
-        // Each mesh's vertex attributes, where it has any, one after another.
-        let mut vertex_attributes = Vec::new();
-        let mut attribute_starts = Vec::with_capacity(geometry.meshes.len());
-        for mesh in &geometry.meshes {
-            attribute_starts.push(vertex_attributes.len() as u32);
-            if attribute_flags(mesh) != 0 {
-                vertex_attributes.extend((0..mesh.positions.len()).map(|v| {
-                    let normal = mesh.normals.get(v).map_or([0.0; 3], |n| n.to_array());
-                    let uv = mesh.uvs.get(v).copied().unwrap_or_default();
-                    let [red, green, blue] =
-                        mesh.colors.get(v).unwrap_or(&NO_VERTEX_COLOR).to_array();
-                    GpuVertexAttributes {
-                        normal,
-                        u: uv.x,
-                        v: uv.y,
-                        red,
-                        green,
-                        blue,
-                    }
-                }));
-            }
-        }
-        let triangle_shading = gpu_bvh
-            .triangles
-            .iter()
-            .map(|t| {
-                let index = t.index as usize;
-                let (mesh_index, face) = geometry.triangle_face(index);
-                let mesh = &geometry.meshes[mesh_index];
-                let start = attribute_starts[mesh_index];
-                GpuTriangleShading {
-                    corners: mesh.faces[face as usize].map(|v| start + v),
-                    material: mesh.material | attribute_flags(mesh),
-                }
-            })
+        let mut table = ObjectTable::new(&geometry.objects)?;
+        let instance_transforms: Vec<u32> = (geometry.instances().iter())
+            .map(|instance| table.push_transform(&instance.transform))
             .collect();
+        let gpu_bvh = GpuBvh::new(bvh, geometry, &instance_transforms);
+        // Each mesh's vertex attributes, where it has any, one after another: the world's
+        // meshes, then each model's.
+        let mut vertex_attributes = Vec::new();
+        let mut attribute_starts = |meshes: &[Mesh]| -> Vec<u32> {
+            let mut starts = Vec::with_capacity(meshes.len());
+            for mesh in meshes {
+                starts.push(vertex_attributes.len() as u32);
+                if attribute_flags(mesh) != 0 {
+                    vertex_attributes.extend((0..mesh.positions.len()).map(|v| {
+                        let normal = mesh.normals.get(v).map_or([0.0; 3], |n| n.to_array());
+                        let uv = mesh.uvs.get(v).copied().unwrap_or_default();
+                        let [red, green, blue] =
+                            mesh.colors.get(v).unwrap_or(&NO_VERTEX_COLOR).to_array();
+                        GpuVertexAttributes {
+                            normal,
+                            u: uv.x,
+                            v: uv.y,
+                            red,
+                            green,
+                            blue,
+                        }
+                    }));
+                }
+            }
+            starts
+        };
+        let world_starts = attribute_starts(&geometry.meshes);
+        let model_starts: Vec<Vec<u32>> = (geometry.models().iter())
+            .map(|model| attribute_starts(&model.meshes))
+            .collect();
+        // Each triangle slot's shading, from the mesh of the geometry its tree is over.
+        let shading = |owner: &Geometry, starts: &[u32], t: &GpuTriangle| {
+            let (mesh_index, face) = owner.triangle_face(t.index as usize);
+            let mesh = &owner.meshes[mesh_index];
+            let start = starts[mesh_index];
+            GpuTriangleShading {
+                corners: mesh.faces[face as usize].map(|v| start + v),
+                material: mesh.material | attribute_flags(mesh),
+            }
+        };
+        let mut triangle_shading = Vec::with_capacity(gpu_bvh.triangles.len());
+        let world = &gpu_bvh.triangles[..gpu_bvh.world_triangles];
+        triangle_shading.extend(world.iter().map(|t| shading(geometry, &world_starts, t)));
+        for (m, model) in geometry.models().iter().enumerate() {
+            let first = gpu_bvh.model_triangles[m];
+            let end =
+                (gpu_bvh.model_triangles.get(m + 1).copied()).unwrap_or(gpu_bvh.triangles.len());
+            let triangles = &gpu_bvh.triangles[first..end];
+            triangle_shading.extend(
+                triangles
+                    .iter()
+                    .map(|t| shading(model, &model_starts[m], t)),
+            );
+        }
         Ok(SceneRecords {
             table,
             bvh: gpu_bvh,
@@ -145,6 +164,8 @@ pub struct GpuScene {
     counts: RecordCounts,
     /// The box around the bounded objects, which the fog's backdrop takes in.
     object_bounds: Option<Aabb>,
+    /// Where each instance's record starts in the references.
+    instance_records: Vec<u32>,
 }
 
 /// How many records the buffers the WGSL loops over hold.
@@ -209,17 +230,19 @@ impl GpuScene {
         }
         let device = &gpu.device;
         let storage = |what: &str, contents: &[u8]| storage_buffer(gpu, what, contents);
-        let binary_nodes;
-        let (nodes, node_count): (&[u8], usize) = match node_layout {
+        let binary;
+        let (nodes, node_count, refs): (&[u8], usize, &[u32]) = match node_layout {
             NodeLayout::Wide => (
                 bytemuck::cast_slice::<GpuWideNode, u8>(&records.bvh.nodes),
                 records.bvh.nodes.len(),
+                &records.bvh.refs,
             ),
             NodeLayout::Binary => {
-                binary_nodes = records.bvh.binary_nodes();
+                binary = records.bvh.binary_nodes();
                 (
-                    bytemuck::cast_slice::<GpuBinaryNode, u8>(&binary_nodes),
-                    binary_nodes.len(),
+                    bytemuck::cast_slice::<GpuBinaryNode, u8>(&binary.0),
+                    binary.0.len(),
+                    &binary.1,
                 )
             }
         };
@@ -240,7 +263,7 @@ impl GpuScene {
                 "the triangles",
                 bytemuck::cast_slice::<GpuTriangle, u8>(&records.bvh.triangles),
             )?,
-            storage("the BVH leaves", bytemuck::cast_slice(&records.bvh.refs))?,
+            storage("the BVH leaves", bytemuck::cast_slice(refs))?,
             storage(
                 "the triangles' shading",
                 bytemuck::cast_slice(&records.triangle_shading),
@@ -260,7 +283,7 @@ impl GpuScene {
         ];
         let counts = RecordCounts {
             refs: records.bvh.refs.len() as u32,
-            triangles: records.bvh.triangles.len(),
+            triangles: records.bvh.world_triangles,
             unbounded: records.bvh.unbounded,
             nodes: node_count as u32,
             lights: records.lights.len() as u32,
@@ -286,6 +309,7 @@ impl GpuScene {
             caustics: assembled.caustics.clone(),
             counts,
             object_bounds: assembled.bvh.bounds(),
+            instance_records: records.bvh.instance_records.clone(),
         };
         let record = gpu_scene.frame_record(scene, &scene.camera, GpuView::Shaded, (0, 0));
         gpu.queue
@@ -293,7 +317,13 @@ impl GpuScene {
         Ok(gpu_scene)
     }
 
-    /// How many mesh triangles the scene holds.
+    /// Where each instance's record starts in the references ([`GpuBvh::instance_records`]).
+    pub fn instance_records(&self) -> &[u32] {
+        &self.instance_records
+    }
+
+    /// How many of the world's own mesh triangles the scene holds (the item buffer draws them;
+    /// instances are drawn by proxies).
     pub fn triangle_count(&self) -> usize {
         self.counts.triangles
     }

@@ -344,6 +344,13 @@ fn push_csg(csg: &Csg, words: &mut Vec<Word>) -> Result<(), String> {
     Ok(())
 }
 
+impl ObjectTable {
+    /// Appends a transform to the shape words (an instance's); returns where it starts.
+    pub fn push_transform(&mut self, t: &Transform) -> u32 {
+        push_transform(t, &mut self.words)
+    }
+}
+
 /// Appends a transform as `load_transform` reads it: the columns of `object_from_world` (three
 /// axes, then the translation), then those of `normal_to_world`. Returns where it starts.
 fn push_transform(t: &Transform, words: &mut Vec<Word>) -> u32 {

@@ -175,7 +175,7 @@ fn is_specular(material: &Material) -> bool {
     material.reflectivity > 0.0 || material.transparency > 0.0
 }
 
-/// The spheres around the specular objects and meshes (`None` for one without bounds): a
+/// The spheres around the specular objects, meshes and instances (`None` for one without bounds): a
 /// sphere itself, the sphere around the box of anything else; one sphere around them all when
 /// there are too many to aim at one by one.
 fn specular_spheres(scene: &Scene) -> Vec<Option<Sphere>> {
@@ -212,6 +212,16 @@ fn specular_spheres(scene: &Scene) -> Vec<Option<Sphere>> {
                 .filter_map(|t| geometry.bounds(PrimId::triangle(t)))
                 .fold(Aabb::EMPTY, Aabb::union);
             spheres.push((!around.is_empty()).then(|| Sphere::around(&around)));
+        }
+    }
+    for (i, instance) in geometry.instances().iter().enumerate() {
+        let meshes = &geometry.models()[instance.model as usize].meshes;
+        let is_specular = match instance.material {
+            Some(material) => specular(material),
+            None => meshes.iter().any(|mesh| specular(mesh.material)),
+        };
+        if is_specular {
+            spheres.push(Some(Sphere::around(&geometry.instance_bounds(i))));
         }
     }
     if spheres.len() > MAX_TARGETS {

@@ -4,6 +4,7 @@
 #![allow(dead_code)] // each test binary uses a different part
 
 pub mod fuzz;
+pub mod instances;
 pub mod kinds;
 pub mod random;
 pub mod run;

@@ -3,12 +3,13 @@
 //! saved (8-bit sRGB): mean absolute difference at most 0.5 levels and at least 99 % of pixels
 //! within 3 levels, with one sample per pixel (with each layout of the BVH's nodes), with
 //! adaptive anti-aliasing (16 samples, threshold 0.03, at 80 × 60), with textures switched off,
-//! and in the first-hit debug views. These tests
+//! and in the first-hit debug views; a model placed a thousand times by instances. These tests
 //! need a GPU adapter: without one they fail, saying what to install (Mesa's lavapipe will do).
 
 use std::path::Path;
 use std::sync::Arc;
 
+use crate::common::instances::balls_scene;
 use crate::gpu;
 use glam::Vec3;
 use raylab::camera::Camera;
@@ -153,6 +154,37 @@ fn every_scene_renders_on_the_gpu_as_on_the_cpu_with_adaptive_anti_aliasing() {
             scene.settings.aa_threshold = 0.03;
         },
     );
+}
+
+#[test]
+fn a_model_placed_a_thousand_times_renders_on_the_gpu_as_on_the_cpu_in_both_layouts_and_rasters() {
+    let gpu = gpu();
+    let assembled = assemble(balls_scene(1000, true)).unwrap();
+    let on_cpu = to_srgb8(&render_image(&assembled.tracer()).0);
+    for (nodes, first_hit) in [
+        (NodeLayout::Wide, FirstHit::Rays),
+        (NodeLayout::Binary, FirstHit::Rays),
+        (NodeLayout::Wide, FirstHit::Raster),
+    ] {
+        let mut renderer = GpuRenderer::with_nodes(Arc::clone(&gpu), &assembled, nodes).unwrap();
+        renderer.set_first_hit(first_hit);
+        let (on_gpu, stats) = gpu_render(&renderer, &assembled.tracer());
+        let (mean, close) = difference(&on_gpu, &on_cpu);
+        assert!(
+            mean <= 0.5 && close >= 0.99,
+            "{nodes:?}, {first_hit:?}: mean {mean:.3} levels, {:.2} % within 3",
+            close * 100.0
+        );
+        if first_hit == FirstHit::Raster {
+            let r = &stats.rays;
+            assert!(
+                r.from_item_buffer as f64 >= 0.95 * r.primary_hits as f64,
+                "{} of {} eye rays that hit came from the item buffer",
+                r.from_item_buffer,
+                r.primary_hits
+            );
+        }
+    }
 }
 
 #[test]

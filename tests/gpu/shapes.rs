@@ -995,7 +995,7 @@ fn every_proxy_covers_its_shape_from_random_cameras() {
             let look_at = in_cube(&mut rng, -1.0, 1.0);
             let camera = crate::common::camera(eye, look_at, in_range(&mut rng, 20.0, 100.0));
             assembled.scene.camera = camera;
-            let proxy = proxy_box(&assembled.scene.geometry, 0, eye);
+            let proxy = proxy_box(&assembled.scene.geometry, PrimId::object(0), eye);
             let items = raster.draw(&assembled.scene, ((0, 0), SIZE)).unwrap();
             let tracer = assembled.tracer();
             let pixels: Vec<(u32, u32)> = (0..SIZE.1)

@@ -115,7 +115,8 @@ fn random_scene(seed: u64, spheres: usize, triangles: usize, planes: usize) -> G
     g
 }
 
-fn brute_force(g: &Geometry, ray: &Ray) -> Option<Hit> {
+/// The closest hit found by testing every primitive (an instance tests each of its triangles).
+pub fn brute_force(g: &Geometry, ray: &Ray) -> Option<Hit> {
     let mut best: Option<Hit> = None;
     for id in g.prim_ids() {
         let t_max = best.map_or(f32::INFINITY, |h| h.t);
@@ -126,7 +127,8 @@ fn brute_force(g: &Geometry, ray: &Ray) -> Option<Hit> {
     best
 }
 
-fn random_ray(rng: &mut Rng) -> Ray {
+/// A ray from somewhere around the scenes' cube towards a point in it.
+pub fn random_ray(rng: &mut Rng) -> Ray {
     let origin = in_cube(rng, -15.0, 15.0);
     let target = in_cube(rng, -10.0, 10.0);
     Ray::new(origin, (target - origin) * in_range(rng, 0.2, 3.0))
