@@ -94,6 +94,9 @@ struct Material {
     medium_albedo: f32,
     medium_color: vec3<f32>,
     pad: f32,
+    // `Material::reflection_color`: what `kr`'s reflection is tinted by.
+    reflection_color: vec3<f32>,
+    pad2: f32,
 }
 
 // A light: the twin of `Light` in src/light.rs. A directional light's `direction` points

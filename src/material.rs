@@ -25,6 +25,10 @@ pub struct Material {
     pub shininess: f32,
     /// Weight `kr` of the mirror-reflected ray.
     pub reflectivity: f32,
+    /// The colour `kr`'s reflection is tinted by: white for most surfaces, a metal's own colour
+    /// (gold reflects gold). The light Fresnel's rule or total internal reflection takes from
+    /// transmission is reflected untinted.
+    pub reflection_color: Color,
     /// Weight `kt` of the transmitted ray; transmitted light is tinted by the surface colour.
     pub transparency: f32,
     /// Index of refraction of the material inside the surface (outside is 1, vacuum).
@@ -49,6 +53,7 @@ impl Default for Material {
             specular_color: Color::ONE,
             shininess: 32.0,
             reflectivity: 0.0,
+            reflection_color: Color::ONE,
             transparency: 0.0,
             ior: 1.0,
             fresnel: false,

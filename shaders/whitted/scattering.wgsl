@@ -34,6 +34,8 @@ fn schlick(cos_i: f32, n1: f32, n2: f32) -> f32 {
 // `Scattering`: the reflected and transmitted weights and the transmitted direction.
 struct Scattering {
     reflect: f32,
+    // The reflected ray's weight as a colour: `kr` tinted, the share taken from transmission not.
+    reflect_color: vec3<f32>,
     transmit: f32,
     refracted: Refracted,
 }
@@ -42,8 +44,9 @@ struct Scattering {
 fn scattering(m: Material, dir: vec3<f32>, normal: vec3<f32>, entering: bool) -> Scattering {
     var reflect = m.reflectivity;
     var transmit = m.transparency;
+    let tinted = m.reflection_color * m.reflectivity;
     if transmit == 0.0 {
-        return Scattering(reflect, transmit, Refracted(vec3<f32>(0.0), false));
+        return Scattering(reflect, tinted, transmit, Refracted(vec3<f32>(0.0), false));
     }
     var n1 = m.ior;
     var n2 = 1.0;
@@ -65,5 +68,5 @@ fn scattering(m: Material, dir: vec3<f32>, normal: vec3<f32>, entering: bool) ->
         reflect += transmit * fresnel;
         transmit *= 1.0 - fresnel;
     }
-    return Scattering(reflect, transmit, refracted);
+    return Scattering(reflect, tinted + vec3<f32>(reflect - m.reflectivity), transmit, refracted);
 }

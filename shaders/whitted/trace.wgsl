@@ -221,7 +221,7 @@ fn trace_eye(dir: vec3<f32>, item_t: f32) -> Traced {
             }
             let reflect_weight = ray.weight * s.reflect;
             if s.reflect > 0.0 && wanted(REFLECTIONS, reflect_weight) {
-                stack[size] = Branch(offset_origin(surface.point, geometric_normal), ray.depth + 1u, mirror(unit_dir, normal), reflect_weight, throughput * s.reflect, REFLECTIONS, ray.within);
+                stack[size] = Branch(offset_origin(surface.point, geometric_normal), ray.depth + 1u, mirror(unit_dir, normal), reflect_weight, throughput * s.reflect_color, REFLECTIONS, ray.within);
                 size++;
             }
         }

@@ -181,7 +181,7 @@ fn raylab_values(m: &Material) -> String {
     };
     format!(
         "color {}{texture}, ambient {}, diffuse {}, specular {} in {}, shininess {}, \
-         reflectivity {}, transparency {}, ior {}, fresnel {}, emission {}",
+         reflectivity {} in {}, transparency {}, ior {}, fresnel {}, emission {}",
         triple(m.color.to_array()),
         m.ambient,
         m.diffuse,
@@ -189,6 +189,7 @@ fn raylab_values(m: &Material) -> String {
         triple(m.specular_color.to_array()),
         m.shininess,
         m.reflectivity,
+        triple(m.reflection_color.to_array()),
         m.transparency,
         m.ior,
         m.fresnel,

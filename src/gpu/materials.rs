@@ -27,6 +27,8 @@ gpu_record! {
         pub medium_albedo: f32,
         pub medium_color: [f32; 3],
         pub pad: f32,
+        pub reflection_color: [f32; 3],
+        pub pad2: f32,
     }
 }
 
@@ -50,6 +52,8 @@ impl From<&Material> for GpuMaterial {
             medium_albedo: medium.albedo,
             medium_color: medium.color.to_array(),
             pad: 0.0,
+            reflection_color: m.reflection_color.to_array(),
+            pad2: 0.0,
         }
     }
 }

@@ -153,7 +153,7 @@ impl PhotonSource {
                 return;
             }
             if roll < reflected {
-                power *= kept / survive;
+                power *= split.reflect_color / split.reflect * (kept / survive);
                 ray = Ray::new(
                     offset_origin(surface.point, geometric_normal),
                     reflect(dir, normal),

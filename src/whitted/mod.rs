@@ -317,7 +317,7 @@ impl<'a> Tracer<'a> {
                 offset_origin(surface.point, geometric_normal),
                 reflect(dir, normal),
             );
-            let scale = Color::splat(scattering.reflect);
+            let scale = scattering.reflect_color;
             observer.ray(
                 RayKind::Reflected,
                 depth + 1,
@@ -326,7 +326,7 @@ impl<'a> Tracer<'a> {
                 scale,
             );
             let child = branch.child(reflect_weight);
-            color += scattering.reflect * self.trace(&reflected, child, counts, observer);
+            color += scale * self.trace(&reflected, child, counts, observer);
         }
         let transmit_weight = weight * scattering.transmit;
         match scattering.refracted {

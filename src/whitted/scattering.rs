@@ -4,12 +4,17 @@
 
 use glam::Vec3;
 
+use crate::color::Color;
 use crate::material::Material;
 
 /// How a surface splits what is not absorbed between the reflected and the transmitted ray.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Scattering {
     pub reflect: f32,
+    /// The reflected ray's weight as a colour: `kr` tinted by the material's reflection colour,
+    /// plus what Fresnel or total internal reflection takes from transmission, untinted. Its
+    /// largest component is at most `reflect`.
+    pub reflect_color: Color,
     pub transmit: f32,
     /// Direction of the transmitted ray, `None` under total internal reflection.
     pub refracted: Option<Vec3>,
@@ -39,9 +44,11 @@ pub fn refract(d: Vec3, n: Vec3, eta: f32) -> Option<Vec3> {
 pub fn scattering(material: &Material, dir: Vec3, normal: Vec3, entering: bool) -> Scattering {
     let mut reflect = material.reflectivity;
     let mut transmit = material.transparency;
+    let tinted = material.reflection_color * material.reflectivity;
     if transmit == 0.0 {
         return Scattering {
             reflect,
+            reflect_color: tinted,
             transmit,
             refracted: None,
         };
@@ -72,6 +79,7 @@ pub fn scattering(material: &Material, dir: Vec3, normal: Vec3, entering: bool) 
     }
     Scattering {
         reflect,
+        reflect_color: tinted + Color::splat(reflect - material.reflectivity),
         transmit,
         refracted,
     }

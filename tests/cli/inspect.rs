@@ -87,7 +87,7 @@ fn inspect_materials_lists_a_gltf_models_values_beside_raylabs_and_render_prints
         "{text}"
     );
     assert!(
-        lines[3].contains("diffuse 0,") && lines[3].contains("reflectivity 1,"),
+        lines[3].contains("diffuse 0,") && lines[3].contains("reflectivity 1 in 1 1 1,"),
         "{text}"
     );
     assert!(text.contains("material 1 `glass` → glass\n"), "{text}");

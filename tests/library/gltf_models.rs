@@ -572,7 +572,7 @@ fn a_mirror_glass_and_a_rough_ball_render_as_balls_with_the_rules_values_written
     let positions = w.vec3s(&corners);
     let indices = w.indices(&faces, U16);
     w.json["materials"] = json!([
-        {"name": "mirror", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1],
+        {"name": "mirror", "pbrMetallicRoughness": {"baseColorFactor": [1, 0.8, 0.4, 1],
             "metallicFactor": 1, "roughnessFactor": 0}},
         {"name": "glass", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0},
             "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
@@ -625,11 +625,13 @@ fn a_mirror_glass_and_a_rough_ball_render_as_balls_with_the_rules_values_written
     );
     let from_gltf = rendered(scene);
 
-    // The rule's values, written by hand: a mirror reflects all and scatters nothing, glass
+    // The rule's values, written by hand: a gold mirror reflects all, tinted gold, and scatters
+    // nothing, glass
     // lets all through with Fresnel at index 1.5 and reflects 4 %, a rough dielectric is
     // diffuse with no highlight.
-    let materials = "[materials.mirror]\ncolor = [1, 1, 1]\nambient = 0\ndiffuse = 0\nspecular = 1\n\
-                     specular_color = [1, 1, 1]\nshininess = 10000\nreflectivity = 1\n\
+    let materials = "[materials.mirror]\ncolor = [1, 0.8, 0.4]\nambient = 0\ndiffuse = 0\nspecular = 1\n\
+                     specular_color = [1, 0.8, 0.4]\nshininess = 10000\nreflectivity = 1\n\
+                     reflection_color = [1, 0.8, 0.4]\n\
                      [materials.glass]\ncolor = [1, 1, 1]\nambient = 0\ndiffuse = 0\nspecular = 1\n\
                      shininess = 10000\nreflectivity = 0.04\ntransparency = 1\nior = 1.5\nfresnel = true\n\
                      [materials.clay]\ncolor = [0.8, 0.5, 0.3]\nambient = 0.1\ndiffuse = 1\nspecular = 0\n\

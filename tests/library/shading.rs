@@ -213,6 +213,60 @@ fn a_mirror_shows_what_a_mirrored_camera_sees() {
     );
 }
 
+/// The mirror's material in `scene` (the last one added), its reflection tinted by `tint`.
+fn tinted(mut scene: Scene, tint: Color) -> Scene {
+    let last = scene.materials.len() - 1;
+    scene.materials[last].reflection_color = tint;
+    scene
+}
+
+#[test]
+fn a_tinted_mirror_multiplies_what_it_reflects_by_its_colour() {
+    // The mirror reflects everything and scatters nothing: each pixel of it is what it
+    // reflects, times the tint, channel by channel.
+    let mut white = spheres_before_the_mirror_plane(true);
+    white.camera = crate::common::camera(Vec3::new(0.5, 0.5, 2.0), Vec3::new(0.0, 0.5, 0.0), 60.0);
+    let tint = Color::new(1.0, 0.75, 0.25);
+    let gold = tinted(white.clone(), tint);
+    let render = |scene: &Scene| {
+        let bvh = Bvh::build(&scene.geometry);
+        progressive::render_image(&Tracer::new(scene, &bvh)).0
+    };
+    let (plain, golden) = (render(&white), render(&gold));
+    for (p, g) in plain.iter().zip(&golden) {
+        assert!(
+            (*p * tint - *g).abs().max_element() < 1e-5,
+            "{p} × {tint} ≠ {g}"
+        );
+    }
+    let tinted_pixels = plain.iter().zip(&golden).filter(|(p, g)| p != g).count();
+    assert!(tinted_pixels > 600, "{tinted_pixels} pixels tinted");
+}
+
+#[test]
+fn the_light_fresnel_takes_from_transmission_is_reflected_untinted() {
+    // Glass that reflects nothing of its own (kr 0) but Fresnel's share: its tint does not
+    // touch that share, so a black tint changes nothing.
+    let mut scene = spheres_before_the_mirror_plane(false);
+    scene.camera = crate::common::camera(Vec3::new(0.5, 0.5, -2.0), Vec3::new(0.0, 0.5, 0.0), 60.0);
+    let glass = scene.add_material(Material {
+        fresnel: true,
+        ..crate::common::clear_glass()
+    });
+    scene.add_object(plane(Vec3::new(0.0, 0.0, 1.0), Vec3::Z), None, glass);
+    let render = |scene: &Scene| {
+        let bvh = Bvh::build(&scene.geometry);
+        progressive::render_image(&Tracer::new(scene, &bvh)).0
+    };
+    let black = tinted(scene.clone(), Color::ZERO);
+    assert_eq!(render(&scene), render(&black));
+    // And the glass does reflect: without Fresnel the image changes.
+    let mut plain = scene.clone();
+    let last = plain.materials.len() - 1;
+    plain.materials[last].fresnel = false;
+    assert_ne!(render(&scene), render(&plain));
+}
+
 #[test]
 fn snell_law_bends_rays_and_a_slab_shifts_them_sideways() {
     let d = Vec3::new(1.0, -1.0, 0.0).normalize(); // 45° incidence on the floor y = 0

@@ -107,6 +107,7 @@ fn full_feature_file_numbers_materials_and_textures_by_name() {
             specular_color: Color::new(1.0, 1.0, 0.0),
             shininess: 10.0,
             reflectivity: 0.25,
+            reflection_color: Color::new(1.0, 0.5, 0.25),
             transparency: 0.5,
             ior: 1.33,
             fresnel: true,

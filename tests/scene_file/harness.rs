@@ -102,6 +102,7 @@ specular = 0.5
 specular_color = [1, 1, 0]
 shininess = 10
 reflectivity = 0.25
+reflection_color = [1, 0.5, 0.25]
 transparency = 0.5
 ior = 1.33
 fresnel = true

@@ -4,7 +4,9 @@
 //!
 //! - the surface colour is the base colour factor (its alpha is not used);
 //! - reflectivity `kr = F0·(1 − roughness)` with `F0 = 0.04·(1 − metallic) + metallic`: a
-//!   smooth metal is a mirror, a smooth dielectric reflects 4 %, a rough surface nothing;
+//!   smooth metal is a mirror, a smooth dielectric reflects 4 %, a rough surface nothing; the
+//!   reflection is white on a dielectric and tinted by the base colour on a metal (gold reflects
+//!   gold);
 //! - transparency `kt = transmission·(1 − metallic)` with KHR_materials_ior's index (1.5 without
 //!   it) and Fresnel;
 //! - what is neither reflected nor transmitted is scattered: diffuse `kd = (1 − kr)(1 − kt)`, and
@@ -98,6 +100,7 @@ pub fn whitted_material(values: &PbrValues) -> Material {
         diffuse: scattered,
         specular: 1.0 - rough,
         specular_color: Color::ONE * (1.0 - m) + base * m,
+        reflection_color: Color::ONE * (1.0 - m) + base * m,
         shininess,
         reflectivity,
         transparency,

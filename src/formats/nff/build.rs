@@ -188,6 +188,7 @@ fn material(fill: &Fill) -> Material {
         specular_color: Color::ONE,
         shininess: fill.shine as f32,
         reflectivity: fill.ks as f32,
+        reflection_color: Color::ONE,
         transparency: fill.transmittance as f32,
         // Opaque materials carry 0 or 1 here; only transmitters use it.
         ior: if transmits { fill.ior as f32 } else { 1.0 },

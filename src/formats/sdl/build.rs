@@ -102,6 +102,7 @@ impl SdlMaterial {
             },
             shininess: self.specular_exponent,
             reflectivity: self.reflectivity,
+            reflection_color: Color::ONE,
             transparency: self.transparency,
             ior: 1.0 / self.speed_of_light,
             fresnel: false,

@@ -442,6 +442,9 @@ fn build_material(
             .map_or(default.specular_color, |c| c.0),
         shininess: material.shininess.map_or(default.shininess, |x| x.0),
         reflectivity: material.reflectivity.map_or(default.reflectivity, |x| x.0),
+        reflection_color: material
+            .reflection_color
+            .map_or(default.reflection_color, |c| c.0),
         transparency: material.transparency.map_or(default.transparency, |x| x.0),
         ior: material.ior.map_or(default.ior, |x| x.0),
         fresnel: material.fresnel.unwrap_or(default.fresnel),

@@ -142,6 +142,13 @@ fn write_material(table: &mut dyn TableLike, old: &Material, new: &Material) {
             triple(new.specular_color.to_array()),
         );
     }
+    if old.reflection_color != new.reflection_color {
+        set(
+            table,
+            "reflection_color",
+            triple(new.reflection_color.to_array()),
+        );
+    }
     if old.fresnel != new.fresnel {
         set(table, "fresnel", Value::from(new.fresnel));
     }

@@ -199,6 +199,8 @@ pub struct MaterialFile {
     pub specular_color: Option<ColorValue>,
     pub shininess: Option<NonNegative>,
     pub reflectivity: Option<Fraction>,
+    /// The colour the mirror reflection is tinted by.
+    pub reflection_color: Option<ColorValue>,
     pub transparency: Option<Fraction>,
     pub ior: Option<Positive>,
     pub fresnel: Option<bool>,

@@ -20,6 +20,7 @@ pub enum MaterialEdit {
     SpecularColor(Color),
     Shininess(f32),
     Reflectivity(f32),
+    ReflectionColor(Color),
     Transparency(f32),
     Ior(f32),
     Fresnel(bool),
@@ -27,7 +28,7 @@ pub enum MaterialEdit {
 
 /// The field names a script's `material` step takes.
 const MATERIAL_FIELDS: &str = "color, emission, ka (ambient), kd (diffuse), ks (specular), \
-    specular_color, shininess, kr (reflectivity), kt (transparency), ior, fresnel";
+    specular_color, shininess, kr (reflectivity), reflection_color, kt (transparency), ior, fresnel";
 
 impl MaterialEdit {
     /// `FIELD VALUE…`: one number, three for a colour, `on`/`off` for `fresnel`.
@@ -49,6 +50,7 @@ impl MaterialEdit {
             "specular_color" => three(MaterialEdit::SpecularColor),
             "shininess" => one(MaterialEdit::Shininess),
             "kr" | "reflectivity" => one(MaterialEdit::Reflectivity),
+            "reflection_color" => three(MaterialEdit::ReflectionColor),
             "kt" | "transparency" => one(MaterialEdit::Transparency),
             "ior" => one(MaterialEdit::Ior),
             "fresnel" => flag
@@ -70,6 +72,7 @@ impl MaterialEdit {
             MaterialEdit::SpecularColor(c) => m.specular_color = c,
             MaterialEdit::Shininess(x) => m.shininess = x,
             MaterialEdit::Reflectivity(x) => m.reflectivity = x,
+            MaterialEdit::ReflectionColor(c) => m.reflection_color = c,
             MaterialEdit::Transparency(x) => m.transparency = x,
             MaterialEdit::Ior(x) => m.ior = x,
             MaterialEdit::Fresnel(on) => m.fresnel = on,
@@ -183,7 +186,8 @@ pub fn check_material(m: &Material) -> Result<(), String> {
     }
     check_color("color", m.color)?;
     check_color("emission", m.emission)?;
-    check_color("specular colour", m.specular_color)
+    check_color("specular colour", m.specular_color)?;
+    check_color("reflection colour", m.reflection_color)
 }
 
 /// Whether `light` can be traced: a finite place, a direction that is not zero, a colour of

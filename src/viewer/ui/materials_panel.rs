@@ -78,6 +78,7 @@ fn material_fields(ui: &mut egui::Ui, m: &mut Material) {
             .text("shininess"),
     );
     ui.add(Slider::new(&mut m.reflectivity, 0.0..=1.0).text("kr reflection"));
+    color(ui, "reflection tint", &mut m.reflection_color);
     ui.add(Slider::new(&mut m.transparency, 0.0..=1.0).text("kt transmission"));
     ui.add(Slider::new(&mut m.ior, 1.0..=3.0).text("ior"));
     ui.checkbox(&mut m.fresnel, "Fresnel (Schlick)");
