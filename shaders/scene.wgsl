@@ -96,7 +96,8 @@ struct Material {
     pad: f32,
     // `Material::reflection_color`: what `kr`'s reflection is tinted by.
     reflection_color: vec3<f32>,
-    pad2: f32,
+    // Its emission texture record (NO_TEXTURE: none).
+    emission_texture: u32,
 }
 
 // A light: the twin of `Light` in src/light.rs. A directional light's `direction` points

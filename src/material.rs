@@ -14,6 +14,9 @@ pub struct Material {
     /// Light the surface gives off of itself (the book's `emissive`), seen at every hit
     /// whatever lights it; it lights nothing else (a Whitted tracer has no area lights).
     pub emission: Color,
+    /// Index into the scene's textures that the emission is multiplied by (a glTF model's
+    /// emissive texture: lit windows, a screen).
+    pub emission_texture: Option<u32>,
     /// Ambient coefficient `ka`: the share of the global ambient light reflected.
     pub ambient: f32,
     /// Diffuse (Lambert) coefficient `kd`.
@@ -47,6 +50,7 @@ impl Default for Material {
             color: Color::splat(0.8),
             texture: None,
             emission: Color::ZERO,
+            emission_texture: None,
             ambient: 0.1,
             diffuse: 0.8,
             specular: 0.0,

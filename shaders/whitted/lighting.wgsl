@@ -107,10 +107,14 @@ struct Shading {
     next_light: u32,
 }
 
-// `Tracer::local_color`'s light that needs no shadow ray: emission, ambient light, and with
+// `Tracer::local_color`'s light that needs no shadow ray: emission (times its texture), ambient light, and with
 // caustics on the diffuse light of the caustic photons nearby.
 fn shadowless_color(s: Shading) -> vec3<f32> {
-    var color = s.m.emission + s.m.ambient * s.base * frame.ambient;
+    var emission = s.m.emission;
+    if s.m.emission_texture != NO_TEXTURE && (frame.flags & TEXTURES) != 0u {
+        emission *= texture_color(s.m.emission_texture, s.surface.uv, s.surface.object_point);
+    }
+    var color = emission + s.m.ambient * s.base * frame.ambient;
     if (frame.flags & CAUSTICS) != 0u && s.m.diffuse > 0.0 {
         color += s.m.diffuse * s.base * caustic_irradiance(s.surface.point, s.normal);
     }

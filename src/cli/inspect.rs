@@ -175,13 +175,14 @@ fn triple(c: [f32; 3]) -> String {
 
 /// A raylab material's numbers, in the scene file's names.
 fn raylab_values(m: &Material) -> String {
-    let texture = match m.texture {
+    let texture = |texture: Option<u32>| match texture {
         Some(t) => format!(" × texture {t}"),
         None => String::new(),
     };
+    let (texture, emission_texture) = (texture(m.texture), texture(m.emission_texture));
     format!(
         "color {}{texture}, ambient {}, diffuse {}, specular {} in {}, shininess {}, \
-         reflectivity {} in {}, transparency {}, ior {}, fresnel {}, emission {}",
+         reflectivity {} in {}, transparency {}, ior {}, fresnel {}, emission {}{emission_texture}",
         triple(m.color.to_array()),
         m.ambient,
         m.diffuse,

@@ -28,7 +28,8 @@ gpu_record! {
         pub medium_color: [f32; 3],
         pub pad: f32,
         pub reflection_color: [f32; 3],
-        pub pad2: f32,
+        /// Its emission texture's record ([`NO_TEXTURE`]: none).
+        pub emission_texture: u32,
     }
 }
 
@@ -53,7 +54,7 @@ impl From<&Material> for GpuMaterial {
             medium_color: medium.color.to_array(),
             pad: 0.0,
             reflection_color: m.reflection_color.to_array(),
-            pad2: 0.0,
+            emission_texture: m.emission_texture.unwrap_or(NO_TEXTURE),
         }
     }
 }

@@ -187,7 +187,7 @@ impl TreeObserver for Recorder<'_> {
             normal,
             uv: surface.uv,
             entering,
-            emission: scene.materials[surface.material as usize].emission,
+            emission: Color::ZERO,
             ambient: Color::ZERO,
         });
     }
@@ -228,6 +228,7 @@ impl TreeObserver for Recorder<'_> {
 
     fn local_terms(&mut self, terms: LocalTerms) {
         if let Some(hit) = &mut self.current().hit {
+            hit.emission = terms.emission;
             hit.ambient = terms.ambient;
         }
     }

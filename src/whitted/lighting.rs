@@ -35,7 +35,7 @@ impl Tracer<'_> {
     ) -> Color {
         let settings = &self.scene.settings;
         let terms = LocalTerms {
-            emission: material.emission,
+            emission: self.emission(material, surface),
             ambient: material.ambient * base * settings.ambient,
         };
         observer.local_terms(terms);

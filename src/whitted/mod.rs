@@ -265,6 +265,18 @@ impl<'a> Tracer<'a> {
         color * surface.vertex_color
     }
 
+    /// The light the surface gives off at `surface`: the material's emission, times its
+    /// emission texture there (with textures on).
+    pub fn emission(&self, material: &Material, surface: &SurfacePoint) -> Color {
+        match material.emission_texture {
+            Some(t) if self.scene.settings.textures => {
+                let texture = &self.scene.textures[t as usize];
+                material.emission * texture.color(surface.uv, surface.object_point)
+            }
+            _ => material.emission,
+        }
+    }
+
     /// The colour at a hit: the local (Phong) colour plus the reflected and transmitted rays.
     fn shade<O: TreeObserver>(
         &self,
@@ -278,7 +290,8 @@ impl<'a> Tracer<'a> {
         let settings = &self.scene.settings;
         let geometry = &self.scene.geometry;
         let material = &self.scene.materials[geometry.material(hit) as usize];
-        let textured = material.texture.is_some() && settings.textures;
+        let textured = (material.texture.is_some() || material.emission_texture.is_some())
+            && settings.textures;
         let surface = geometry.surface_with(ray, hit, textured || O::WANTS_UV);
         let base = self.base_color(material, &surface);
         let dir = ray.dir.normalize();

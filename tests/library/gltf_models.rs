@@ -1075,3 +1075,57 @@ fn a_base_colour_texture_wraps_turns_and_is_tinted_as_gltf_says() {
         "the factor is not applied"
     );
 }
+
+#[test]
+fn an_emissive_texture_glows_in_its_colours_as_a_scene_files_emission_texture_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    const CLAMP_TO_EDGE: u32 = 33071;
+    let mut w = textured_quad([CLAMP_TO_EDGE; 2], None, [1.0; 3], None);
+    // A black surface whose emissive texture is the PNG, in texture coordinate set 1.
+    w.json["materials"] = json!([{
+        "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0,
+                                 "roughnessFactor": 1},
+        "emissiveTexture": {"index": 0, "texCoord": 1}, "emissiveFactor": [1, 0.5, 1]}]);
+    let from_gltf = rendered(load_written(
+        dir,
+        &[
+            ("glow.glb", &w.glb()),
+            ("glow.toml", facing("glow.glb").as_bytes()),
+        ],
+        "glow.toml",
+    ));
+
+    // The same quad in a scene file, its emission textured by the same image.
+    let uvs: Vec<String> = QUAD_UVS
+        .iter()
+        .map(|&[u, v]| format!("[{u}, {}]", 1.0 - v))
+        .collect();
+    std::fs::write(dir.join("texture.png"), texture_png()).unwrap();
+    let by_hand = format!(
+        "[render]\nambient = [0, 0, 0]\n[camera]\neye = [0, 0, 3.2]\nlook_at = [0, 0, 0]\n\
+         view_angle = 40\n[[lights]]\ntype = \"directional\"\ndirection = [0, 0, 1]\n\
+         [textures.image]\ntype = \"image\"\nfile = \"texture.png\"\nwrap = \"clamp\"\n\
+         [materials.glow]\ncolor = [0, 0, 0]\nemission = [1, 0.5, 1]\nemission_texture = \"image\"\n\
+         ambient = 0.1\ndiffuse = 1\nspecular = 0\nshininess = 1\n\
+         [[objects]]\ntype = \"mesh\"\nmaterial = \"glow\"\n\
+         positions = [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]]\nfaces = [[0, 1, 2], [0, 2, 3]]\n\
+         uvs = [{}]\n",
+        uvs.join(", ")
+    );
+    let by_hand = rendered(load_written(
+        dir,
+        &[("by_hand.toml", by_hand.as_bytes())],
+        "by_hand.toml",
+    ));
+    assert!(
+        from_gltf == by_hand,
+        "the glTF glow differs from the scene file's"
+    );
+    let distinct: std::collections::HashSet<&[u8]> = from_gltf.chunks(3).collect();
+    assert!(
+        distinct.len() >= 15,
+        "the texture glows: {} colours",
+        distinct.len()
+    );
+}

@@ -101,6 +101,53 @@ fn emission_adds_to_every_hit_whatever_lights_it_and_lights_nothing_else() {
 }
 
 #[test]
+fn an_emission_texture_multiplies_the_emission_texel_by_texel() {
+    // A black floor that glows through a checker texture: a point of it is the emission times
+    // the checker's colour there, lights or not; with textures off, the emission alone.
+    let mut scene = sphere_over_floor(Material::default());
+    let checks = scene.textures.len() as u32;
+    scene.textures.push(raylab::texture::Texture::Checker3d {
+        a: Color::new(1.0, 0.25, 0.0),
+        b: Color::new(0.0, 0.5, 1.0),
+        size: 1.0,
+    });
+    let floor = scene.materials.len() as u32;
+    scene.add_material(Material {
+        color: Color::ZERO,
+        ambient: 0.0,
+        emission: Color::new(0.8, 0.6, 0.4),
+        emission_texture: Some(checks),
+        ..Material::default()
+    });
+    scene.geometry.objects[0].material = floor;
+    let points = [Vec3::new(2.5, 0.0, 0.5), Vec3::new(3.5, 0.0, 0.5)];
+    let mut seen = Vec::new();
+    for p in points {
+        let ray = eye_ray(p + Vec3::new(0.0, 5.0, 0.1), Vec3::new(0.0, -1.0, -0.02));
+        let (glow, _) = trace(&scene, &ray);
+        let texel =
+            scene.textures[checks as usize].color(glam::Vec2::ZERO, ray.at(ray_floor_t(&ray)));
+        assert!(
+            (glow - Color::new(0.8, 0.6, 0.4) * texel)
+                .abs()
+                .max_element()
+                < 1e-6,
+            "{glow}"
+        );
+        seen.push(glow);
+        let mut plain = scene.clone();
+        plain.settings.textures = false;
+        assert_eq!(trace(&plain, &ray).0, Color::new(0.8, 0.6, 0.4));
+    }
+    assert_ne!(seen[0], seen[1], "both checks show");
+}
+
+/// Where `ray` meets the floor y = 0.
+fn ray_floor_t(ray: &Ray) -> f32 {
+    -ray.origin.y / ray.dir.y
+}
+
+#[test]
 fn a_lit_point_gets_lambert_diffuse_light() {
     let mut scene = sphere_over_floor(Material::default());
     scene.geometry.objects.pop(); // no blocker

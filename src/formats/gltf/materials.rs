@@ -14,7 +14,8 @@
 //!   diffuse in its colour;
 //! - the Phong highlight `ks = 1 − roughness` with exponent `2/roughness⁴ − 2` (at most
 //!   10,000), white on a dielectric and the base colour on a metal;
-//! - emission is `emissiveFactor` times KHR_materials_emissive_strength.
+//! - emission is `emissiveFactor` times KHR_materials_emissive_strength, times the emissive
+//!   texture where there is one (`textures`).
 //!
 //! The rule's result is sorted into mirrors, glass and Phong surfaces for the report a loaded
 //! model prints.
@@ -96,6 +97,7 @@ pub fn whitted_material(values: &PbrValues) -> Material {
         color: base,
         texture: None,
         emission: Color::new(er, eg, eb) * values.emissive_strength,
+        emission_texture: None,
         ambient: Material::default().ambient * scattered,
         diffuse: scattered,
         specular: 1.0 - rough,

@@ -50,11 +50,11 @@ pub struct GltfModel {
     pub meshes: Vec<Vec<Mesh>>,
     pub placements: Placements,
     /// The file's materials by the rule, with their glTF values and names; a material's
-    /// `texture` is an index into [`Self::textures`].
+    /// `texture` and `emission_texture` are indices into [`Self::textures`].
     pub materials: Vec<Material>,
     pub pbr_values: Vec<PbrValues>,
     pub material_names: Vec<String>,
-    /// The materials' base colour textures.
+    /// The materials' base colour and emissive textures.
     pub textures: Vec<Texture>,
     /// What became what: `glTF: 3 materials → 1 mirror, 2 Phong; not used: KHR_materials_sheen (1)`.
     pub report: String,
@@ -102,10 +102,10 @@ pub fn read_gltf(path: &Path, bytes: &[u8], files: SceneFiles) -> Result<GltfMod
     let buffers = buffers::load_buffers(&document, blob, folder, files).map_err(whole)?;
     let placements = placements(&document).map_err(whole)?;
     let textured =
-        textures::base_color_textures(&document, &buffers, folder, files).map_err(whole)?;
+        textures::material_textures(&document, &buffers, folder, files).map_err(whole)?;
     let map_of = |primitive: &gltf::Primitive| {
         let material = primitive.material().index()?;
-        textured.maps.get(material)?.as_ref().map(|(_, map)| map)
+        textured.maps.get(material)?.as_ref()
     };
 
     let mut placed = vec![false; document.meshes().len()];
@@ -124,8 +124,9 @@ pub fn read_gltf(path: &Path, bytes: &[u8], files: SceneFiles) -> Result<GltfMod
     }
     let pbr_values: Vec<PbrValues> = document.materials().map(|m| PbrValues::of(&m)).collect();
     let mut materials: Vec<Material> = pbr_values.iter().map(whitted_material).collect();
-    for (material, map) in materials.iter_mut().zip(&textured.maps) {
-        material.texture = map.as_ref().map(|&(texture, _)| texture);
+    for (k, material) in materials.iter_mut().enumerate() {
+        material.texture = textured.base[k];
+        material.emission_texture = textured.emissive[k];
     }
     let material_names = document
         .materials()

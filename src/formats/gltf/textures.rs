@@ -1,6 +1,6 @@
-//! A glTF material's base colour texture as raylab's image texture: the image (PNG or JPEG, in
-//! a buffer view, a `data:` URI or a file beside the model, sRGB) with its sampler's wrap along
-//! u and v. What raylab's image texture cannot say is moved into each primitive's mesh when it
+//! A glTF material's base colour and emissive textures as raylab's image textures: the image
+//! (PNG or JPEG, in a buffer view, a `data:` URI or a file beside the model, sRGB) with its
+//! sampler's wrap along u and v. What raylab's image texture cannot say is moved into each primitive's mesh when it
 //! is read ([`UvMap`]): the texture coordinate set and `KHR_texture_transform` become the
 //! mesh's texture coordinates, and the base colour factor, which multiplies the texture,
 //! becomes its vertex colours (raylab multiplies a texture by them).
@@ -40,86 +40,114 @@ impl UvMap {
     }
 }
 
-/// The textures of a file's materials, one per base colour texture and sampler in use.
+/// The textures of a file's materials, one per image and sampler in use: base colour and
+/// emissive textures.
 #[derive(Default)]
-pub struct BaseColorTextures {
+pub struct MaterialTextures {
     pub textures: Vec<Texture>,
-    /// For each material: its texture's index in `textures` and how its primitives read it.
-    pub maps: Vec<Option<(u32, UvMap)>>,
+    /// For each material: its base colour texture's index in `textures`.
+    pub base: Vec<Option<u32>>,
+    /// For each material: its emissive texture's index in `textures`.
+    pub emissive: Vec<Option<u32>>,
+    /// For each material with a texture: how its primitives read their texture coordinates
+    /// and colours. The base colour texture's, else the emissive texture's: raylab's meshes
+    /// hold one set of texture coordinates, which both textures read.
+    pub maps: Vec<Option<UvMap>>,
 }
 
-/// The base colour textures of `document`'s materials, each image decoded once however many
-/// materials use it. Images are in `buffers` (a buffer view) or beside the model in `folder`.
-pub fn base_color_textures(
+/// The base colour and emissive textures of `document`'s materials, each image decoded once
+/// however many materials use it. Images are in `buffers` (a buffer view) or beside the model
+/// in `folder`.
+pub fn material_textures(
     document: &gltf::Document,
     buffers: &[Cow<[u8]>],
     folder: &Path,
     files: SceneFiles,
-) -> Result<BaseColorTextures, String> {
-    let mut result = BaseColorTextures::default();
+) -> Result<MaterialTextures, String> {
+    let mut result = MaterialTextures::default();
     let mut images: HashMap<usize, Arc<SrgbImage>> = HashMap::new();
     let mut records: HashMap<(usize, [Wrap; 2]), u32> = HashMap::new();
-    for material in document.materials() {
-        let pbr = material.pbr_metallic_roughness();
-        let Some(info) = pbr.base_color_texture() else {
-            result.maps.push(None);
-            continue;
-        };
+    // The texture record of `info`'s image and sampler, made the first time it is asked for.
+    let mut record = |info: &gltf::texture::Info, result: &mut MaterialTextures| {
         let texture = info.texture();
         let image_index = texture.source().index();
         let sampler = texture.sampler();
         let wrap = [wrap(sampler.wrap_s()), wrap(sampler.wrap_t())];
-        let index = match records.get(&(image_index, wrap)) {
-            Some(&index) => index,
+        if let Some(&index) = records.get(&(image_index, wrap)) {
+            return Ok(index);
+        }
+        let image = match images.get(&image_index) {
+            Some(image) => Arc::clone(image),
             None => {
-                let image = match images.get(&image_index) {
-                    Some(image) => Arc::clone(image),
-                    None => {
-                        let image = Arc::new(
-                            decode_image(document, image_index, buffers, folder, files)
-                                .map_err(|e| format!("image {image_index}: {e}"))?,
-                        );
-                        images.insert(image_index, Arc::clone(&image));
-                        image
-                    }
-                };
-                result.textures.push(Texture::Image {
-                    image,
-                    wrap,
-                    scale: Vec2::ONE,
-                    offset: Vec2::ZERO,
-                });
-                let index = result.textures.len() as u32 - 1;
-                records.insert((image_index, wrap), index);
-                index
+                let image = Arc::new(
+                    decode_image(document, image_index, buffers, folder, files)
+                        .map_err(|e| format!("image {image_index}: {e}"))?,
+                );
+                images.insert(image_index, Arc::clone(&image));
+                image
             }
         };
+        result.textures.push(Texture::Image {
+            image,
+            wrap,
+            scale: Vec2::ONE,
+            offset: Vec2::ZERO,
+        });
+        let index = result.textures.len() as u32 - 1;
+        records.insert((image_index, wrap), index);
+        Ok::<u32, String>(index)
+    };
+    for material in document.materials() {
+        let pbr = material.pbr_metallic_roughness();
+        let base = pbr.base_color_texture();
+        let emissive = material.emissive_texture();
+        let base_index = base
+            .as_ref()
+            .map(|info| record(info, &mut result))
+            .transpose()?;
+        let emissive_index = (emissive.as_ref())
+            .map(|info| record(info, &mut result))
+            .transpose()?;
+        // The base colour factor multiplies the base colour texture only: with none, it stays
+        // the material's colour.
         let [r, g, b, _] = pbr.base_color_factor();
-        let transform = info.texture_transform();
-        let finite = |v: [f32; 2], default: Vec2| {
-            let v = Vec2::from(v);
-            if v.is_finite() { v } else { default }
+        let map = match (&base, &emissive) {
+            (Some(info), _) => Some(uv_map(info, Color::new(r, g, b))),
+            (None, Some(info)) => Some(uv_map(info, Color::ONE)),
+            (None, None) => None,
         };
-        let map = UvMap {
-            set: transform
-                .as_ref()
-                .and_then(|t| t.tex_coord())
-                .unwrap_or(info.tex_coord()),
-            offset: transform
-                .as_ref()
-                .map_or(Vec2::ZERO, |t| finite(t.offset(), Vec2::ZERO)),
-            rotation: transform
-                .as_ref()
-                .map_or(0.0, |t| t.rotation())
-                .clamp(-1e6, 1e6),
-            scale: transform
-                .as_ref()
-                .map_or(Vec2::ONE, |t| finite(t.scale(), Vec2::ONE)),
-            tint: Color::new(r, g, b).clamp(Color::ZERO, Color::ONE),
-        };
-        result.maps.push(Some((index, map)));
+        result.base.push(base_index);
+        result.emissive.push(emissive_index);
+        result.maps.push(map);
     }
     Ok(result)
+}
+
+/// How a primitive reads the texture `info` names: its coordinate set and
+/// `KHR_texture_transform`, with `tint` for its vertex colours.
+fn uv_map(info: &gltf::texture::Info, tint: Color) -> UvMap {
+    let transform = info.texture_transform();
+    let finite = |v: [f32; 2], default: Vec2| {
+        let v = Vec2::from(v);
+        if v.is_finite() { v } else { default }
+    };
+    UvMap {
+        set: transform
+            .as_ref()
+            .and_then(|t| t.tex_coord())
+            .unwrap_or(info.tex_coord()),
+        offset: transform
+            .as_ref()
+            .map_or(Vec2::ZERO, |t| finite(t.offset(), Vec2::ZERO)),
+        rotation: transform
+            .as_ref()
+            .map_or(0.0, |t| t.rotation())
+            .clamp(-1e6, 1e6),
+        scale: transform
+            .as_ref()
+            .map_or(Vec2::ONE, |t| finite(t.scale(), Vec2::ONE)),
+        tint: tint.clamp(Color::ZERO, Color::ONE),
+    }
 }
 
 /// raylab's wrap for a glTF sampler's.

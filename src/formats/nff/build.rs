@@ -182,6 +182,7 @@ fn material(fill: &Fill) -> Material {
         color: fill.color.as_vec3(),
         texture: None,
         emission: Color::ZERO,
+        emission_texture: None,
         ambient: fill.kd as f32,
         diffuse: fill.kd as f32,
         specular: fill.ks as f32,

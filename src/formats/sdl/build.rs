@@ -92,6 +92,7 @@ impl SdlMaterial {
             color: self.diffuse,
             texture: None,
             emission: self.emissive,
+            emission_texture: None,
             ambient,
             diffuse: 1.0,
             specular,

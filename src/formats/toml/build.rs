@@ -89,9 +89,15 @@ pub(crate) fn build_scene(
 
     // Only the textures a material uses are loaded (an image can be large), renumbered in
     // name order.
-    let used: BTreeSet<u32> = materials.iter().filter_map(|m| m.texture).collect();
+    let used: BTreeSet<u32> = (materials.iter())
+        .flat_map(|m| [m.texture, m.emission_texture])
+        .flatten()
+        .collect();
     for material in &mut materials {
-        if let Some(t) = &mut material.texture {
+        for t in [&mut material.texture, &mut material.emission_texture]
+            .into_iter()
+            .flatten()
+        {
             *t = used.range(..*t).count() as u32;
         }
     }
@@ -434,6 +440,10 @@ fn build_material(
             .map(|name| textures.resolve(&name, source))
             .transpose()?,
         emission: material.emission.map_or(default.emission, |c| c.0),
+        emission_texture: material
+            .emission_texture
+            .map(|name| textures.resolve(&name, source))
+            .transpose()?,
         ambient: material.ambient.map_or(default.ambient, |x| x.0),
         diffuse: material.diffuse.map_or(default.diffuse, |x| x.0),
         specular: material.specular.map_or(default.specular, |x| x.0),

@@ -193,6 +193,8 @@ pub struct MaterialFile {
     pub texture: Option<Spanned<String>>,
     /// Light the surface gives off of itself.
     pub emission: Option<ColorValue>,
+    /// A name from `[textures]` the emission is multiplied by.
+    pub emission_texture: Option<Spanned<String>>,
     pub ambient: Option<NonNegative>,
     pub diffuse: Option<NonNegative>,
     pub specular: Option<NonNegative>,

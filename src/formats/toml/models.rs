@@ -298,6 +298,7 @@ impl GeometryBuilder<'_> {
             self.materials
                 .extend(model.materials.iter().map(|m| Material {
                     texture: m.texture.map(|t| first_texture + t),
+                    emission_texture: m.emission_texture.map(|t| first_texture + t),
                     ..m.clone()
                 }));
             self.textures.extend(model.textures.iter().cloned());

@@ -65,6 +65,9 @@ fn material_fields(ui: &mut egui::Ui, m: &mut Material) {
         None => color(ui, "colour", &mut m.color),
     }
     color(ui, "emission", &mut m.emission);
+    if let Some(t) = m.emission_texture {
+        ui.label(format!("emission × texture #{t}"));
+    }
     let coefficient = |ui: &mut egui::Ui, x: &mut f32, text: &str| {
         ui.add(Slider::new(x, 0.0..=1.0).text(text));
     };
