@@ -973,6 +973,28 @@ fn facing(file: &str) -> String {
     )
 }
 
+/// The image of the quad written in a scene file facing it as [`facing`] does, with texture
+/// coordinates `uvs`, in a material of the keys `material` that may name the texture `image`
+/// (the test's PNG, wrapping as `wrap` says).
+fn quad_by_hand(dir: &Path, wrap: &str, material: &str, uvs: &[String]) -> Vec<u8> {
+    std::fs::write(dir.join("texture.png"), texture_png()).unwrap();
+    let text = format!(
+        "[render]\nambient = [0, 0, 0]\n[camera]\neye = [0, 0, 3.2]\nlook_at = [0, 0, 0]\n\
+         view_angle = 40\n[[lights]]\ntype = \"directional\"\ndirection = [0, 0, 1]\n\
+         [textures.image]\ntype = \"image\"\nfile = \"texture.png\"\nwrap = \"{wrap}\"\n\
+         [materials.quad]\n{material}\
+         [[objects]]\ntype = \"mesh\"\nmaterial = \"quad\"\n\
+         positions = [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]]\nfaces = [[0, 1, 2], [0, 2, 3]]\n\
+         uvs = [{}]\n",
+        uvs.join(", ")
+    );
+    rendered(load_written(
+        dir,
+        &[("by_hand.toml", text.as_bytes())],
+        "by_hand.toml",
+    ))
+}
+
 #[test]
 fn a_base_colour_texture_wraps_turns_and_is_tinted_as_gltf_says() {
     let dir = tempfile::tempdir().unwrap();
@@ -1001,22 +1023,8 @@ fn a_base_colour_texture_wraps_turns_and_is_tinted_as_gltf_says() {
             format!("[{u}, {}]", 1.0 - v)
         })
         .collect();
-    std::fs::write(dir.join("texture.png"), texture_png()).unwrap();
-    let by_hand = format!(
-        "[render]\nambient = [0, 0, 0]\n[camera]\neye = [0, 0, 3.2]\nlook_at = [0, 0, 0]\n\
-         view_angle = 40\n[[lights]]\ntype = \"directional\"\ndirection = [0, 0, 1]\n\
-         [textures.image]\ntype = \"image\"\nfile = \"texture.png\"\nwrap = \"mirror\"\n\
-         [materials.quad]\ntexture = \"image\"\nambient = 0.1\ndiffuse = 1\nspecular = 0\nshininess = 1\n\
-         [[objects]]\ntype = \"mesh\"\nmaterial = \"quad\"\n\
-         positions = [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]]\nfaces = [[0, 1, 2], [0, 2, 3]]\n\
-         uvs = [{}]\n",
-        uvs.join(", ")
-    );
-    let by_hand = rendered(load_written(
-        dir,
-        &[("by_hand.toml", by_hand.as_bytes())],
-        "by_hand.toml",
-    ));
+    let material = "texture = \"image\"\nambient = 0.1\ndiffuse = 1\nspecular = 0\nshininess = 1\n";
+    let by_hand = quad_by_hand(dir, "mirror", material, &uvs);
     let differing = pixels_apart(&from_gltf, &by_hand);
     // The test turns the coordinates with its own roundings: a texel edge may move a pixel.
     assert!(
@@ -1101,23 +1109,9 @@ fn an_emissive_texture_glows_in_its_colours_as_a_scene_files_emission_texture_do
         .iter()
         .map(|&[u, v]| format!("[{u}, {}]", 1.0 - v))
         .collect();
-    std::fs::write(dir.join("texture.png"), texture_png()).unwrap();
-    let by_hand = format!(
-        "[render]\nambient = [0, 0, 0]\n[camera]\neye = [0, 0, 3.2]\nlook_at = [0, 0, 0]\n\
-         view_angle = 40\n[[lights]]\ntype = \"directional\"\ndirection = [0, 0, 1]\n\
-         [textures.image]\ntype = \"image\"\nfile = \"texture.png\"\nwrap = \"clamp\"\n\
-         [materials.glow]\ncolor = [0, 0, 0]\nemission = [1, 0.5, 1]\nemission_texture = \"image\"\n\
-         ambient = 0.1\ndiffuse = 1\nspecular = 0\nshininess = 1\n\
-         [[objects]]\ntype = \"mesh\"\nmaterial = \"glow\"\n\
-         positions = [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]]\nfaces = [[0, 1, 2], [0, 2, 3]]\n\
-         uvs = [{}]\n",
-        uvs.join(", ")
-    );
-    let by_hand = rendered(load_written(
-        dir,
-        &[("by_hand.toml", by_hand.as_bytes())],
-        "by_hand.toml",
-    ));
+    let material = "color = [0, 0, 0]\nemission = [1, 0.5, 1]\nemission_texture = \"image\"\n\
+                    ambient = 0.1\ndiffuse = 1\nspecular = 0\nshininess = 1\n";
+    let by_hand = quad_by_hand(dir, "clamp", material, &uvs);
     assert!(
         from_gltf == by_hand,
         "the glTF glow differs from the scene file's"
