@@ -124,6 +124,7 @@ fn teaching_scenes_match_their_references() {
         "wood_and_marble",
         "meshes",
         "quadrics",
+        "instances",
     ];
     check(
         SIZE,
