@@ -147,10 +147,21 @@ impl SrgbImage {
         Color::from_array(self.pixels[(y * w + x) as usize].map(|c| linear[c as usize]))
     }
 
-    /// Bilinear sample at `uv`; `v = 0` is the bottom of the image.
+    /// Bilinear sample at `uv`; `v = 0` is the bottom of the image. Texel coordinates are held
+    /// within ±2^40 (far past where single precision tells texels apart), so that a model's
+    /// absurd texture coordinates (infinite, not a number) wrap or clamp like any others.
     pub fn sample(&self, uv: Vec2, wrap: [Wrap; 2]) -> Color {
-        let x = uv.x * self.width as f32 - 0.5;
-        let y = (1.0 - uv.y) * self.height as f32 - 0.5;
+        const REACH: f32 = (1u64 << 40) as f32;
+        // Not a number reads as the image's corner.
+        let held = |t: f32| {
+            if t.is_nan() {
+                0.0
+            } else {
+                t.clamp(-REACH, REACH)
+            }
+        };
+        let x = held(uv.x * self.width as f32 - 0.5);
+        let y = held((1.0 - uv.y) * self.height as f32 - 0.5);
         let (x0, y0) = (x.floor(), y.floor());
         let (fx, fy) = (x - x0, y - y0);
         let (x0, y0) = (x0 as i64, y0 as i64);
@@ -171,6 +182,27 @@ pub static SRGB8_TO_LINEAR: LazyLock<[f32; 256]> =
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn absurd_texture_coordinates_sample_within_the_images_colours() {
+        let image = two_by_two();
+        let corners = [(0, 0), (1, 0), (0, 1), (1, 1)];
+        let texels = corners.map(|(x, y)| image.texel(x, y, [Wrap::Clamp; 2]));
+        let lowest = texels.into_iter().reduce(Color::min).unwrap();
+        let highest = texels.into_iter().reduce(Color::max).unwrap();
+        for uv in [
+            Vec2::new(f32::MAX, -f32::MAX),
+            Vec2::new(-1e30, 1e30),
+            Vec2::new(f32::INFINITY, f32::NEG_INFINITY),
+            Vec2::splat(f32::NAN),
+        ] {
+            for wrap in [Wrap::Repeat, Wrap::Clamp, Wrap::Mirror] {
+                let c = image.sample(uv, [wrap; 2]);
+                let within = c.cmpge(lowest - 1e-6).all() && c.cmple(highest + 1e-6).all();
+                assert!(within, "{uv} {wrap:?}: {c}");
+            }
+        }
+    }
 
     fn two_by_two() -> SrgbImage {
         SrgbImage {
