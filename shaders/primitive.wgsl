@@ -42,6 +42,29 @@ fn surface_at(origin: vec3<f32>, dir: vec3<f32>, hit: Hit) -> SurfacePoint {
     return triangle_surface(point, hit);
 }
 
+// The texture coordinates at `hit`, a mesh triangle's: its corners' blended, or the
+// barycentric coordinates where its mesh has none.
+fn triangle_uv(hit: Hit) -> vec2<f32> {
+    let shading = triangle_shading[hit.slot];
+    if (shading.material & HAS_UVS) == 0u {
+        return hit.bary;
+    }
+    let a0 = vertex_attributes[shading.corners.x];
+    let a1 = vertex_attributes[shading.corners.y];
+    let a2 = vertex_attributes[shading.corners.z];
+    let b0 = 1.0 - hit.bary.x - hit.bary.y;
+    return vec2<f32>(a0.u, a0.v) * b0 + vec2<f32>(a1.u, a1.v) * hit.bary.x + vec2<f32>(a2.u, a2.v) * hit.bary.y;
+}
+
+// The texture coordinates at `hit` along the ray (`surface_at(…).uv`, without the rest).
+fn hit_uv(origin: vec3<f32>, dir: vec3<f32>, hit: Hit) -> vec2<f32> {
+    if (hit.prim & OBJECT_BIT) != 0u {
+        let o = objects[hit.prim & ~OBJECT_BIT];
+        return object_surface(o, origin, dir, hit.t, hit.part).uv;
+    }
+    return triangle_uv(hit);
+}
+
 // The surface at `hit`, a mesh triangle's, whose point is `point`: its corners are in the leaf
 // copy, its shading record beside it says which mesh vertices they are (`Mesh::shading`). An
 // instance's triangle lies in its model's space: its normals are moved into the world.
@@ -60,7 +83,6 @@ fn triangle_surface(point: vec3<f32>, hit: Hit) -> SurfacePoint {
     }
     let b0 = 1.0 - hit.bary.x - hit.bary.y;
     var normal = geometric;
-    var uv = hit.bary;
     let a0 = vertex_attributes[shading.corners.x];
     let a1 = vertex_attributes[shading.corners.y];
     let a2 = vertex_attributes[shading.corners.z];
@@ -70,9 +92,7 @@ fn triangle_surface(point: vec3<f32>, hit: Hit) -> SurfacePoint {
             normal = normalize(n);
         }
     }
-    if (shading.material & HAS_UVS) != 0u {
-        uv = vec2<f32>(a0.u, a0.v) * b0 + vec2<f32>(a1.u, a1.v) * hit.bary.x + vec2<f32>(a2.u, a2.v) * hit.bary.y;
-    }
+    let uv = triangle_uv(hit);
     var vertex_color = vec3<f32>(1.0);
     if (shading.material & HAS_COLORS) != 0u {
         vertex_color = vec3<f32>(a0.red, a0.green, a0.blue) * b0 + vec3<f32>(a1.red, a1.green, a1.blue) * hit.bary.x + vec3<f32>(a2.red, a2.green, a2.blue) * hit.bary.y;

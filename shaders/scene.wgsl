@@ -93,7 +93,8 @@ struct Material {
     medium_density: f32,
     medium_albedo: f32,
     medium_color: vec3<f32>,
-    pad: f32,
+    // `Material::alpha_cutoff` (0: none).
+    alpha_cutoff: f32,
     // `Material::reflection_color`: what `kr`'s reflection is tinted by.
     reflection_color: vec3<f32>,
     // Its emission texture record (NO_TEXTURE: none).

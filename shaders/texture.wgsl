@@ -1,6 +1,7 @@
-// Textures: the twin of `Texture::color`, `marble_spline` and `TextureImage::sample` in
-// src/texture.rs. The records are made by src/gpu/texture.rs; an image's texels lie in `texels`
-// one u32 each (r | g << 8 | b << 16), after the sRGB decode table.
+// Textures: the twin of `Texture::color`, `Texture::alpha`, `marble_spline` and
+// `SrgbImage::bilinear` in src/texture.rs. The records are made by src/gpu/texture.rs; an
+// image's texels lie in `texels` one u32 each (r | g << 8 | b << 16 | alpha << 24), after the
+// sRGB decode table.
 
 // A texture: its kind and the numbers that kind reads (`GpuTexture`).
 struct Texture {
@@ -45,8 +46,8 @@ fn marble_spline(x: f32) -> f32 {
     return 0.26 + 2.666 * (d * d);
 }
 
-// `Color::lerp`: a · (1 − s) + b · s.
-fn lerp(a: vec3<f32>, b: vec3<f32>, s: f32) -> vec3<f32> {
+// `Color::lerp`: a · (1 − s) + b · s, of the colour and the alpha alike.
+fn lerp(a: vec4<f32>, b: vec4<f32>, s: f32) -> vec4<f32> {
     return a * (1.0 - s) + b * s;
 }
 
@@ -63,10 +64,10 @@ fn wrapped(i: i32, n: i32, wrap: u32) -> i32 {
     return ((i % n) + n) % n;
 }
 
-// `TextureImage::texel`: the linear colour of texel (x, y) of image `t`, wrapped into it. The
-// CPU wraps in i64, this in i32: the same for texel coordinates within ±2³¹ (|uv| below 2³¹
-// over the image's size).
-fn texel(t: Texture, x: i32, y: i32) -> vec3<f32> {
+// The linear colour and the alpha of texel (x, y) of image `t`, wrapped into it. The CPU
+// wraps in i64, this in i32: the same for texel coordinates within ±2³¹ (|uv| below 2³¹ over
+// the image's size).
+fn texel(t: Texture, x: i32, y: i32) -> vec4<f32> {
     let wrap_u = extractBits(t.wrap, 0u, WRAP_V_SHIFT);
     let wrap_v = extractBits(t.wrap, WRAP_V_SHIFT, WRAP_V_SHIFT);
     let at = vec2<i32>(wrapped(x, i32(t.width), wrap_u), wrapped(y, i32(t.height), wrap_v));
@@ -75,11 +76,12 @@ fn texel(t: Texture, x: i32, y: i32) -> vec3<f32> {
     let r = bitcast<f32>(texels[packed & 0xffu]);
     let g = bitcast<f32>(texels[(packed >> 8u) & 0xffu]);
     let b = bitcast<f32>(texels[(packed >> 16u) & 0xffu]);
-    return vec3<f32>(r, g, b);
+    return vec4<f32>(r, g, b, f32(packed >> 24u) / 255.0);
 }
 
-// `TextureImage::sample`: the bilinear sample of image `t` at `uv`; v = 0 is the bottom.
-fn image_sample(t: Texture, uv: vec2<f32>) -> vec3<f32> {
+// `SrgbImage::bilinear`: the bilinear sample of image `t`'s colour and alpha at `uv`; v = 0 is
+// the bottom.
+fn image_sample(t: Texture, uv: vec2<f32>) -> vec4<f32> {
     let x = uv.x * f32(t.width) - 0.5;
     let y = (1.0 - uv.y) * f32(t.height) - 0.5;
     let x0 = floor(x);
@@ -120,7 +122,17 @@ fn texture_color(index: u32, uv: vec2<f32>, object_point: vec3<f32>) -> vec3<f32
             return t.a * marble_spline(vein);
         }
         case TEXTURE_IMAGE, default: {
-            return image_sample(t, uv * t.scale + t.offset);
+            return image_sample(t, uv * t.scale + t.offset).xyz;
         }
     }
+}
+
+// `Texture::alpha`: the alpha of texture `index` at texture coordinates `uv` (1 but in an
+// image with an alpha channel).
+fn texture_alpha(index: u32, uv: vec2<f32>) -> f32 {
+    let t = textures[index];
+    if t.kind != TEXTURE_IMAGE {
+        return 1.0;
+    }
+    return image_sample(t, uv * t.scale + t.offset).w;
 }

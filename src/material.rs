@@ -11,6 +11,10 @@ pub struct Material {
     pub color: Color,
     /// Index into the scene's textures that drives `color`.
     pub texture: Option<u32>,
+    /// Cut-outs (a leaf on a square, a fence's gaps; glTF's `alphaMode` MASK): where the alpha
+    /// of `texture` ([`crate::texture::Texture::alpha`], 1 without one) is below this, the
+    /// surface is not there, for every ray and every shadow ray. `None`: it is there everywhere.
+    pub alpha_cutoff: Option<f32>,
     /// Light the surface gives off of itself (the book's `emissive`), seen at every hit
     /// whatever lights it; it lights nothing else (a Whitted tracer has no area lights).
     pub emission: Color,
@@ -49,6 +53,7 @@ impl Default for Material {
         Material {
             color: Color::splat(0.8),
             texture: None,
+            alpha_cutoff: None,
             emission: Color::ZERO,
             emission_texture: None,
             ambient: 0.1,
@@ -85,4 +90,16 @@ impl Material {
         let r0 = ((n1 - n2) / (n1 + n2)).powi(2);
         r0 + (1.0 - r0) * (1.0 - cos_i).clamp(0.0, 1.0).powi(5)
     }
+}
+
+/// Whether any of `materials` cuts its surface away by its texture's alpha
+/// ([`Material::alpha_cutoff`]).
+pub fn any_cut_outs(materials: &[Material]) -> bool {
+    materials.iter().any(|m| m.alpha_cutoff.is_some())
+}
+
+/// Whether every one of `materials` stops all light: lets none through and has no cut-outs. A
+/// shadow ray then stops at its first hit.
+pub fn all_opaque(materials: &[Material]) -> bool {
+    !any_cut_outs(materials) && materials.iter().all(|m| m.filter() == Color::ZERO)
 }

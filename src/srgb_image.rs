@@ -2,7 +2,9 @@
 //! are compared in. It decodes any image file raylab reads (PNG, PPM, BMP, JPEG, OpenEXR,
 //! Radiance HDR): 8- and 16-bit images keep their values, scaled to 8 bits; the linear floats
 //! of OpenEXR and Radiance HDR go through the sRGB curve, clamped to [0, 1] as raylab's own
-//! 8-bit images are. Alpha is dropped. An image's sides are held to
+//! 8-bit images are. An 8- or 16-bit image's alpha channel is kept, in 8 bits, where it is not
+//! opaque everywhere (a texture's cut-outs: [`crate::material::Material::alpha_cutoff`]);
+//! comparisons read the colours alone. An image's sides are held to
 //! [`crate::limits::MAX_IMAGE_SIDE`] and its size checked against the memory available before
 //! its pixels are decoded. An OpenEXR file's header is checked before its blocks
 //! ([`small_exr_blocks`]), and its pixels are read by [`read_exr_rgb`], which holds no more
@@ -27,9 +29,22 @@ pub struct SrgbImage {
     pub height: u32,
     /// `width × height` pixels, row by row.
     pub pixels: Vec<[u8; 3]>,
+    /// The pixels' alpha (coverage, 255 opaque), row by row; empty where the image is opaque
+    /// everywhere.
+    pub alpha: Vec<u8>,
 }
 
 impl SrgbImage {
+    /// The opaque image of `width × height` pixels, row by row.
+    pub fn new(width: u32, height: u32, pixels: Vec<[u8; 3]>) -> SrgbImage {
+        SrgbImage {
+            width,
+            height,
+            pixels,
+            alpha: Vec::new(),
+        }
+    }
+
     /// Decodes an image file's bytes, its format told by its first bytes. An image with no
     /// pixels, sides over [`crate::limits::MAX_IMAGE_SIDE`], or one that would not fit in
     /// memory ([`crate::memory::check`]) is refused before it is decoded.
@@ -44,11 +59,7 @@ impl SrgbImage {
             check_exr_header(&mut reader)?;
             reader.rewind().map_err(|e| e.to_string())?;
             let ((width, height), pixels) = read_exr_rgb(reader, |c| c.to_array().map(srgb8))?;
-            return Ok(SrgbImage {
-                width,
-                height,
-                pixels,
-            });
+            return Ok(SrgbImage::new(width, height, pixels));
         }
         decode_with(guessed(reader)?)
     }
@@ -82,11 +93,8 @@ impl SrgbImage {
     /// The image of `width × height` linear colours, row by row, encoded as raylab writes
     /// 8-bit files.
     pub fn from_linear(width: u32, height: u32, colors: &[Color]) -> SrgbImage {
-        SrgbImage {
-            width,
-            height,
-            pixels: colors.iter().map(|c| c.to_array().map(srgb8)).collect(),
-        }
+        let pixels = colors.iter().map(|c| c.to_array().map(srgb8)).collect();
+        SrgbImage::new(width, height, pixels)
     }
 
     /// The linear colours of the pixels, row by row: [`Self::from_linear`] of them gives the
@@ -132,8 +140,17 @@ fn decode_with(reader: ImageReader<impl BufRead + Seek>) -> Result<SrgbImage, St
     check_image_size(width, height)?;
     let pixels = u64::from(width) * u64::from(height);
     let decoded = decoder.total_bytes();
-    crate::memory::check(&format!("the {width}×{height} image"), decoded + pixels * 3)?;
+    let bytes_per_pixel = if decoder.color_type().has_alpha() {
+        4
+    } else {
+        3
+    };
+    crate::memory::check(
+        &format!("the {width}×{height} image"),
+        decoded + pixels * bytes_per_pixel,
+    )?;
     let image = DynamicImage::from_decoder(decoder).map_err(|e| e.to_string())?;
+    let alpha = alpha_channel(&image);
     let pixels = match image {
         DynamicImage::ImageRgb32F(_) | DynamicImage::ImageRgba32F(_) => image
             .into_rgb32f()
@@ -152,7 +169,26 @@ fn decode_with(reader: ImageReader<impl BufRead + Seek>) -> Result<SrgbImage, St
         width,
         height,
         pixels,
+        alpha,
     })
+}
+
+/// The 8-bit alpha of a decoded image's pixels, row by row: empty where it has no alpha channel
+/// or is opaque everywhere.
+fn alpha_channel(image: &DynamicImage) -> Vec<u8> {
+    let eight_bits = |a: u16| ((u32::from(a) + 128) / 257) as u8;
+    let alpha: Vec<u8> = match image {
+        DynamicImage::ImageLumaA8(b) => b.pixels().map(|p| p.0[1]).collect(),
+        DynamicImage::ImageRgba8(b) => b.pixels().map(|p| p.0[3]).collect(),
+        DynamicImage::ImageLumaA16(b) => b.pixels().map(|p| eight_bits(p.0[1])).collect(),
+        DynamicImage::ImageRgba16(b) => b.pixels().map(|p| eight_bits(p.0[3])).collect(),
+        _ => Vec::new(),
+    };
+    if alpha.iter().all(|&a| a == u8::MAX) {
+        Vec::new()
+    } else {
+        alpha
+    }
 }
 
 /// Reads the R, G and B channels of an OpenEXR file's first valid layer: its size (its data
@@ -267,11 +303,7 @@ mod tests {
     #[test]
     fn every_level_goes_to_linear_and_back_unchanged() {
         let levels = (0..=255u8).map(|v| [v, 255 - v, v / 2]).collect::<Vec<_>>();
-        let image = SrgbImage {
-            width: 16,
-            height: 16,
-            pixels: levels,
-        };
+        let image = SrgbImage::new(16, 16, levels);
         let back = SrgbImage::from_linear(16, 16, &image.to_linear());
         assert_eq!(back, image);
     }
@@ -288,6 +320,22 @@ mod tests {
             assert_eq!((img.width, img.height), (3, 2), "{format:?}");
             assert_eq!(img.pixels, vec![[200, 100, 50]; 6], "{format:?}");
         }
+    }
+
+    #[test]
+    fn an_alpha_channel_is_kept_in_eight_bits_unless_the_image_is_opaque() {
+        let rgba =
+            image::RgbaImage::from_fn(2, 1, |x, _| image::Rgba([10, 20, 30, [0, 200][x as usize]]));
+        let img = SrgbImage::decode(&encoded(rgba, image::ImageFormat::Png)).unwrap();
+        assert_eq!(img.pixels, vec![[10, 20, 30]; 2]);
+        assert_eq!(img.alpha, vec![0, 200]);
+        let grey =
+            image::ImageBuffer::<image::LumaA<u16>, _>::from_pixel(1, 1, image::LumaA([0, 32896]));
+        let img = SrgbImage::decode(&encoded(grey, image::ImageFormat::Png)).unwrap();
+        assert_eq!(img.alpha, vec![128]);
+        let opaque = image::RgbaImage::from_pixel(2, 2, image::Rgba([1, 2, 3, 255]));
+        let img = SrgbImage::decode(&encoded(opaque, image::ImageFormat::Png)).unwrap();
+        assert!(img.alpha.is_empty());
     }
 
     #[test]

@@ -123,6 +123,20 @@ impl Texture {
             } => image.sample(uv * *scale + *offset, *wrap),
         }
     }
+
+    /// The alpha (the share of the surface that is there, 1 all of it) at texture coordinates
+    /// `uv`: an image's alpha channel, sampled as its colours are; 1 for every other texture.
+    pub fn alpha(&self, uv: Vec2) -> f32 {
+        match self {
+            Texture::Image {
+                image,
+                wrap,
+                scale,
+                offset,
+            } => image.sample_alpha(uv * *scale + *offset, *wrap),
+            _ => 1.0,
+        }
+    }
 }
 
 /// The book's marble profile: how bright the stone is at `x = sin(…)` in [−1, 1]: dark veins
@@ -138,19 +152,18 @@ pub fn marble_spline(x: f32) -> f32 {
 }
 
 impl SrgbImage {
-    /// The linear colour of texel (x, y), wrapped into the image along x by `wrap[0]` and
-    /// along y by `wrap[1]`.
-    fn texel(&self, x: i64, y: i64, wrap: [Wrap; 2]) -> Color {
-        let (w, h) = (self.width as i64, self.height as i64);
-        let (x, y) = (wrap[0].texel(x, w), wrap[1].texel(y, h));
-        let linear = &*SRGB8_TO_LINEAR;
-        Color::from_array(self.pixels[(y * w + x) as usize].map(|c| linear[c as usize]))
-    }
-
-    /// Bilinear sample at `uv`; `v = 0` is the bottom of the image. Texel coordinates are held
-    /// within ±2^40 (far past where single precision tells texels apart), so that a model's
-    /// absurd texture coordinates (infinite, not a number) wrap or clamp like any others.
-    pub fn sample(&self, uv: Vec2, wrap: [Wrap; 2]) -> Color {
+    /// Bilinear sample at `uv` of the value `texel` gives for each texel (by its index), blended
+    /// by `lerp`; `v = 0` is the bottom of the image, and the texels are wrapped into the image
+    /// along x by `wrap[0]` and along y by `wrap[1]`. Texel coordinates are held within ±2^40
+    /// (far past where single precision tells texels apart), so that a model's absurd texture
+    /// coordinates (infinite, not a number) wrap or clamp like any others.
+    fn bilinear<T>(
+        &self,
+        uv: Vec2,
+        wrap: [Wrap; 2],
+        texel: impl Fn(usize) -> T,
+        lerp: impl Fn(T, T, f32) -> T,
+    ) -> T {
         const REACH: f32 = (1u64 << 40) as f32;
         // Not a number reads as the image's corner.
         let held = |t: f32| {
@@ -160,18 +173,36 @@ impl SrgbImage {
                 t.clamp(-REACH, REACH)
             }
         };
+        let (w, h) = (self.width as i64, self.height as i64);
+        let at = |x: i64, y: i64| {
+            let (x, y) = (wrap[0].texel(x, w), wrap[1].texel(y, h));
+            texel((y * w + x) as usize)
+        };
         let x = held(uv.x * self.width as f32 - 0.5);
         let y = held((1.0 - uv.y) * self.height as f32 - 0.5);
         let (x0, y0) = (x.floor(), y.floor());
         let (fx, fy) = (x - x0, y - y0);
         let (x0, y0) = (x0 as i64, y0 as i64);
-        let top = self
-            .texel(x0, y0, wrap)
-            .lerp(self.texel(x0 + 1, y0, wrap), fx);
-        let bottom = self
-            .texel(x0, y0 + 1, wrap)
-            .lerp(self.texel(x0 + 1, y0 + 1, wrap), fx);
-        top.lerp(bottom, fy)
+        let top = lerp(at(x0, y0), at(x0 + 1, y0), fx);
+        let bottom = lerp(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx);
+        lerp(top, bottom, fy)
+    }
+
+    /// Bilinear sample of the linear colours at `uv`, wrapped by `wrap` ([`Self::bilinear`]).
+    pub fn sample(&self, uv: Vec2, wrap: [Wrap; 2]) -> Color {
+        let linear = &*SRGB8_TO_LINEAR;
+        let texel = |i: usize| Color::from_array(self.pixels[i].map(|c| linear[c as usize]));
+        self.bilinear(uv, wrap, texel, Color::lerp)
+    }
+
+    /// Bilinear sample of the alpha at `uv` (in [0, 1]; 1 where the image has no alpha),
+    /// wrapped by `wrap` ([`Self::bilinear`]).
+    pub fn sample_alpha(&self, uv: Vec2, wrap: [Wrap; 2]) -> f32 {
+        if self.alpha.is_empty() {
+            return 1.0;
+        }
+        let texel = |i: usize| f32::from(self.alpha[i]) / 255.0;
+        self.bilinear(uv, wrap, texel, |a: f32, b, s| a * (1.0 - s) + b * s)
     }
 }
 
@@ -186,10 +217,9 @@ mod tests {
     #[test]
     fn absurd_texture_coordinates_sample_within_the_images_colours() {
         let image = two_by_two();
-        let corners = [(0, 0), (1, 0), (0, 1), (1, 1)];
-        let texels = corners.map(|(x, y)| image.texel(x, y, [Wrap::Clamp; 2]));
-        let lowest = texels.into_iter().reduce(Color::min).unwrap();
-        let highest = texels.into_iter().reduce(Color::max).unwrap();
+        let texels = image.to_linear();
+        let lowest = texels.iter().copied().reduce(Color::min).unwrap();
+        let highest = texels.iter().copied().reduce(Color::max).unwrap();
         for uv in [
             Vec2::new(f32::MAX, -f32::MAX),
             Vec2::new(-1e30, 1e30),
@@ -205,11 +235,11 @@ mod tests {
     }
 
     fn two_by_two() -> SrgbImage {
-        SrgbImage {
-            width: 2,
-            height: 2,
-            pixels: vec![[255, 0, 0], [0, 255, 0], [0, 0, 255], [255, 255, 255]],
-        }
+        SrgbImage::new(
+            2,
+            2,
+            vec![[255, 0, 0], [0, 255, 0], [0, 0, 255], [255, 255, 255]],
+        )
     }
 
     #[test]
@@ -231,6 +261,29 @@ mod tests {
         let img = two_by_two();
         let mid = img.sample(Vec2::new(0.5, 0.75), [Wrap::Clamp; 2]);
         assert!((mid - Color::new(0.5, 0.5, 0.0)).length() < 1e-6, "{mid}");
+    }
+
+    #[test]
+    fn alpha_is_sampled_as_the_colours_are_and_is_one_without_an_alpha_channel() {
+        let mut img = two_by_two();
+        let texture = |image: &SrgbImage| Texture::Image {
+            image: Arc::new(image.clone()),
+            wrap: [Wrap::Clamp; 2],
+            scale: Vec2::ONE,
+            offset: Vec2::ZERO,
+        };
+        assert_eq!(texture(&img).alpha(Vec2::splat(0.3)), 1.0);
+        img.alpha = vec![0, 255, 51, 255];
+        let t = texture(&img);
+        assert_eq!(t.alpha(Vec2::new(0.25, 0.75)), 0.0);
+        assert_eq!(t.alpha(Vec2::new(0.75, 0.75)), 1.0);
+        assert_eq!(t.alpha(Vec2::new(0.25, 0.25)), 0.2);
+        assert!((t.alpha(Vec2::new(0.5, 0.75)) - 0.5).abs() < 1e-6);
+        let wood = Texture::Wood {
+            a: Color::ZERO,
+            b: Color::ONE,
+        };
+        assert_eq!(wood.alpha(Vec2::ZERO), 1.0);
     }
 
     #[test]
@@ -286,11 +339,7 @@ mod tests {
 
     #[test]
     fn texels_decode_to_the_linear_value_of_their_srgb_byte() {
-        let img = SrgbImage {
-            width: 1,
-            height: 1,
-            pixels: vec![[0, 128, 255]],
-        };
+        let img = SrgbImage::new(1, 1, vec![[0, 128, 255]]);
         let c = img.sample(Vec2::splat(0.5), [Wrap::Clamp; 2]);
         assert_eq!(c, Color::new(0.0, srgb_to_linear(128.0 / 255.0), 1.0));
         assert!((c.y - 0.2158605).abs() < 1e-6, "{c}");

@@ -28,6 +28,7 @@ const TETRA_OBJ: &[u8] = include_bytes!("../../assets/models/tetra.obj");
 const TETRA_MTL: &[u8] = include_bytes!("../../assets/models/tetra.mtl");
 const GRID_PNG: &[u8] = include_bytes!("../../assets/textures/grid.png");
 const PAWN_GLB: &[u8] = include_bytes!("../../assets/models/pawn.glb");
+const LEAF_PNG: &[u8] = include_bytes!("../../assets/textures/leaf.png");
 
 /// The files a fuzzed TOML scene may name: the shipped scenes' models and textures, by the
 /// names the shipped scenes use. The large ones (the torus, the bricks, the sky) are played by
@@ -40,6 +41,7 @@ const SCENE_FILES: &[(&str, &[u8])] = &[
     ("../textures/grid.png", GRID_PNG),
     ("../textures/bricks.png", GRID_PNG),
     ("../textures/sky.bmp", GRID_PNG),
+    ("../textures/leaf.png", LEAF_PNG),
 ];
 
 /// The scene the `obj` and `ply` targets load their input in, as a scene file's object of

@@ -79,16 +79,17 @@ struct WalkResult {
     depth: f32,
 }
 
-// Meets the primitive of `hit`: the closest search keeps it and shrinks the ray's range, the
-// shadow search takes its tint. Returns whether the walk can stop (nothing gets through); where
-// light passes, a shadow search adds the primitive's optical depth after.
-fn meet(hit: Hit, find: u32, result: ptr<function, WalkResult>, t_max: ptr<function, f32>) -> bool {
+// Meets the primitive of `hit` along the ray `world` (in the world): the closest search keeps it
+// and shrinks the ray's range, the shadow search takes its tint. Returns whether the walk can
+// stop (nothing gets through); where light passes, a shadow search adds the primitive's optical
+// depth after.
+fn meet(hit: Hit, world: WalkRay, find: u32, result: ptr<function, WalkResult>, t_max: ptr<function, f32>) -> bool {
     if find == FIND_CLOSEST {
         (*result).hit = hit;
         *t_max = hit.t;
         return false;
     }
-    (*result).passed *= tint(hit);
+    (*result).passed *= tint(world.origin, world.dir, hit);
     return all((*result).passed == vec3<f32>(0.0));
 }
 
@@ -118,7 +119,7 @@ fn visit_objects(first: u32, count: u32, ray: WalkRay, t_min: f32, find: u32, re
         let at = Hit(h.t, index | OBJECT_BIT, h.part, 0u, vec2<f32>(0.0), true, NO_INSTANCE);
         var follow = h.found && crossings < MAX_CROSSINGS;
         if crossings == 0u && h.found {
-            if meet(at, find, result, t_max) {
+            if meet(at, ray, find, result, t_max) {
                 return true;
             }
             // A CSG solid's operands may differ in material; any other object has one.
@@ -168,7 +169,7 @@ fn visit_triangles(first: u32, count: u32, ray: WalkRay, world: WalkRay, instanc
             continue;
         }
         let hit = Hit(h.t, first_triangle + tri.index, 0u, i, h.bary, true, instance);
-        if meet(hit, find, result, t_max) {
+        if meet(hit, world, find, result, t_max) {
             return true;
         }
         if find == FIND_SHADOW {

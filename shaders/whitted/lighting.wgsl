@@ -43,11 +43,15 @@ fn light_sample(light: Light, point: vec3<f32>) -> LightSample {
     return LightSample(to_light / distance, distance, light.color);
 }
 
-// `Tracer::tint`: what the primitive hit lets through of the light behind it; nothing through
-// glass that bends light when the caustic photons bring that light instead.
-fn tint(hit: Hit) -> vec3<f32> {
+// `Tracer::tint`: what the primitive met at `hit` by the ray from `origin` along `dir` lets
+// through of the light behind it; nothing through glass that bends light when the caustic
+// photons bring that light instead; all of it where its surface is cut away.
+fn tint(origin: vec3<f32>, dir: vec3<f32>, hit: Hit) -> vec3<f32> {
     if (frame.flags & OPAQUE) != 0u {
         return vec3<f32>(0.0);
+    }
+    if cut_away(origin, dir, hit) {
+        return vec3<f32>(1.0);
     }
     let m = materials[material_of(hit)];
     // `Material::bends_light`.

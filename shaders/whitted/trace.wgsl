@@ -45,7 +45,7 @@ fn miss_color(dir: vec3<f32>) -> vec3<f32> {
         let image = textures[frame.background_image];
         let on_image = backdrop_uv(dir, f32(image.width) / f32(image.height));
         if on_image.found {
-            return image_sample(image, on_image.uv);
+            return image_sample(image, on_image.uv).xyz;
         }
     }
     return frame.background;
@@ -102,7 +102,8 @@ fn item_far(item_t: f32) -> f32 {
 // Every ray of the tree, shadow rays included, is cast by the one `walk` of the loop below: a
 // GPU compiler copies a function at each place it is called, and the walk holds every shape.
 // Each turn casts the next shadow ray of the medium the last ray ran through or of the hit
-// being shaded, or, once those are done, the next ray of the tree.
+// being shaded, or, once those are done, the next ray of the tree, or the same ray again past
+// the cut-away point it hit (`Tracer::past_cut_outs`).
 fn trace_eye(dir: vec3<f32>, item_t: f32) -> Traced {
     var counts = Counts(0u, 0u, 0u, 0u, 0u, 0u);
     var color = vec3<f32>(0.0);
@@ -117,6 +118,10 @@ fn trace_eye(dir: vec3<f32>, item_t: f32) -> Traced {
     shading.next_light = frame.light_count;
     // How far the eye ray's search looks.
     var eye_far = item_far(item_t);
+    // Where `ray`'s search goes on past the cut-away points it met (0: from its start), and how
+    // many it passed.
+    var past = 0.0;
+    var cut_outs = 0u;
     // Whether the loop ended by its own `break` (see `cut_short`).
     var finished = false;
     loop {
@@ -150,6 +155,9 @@ fn trace_eye(dir: vec3<f32>, item_t: f32) -> Traced {
                 t_min = EYE_RAY_T_MIN;
                 t_max = eye_far;
             }
+            if cut_outs > 0u {
+                t_min = past;
+            }
             find = FIND_CLOSEST;
         }
         let found = walk(origin, ray_dir, t_min, t_max, find);
@@ -158,6 +166,21 @@ fn trace_eye(dir: vec3<f32>, item_t: f32) -> Traced {
             continue;
         }
         let hit = found.hit;
+        // The surface at the hit, if there is one.
+        var surface: SurfacePoint;
+        if hit.found {
+            surface = surface_at(ray.origin, ray.dir, hit);
+            let cuts = (frame.flags & CUT_OUTS) != 0u;
+            if cuts && cut_outs < MAX_CUT_OUTS && cut_away_uv(materials[surface.material], surface.uv) {
+                // Past the cut-away point, all the way.
+                past = hit.t;
+                cut_outs++;
+                eye_far = T_FAR;
+                ray_waits = true;
+                continue;
+            }
+        }
+        cut_outs = 0u;
         if ray.depth == 1u && !hit.found && eye_far < T_FAR {
             // Nothing up to the item (rounding put its primitive elsewhere): the eye ray again,
             // all the way.
@@ -190,7 +213,6 @@ fn trace_eye(dir: vec3<f32>, item_t: f32) -> Traced {
                 counts.from_item_buffer++;
             }
         }
-        let surface = surface_at(ray.origin, ray.dir, hit);
         if viewing {
             color = view_color(hit, surface);
             finished = true;

@@ -237,11 +237,7 @@ mod tests {
                 ]
             })
             .collect();
-        SrgbImage {
-            width,
-            height,
-            pixels,
-        }
+        SrgbImage::new(width, height, pixels)
     }
 
     #[test]

@@ -132,8 +132,12 @@ fn materials_text(
                 Some(t) => format!(", base colour texture {t}"),
                 None => String::new(),
             };
+            let cutoff = match values.alpha_cutoff {
+                Some(cutoff) => format!(", alpha cut at {cutoff}"),
+                None => String::new(),
+            };
             text += &format!(
-                "material {k} `{}` → {}\n  glTF:   base colour {r} {g} {b} {a}{texture}, metallic {}, \
+                "material {k} `{}` → {}\n  glTF:   base colour {r} {g} {b} {a}{texture}{cutoff}, metallic {}, \
                  roughness {}, transmission {}, ior {}, emissive {} × {}\n  raylab: {}\n",
                 printable(name),
                 kind_name(Kind::of(material)),
@@ -180,8 +184,12 @@ fn raylab_values(m: &Material) -> String {
         None => String::new(),
     };
     let (texture, emission_texture) = (texture(m.texture), texture(m.emission_texture));
+    let cutoff = match m.alpha_cutoff {
+        Some(cutoff) => format!(", alpha_cutoff {cutoff}"),
+        None => String::new(),
+    };
     format!(
-        "color {}{texture}, ambient {}, diffuse {}, specular {} in {}, shininess {}, \
+        "color {}{texture}{cutoff}, ambient {}, diffuse {}, specular {} in {}, shininess {}, \
          reflectivity {} in {}, transparency {}, ior {}, fresnel {}, emission {}{emission_texture}",
         triple(m.color.to_array()),
         m.ambient,

@@ -212,11 +212,7 @@ mod tests {
     use super::*;
 
     fn image(width: u32, pixels: &[[u8; 3]]) -> SrgbImage {
-        SrgbImage {
-            width,
-            height: pixels.len() as u32 / width,
-            pixels: pixels.to_vec(),
-        }
+        SrgbImage::new(width, pixels.len() as u32 / width, pixels.to_vec())
     }
 
     #[test]

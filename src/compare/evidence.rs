@@ -122,11 +122,7 @@ mod tests {
                 }
             })
             .collect();
-        SrgbImage {
-            width: size,
-            height: size,
-            pixels,
-        }
+        SrgbImage::new(size, size, pixels)
     }
 
     #[test]

@@ -271,11 +271,7 @@ impl Written<'_> {
             .into_par_iter()
             .flat_map_iter(|y| (0..width).map(move |x| self.at(x, y)))
             .collect();
-        SrgbImage {
-            width,
-            height,
-            pixels,
-        }
+        SrgbImage::new(width, height, pixels)
     }
 }
 
@@ -368,11 +364,7 @@ mod tests {
             film.set(x, 0, c);
             pixels.push((c * 0.8).to_array().map(srgb8));
         }
-        let image = SrgbImage {
-            width: 16,
-            height: 1,
-            pixels,
-        };
+        let image = SrgbImage::new(16, 1, pixels);
         assert!((fitted_scale(&film, &image) - 0.8).abs() < 0.01);
     }
 

@@ -111,11 +111,7 @@ mod tests {
             .flat_map(|row| row.chars())
             .map(|c| [c.to_digit(10).map_or(0, |d| d as u8 * 10); 3])
             .collect();
-        SrgbImage {
-            width: rows[0].len() as u32,
-            height: rows.len() as u32,
-            pixels,
-        }
+        SrgbImage::new(rows[0].len() as u32, rows.len() as u32, pixels)
     }
 
     #[test]

@@ -23,10 +23,8 @@ impl Layer {
     /// The layer over `image`, which has its size.
     pub fn over(&self, image: &SrgbImage) -> SrgbImage {
         let pixels = self.pixels.iter().zip(&image.pixels);
-        SrgbImage {
-            pixels: pixels.map(|(top, below)| top.unwrap_or(*below)).collect(),
-            ..*image
-        }
+        let pixels = pixels.map(|(top, below)| top.unwrap_or(*below)).collect();
+        SrgbImage::new(image.width, image.height, pixels)
     }
 
     /// Paints pixel `i` (row by row).

@@ -93,3 +93,5 @@ pub const TEXTURES: u32 = 16;
 pub const BALL_BACKDROP: u32 = 32;
 /// Caustics are on: the photon map brings the light that glass bends.
 pub const CAUSTICS: u32 = 64;
+/// A material cuts its surface away by its texture's alpha: searches go on past cut-away hits.
+pub const CUT_OUTS: u32 = 128;

@@ -26,7 +26,8 @@ gpu_record! {
         pub medium_density: f32,
         pub medium_albedo: f32,
         pub medium_color: [f32; 3],
-        pub pad: f32,
+        /// `Material::alpha_cutoff` (0: none, as no alpha is below it).
+        pub alpha_cutoff: f32,
         pub reflection_color: [f32; 3],
         /// Its emission texture's record ([`NO_TEXTURE`]: none).
         pub emission_texture: u32,
@@ -52,7 +53,7 @@ impl From<&Material> for GpuMaterial {
             medium_density: medium.density,
             medium_albedo: medium.albedo,
             medium_color: medium.color.to_array(),
-            pad: 0.0,
+            alpha_cutoff: m.alpha_cutoff.unwrap_or(0.0),
             reflection_color: m.reflection_color.to_array(),
             emission_texture: m.emission_texture.unwrap_or(NO_TEXTURE),
         }

@@ -20,7 +20,8 @@ use super::bvh::{
 };
 use super::caustics::MAX_PHOTON_TREE_DEPTH;
 use super::frame::{
-    BALL_BACKDROP, CAUSTICS, OPAQUE, REFLECTIONS, SHADOWS, TEXTURES, TRANSMISSION, ViewKind,
+    BALL_BACKDROP, CAUSTICS, CUT_OUTS, OPAQUE, REFLECTIONS, SHADOWS, TEXTURES, TRANSMISSION,
+    ViewKind,
 };
 use super::materials::{HAS_COLORS, HAS_NORMALS, HAS_UVS, MATERIAL_BITS};
 use super::scene::SceneBinding;
@@ -40,7 +41,7 @@ use crate::shapes::{
 };
 use crate::texture::{MARBLE_TURBULENCE, TextureKind, WOOD_RING_WIDTH, WOOD_WOBBLE, Wrap};
 use crate::tone::{CURVE_INPUT_MAX, ToneCurve};
-use crate::whitted::{EYE_RAY_T_MIN, RAY_BUDGET};
+use crate::whitted::{EYE_RAY_T_MIN, MAX_CUT_OUTS, RAY_BUDGET};
 
 /// Invocations per workgroup of every compute entry point (`@workgroup_size(WORKGROUP)`).
 pub const WORKGROUP: u32 = 64;
@@ -196,7 +197,7 @@ pub fn prelude() -> String {
         F32_EPSILON = f32::EPSILON,
         PIXEL_CENTRE = crate::camera::PIXEL_CENTRE,
         // The scene's records.
-        SHADOWS, REFLECTIONS, TRANSMISSION, OPAQUE, TEXTURES, BALL_BACKDROP, CAUSTICS,
+        SHADOWS, REFLECTIONS, TRANSMISSION, OPAQUE, TEXTURES, BALL_BACKDROP, CAUSTICS, CUT_OUTS,
         NO_TRANSFORM, NO_TEXTURE, WRAP_V_SHIFT, HAS_COLORS, HAS_NORMALS, HAS_UVS, MATERIAL_BITS,
         // The shapes' parts and the CSG programs.
         TAPERED_SIDE = TaperedCylinder::SIDE,
@@ -221,7 +222,7 @@ pub fn prelude() -> String {
         MAX_GATHER = MAX_CAUSTIC_GATHER,
         PHOTON_STACK = MAX_PHOTON_TREE_DEPTH,
         // The ray tree, the item buffer and the film.
-        EYE_RAY_T_MIN, RAY_BUDGET, TREE_STACK, FAR_MARGIN, NEAR_SHARE,
+        EYE_RAY_T_MIN, RAY_BUDGET, MAX_CUT_OUTS, TREE_STACK, FAR_MARGIN, NEAR_SHARE,
         PROXY_BOX, PROXY_FULL_FILM, PROXY_INSTANCE,
         SRGB_BUCKET_SHIFT = BUCKET_SHIFT,
         CURVE_INPUT_MAX,

@@ -10,7 +10,7 @@ use super::bvh::{GpuBinaryNode, GpuBvh, GpuTriangle, GpuWideNode, MAX_TREE_DEPTH
 use super::caustics::{GpuPhoton, photon_records};
 use super::device::GpuDevice;
 use super::frame::{
-    BALL_BACKDROP, CAUSTICS, GpuFrame, GpuView, OPAQUE, REFLECTIONS, SHADOWS, TEXTURES,
+    BALL_BACKDROP, CAUSTICS, CUT_OUTS, GpuFrame, GpuView, OPAQUE, REFLECTIONS, SHADOWS, TEXTURES,
     TRANSMISSION, ViewKind,
 };
 use super::materials::{
@@ -23,7 +23,7 @@ use super::texture::{GpuTexture, TextureRecords, background_record};
 use crate::aabb::Aabb;
 use crate::bvh::Bvh;
 use crate::camera::Camera;
-use crate::color::Color;
+use crate::material::{all_opaque, any_cut_outs};
 use crate::medium::{Backdrop, Fog, Medium};
 use crate::mesh::{Mesh, NO_VERTEX_COLOR};
 use crate::photon_map::PhotonMap;
@@ -377,7 +377,6 @@ impl GpuScene {
         let counts = self.counts;
         let settings = &scene.settings;
         let flag = |on: bool, bit: u32| if on { bit } else { 0 };
-        let opaque = scene.materials.iter().all(|m| m.filter() == Color::ZERO);
         let fog = Fog::new(
             scene.atmosphere,
             self.object_bounds,
@@ -415,7 +414,8 @@ impl GpuScene {
             flags: flag(settings.shadows, SHADOWS)
                 | flag(settings.reflections, REFLECTIONS)
                 | flag(settings.transmission, TRANSMISSION)
-                | flag(opaque, OPAQUE)
+                | flag(all_opaque(&scene.materials), OPAQUE)
+                | flag(any_cut_outs(&scene.materials), CUT_OUTS)
                 | flag(settings.textures, TEXTURES)
                 | flag(ball, BALL_BACKDROP)
                 | flag(map.is_some(), CAUSTICS),

@@ -33,7 +33,8 @@ gpu_record! {
         pub scale: [f32; 2],
         /// An image's offset.
         pub offset: [f32; 2],
-        /// Where an image's texels start in the texel buffer, one u32 each (`r | g << 8 | b << 16`).
+        /// Where an image's texels start in the texel buffer, one u32 each
+        /// (`r | g << 8 | b << 16 | alpha << 24`).
         pub first: u32,
         pub width: u32,
         pub height: u32,
@@ -119,12 +120,11 @@ impl TextureRecords {
         offset: Vec2,
     ) -> GpuTexture {
         let first = self.texels.len() as u32;
-        self.texels.extend(
-            image
-                .pixels
-                .iter()
-                .map(|&[r, g, b]| u32::from(r) | u32::from(g) << 8 | u32::from(b) << 16),
-        );
+        let alpha = |i: usize| image.alpha.get(i).copied().unwrap_or(u8::MAX);
+        self.texels
+            .extend(image.pixels.iter().enumerate().map(|(i, &[r, g, b])| {
+                u32::from(r) | u32::from(g) << 8 | u32::from(b) << 16 | u32::from(alpha(i)) << 24
+            }));
         GpuTexture {
             kind: TextureKind::Image as u32,
             scale: scale.to_array(),

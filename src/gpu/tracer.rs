@@ -17,8 +17,8 @@ use super::storage::storage_entry;
 
 /// All the GPU tracer's WGSL but the prelude, the shapes' ([`shapes_wgsl`]) and the BVH's nodes'
 /// ([`NodeLayout::wgsl`]), which go with it into one module: the scene's records, the camera
-/// and the jitter, the triangles, the BVH's walk, the textures, the caustic photons, the shading, the media and the
-/// ray tree, the debug views, and the entry points.
+/// and the jitter, the triangles, the BVH's walk, the textures, the caustic photons, the
+/// shading, the cut-outs, the media and the ray tree, the debug views, and the entry points.
 pub const TRACER_WGSL: &str = concat!(
     include_str!("../../shaders/scene.wgsl"),
     include_str!("../../shaders/samples.wgsl"),
@@ -32,6 +32,7 @@ pub const TRACER_WGSL: &str = concat!(
     include_str!("../../shaders/whitted/scattering.wgsl"),
     include_str!("../../shaders/caustics.wgsl"),
     include_str!("../../shaders/whitted/lighting.wgsl"),
+    include_str!("../../shaders/whitted/cut_outs.wgsl"),
     include_str!("../../shaders/medium.wgsl"),
     include_str!("../../shaders/whitted/fog.wgsl"),
     include_str!("../../shaders/whitted/trace.wgsl"),

@@ -121,7 +121,7 @@ impl Tracer<'_> {
             observer.prims_tested(1);
             // Tinted by what is hit: a CSG object's operands may differ.
             if let Some(hit) = geometry.intersect(id, ray, 0.0, distance)
-                && self.tint(&hit) == Color::ZERO
+                && self.tint(ray, &hit) == Color::ZERO
             {
                 return (Color::ZERO, blockers);
             }
@@ -173,7 +173,7 @@ impl Tracer<'_> {
         let mut blocker = None;
         self.bvh
             .any_hit_counted(&self.scene.geometry, ray, 0.0, distance, cost, |hit| {
-                let tint = self.tint(hit);
+                let tint = self.tint(ray, hit);
                 on_blocker(hit, tint);
                 passed *= tint;
                 if passed == Color::ZERO {
@@ -242,11 +242,15 @@ impl Tracer<'_> {
         depth
     }
 
-    /// What a primitive lets through of the light behind it: `transparency × colour`; nothing
-    /// through glass that bends light when the caustic photons bring that light instead.
-    fn tint(&self, hit: &Hit) -> Color {
+    /// What a primitive met by `ray` at `hit` lets through of the light behind it:
+    /// `transparency × colour`; nothing through glass that bends light when the caustic photons
+    /// bring that light instead; all of it where its surface is cut away.
+    fn tint(&self, ray: &Ray, hit: &Hit) -> Color {
         if self.opaque {
             return Color::ZERO;
+        }
+        if self.cut_away(ray, hit) {
+            return Color::ONE;
         }
         let material = &self.scene.materials[self.scene.geometry.material(hit) as usize];
         if self.caustics.is_some() && material.bends_light() {

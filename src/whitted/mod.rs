@@ -11,6 +11,9 @@
 //! ([`crate::medium`] says which medium a ray is in), and shadow rays are attenuated by the
 //! length they travel inside such objects (`lighting`).
 //!
+//! Where a material cuts its surface away by its texture's alpha, rays and shadow rays pass
+//! the cut-away points ([`cut_outs`]).
+//!
 //! Shadow rays try first the primitive that last blocked the same light on the same thread
 //! (the shadow cache of Haines and Greenberg, `shadow_cache`).
 //!
@@ -18,6 +21,7 @@
 //! as it grows. The renderer passes `()`, which compiles away; the inspector
 //! ([`crate::inspect`]) records the tree with the very same code.
 
+mod cut_outs;
 mod fog;
 mod lighting;
 mod observer;
@@ -25,6 +29,7 @@ mod scattering;
 mod shadow_cache;
 mod within;
 
+pub use cut_outs::MAX_CUT_OUTS;
 pub use observer::{LightTerms, LocalTerms, RayKind, ShadowEvent, StopReason, TreeObserver};
 pub use scattering::{Scattering, reflect, refract, scattering};
 pub use within::Within;
@@ -33,7 +38,7 @@ use crate::bvh::Bvh;
 use crate::bvh::packet::PACKET_SIZE;
 use crate::color::Color;
 use crate::item_buffer::{Item, ItemBuffer, far_limit};
-use crate::material::Material;
+use crate::material::{Material, all_opaque, any_cut_outs};
 use crate::medium::Fog;
 use crate::photon_map::PhotonMap;
 use crate::primitive::{Hit, SurfacePoint};
@@ -64,9 +69,12 @@ pub struct Tracer<'a> {
     pub caustics: Option<&'a PhotonMap>,
     /// Whether any material has a medium: shadow rays in scenes without look for none.
     pub media: bool,
-    /// Whether every material is opaque (lets no light through): a shadow ray then stops at
-    /// the first hit without looking up its material.
+    /// Whether every material is opaque (lets no light through) and has no cut-outs: a shadow
+    /// ray then stops at the first hit without looking up its material.
     pub opaque: bool,
+    /// Whether any material cuts its surface away by its texture's alpha
+    /// ([`Material::alpha_cutoff`]): searches then go on past cut-away hits.
+    pub cut_outs: bool,
     /// The first hits a raster pass found for the film's pixel centres
     /// ([`Self::with_item_buffer`]).
     pub item_buffer: Option<&'a ItemBuffer>,
@@ -86,7 +94,8 @@ impl<'a> Tracer<'a> {
             fog,
             caustics: None,
             media: scene.materials.iter().any(|m| m.medium.is_some()),
-            opaque: scene.materials.iter().all(|m| m.filter() == Color::ZERO),
+            opaque: all_opaque(&scene.materials),
+            cut_outs: any_cut_outs(&scene.materials),
             item_buffer: None,
         }
     }
@@ -108,10 +117,23 @@ impl<'a> Tracer<'a> {
         Tracer { caustics, ..self }
     }
 
-    /// The closest hit along `ray` beyond `t_min`.
+    /// The closest hit along `ray` beyond `t_min` (past cut-outs).
     pub fn closest_hit(&self, ray: &Ray, t_min: f32) -> Option<Hit> {
-        self.bvh
-            .closest_hit(&self.scene.geometry, ray, t_min, f32::INFINITY)
+        self.closest_hit_counted(ray, t_min, &mut ())
+    }
+
+    /// [`Self::closest_hit`], its search counted in `cost`.
+    fn closest_hit_counted(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        cost: &mut impl crate::bvh::cost::TraversalCost,
+    ) -> Option<Hit> {
+        let geometry = &self.scene.geometry;
+        let hit = self
+            .bvh
+            .closest_hit_counted(geometry, ray, t_min, f32::INFINITY, cost);
+        self.past_cut_outs(ray, hit, f32::INFINITY, cost)
     }
 
     /// The colour seen by the eye ray `ray` (depth 1, weight 1).
@@ -127,10 +149,7 @@ impl<'a> Tracer<'a> {
         observer: &mut O,
     ) -> Color {
         observer.ray(RayKind::Eye, 1, ray, 1.0, Color::ONE);
-        let geometry = &self.scene.geometry;
-        let hit =
-            self.bvh
-                .closest_hit_counted(geometry, ray, EYE_RAY_T_MIN, f32::INFINITY, observer);
+        let hit = self.closest_hit_counted(ray, EYE_RAY_T_MIN, observer);
         self.shade_eye(ray, hit, counts, observer)
     }
 
@@ -156,7 +175,7 @@ impl<'a> Tracer<'a> {
     /// into `hits`, the rays traced as one packet. Where a ray's `items` entry names its pixel's
     /// item (the film has an item buffer), its hit is searched for only up to the item
     /// ([`far_limit`]), and in full if none is found there; the rays found within their items
-    /// are counted in `counts`.
+    /// are counted in `counts`. A hit on a cut-out goes on past it, each ray on its own.
     pub fn first_hits(
         &self,
         rays: &[Ray],
@@ -176,9 +195,12 @@ impl<'a> Tracer<'a> {
             if limit.is_finite() {
                 match hit {
                     Some(_) => counts.from_item_buffer += 1,
-                    None => *hit = self.closest_hit(ray, EYE_RAY_T_MIN),
+                    None => {
+                        *hit = (self.bvh).closest_hit(geometry, ray, EYE_RAY_T_MIN, f32::INFINITY)
+                    }
                 }
             }
+            *hit = self.past_cut_outs(ray, *hit, f32::INFINITY, &mut ());
         }
     }
 
@@ -218,10 +240,7 @@ impl<'a> Tracer<'a> {
         counts: &mut RayCounts,
         observer: &mut O,
     ) -> Color {
-        let geometry = &self.scene.geometry;
-        let hit = self
-            .bvh
-            .closest_hit_counted(geometry, ray, 0.0, f32::INFINITY, observer);
+        let hit = self.closest_hit_counted(ray, 0.0, observer);
         let color = match hit {
             Some(hit) => self.shade(ray, &hit, branch, counts, observer),
             None => self.miss(ray, observer),

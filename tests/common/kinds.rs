@@ -124,11 +124,7 @@ pub fn example_texture(kind: TextureKind) -> Texture {
                 })
                 .collect();
             Texture::Image {
-                image: Arc::new(SrgbImage {
-                    width,
-                    height,
-                    pixels,
-                }),
+                image: Arc::new(SrgbImage::new(width, height, pixels)),
                 wrap: [Wrap::Repeat; 2],
                 scale: Vec2::new(2.0, 1.0),
                 offset: Vec2::new(0.25, 0.0),

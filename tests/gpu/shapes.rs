@@ -804,11 +804,7 @@ fn random_image(rng: &mut Rng, width: u32, height: u32) -> Arc<SrgbImage> {
     let pixels = (0..width * height)
         .map(|_| [rng.u8(..), rng.u8(..), rng.u8(..)])
         .collect();
-    Arc::new(SrgbImage {
-        width,
-        height,
-        pixels,
-    })
+    Arc::new(SrgbImage::new(width, height, pixels))
 }
 
 #[test]

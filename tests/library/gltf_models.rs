@@ -892,15 +892,34 @@ fn broken_and_refused_files_get_errors_that_say_where_and_what() {
 
 /// A 5 × 4 PNG of distinct colours, so that every wrap and turn of it shows.
 fn texture_png() -> Vec<u8> {
-    let image = image::RgbImage::from_fn(5, 4, |x, y| {
+    png_of(image::RgbImage::from_fn(5, 4, |x, y| {
         image::Rgb([
             (x * 60) as u8,
             (y * 80) as u8,
             255 - (x * 20 + y * 30) as u8,
         ])
-    });
+    }))
+}
+
+/// The test's PNG with an alpha channel: a ring of clear texels around an opaque middle, and
+/// alpha falling off along x.
+fn texture_png_with_alpha() -> Vec<u8> {
+    png_of(image::RgbaImage::from_fn(5, 4, |x, y| {
+        let alpha = if (1..4).contains(&x) && (1..3).contains(&y) {
+            255 - x * 50
+        } else {
+            0
+        };
+        image::Rgba([(x * 60) as u8, (y * 80) as u8, 200, alpha as u8])
+    }))
+}
+
+fn png_of(image: impl Into<image::DynamicImage>) -> Vec<u8> {
     let mut png = std::io::Cursor::new(Vec::new());
-    image.write_to(&mut png, image::ImageFormat::Png).unwrap();
+    image
+        .into()
+        .write_to(&mut png, image::ImageFormat::Png)
+        .unwrap();
     png.into_inner()
 }
 
@@ -975,9 +994,9 @@ fn facing(file: &str) -> String {
 
 /// The image of the quad written in a scene file facing it as [`facing`] does, with texture
 /// coordinates `uvs`, in a material of the keys `material` that may name the texture `image`
-/// (the test's PNG, wrapping as `wrap` says).
-fn quad_by_hand(dir: &Path, wrap: &str, material: &str, uvs: &[String]) -> Vec<u8> {
-    std::fs::write(dir.join("texture.png"), texture_png()).unwrap();
+/// (the PNG `png`, wrapping as `wrap` says).
+fn quad_by_hand(dir: &Path, png: &[u8], wrap: &str, material: &str, uvs: &[String]) -> Vec<u8> {
+    std::fs::write(dir.join("texture.png"), png).unwrap();
     let text = format!(
         "[render]\nambient = [0, 0, 0]\n[camera]\neye = [0, 0, 3.2]\nlook_at = [0, 0, 0]\n\
          view_angle = 40\n[[lights]]\ntype = \"directional\"\ndirection = [0, 0, 1]\n\
@@ -1024,7 +1043,7 @@ fn a_base_colour_texture_wraps_turns_and_is_tinted_as_gltf_says() {
         })
         .collect();
     let material = "texture = \"image\"\nambient = 0.1\ndiffuse = 1\nspecular = 0\nshininess = 1\n";
-    let by_hand = quad_by_hand(dir, "mirror", material, &uvs);
+    let by_hand = quad_by_hand(dir, &texture_png(), "mirror", material, &uvs);
     let differing = pixels_apart(&from_gltf, &by_hand);
     // The test turns the coordinates with its own roundings: a texel edge may move a pixel.
     assert!(
@@ -1111,7 +1130,7 @@ fn an_emissive_texture_glows_in_its_colours_as_a_scene_files_emission_texture_do
         .collect();
     let material = "color = [0, 0, 0]\nemission = [1, 0.5, 1]\nemission_texture = \"image\"\n\
                     ambient = 0.1\ndiffuse = 1\nspecular = 0\nshininess = 1\n";
-    let by_hand = quad_by_hand(dir, "clamp", material, &uvs);
+    let by_hand = quad_by_hand(dir, &texture_png(), "clamp", material, &uvs);
     assert!(
         from_gltf == by_hand,
         "the glTF glow differs from the scene file's"
@@ -1122,4 +1141,59 @@ fn an_emissive_texture_glows_in_its_colours_as_a_scene_files_emission_texture_do
         "the texture glows: {} colours",
         distinct.len()
     );
+}
+
+#[test]
+fn alpha_mode_mask_cuts_the_quad_where_a_scene_files_alpha_cutoff_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    const CLAMP_TO_EDGE: u32 = 33071;
+    let glb = |mode: &str| {
+        let mut w = textured_quad([CLAMP_TO_EDGE; 2], None, [1.0; 3], None);
+        let png = w.view(&texture_png_with_alpha(), None);
+        w.json["images"][0]["bufferView"] = json!(png);
+        // The base colour's alpha is the factor's 0.8 times the texture's, cut at 0.4: where
+        // the texture's alpha is below 0.5.
+        w.json["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = json!([1, 1, 1, 0.8]);
+        w.json["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = json!(1);
+        w.json["materials"][0]["alphaMode"] = json!(mode);
+        w.json["materials"][0]["alphaCutoff"] = json!(0.4);
+        w.glb()
+    };
+    let image = |mode: &str| {
+        let name = format!("{mode}.glb");
+        let scene = facing(&name);
+        let files = [
+            (name.as_str(), &glb(mode)[..]),
+            ("quad.toml", scene.as_bytes()),
+        ];
+        rendered(load_written(dir, &files, "quad.toml"))
+    };
+    let (masked, opaque) = (image("MASK"), image("OPAQUE"));
+
+    let uvs: Vec<String> = QUAD_UVS
+        .iter()
+        .map(|&[u, v]| format!("[{u}, {}]", 1.0 - v))
+        .collect();
+    let material = "texture = \"image\"\nalpha_cutoff = 0.5\nambient = 0.1\ndiffuse = 1\n\
+                    specular = 0\nshininess = 1\n";
+    let by_hand = quad_by_hand(dir, &texture_png_with_alpha(), "clamp", material, &uvs);
+    assert!(
+        masked == by_hand,
+        "the glTF cut-out differs from the scene file's"
+    );
+    let cut = pixels_apart(&masked, &opaque);
+    assert!(
+        cut > 96 * 72 / 10,
+        "only {cut} pixels are cut away from the opaque quad"
+    );
+
+    // BLEND is drawn as MASK at 0.5, and the report says so.
+    let blend = load_written(dir, &[("blend.glb", &glb("BLEND"))], "blend.glb");
+    let report = blend.notes.join("\n");
+    assert!(
+        report.contains("alphaMode BLEND (1) drawn as MASK at 0.5"),
+        "{report}"
+    );
+    assert_eq!(blend.materials.last().unwrap().alpha_cutoff, Some(0.625));
 }

@@ -125,6 +125,7 @@ fn teaching_scenes_match_their_references() {
         "meshes",
         "quadrics",
         "instances",
+        "leaves",
     ];
     check(
         SIZE,

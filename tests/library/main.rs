@@ -9,6 +9,7 @@ mod bvh;
 mod camera;
 mod caustics;
 mod csg;
+mod cut_outs;
 mod debug_views;
 mod device_seam;
 mod figure;

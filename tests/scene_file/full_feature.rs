@@ -100,6 +100,7 @@ fn full_feature_file_numbers_materials_and_textures_by_name() {
         Material {
             color: Color::new(0.8, 0.1, 0.1),
             texture: Some(0),
+            alpha_cutoff: Some(0.25),
             emission: Color::new(0.05, 0.1, 0.0),
             emission_texture: None,
             ambient: 0.2,

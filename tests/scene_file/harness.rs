@@ -95,6 +95,7 @@ scale = [3, 2]
 [materials.red]
 color = [0.8, 0.1, 0.1]
 texture = "checks"
+alpha_cutoff = 0.25
 emission = [0.05, 0.1, 0]
 ambient = 0.2
 diffuse = 0.7

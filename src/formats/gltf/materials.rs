@@ -2,7 +2,12 @@
 //! emission) becomes in raylab's Whitted world, by one rule, written down in
 //! docs/scene-format.md and here:
 //!
-//! - the surface colour is the base colour factor (its alpha is not used);
+//! - the surface colour is the base colour factor;
+//! - `alphaMode` MASK cuts the surface away where the base colour's alpha (the factor's times
+//!   the texture's) is below `alphaCutoff`: raylab's `alpha_cutoff` is `alphaCutoff` divided by
+//!   the factor's alpha (at most [`CUT_ALL`], which cuts it all away), and the texture's alpha is
+//!   held to it. BLEND, which needs a renderer that blends, is drawn as MASK at 0.5; OPAQUE
+//!   ignores alpha;
 //! - reflectivity `kr = F0·(1 − roughness)` with `F0 = 0.04·(1 − metallic) + metallic`: a
 //!   smooth metal is a mirror, a smooth dielectric reflects 4 %, a rough surface nothing; the
 //!   reflection is white on a dielectric and tinted by the base colour on a metal (gold reflects
@@ -27,6 +32,8 @@ use crate::material::Material;
 #[derive(Clone, Debug, PartialEq)]
 pub struct PbrValues {
     pub base_color: [f32; 4],
+    /// `alphaMode`'s cutoff: MASK's `alphaCutoff`, 0.5 for BLEND, none for OPAQUE.
+    pub alpha_cutoff: Option<f32>,
     pub metallic: f32,
     pub roughness: f32,
     pub transmission: f32,
@@ -39,6 +46,11 @@ pub struct PbrValues {
 pub const DEFAULT_IOR: f32 = 1.5;
 /// The reflectance at normal incidence of a dielectric in glTF's model.
 const DIELECTRIC_F0: f32 = 0.04;
+/// The `alpha_cutoff` of a masked material whose base colour factor has no alpha: above any
+/// texture's alpha.
+pub const CUT_ALL: f32 = 2.0;
+/// The cutoff BLEND materials are drawn with.
+pub const BLEND_CUTOFF: f32 = 0.5;
 /// The largest Phong exponent the rule gives (roughness 0).
 pub const MAX_SHININESS: f32 = 10_000.0;
 
@@ -56,8 +68,14 @@ impl PbrValues {
         };
         let ior = material.ior().unwrap_or(DEFAULT_IOR);
         let strength = material.emissive_strength().unwrap_or(1.0);
+        let alpha_cutoff = match material.alpha_mode() {
+            gltf::material::AlphaMode::Opaque => None,
+            gltf::material::AlphaMode::Mask => Some(unit(material.alpha_cutoff().unwrap_or(0.5))),
+            gltf::material::AlphaMode::Blend => Some(BLEND_CUTOFF),
+        };
         PbrValues {
             base_color: pbr.base_color_factor().map(unit),
+            alpha_cutoff,
             metallic: unit(pbr.metallic_factor()),
             roughness: unit(pbr.roughness_factor()),
             transmission: material
@@ -80,7 +98,7 @@ impl PbrValues {
 
 /// The raylab material of the glTF values, by the rule in this module's documentation.
 pub fn whitted_material(values: &PbrValues) -> Material {
-    let [r, g, b, _] = values.base_color;
+    let [r, g, b, alpha] = values.base_color;
     let base = Color::new(r, g, b);
     let (m, rough) = (values.metallic, values.roughness);
     let f0 = DIELECTRIC_F0 * (1.0 - m) + m;
@@ -96,6 +114,10 @@ pub fn whitted_material(values: &PbrValues) -> Material {
     Material {
         color: base,
         texture: None,
+        alpha_cutoff: values
+            .alpha_cutoff
+            .filter(|&cutoff| cutoff > 0.0)
+            .map(|cutoff| (cutoff / alpha).min(CUT_ALL)),
         emission: Color::new(er, eg, eb) * values.emissive_strength,
         emission_texture: None,
         ambient: Material::default().ambient * scattered,
@@ -166,6 +188,7 @@ mod tests {
     fn values(metallic: f32, roughness: f32, transmission: f32) -> PbrValues {
         PbrValues {
             base_color: [0.8, 0.2, 0.1, 1.0],
+            alpha_cutoff: None,
             metallic,
             roughness,
             transmission,
@@ -203,6 +226,23 @@ mod tests {
             assert!(mat.reflectivity + mat.diffuse <= 1.0 + 1e-6);
             assert!(mat.transparency + mat.diffuse <= 1.0 + 1e-6);
         }
+    }
+
+    #[test]
+    fn the_mask_cutoff_is_held_to_the_textures_alpha_divided_by_the_factors() {
+        let masked = |alpha: f32, cutoff: Option<f32>| {
+            let mut v = values(0.0, 1.0, 0.0);
+            v.base_color[3] = alpha;
+            v.alpha_cutoff = cutoff;
+            whitted_material(&v).alpha_cutoff
+        };
+        assert_eq!(masked(1.0, None), None);
+        assert_eq!(masked(0.5, None), None);
+        assert_eq!(masked(1.0, Some(0.5)), Some(0.5));
+        assert_eq!(masked(0.5, Some(0.25)), Some(0.5));
+        assert_eq!(masked(0.2, Some(0.5)), Some(CUT_ALL));
+        assert_eq!(masked(0.0, Some(0.5)), Some(CUT_ALL));
+        assert_eq!(masked(0.0, Some(0.0)), None);
     }
 
     #[test]

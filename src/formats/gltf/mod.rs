@@ -21,7 +21,7 @@ use crate::material::Material;
 use crate::mesh::Mesh;
 use crate::texture::Texture;
 use geometry::{Placements, placements, primitive_mesh};
-use materials::{PbrValues, materials_report, whitted_material};
+use materials::{BLEND_CUTOFF, PbrValues, materials_report, whitted_material};
 
 pub use geometry::NO_MATERIAL;
 
@@ -244,8 +244,8 @@ fn validation_message(error: gltf::Error) -> String {
 }
 
 /// The report: `glTF: 14 materials → 2 mirrors, 1 glass, 11 Phong; not used:
-/// KHR_materials_clearcoat (3), KHR_materials_sheen (1); 2 animations ignored`. A count after an
-/// extension is how many materials use it.
+/// KHR_materials_clearcoat (3), KHR_materials_sheen (1); alphaMode BLEND (2) drawn as MASK at
+/// 0.5; 2 animations ignored`. A count after an extension or BLEND is how many materials use it.
 fn report(document: &gltf::Document, materials: &[Material]) -> String {
     let mut parts = vec![format!("glTF: {}", materials_report(materials))];
     let unused: Vec<String> = document
@@ -265,6 +265,15 @@ fn report(document: &gltf::Document, materials: &[Material]) -> String {
         .collect();
     if !unused.is_empty() {
         parts.push(format!("not used: {}", unused.join(", ")));
+    }
+    let blended = document
+        .materials()
+        .filter(|m| m.alpha_mode() == gltf::material::AlphaMode::Blend)
+        .count();
+    if blended > 0 {
+        parts.push(format!(
+            "alphaMode BLEND ({blended}) drawn as MASK at {BLEND_CUTOFF}"
+        ));
     }
     let morphed = document
         .meshes()

@@ -181,6 +181,7 @@ fn material(fill: &Fill) -> Material {
     Material {
         color: fill.color.as_vec3(),
         texture: None,
+        alpha_cutoff: None,
         emission: Color::ZERO,
         emission_texture: None,
         ambient: fill.kd as f32,

@@ -91,6 +91,7 @@ impl SdlMaterial {
         Material {
             color: self.diffuse,
             texture: None,
+            alpha_cutoff: None,
             emission: self.emissive,
             emission_texture: None,
             ambient,

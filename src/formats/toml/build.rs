@@ -439,6 +439,7 @@ fn build_material(
             .texture
             .map(|name| textures.resolve(&name, source))
             .transpose()?,
+        alpha_cutoff: material.alpha_cutoff.map(|x| x.0),
         emission: material.emission.map_or(default.emission, |c| c.0),
         emission_texture: material
             .emission_texture

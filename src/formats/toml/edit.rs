@@ -152,6 +152,11 @@ fn write_material(table: &mut dyn TableLike, old: &Material, new: &Material) {
     if old.fresnel != new.fresnel {
         set(table, "fresnel", Value::from(new.fresnel));
     }
+    if let Some(cutoff) = new.alpha_cutoff
+        && old.alpha_cutoff != new.alpha_cutoff
+    {
+        set(table, "alpha_cutoff", number(cutoff));
+    }
 }
 
 fn write_light(table: &mut dyn TableLike, old: &Light, new: &Light) {

@@ -191,6 +191,8 @@ pub struct MaterialFile {
     pub color: Option<ColorValue>,
     /// A name from `[textures]`.
     pub texture: Option<Spanned<String>>,
+    /// Where the texture's alpha is below this, the surface is cut away.
+    pub alpha_cutoff: Option<NonNegative>,
     /// Light the surface gives off of itself.
     pub emission: Option<ColorValue>,
     /// A name from `[textures]` the emission is multiplied by.

@@ -257,11 +257,7 @@ impl App {
                 .flat_map(|y| (0..width).map(move |x| (x, y)))
                 .map(|(x, y)| display.tone.map(r.film.get(x, y)))
                 .collect();
-            Arc::new(SrgbImage {
-                width,
-                height,
-                pixels,
-            })
+            Arc::new(SrgbImage::new(width, height, pixels))
         });
         let message = match display.snapshot {
             Some(_) => "snapshot kept: it shows left of the divider (V: split on or off)",

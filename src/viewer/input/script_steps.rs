@@ -120,7 +120,7 @@ pub const STEPS: &[StepHelp] = &[
     },
     StepHelp {
         syntax: "material NAME FIELD VALUE…",
-        does: "changes a field of the material called NAME (or numbered `#K`, as in the Materials panel; 0 is the TOML reader's default material): `color R G B`, `emission R G B`, `specular_color R G B`, `reflection_color R G B`, `ka`, `kd`, `ks`, `shininess`, `kr`, `kt`, `ior` (one number each), `fresnel` `on` or `off`; e.g. `material red kd 0.2`, `material lamp emission 2 1 0`",
+        does: "changes a field of the material called NAME (or numbered `#K`, as in the Materials panel; 0 is the TOML reader's default material): `color R G B`, `emission R G B`, `specular_color R G B`, `reflection_color R G B`, `ka`, `kd`, `ks`, `shininess`, `kr`, `kt`, `ior`, `alpha_cutoff` (one number each), `fresnel` `on` or `off`; e.g. `material red kd 0.2`, `material lamp emission 2 1 0`",
     },
     StepHelp {
         syntax: "light N FIELD VALUE…",

@@ -23,12 +23,14 @@ pub enum MaterialEdit {
     ReflectionColor(Color),
     Transparency(f32),
     Ior(f32),
+    /// The cut-outs' threshold ([`Material::alpha_cutoff`]).
+    AlphaCutoff(f32),
     Fresnel(bool),
 }
 
 /// The field names a script's `material` step takes.
 const MATERIAL_FIELDS: &str = "color, emission, ka (ambient), kd (diffuse), ks (specular), \
-    specular_color, shininess, kr (reflectivity), reflection_color, kt (transparency), ior, fresnel";
+    specular_color, shininess, kr (reflectivity), reflection_color, kt (transparency), ior, alpha_cutoff, fresnel";
 
 impl MaterialEdit {
     /// `FIELD VALUE…`: one number, three for a colour, `on`/`off` for `fresnel`.
@@ -53,6 +55,7 @@ impl MaterialEdit {
             "reflection_color" => three(MaterialEdit::ReflectionColor),
             "kt" | "transparency" => one(MaterialEdit::Transparency),
             "ior" => one(MaterialEdit::Ior),
+            "alpha_cutoff" => one(MaterialEdit::AlphaCutoff),
             "fresnel" => flag
                 .map(MaterialEdit::Fresnel)
                 .ok_or_else(|| "`fresnel` takes on or off".to_string()),
@@ -75,6 +78,7 @@ impl MaterialEdit {
             MaterialEdit::ReflectionColor(c) => m.reflection_color = c,
             MaterialEdit::Transparency(x) => m.transparency = x,
             MaterialEdit::Ior(x) => m.ior = x,
+            MaterialEdit::AlphaCutoff(x) => m.alpha_cutoff = Some(x),
             MaterialEdit::Fresnel(on) => m.fresnel = on,
         }
     }
@@ -162,14 +166,15 @@ pub fn set_color(light: &mut Light, shone: Color) {
     }
 }
 
-/// Whether `m` can be traced: finite coefficients, none negative, `kr` and `kt` at most 1, an
-/// index of refraction above 0. The error says which field is wrong.
+/// Whether `m` can be traced: finite coefficients and alpha cutoff, none negative, `kr` and
+/// `kt` at most 1, an index of refraction above 0. The error says which field is wrong.
 pub fn check_material(m: &Material) -> Result<(), String> {
     let non_negative = [
         ("ka", m.ambient),
         ("kd", m.diffuse),
         ("ks", m.specular),
         ("shininess", m.shininess),
+        ("alpha_cutoff", m.alpha_cutoff.unwrap_or(0.0)),
     ];
     for (name, x) in non_negative {
         if !(x.is_finite() && x >= 0.0) {

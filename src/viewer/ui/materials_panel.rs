@@ -64,6 +64,10 @@ fn material_fields(ui: &mut egui::Ui, m: &mut Material) {
         }
         None => color(ui, "colour", &mut m.color),
     }
+    if let Some(cutoff) = &mut m.alpha_cutoff {
+        ui.add(Slider::new(cutoff, 0.0..=1.0).text("alpha cutoff"))
+            .on_hover_text("the surface is cut away where its texture's alpha is below this");
+    }
     color(ui, "emission", &mut m.emission);
     if let Some(t) = m.emission_texture {
         ui.label(format!("emission × texture #{t}"));
