@@ -188,15 +188,18 @@ impl SrgbImage {
         lerp(top, bottom, fy)
     }
 
-    /// Bilinear sample of the linear colours at `uv`, wrapped by `wrap` ([`Self::bilinear`]).
+    /// Bilinear sample of the linear colours at `uv` (`v = 0` is the bottom of the image),
+    /// wrapped along x by `wrap[0]` and along y by `wrap[1]`. Texel coordinates are held within
+    /// ±2^40, so that a model's absurd texture coordinates (infinite, not a number) wrap or clamp
+    /// like any others.
     pub fn sample(&self, uv: Vec2, wrap: [Wrap; 2]) -> Color {
         let linear = &*SRGB8_TO_LINEAR;
         let texel = |i: usize| Color::from_array(self.pixels[i].map(|c| linear[c as usize]));
         self.bilinear(uv, wrap, texel, Color::lerp)
     }
 
-    /// Bilinear sample of the alpha at `uv` (in [0, 1]; 1 where the image has no alpha),
-    /// wrapped by `wrap` ([`Self::bilinear`]).
+    /// Bilinear sample of the alpha at `uv` (in [0, 1]; 1 where the image has no alpha), as
+    /// [`Self::sample`] samples the colours.
     pub fn sample_alpha(&self, uv: Vec2, wrap: [Wrap; 2]) -> f32 {
         if self.alpha.is_empty() {
             return 1.0;

@@ -12,7 +12,7 @@
 //! length they travel inside such objects (`lighting`).
 //!
 //! Where a material cuts its surface away by its texture's alpha, rays and shadow rays pass
-//! the cut-away points ([`cut_outs`]).
+//! the cut-away points (`cut_outs`).
 //!
 //! Shadow rays try first the primitive that last blocked the same light on the same thread
 //! (the shadow cache of Haines and Greenberg, `shadow_cache`).
