@@ -36,7 +36,8 @@
 //! - Looking inside: [`inspect`] records one pixel's ray tree with a tree observer and renders
 //!   debug views as shaders of the same renderer; [`figure`] draws that ray tree in the scene
 //!   as the lecture's figure, seen from an observer camera; [`compare`] measures how another image
-//!   differs from raylab's. Nothing above depends on them.
+//!   differs from raylab's, and [`grade`] grades a class's images with it, for a teacher's
+//!   report. Nothing above depends on them.
 //! - Where the back ends meet: [`backend`] runs a render's passes on the CPU or on the GPU, with
 //!   first hits from the rays or the item buffer, in any of [`inspect`]'s views; every program
 //!   renders through it, and nothing else chooses between the tracers.
@@ -54,6 +55,7 @@ pub mod film;
 pub mod formats;
 #[cfg(feature = "gpu")]
 pub mod gpu;
+pub mod grade;
 pub mod inspect;
 pub mod item_buffer;
 pub mod large_mesh;

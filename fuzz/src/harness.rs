@@ -5,7 +5,8 @@
 //! does the replay of the kept corpus (`tests/library/fuzz_corpus.rs`), so this file uses raylab and
 //! std alone.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::LazyLock;
 
 use raylab::bvh::Bvh;
 use raylab::camera::CameraSpec;
@@ -17,6 +18,7 @@ use raylab::formats::toml::{
     ModelFormat, build_model_scene, parse_scene_with, parse_views, views_text,
 };
 use raylab::formats::{SceneError, SceneFiles, ascii_text, utf8_text};
+use raylab::grade::assignment::parse_assignment;
 use raylab::inspect::trace_ray_tree;
 use raylab::progressive::render_image;
 use raylab::scene::Scene;
@@ -166,6 +168,26 @@ pub fn views(data: &[u8]) -> Result<(), String> {
         assert_eq!(turntable(first, 5)?.len(), 5);
     }
     assert_eq!(path(&cameras, 7)?.len(), 7);
+    Ok(())
+}
+
+/// The scene file an assignment may name, `scene.toml`: a ball and a light.
+const ASSIGNED_SCENE: &str = "[camera]\neye = [0, 1, 4]\nlook_at = [0, 0, 0]\n[[lights]]\n\
+    type = \"point\"\nposition = [2, 4, 3]\n[[objects]]\ntype = \"sphere\"\n\
+    center = [0, 0, 0]\nradius = 1\n";
+
+/// Reads `data` as a `raylab grade` assignment, in a folder of this process's own beside the
+/// scene file `scene.toml` ([`ASSIGNED_SCENE`]), and checks that it has scenes.
+pub fn assignment(data: &[u8]) -> Result<(), String> {
+    static FOLDER: LazyLock<PathBuf> = LazyLock::new(|| {
+        let folder = std::env::temp_dir().join(format!("raylab-fuzz-{}", std::process::id()));
+        std::fs::create_dir_all(&folder).expect("a folder for the assignment");
+        std::fs::write(folder.join("scene.toml"), ASSIGNED_SCENE).expect("the scene file");
+        folder
+    });
+    let path = FOLDER.join("assignment.toml");
+    let assignment = parse_assignment(data, &path).map_err(|e| e.to_string())?;
+    assert!(!assignment.scenes.is_empty());
     Ok(())
 }
 

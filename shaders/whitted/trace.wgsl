@@ -157,6 +157,7 @@ fn trace_eye(dir: vec3<f32>, item_t: f32) -> Traced {
             }
             if cut_outs > 0u {
                 t_min = past;
+                t_max = T_FAR;
             }
             find = FIND_CLOSEST;
         }
@@ -175,19 +176,18 @@ fn trace_eye(dir: vec3<f32>, item_t: f32) -> Traced {
                 // Past the cut-away point, all the way.
                 past = hit.t;
                 cut_outs++;
-                eye_far = T_FAR;
                 ray_waits = true;
                 continue;
             }
         }
-        cut_outs = 0u;
-        if ray.depth == 1u && !hit.found && eye_far < T_FAR {
+        if ray.depth == 1u && !hit.found && eye_far < T_FAR && cut_outs == 0u {
             // Nothing up to the item (rounding put its primitive elsewhere): the eye ray again,
             // all the way.
             eye_far = T_FAR;
             ray_waits = true;
             continue;
         }
+        cut_outs = 0u;
         // A debug view shows the eye ray's first hit alone (black where it misses).
         let viewing = frame.view != VIEW_SHADED;
         var throughput = ray.throughput;

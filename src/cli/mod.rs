@@ -10,6 +10,7 @@ mod check;
 mod diff;
 mod figure;
 mod generate;
+mod grade;
 mod inspect;
 mod jobs;
 mod merge;
@@ -78,6 +79,10 @@ enum Command {
     /// missing, a wrong index of refraction, pixel corners, a flipped image, gamma, clamping),
     /// and raylab's ray tree at the worst pixels. Exits as `diff` does.
     Check(check::CheckArgs),
+    /// Grade a class: each student's image of each scene of an assignment against raylab's,
+    /// a report a browser opens offline (index.html, a page per student, grades.csv). Exits 0
+    /// when it graded, 1 when the assignment is wrong, 2 for a mistyped command line.
+    Grade(grade::GradeArgs),
 }
 
 /// Runs the command, printing its error, and gives the exit status: 0 when it succeeds, 1 when
@@ -92,6 +97,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Command::Gen(args)) => generate::run(args),
         Some(Command::Bench(args)) => bench::run(args),
         Some(Command::Inspect(args)) => inspect::run(args),
+        Some(Command::Grade(args)) => grade::run(args),
         Some(Command::View(args)) => view::run(args),
         Some(Command::Diff(args)) => return compared(diff::run(args)),
         Some(Command::Check(args)) => return compared(check::run(args)),

@@ -192,15 +192,14 @@ impl<'a> Tracer<'a> {
         self.bvh
             .closest_hits_within(geometry, rays, EYE_RAY_T_MIN, limits, hits);
         for ((ray, hit), &limit) in rays.iter().zip(hits.iter_mut()).zip(limits.iter()) {
-            if limit.is_finite() {
-                match hit {
-                    Some(_) => counts.from_item_buffer += 1,
-                    None => {
-                        *hit = (self.bvh).closest_hit(geometry, ray, EYE_RAY_T_MIN, f32::INFINITY)
-                    }
-                }
+            let within_item = limit.is_finite() && hit.is_some();
+            if limit.is_finite() && hit.is_none() {
+                *hit = (self.bvh).closest_hit(geometry, ray, EYE_RAY_T_MIN, f32::INFINITY);
             }
             *hit = self.past_cut_outs(ray, *hit, f32::INFINITY, &mut ());
+            if within_item && hit.is_some() {
+                counts.from_item_buffer += 1;
+            }
         }
     }
 

@@ -12,6 +12,7 @@ mod figure;
 mod first_hit;
 mod gen_and_bench;
 mod gpu;
+mod grade;
 mod inspect;
 mod outputs;
 mod overrides;

@@ -37,17 +37,17 @@ fn scenes() -> Vec<(String, Assembled)> {
         .collect()
 }
 
-/// The id the object view shows for each pixel's first hit as the rays find it (`None`: the
-/// ray misses), row by row.
+/// The id the object view shows for each pixel's first hit as the rays find it in the BVH
+/// (`None`: the ray misses), row by row. The raster pass knows nothing of textures, so the hit
+/// is the first surface, cut away by its texture's alpha or not, as the BVH's search finds it.
 fn ray_ids(assembled: &Assembled) -> Vec<Option<u32>> {
-    let tracer = assembled.tracer();
-    let scene = &assembled.scene;
+    let (bvh, scene) = (&assembled.bvh, &assembled.scene);
     let (width, height) = SIZE;
     (0..height)
         .flat_map(|y| (0..width).map(move |x| (x, y)))
         .map(|pixel| {
             let ray = scene.camera.eye_ray(pixel, PIXEL_CENTRE, SIZE);
-            let hit = tracer.closest_hit(&ray, EYE_RAY_T_MIN)?;
+            let hit = bvh.closest_hit(&scene.geometry, &ray, EYE_RAY_T_MIN, f32::INFINITY)?;
             Some(scene.geometry.part_id(&hit))
         })
         .collect()

@@ -93,6 +93,13 @@ fn the_kept_views_files_read_or_fail_cleanly() {
 }
 
 #[test]
+fn the_kept_assignments_read_or_fail_cleanly() {
+    replay("assignment", harness::assignment);
+    let good = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/regressions/assignment/seed_two");
+    assert_eq!(harness::assignment(&std::fs::read(good).unwrap()), Ok(()));
+}
+
+#[test]
 fn the_kept_parts_read_or_fail_cleanly() {
     replay("part", harness::part);
     let kept = |name: &str| {
