@@ -47,6 +47,9 @@ impl Tracer<'_> {
         t_max: f32,
         cost: &mut impl TraversalCost,
     ) -> Option<Hit> {
+        if !self.cut_outs {
+            return hit;
+        }
         let mut hit = hit;
         for _ in 0..MAX_CUT_OUTS {
             let at = hit?;
