@@ -36,6 +36,9 @@ pub fn run(args: GradeArgs) -> Result<(), String> {
     let assignment = read_assignment(&args.assignment).map_err(|e| e.to_string())?;
     let flip = |reference: &_, image: &_| f64::from(flip(reference, image));
     if let Some(folder) = &args.student {
+        if !folder.is_dir() {
+            return Err(format!("{}: no such folder", folder.display()));
+        }
         let id = folder.file_name().map_or_else(
             || folder.display().to_string(),
             |n| n.to_string_lossy().into(),

@@ -290,6 +290,14 @@ fn a_wrong_assignment_exits_1_at_its_line_and_a_wrong_command_line_2() {
         assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
         assert!(stderr(&out).contains(says), "{}", stderr(&out));
     }
+    assignment(dir);
+    let out = raylab(&["grade", "assignment.toml", "--student", "nobody"], dir);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("nobody: no such folder"),
+        "{}",
+        stderr(&out)
+    );
     let out = raylab(&["grade", "assignment.toml"], dir);
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     let out = raylab(&["grade", "assignment.toml", "class"], dir);
