@@ -14,10 +14,9 @@ use std::path::Path;
 use super::assignment::Assignment;
 use super::{ReferenceKey, References, SceneGrade, StudentGrades};
 use crate::compare::difference::HeatMap;
-use crate::formats::image::save_toned_pixels;
+use crate::formats::image::{save_image, save_toned_pixels};
 use crate::output::write_atomically;
 use crate::srgb_image::SrgbImage;
-use crate::texture::SRGB8_TO_LINEAR;
 use crate::tone::Tone;
 
 /// The colours of a passing and a failing cell in the class table.
@@ -158,10 +157,7 @@ fn write_text(path: &Path, text: &str) -> Result<(), String> {
 
 /// Saves `image` as a PNG at `path`, byte for byte.
 fn save_png(path: &Path, image: &SrgbImage) -> Result<(), String> {
-    let linear = &*SRGB8_TO_LINEAR;
-    let pixel = |x: u32, y: u32| image.at(x, y).map(|c| linear[c as usize]).into();
-    save_toned_pixels(path, image.width, image.height, &pixel, Tone::default())
-        .map_err(|e| e.to_string())
+    save_image(path, image.width, image.height, &image.to_linear()).map_err(|e| e.to_string())
 }
 
 /// The page's head: its title, and the styles of the tables and images.
