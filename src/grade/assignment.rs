@@ -59,8 +59,9 @@ pub const IMAGE_EXTENSIONS: [&str; 7] = ["png", "ppm", "bmp", "jpg", "jpeg", "ex
 
 /// A pass mark when the assignment gives none: a mean difference of 2 levels.
 pub const DEFAULT_PASS: f64 = 2.0;
-/// A tolerance when the assignment gives none.
-pub const DEFAULT_TOLERANCE: u8 = 8;
+/// A tolerance when the assignment gives none (wider than `raylab diff`'s: students' tracers
+/// round differently).
+pub const GRADING_TOLERANCE: u8 = 8;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -133,7 +134,7 @@ pub fn parse_assignment(bytes: &[u8], path: &Path) -> Result<Assignment, SceneEr
     }
     Ok(Assignment {
         name: file.assignment.name,
-        tolerance: file.assignment.tolerance.unwrap_or(DEFAULT_TOLERANCE),
+        tolerance: file.assignment.tolerance.unwrap_or(GRADING_TOLERANCE),
         pass,
         measure: file.grading.measure.unwrap_or_default(),
         scenes,
