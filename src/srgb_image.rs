@@ -100,14 +100,23 @@ impl SrgbImage {
     /// The linear colours of the pixels, row by row: [`Self::from_linear`] of them gives the
     /// same image back, byte for byte.
     pub fn to_linear(&self) -> Vec<Color> {
-        let linear = |p: &[u8; 3]| Color::from(p.map(|v| srgb_to_linear(v as f32 / 255.0)));
-        self.pixels.iter().map(linear).collect()
+        self.pixels.iter().map(|p| linear(*p)).collect()
+    }
+
+    /// The linear colour of the pixel at column `x`, row `y`.
+    pub fn linear_at(&self, x: u32, y: u32) -> Color {
+        linear(self.at(x, y))
     }
 
     /// The pixel at column `x`, row `y` (row 0 at the top).
     pub fn at(&self, x: u32, y: u32) -> [u8; 3] {
         self.pixels[(y as usize) * self.width as usize + x as usize]
     }
+}
+
+/// The linear colour of a pixel's levels.
+fn linear(levels: [u8; 3]) -> Color {
+    Color::from(levels.map(|v| srgb_to_linear(f32::from(v) / 255.0)))
 }
 
 /// A reader of the image `reader` holds, its format told by its first bytes; the error says

@@ -10,6 +10,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use raylab::compare::check::{check, memory_bytes};
 use raylab::compare::difference::DEFAULT_TOLERANCE;
+use raylab::compare::traces::Traces;
 use raylab::formats::SceneFormat;
 use raylab::formats::nff::NffLighting;
 use raylab::memory;
@@ -75,7 +76,9 @@ pub fn run(args: CheckArgs) -> Result<Verdict, String> {
             .expect("the template is valid"),
     );
     bar.enable_steady_tick(Duration::from_millis(100));
-    let report = check(&assembled, &image, args.tolerance, &mut |step| {
+    bar.set_message("tracing raylab's image");
+    let traces = Traces::new(assembled, 0);
+    let report = check(&traces, &image, args.tolerance, &mut |step| {
         bar.set_message(step.to_string());
     });
     bar.finish_and_clear();

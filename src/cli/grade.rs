@@ -12,7 +12,7 @@ use clap::Args;
 use raylab::grade::assignment::{Assignment, read_assignment};
 use raylab::grade::report::{csv, write_report};
 use raylab::grade::submissions::{Student, students};
-use raylab::grade::{StudentGrades, grade};
+use raylab::grade::{Measured, StudentGrades, grade};
 
 use super::diff::flip;
 
@@ -71,7 +71,8 @@ pub fn run(args: GradeArgs) -> Result<(), String> {
     })
 }
 
-/// A student's verdicts, a scene a line, and the total.
+/// A student's verdicts, a scene a line with what `raylab check` finds in a failed image
+/// beneath it, and the total.
 fn verdicts(assignment: &Assignment, grades: &StudentGrades) -> String {
     let mut text = String::new();
     let mut possible = 0.0;
@@ -95,6 +96,15 @@ fn verdicts(assignment: &Assignment, grades: &StudentGrades) -> String {
             "{}: {verdict}, {} of {} points\n",
             scene.image, grade.points, scene.points
         );
+        if let Ok(Measured {
+            check: Some(report),
+            ..
+        }) = &grade.measured
+        {
+            for line in report.findings() {
+                text += &format!("  {line}\n");
+            }
+        }
     }
     text += &format!("total: {} of {possible} points\n", grades.total());
     text

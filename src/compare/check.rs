@@ -5,6 +5,7 @@
 //! ([`super::explain`]).
 
 use std::fmt::Write;
+use std::sync::Arc;
 
 use serde::Serialize;
 use strum::IntoEnumIterator;
@@ -12,11 +13,11 @@ use strum::IntoEnumIterator;
 use super::difference::{Difference, difference, difference_from};
 use super::evidence::{Evidence, evidence};
 use super::explain::{PixelExplanation, explain_pixel};
-use super::mistakes::{Mistake, Written, fitted_scale, trace_with};
+use super::mistakes::{Mistake, Written, fitted_scale};
 use super::regions::{Region, regions};
+use super::traces::Traces;
 use crate::film::Film;
 use crate::inspect::trace_ray_tree;
-use crate::render::Assembled;
 use crate::settings::RenderSettings;
 use crate::srgb_image::SrgbImage;
 
@@ -62,68 +63,64 @@ pub struct ExplainedRegion {
 }
 
 /// The memory [`check`] takes for an image of `settings`' size beyond the scene and the image
-/// itself: raylab's image as written (3 bytes a pixel), two traced films at once (the one the
-/// mistakes found so far make and the one being tried, 16 bytes a pixel each), the render's own
-/// copy for its anti-aliasing rounds, and the regions' marks and their search's stack (6).
+/// itself, with no images traced with mistakes kept ([`Traces`]): raylab's image as written (3
+/// bytes a pixel), three traced films at once (raylab's own, the one the mistakes found so far
+/// make and the one being tried, 16 bytes a pixel each), the render's own copy for its
+/// anti-aliasing rounds, and the regions' marks and their search's stack (6).
 pub fn memory_bytes(settings: &RenderSettings) -> u64 {
     let (width, height) = (settings.width, settings.height);
     let pixels = u64::from(width) * u64::from(height);
     pixels * (3 + 6)
-        + 2 * Film::memory_bytes(width, height)
+        + 3 * Film::memory_bytes(width, height)
         + crate::progressive::memory_bytes(settings)
 }
 
-/// Compares `image` with raylab's render of `assembled`'s scene (which must be of the image's
+/// Compares `image` with raylab's render of `traces`' scene (which must be of the image's
 /// size) with a tolerance of `tolerance` levels, and finds why they differ. `step` hears of each
 /// image traced, as it starts (what it is for).
 pub fn check(
-    assembled: &Assembled,
+    traces: &Traces,
     image: &SrgbImage,
     tolerance: u8,
     step: &mut dyn FnMut(&str),
 ) -> Result<CheckReport, String> {
-    let settings = &assembled.scene.settings;
-    step("tracing raylab's image");
-    let traced = trace_with(assembled, &[]);
-    let reference = Written {
-        colors: &traced,
-        mistakes: &[],
-        scale: 1.0,
-    }
-    .image();
-    let figures = difference(&reference, image, tolerance)?;
+    let assembled = &traces.assembled;
+    let reference = &traces.reference;
+    let figures = difference(reference, image, tolerance)?;
     let mut report = CheckReport {
         difference: figures,
         evidence: Vec::new(),
         region_count: 0,
         causes: Vec::new(),
         regions: Vec::new(),
-        samples: settings.samples,
+        samples: assembled.scene.settings.samples,
     };
     if report.difference.within_tolerance() {
         return Ok(report);
     }
-    let scale = fitted_scale(&traced, image);
+    let scale = fitted_scale(&traces.film, image);
     let over = report.difference.over_tolerance;
-    let (causes, made) = find_mistakes(assembled, image, tolerance, (traced, over), scale, step)?;
+    let (causes, made) = find_mistakes(traces, image, tolerance, over, scale, step);
     // A mistake that changes the whole image alike (a flip, a curve, the camera) is no term of
     // a pixel's ray tree: the regions are what is left once it is made.
+    let written;
     let compared = match causes.iter().any(|c| !c.mistake.is_local()) {
         true => {
             let mistakes: Vec<Mistake> = causes.iter().map(|c| c.mistake).collect();
-            Written {
+            written = Written {
                 colors: &made,
                 mistakes: &mistakes,
                 scale,
             }
-            .image()
+            .image();
+            &written
         }
         false => reference,
     };
     drop(made);
-    let found = regions(&compared, image, tolerance)?;
+    let found = regions(compared, image, tolerance)?;
     if causes.is_empty() {
-        report.evidence = evidence(&compared, image, scale);
+        report.evidence = evidence(compared, image, scale);
     }
     // Where the image as a whole points elsewhere (one colour, the camera), no pixel's ray tree
     // speaks to it.
@@ -152,19 +149,18 @@ pub fn check(
 
 /// The mistakes, at most [`MOST_MISTAKES`], that bring raylab's image closest to `image`: one
 /// at a time, the one that leaves the fewest pixels over the tolerance (then the smallest mean
-/// difference), as long as it at least halves them. `traced` is raylab's image and the pixels
-/// over the tolerance it leaves; `scale` the factor [`Mistake::Scaled`] multiplies by. Returns them and the image traced with them. At
-/// most two traced images are held at once: the one the mistakes found so far make, and the one
-/// being tried.
+/// difference), as long as it at least halves them. `over` is the pixels over the tolerance
+/// raylab's own image leaves; `scale` the factor [`Mistake::Scaled`] multiplies by. Returns
+/// them and the image traced with them.
 fn find_mistakes(
-    assembled: &Assembled,
+    traces: &Traces,
     image: &SrgbImage,
     tolerance: u8,
-    (traced, mut over): (Film, u64),
+    mut over: u64,
     scale: f32,
     step: &mut dyn FnMut(&str),
-) -> Result<(Vec<Cause>, Film), String> {
-    let mut base = traced;
+) -> (Vec<Cause>, Arc<Film>) {
+    let mut base = traces.film.clone();
     let mut made: Vec<Mistake> = Vec::new();
     let mut causes = Vec::new();
     while made.len() < MOST_MISTAKES && over > 0 {
@@ -172,25 +168,18 @@ fn find_mistakes(
         for mistake in Mistake::iter() {
             if made.contains(&mistake)
                 || made.iter().any(|m| m.excludes(mistake))
-                || !mistake.applies_to(&assembled.scene)
+                || !mistake.applies_to(&traces.assembled.scene)
             {
                 continue;
             }
             let mut trial = made.clone();
             trial.push(mistake);
-            let retraced = if mistake.retraces() {
-                let retraced: Vec<Mistake> =
-                    trial.iter().copied().filter(|m| m.retraces()).collect();
-                step(&format!(
-                    "tracing raylab's image as if {}",
-                    mistake.describe()
-                ));
-                Some(trace_with(assembled, &retraced))
-            } else {
-                None
+            let colors = match mistake.retraces() {
+                true => traces.traced(&trial, step),
+                false => base.clone(),
             };
             let written = Written {
-                colors: retraced.as_ref().unwrap_or(&base),
+                colors: &colors,
                 mistakes: &trial,
                 scale,
             };
@@ -204,13 +193,7 @@ fn find_mistakes(
             Some((after, _, mistake)) if after * 2 <= over && after < over => {
                 made.push(mistake);
                 if mistake.retraces() {
-                    let retraced: Vec<Mistake> =
-                        made.iter().copied().filter(|m| m.retraces()).collect();
-                    step(&format!(
-                        "tracing raylab's image as if {}",
-                        mistake.describe()
-                    ));
-                    base = trace_with(assembled, &retraced);
+                    base = traces.traced(&made, step);
                 }
                 causes.push(Cause {
                     mistake,
@@ -222,7 +205,7 @@ fn find_mistakes(
             _ => break,
         }
     }
-    Ok((causes, base))
+    (causes, base)
 }
 
 /// What `check` says of a mistake found: its description, with the factor of a scaling.
@@ -264,82 +247,93 @@ impl CheckReport {
             d.largest_at.0,
             d.largest_at.1
         );
-        for (i, cause) in self.causes.iter().enumerate() {
-            let _ = writeln!(
-                out,
-                "{}: {}; raylab's image made with it has {} pixels over the tolerance",
-                if i == 0 { "likely cause" } else { "and" },
-                cause.description,
-                cause.over_tolerance
-            );
-        }
-        if self.causes.is_empty() {
-            let _ = writeln!(out, "no common mistake accounts for it");
-        }
-        for evidence in &self.evidence {
-            let _ = writeln!(out, "what your image shows: {}", evidence.says);
-        }
-        if !self.evidence.is_empty() {
-            let _ = writeln!(
-                out,
-                "its {} regions are not explained pixel by pixel from raylab's ray tree: they \
-                 follow from what the image shows",
-                self.region_count
-            );
-        }
-        if self.region_count == 0 {
-            let _ = writeln!(
-                out,
-                "with the mistakes found made, raylab's image is yours within the tolerance"
-            );
-        }
-        if self.samples > 1 {
-            let _ = writeln!(
-                out,
-                "note: raylab's render takes up to {} samples per pixel (anti-aliased); a tracer \
-                 with one ray per pixel differs at every edge: add --samples 1",
-                self.samples
-            );
+        for line in self.findings() {
+            let _ = writeln!(out, "{line}");
         }
         for (i, explained) in self.regions.iter().enumerate() {
-            write_region(&mut out, i, self.region_count, explained);
+            let mut lines = explained.lines(i, self.region_count).into_iter();
+            let _ = writeln!(out, "{}", lines.next().unwrap_or_default());
+            for line in lines {
+                let _ = writeln!(out, "  {line}");
+            }
         }
         let _ = writeln!(out, "different");
         out
     }
+
+    /// What was found, a sentence a line: the mistakes that account for the difference, what
+    /// the image shows, and the notes on the regions and the samples.
+    pub fn findings(&self) -> Vec<String> {
+        let mut lines = Vec::new();
+        for (i, cause) in self.causes.iter().enumerate() {
+            lines.push(format!(
+                "{}: {}; raylab's image made with it has {} pixels over the tolerance",
+                if i == 0 { "likely cause" } else { "and" },
+                cause.description,
+                cause.over_tolerance
+            ));
+        }
+        if self.causes.is_empty() {
+            lines.push("no common mistake accounts for it".into());
+        }
+        for evidence in &self.evidence {
+            lines.push(format!("what your image shows: {}", evidence.says));
+        }
+        if !self.evidence.is_empty() {
+            lines.push(format!(
+                "its {} regions are not explained pixel by pixel from raylab's ray tree: they \
+                 follow from what the image shows",
+                self.region_count
+            ));
+        }
+        if self.region_count == 0 {
+            lines.push(
+                "with the mistakes found made, raylab's image is yours within the tolerance".into(),
+            );
+        }
+        if self.samples > 1 {
+            lines.push(format!(
+                "note: raylab's render takes up to {} samples per pixel (anti-aliased); a tracer \
+                 with one ray per pixel differs at every edge: add --samples 1",
+                self.samples
+            ));
+        }
+        lines
+    }
 }
 
-fn write_region(out: &mut String, index: usize, count: usize, explained: &ExplainedRegion) {
-    let (region, e) = (&explained.region, &explained.explanation);
-    let [x0, y0, x1, y1] = region.bounds;
-    let levels = |c: [u8; 3]| format!("({}, {}, {})", c[0], c[1], c[2]);
-    let _ = writeln!(
-        out,
-        "region {} of {count}: {} pixels in x {x0}–{x1}, y {y0}–{y1}; its worst pixel ({}, {}): \
-         yours {}, raylab's {}",
-        index + 1,
-        region.pixels,
-        e.pixel.0,
-        e.pixel.1,
-        levels(e.yours),
-        levels(e.raylab)
-    );
-    let _ = writeln!(out, "  raylab's eye ray hits {}", e.first_hit);
-    let terms: Vec<String> = e
-        .terms
-        .iter()
-        .map(|t| match &t.note {
-            Some(note) => format!("{} {:.2} ({note})", t.what, t.share),
-            None => format!("{} {:.2}", t.what, t.share),
-        })
-        .collect();
-    let _ = writeln!(out, "  terms: {}", terms.join("; "));
-    match &e.accounted_for {
-        Some(sentence) => {
-            let _ = writeln!(out, "  {sentence}");
-        }
-        None => {
-            let _ = writeln!(out, "  no single term of raylab's ray tree accounts for it");
-        }
+impl ExplainedRegion {
+    /// The region, region `index` of `count`, a line at a time: where it is and its worst
+    /// pixel, what raylab's eye ray hits there, the terms of raylab's pixel, and the term that
+    /// accounts for the difference.
+    pub fn lines(&self, index: usize, count: usize) -> Vec<String> {
+        let (region, e) = (&self.region, &self.explanation);
+        let [x0, y0, x1, y1] = region.bounds;
+        let levels = |c: [u8; 3]| format!("({}, {}, {})", c[0], c[1], c[2]);
+        let terms: Vec<String> = e
+            .terms
+            .iter()
+            .map(|t| match &t.note {
+                Some(note) => format!("{} {:.2} ({note})", t.what, t.share),
+                None => format!("{} {:.2}", t.what, t.share),
+            })
+            .collect();
+        vec![
+            format!(
+                "region {} of {count}: {} pixels in x {x0}–{x1}, y {y0}–{y1}; its worst pixel \
+                 ({}, {}): yours {}, raylab's {}",
+                index + 1,
+                region.pixels,
+                e.pixel.0,
+                e.pixel.1,
+                levels(e.yours),
+                levels(e.raylab)
+            ),
+            format!("raylab's eye ray hits {}", e.first_hit),
+            format!("terms: {}", terms.join("; ")),
+            e.accounted_for.clone().unwrap_or_else(|| {
+                "no single term of raylab's ray tree accounts for it".to_string()
+            }),
+        ]
     }
 }

@@ -3,7 +3,7 @@
 //! of their [`difference`] and a heat map of it, the [`regions`] where they differ, the common
 //! [`mistakes`] of a student's tracer, one pixel's difference [`explain`]ed from raylab's ray
 //! tree, what the image shows when no mistake accounts for it ([`evidence`]), and all of it
-//! together in [`check`].
+//! together in [`check`], against raylab's images of the scene traced once ([`traces`]).
 
 pub mod check;
 pub mod difference;
@@ -11,3 +11,4 @@ pub mod evidence;
 pub mod explain;
 pub mod mistakes;
 pub mod regions;
+pub mod traces;

@@ -4,19 +4,21 @@
 //! stops the grading: a missing, unreadable, truncated, wrongly sized or oversized image, or a
 //! symbolic link, is a grade of 0 that says why. Each reference is rendered once (per size, when
 //! the assignment leaves the size to the students), before the images are measured on all
-//! cores.
+//! cores; a failed image is checked as `raylab check` does, against raylab's images traced with
+//! mistakes that the class's checks share ([`Traces`]).
 
 pub mod assignment;
 pub mod report;
 pub mod submissions;
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::PathBuf;
 
 use rayon::prelude::*;
 
+use crate::compare::check::{CheckReport, check};
 use crate::compare::difference::{Difference, difference};
-use crate::compare::mistakes::{Written, trace_with};
+use crate::compare::traces::Traces;
 use crate::render::assemble;
 use crate::srgb_image::SrgbImage;
 use assignment::{Assignment, Measure};
@@ -42,6 +44,8 @@ pub struct Measured {
     pub passed: bool,
     /// The figures `raylab diff` prints, at the assignment's tolerance.
     pub difference: Difference,
+    /// Where the image failed, what `raylab check` finds at the assignment's tolerance.
+    pub check: Option<CheckReport>,
 }
 
 /// One student's grades, a scene at a time in the assignment's order.
@@ -60,8 +64,13 @@ impl StudentGrades {
 /// A reference: scene `k` of the assignment at size `(w, h)`.
 pub type ReferenceKey = (usize, (u32, u32));
 
-/// The references raylab rendered, or why it could not.
-pub type References = BTreeMap<ReferenceKey, Result<SrgbImage, String>>;
+/// The references raylab rendered, with the images it traces with mistakes to check a failed
+/// image, or why it could not render them.
+pub type References = BTreeMap<ReferenceKey, Result<Traces, String>>;
+
+/// The memory the images traced with mistakes that every reference keeps for the class's
+/// checks may take, all references together.
+pub const KEPT_TRACES_BYTES: u64 = 256 << 20;
 
 /// Where a student's image of a scene is and the size its reference is rendered at, or why it
 /// has none.
@@ -82,16 +91,16 @@ pub fn grade(
             scenes.map(|scene| locate(student, scene)).collect()
         })
         .collect();
-    let mut references = References::new();
-    for row in &found {
-        for (k, located) in row.iter().enumerate() {
-            if let Ok((_, size)) = located {
-                references
-                    .entry((k, *size))
-                    .or_insert_with(|| reference(assignment, k, *size));
-            }
-        }
-    }
+    let keys: BTreeSet<ReferenceKey> = found
+        .iter()
+        .flat_map(|row| row.iter().enumerate())
+        .filter_map(|(k, located)| located.as_ref().ok().map(|(_, size)| (k, *size)))
+        .collect();
+    let share = KEPT_TRACES_BYTES / keys.len().max(1) as u64;
+    let references: References = keys
+        .into_iter()
+        .map(|(k, size)| ((k, size), reference(assignment, k, size, share)))
+        .collect();
     let grades = students
         .par_iter()
         .zip(found.into_par_iter())
@@ -139,27 +148,28 @@ fn after(message: &str) -> &str {
     message.split_once(": ").map_or(message, |(_, rest)| rest)
 }
 
-/// raylab's image of scene `k` at `size`, rendered as `raylab check` renders it.
-fn reference(assignment: &Assignment, k: usize, size: (u32, u32)) -> Result<SrgbImage, String> {
+/// raylab's image of scene `k` at `size`, rendered as `raylab check` renders it, keeping as
+/// many images traced with mistakes as `kept_bytes` holds.
+fn reference(
+    assignment: &Assignment,
+    k: usize,
+    size: (u32, u32),
+    kept_bytes: u64,
+) -> Result<Traces, String> {
     let mut scene = assignment.scenes[k].scene.clone();
     (scene.settings.width, scene.settings.height) = size;
     scene.settings.validate()?;
     let pixels = u64::from(size.0) * u64::from(size.1);
+    let film_bytes = crate::film::Film::memory_bytes(size.0, size.1);
+    let most_kept = kept_bytes / film_bytes.max(1);
     crate::memory::check(
         &format!(
             "raylab's {}×{} image of {}",
             size.0, size.1, assignment.scenes[k]
         ),
-        pixels * 3 + crate::compare::check::memory_bytes(&scene.settings),
+        pixels * 3 + crate::compare::check::memory_bytes(&scene.settings) + most_kept * film_bytes,
     )?;
-    let assembled = assemble(scene)?;
-    let traced = trace_with(&assembled, &[]);
-    Ok(Written {
-        colors: &traced,
-        mistakes: &[],
-        scale: 1.0,
-    }
-    .image())
+    Ok(Traces::new(assemble(scene)?, most_kept as usize))
 }
 
 /// The grade of one located image of scene `k`.
@@ -181,7 +191,7 @@ fn scene_grade(
         }
     };
     let measured = match &references[&(k, size)] {
-        Ok(reference) => measure(assignment, reference, &path, flip),
+        Ok(traces) => measure(assignment, traces, &path, flip),
         Err(problem) => Err(format!("raylab's image cannot be made: {problem}")),
     };
     let points = match &measured {
@@ -195,26 +205,34 @@ fn scene_grade(
     }
 }
 
-/// The image at `path` measured against `reference`, of its size.
+/// The image at `path` measured against `traces`' reference, of its size, and checked where it
+/// fails.
 fn measure(
     assignment: &Assignment,
-    reference: &SrgbImage,
+    traces: &Traces,
     path: &std::path::Path,
     flip: &FlipMeasure,
 ) -> Result<Measured, String> {
     let name = path.file_name().unwrap_or_default().to_string_lossy();
     let image =
         SrgbImage::read(path).map_err(|e| format!("{name} cannot be read: {}", after(&e)))?;
+    let reference = &traces.reference;
     let figures = difference(reference, &image, assignment.tolerance)?;
     let value = match assignment.measure {
         Measure::Mean => figures.mean_absolute,
         Measure::Neighbour => neighbour_mean(reference, &image),
         Measure::Flip => flip(reference, &image),
     };
+    let passed = value <= assignment.pass;
+    let check = match passed {
+        true => None,
+        false => Some(check(traces, &image, assignment.tolerance, &mut |_| {})?),
+    };
     Ok(Measured {
         measure: value,
-        passed: value <= assignment.pass,
+        passed,
         difference: figures,
+        check,
     })
 }
 

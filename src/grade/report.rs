@@ -2,7 +2,9 @@
 //! table, students × scenes, each cell the measure coloured by pass or fail and the points,
 //! sortable by any column, the references on top), a page per student (`ID.html`: for each
 //! scene raylab's image, the student's and the heat map of where they differ, side by side at
-//! the same scale, and the figures), the images they show, and `grades.csv` for a grade book.
+//! the same scale, the figures, and for a failed image what `raylab check` finds: the mistakes
+//! that account for it and the worst pixels explained from raylab's ray tree, with crops of the
+//! three pictures around them), the images they show, and `grades.csv` for a grade book.
 //! Every name that comes from a file or a folder is escaped in the HTML and in the CSV, and
 //! every file the report links to lies inside it under a name it chose.
 
@@ -13,8 +15,9 @@ use std::path::Path;
 
 use super::assignment::Assignment;
 use super::{ReferenceKey, References, SceneGrade, StudentGrades};
+use crate::compare::check::CheckReport;
 use crate::compare::difference::HeatMap;
-use crate::formats::image::{save_image, save_toned_pixels};
+use crate::formats::image::{PixelAt, save_toned_pixels};
 use crate::output::write_atomically;
 use crate::srgb_image::SrgbImage;
 use crate::tone::Tone;
@@ -122,9 +125,9 @@ pub fn write_report(
     let names = page_names(grades);
     let mut reference_files = Vec::new();
     for (&(k, size), reference) in references {
-        if let Ok(image) = reference {
+        if let Ok(traces) = reference {
             let file = format!("references/{}-{}x{}.png", k, size.0, size.1);
-            save_png(&folder.join(&file), image)?;
+            save_png(&folder.join(&file), &traces.reference)?;
             reference_files.push(((k, size), file));
         }
     }
@@ -157,7 +160,20 @@ fn write_text(path: &Path, text: &str) -> Result<(), String> {
 
 /// Saves `image` as a PNG at `path`, byte for byte.
 fn save_png(path: &Path, image: &SrgbImage) -> Result<(), String> {
-    save_image(path, image.width, image.height, &image.to_linear()).map_err(|e| e.to_string())
+    let size = (image.width, image.height);
+    save_window(path, (0, 0), size, &|x, y| image.linear_at(x, y))
+}
+
+/// Saves the window of `size` pixels with its top-left corner at `corner` of the picture whose
+/// pixel `(x, y)` is `pixel` as a PNG at `path`.
+fn save_window(
+    path: &Path,
+    corner: (u32, u32),
+    size: (u32, u32),
+    pixel: PixelAt,
+) -> Result<(), String> {
+    let window = |x, y| pixel(corner.0 + x, corner.1 + y);
+    save_toned_pixels(path, size.0, size.1, &window, Tone::default()).map_err(|e| e.to_string())
 }
 
 /// The page's head: its title, and the styles of the tables and images.
@@ -173,6 +189,9 @@ fn head(title: &str) -> String {
          td.fail {{ background: {FAIL_COLOR}; }}\n\
          figure {{ display: inline-block; margin: 0 1em 1em 0; }}\n\
          img {{ image-rendering: pixelated; width: 320px; }}\n\
+         .crop {{ position: relative; }}\n\
+         .crop img {{ display: block; }}\n\
+         .crop .worst {{ position: absolute; box-sizing: border-box; border: 2px solid #00e5ff; }}\n\
          </style>\n</head>\n<body>\n",
         html_escape(title)
     )
@@ -309,23 +328,17 @@ fn student_page(
             }
         };
         let size = (measured.difference.width, measured.difference.height);
-        let Some(Ok(reference)) = references.get(&(k, size)) else {
+        let Some(Ok(traces)) = references.get(&(k, size)) else {
             continue;
         };
+        let reference = &traces.reference;
         let image_path = grade.image.as_deref().unwrap_or(Path::new(""));
         let image = SrgbImage::read(image_path)?;
         let own = format!("{name}/{k}-image.png");
         let heat = format!("{name}/{k}-difference.png");
         save_png(&folder.join(&own), &image)?;
         let map = HeatMap::new(reference, &image, &measured.difference);
-        save_toned_pixels(
-            &folder.join(&heat),
-            size.0,
-            size.1,
-            &|x, y| map.color(x, y),
-            Tone::default(),
-        )
-        .map_err(|e| e.to_string())?;
+        save_window(&folder.join(&heat), (0, 0), size, &|x, y| map.color(x, y))?;
         let verdict = if measured.passed { "passed" } else { "failed" };
         let d = &measured.difference;
         let _ = writeln!(
@@ -353,7 +366,96 @@ fn student_page(
              <figcaption>where they differ: {}</figcaption></figure>",
             html_escape(&map.legend().to_text())
         );
+        if let Some(report) = &measured.check {
+            let pictures = Pictures {
+                reference,
+                image: &image,
+                map: &map,
+            };
+            let prefix = format!("{name}/{k}");
+            page += &findings(report, &pictures, &prefix, &id, folder)?;
+        }
     }
     page.push_str("</body>\n</html>\n");
     Ok(page)
+}
+
+/// The three pictures of a scene a student page shows side by side.
+struct Pictures<'a> {
+    reference: &'a SrgbImage,
+    image: &'a SrgbImage,
+    map: &'a HeatMap<'a>,
+}
+
+/// How many pixels a side a crop around a region's worst pixel has at most, and how many
+/// times larger it is shown.
+const CROP_SIDE: u32 = 25;
+const CROP_ZOOM: u32 = 8;
+
+/// What `raylab check` found in a failed image, as HTML: the mistakes and notes, then each
+/// region explained, with crops of the three pictures around its worst pixel (saved under
+/// `prefix`, a file name's start inside `folder`). `id` is the student's, escaped.
+fn findings(
+    report: &CheckReport,
+    pictures: &Pictures,
+    prefix: &str,
+    id: &str,
+    folder: &Path,
+) -> Result<String, String> {
+    let mut html = String::from("<h3>What raylab's check finds</h3>\n<ul class=\"findings\">\n");
+    for line in report.findings() {
+        let _ = writeln!(html, "<li>{}</li>", html_escape(&line));
+    }
+    html.push_str("</ul>\n");
+    let (width, height) = (pictures.reference.width, pictures.reference.height);
+    for (i, explained) in report.regions.iter().enumerate() {
+        let mut lines = explained.lines(i, report.region_count).into_iter();
+        let title = lines.next().unwrap_or_default();
+        let _ = writeln!(
+            html,
+            "<div class=\"region\">\n<p>{}</p>\n<ul>",
+            html_escape(&title)
+        );
+        for line in lines {
+            let _ = writeln!(html, "<li>{}</li>", html_escape(&line));
+        }
+        html.push_str("</ul>\n");
+        let (x, y) = explained.explanation.pixel;
+        let side = (CROP_SIDE.min(width), CROP_SIDE.min(height));
+        let corner = (
+            x.saturating_sub(side.0 / 2).min(width - side.0),
+            y.saturating_sub(side.1 / 2).min(height - side.1),
+        );
+        let crops: [(&str, String, PixelAt); 3] = [
+            ("raylab", "raylab's".into(), &|x, y| {
+                pictures.reference.linear_at(x, y)
+            }),
+            ("image", format!("{id}'s"), &|x, y| {
+                pictures.image.linear_at(x, y)
+            }),
+            ("difference", "the difference".into(), &|x, y| {
+                pictures.map.color(x, y)
+            }),
+        ];
+        for (what, whose, pixel) in crops {
+            let file = format!("{prefix}-region{}-{what}.png", i + 1);
+            save_window(&folder.join(&file), corner, side, pixel)?;
+            // The worst pixel framed, in hundredths of the crop.
+            let at = |v: u32, c: u32, s: u32| 100.0 * f64::from(v - c) / f64::from(s);
+            let _ = writeln!(
+                html,
+                "<figure><div class=\"crop\"><img src=\"{file}\" alt=\"{whose} pixels around \
+                 ({x}, {y})\" style=\"width: {}px\"><span class=\"worst\" style=\"left: {:.3}%; \
+                 top: {:.3}%; width: {:.3}%; height: {:.3}%\"></span></div><figcaption>{whose}, \
+                 around ({x}, {y})</figcaption></figure>",
+                side.0 * CROP_ZOOM,
+                at(x, corner.0, side.0),
+                at(y, corner.1, side.1),
+                100.0 / f64::from(side.0),
+                100.0 / f64::from(side.1),
+            );
+        }
+        html.push_str("</div>\n");
+    }
+    Ok(html)
 }

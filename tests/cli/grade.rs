@@ -1,9 +1,11 @@
 //! `raylab grade`: a class made here with the library (not with `grade`'s code): a student
 //! whose images are exact, one without shadows, one who handed in nothing, one with a
 //! truncated PNG, one with an image far too large, one with a 1×1 image, one whose folder is a
-//! symbolic link out of the class, and one whose id is HTML. Each is graded as expected, the
-//! CSV's means are `raylab diff`'s, nothing from a name reaches the HTML unescaped, and a wrong
-//! assignment or command line exits 1 or 2.
+//! symbolic link out of the class, and one whose id is HTML; and a class whose every student
+//! made one of the mistakes `raylab check` names. Each is graded as expected, the CSV's means
+//! are `raylab diff`'s, each mistake is named on its student's page with crops of the worst
+//! pixels, nothing from a name reaches the HTML unescaped, and a wrong assignment or command
+//! line exits 1 or 2.
 
 use std::path::Path;
 
@@ -13,6 +15,7 @@ use raylab::progressive::render_image;
 use raylab::render::assemble;
 
 use crate::common::run::{raylab, stderr};
+use crate::common::students::mistaken;
 
 const SIZE: (u32, u32) = (80, 60);
 /// A folder name that is HTML (a name cannot hold the `/` of `</script>`).
@@ -235,8 +238,12 @@ fn a_class_is_graded_each_problem_a_zero_that_says_why() {
         index.contains("is 16384×16384: larger than raylab renders for grading"),
         "the size left to the students is bounded"
     );
-    // Every image a page shows is in the report.
-    for page in std::fs::read_dir(&report).unwrap() {
+    assert_images_in(&report);
+}
+
+/// Checks that every image a page of `report` shows is in the report.
+fn assert_images_in(report: &Path) {
+    for page in std::fs::read_dir(report).unwrap() {
         let page = page.unwrap().path();
         if page.extension().is_some_and(|e| e == "html") {
             let text = std::fs::read_to_string(&page).unwrap();
@@ -246,6 +253,100 @@ fn a_class_is_graded_each_problem_a_zero_that_says_why() {
             }
         }
     }
+}
+
+/// The mean `raylab diff` prints for `image` against `reference`.
+fn diff_mean(reference: &Path, image: &Path, dir: &Path) -> String {
+    let out = raylab(
+        &[
+            "diff",
+            &reference.to_string_lossy(),
+            &image.to_string_lossy(),
+        ],
+        dir,
+    );
+    let printed = String::from_utf8_lossy(&out.stdout).into_owned();
+    let after = printed
+        .split("mean absolute difference: ")
+        .nth(1)
+        .unwrap_or_else(|| panic!("no mean in {printed}"));
+    after.split(' ').next().unwrap().to_string()
+}
+
+#[test]
+fn each_students_mistake_is_named_on_their_page_with_crops_of_the_worst_pixels() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    let size = (160, 120);
+    let mut scene = load_any(&shipped("default.toml")).unwrap();
+    (scene.settings.width, scene.settings.height) = size;
+    let students = mistaken(&scene);
+    for student in &students {
+        let folder = dir.join("class").join(student.name);
+        std::fs::create_dir_all(&folder).unwrap();
+        let levels = student.pixels.iter().flatten().copied().collect();
+        save_png(&folder.join("default.png"), size, levels);
+    }
+    let text = format!(
+        "[assignment]\nname = \"Mistakes\"\npass = 0.0\n\n[[scene]]\nfile = \"{}\"\n\
+         image = \"default\"\nsize = [{}, {}]\npoints = 1\n",
+        shipped("default.toml"),
+        size.0,
+        size.1
+    );
+    std::fs::write(dir.join("assignment.toml"), text).unwrap();
+    let out = raylab(&["grade", "assignment.toml", "class", "-o", "report"], dir);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let report = dir.join("report");
+    let csv = std::fs::read_to_string(report.join("grades.csv")).unwrap();
+    let reference = report.join(format!("references/0-{}x{}.png", size.0, size.1));
+    for student in &students {
+        let r = row(&csv, student.name);
+        assert_eq!((r[2].as_str(), r[3].as_str()), ("0", "0"), "{r:?}");
+        let image = dir.join("class").join(student.name).join("default.png");
+        assert_eq!(r[1], diff_mean(&reference, &image, dir), "{}", student.name);
+        let page = std::fs::read_to_string(report.join(format!("{}.html", student.name))).unwrap();
+        assert!(
+            page.contains(student.says),
+            "{}'s page does not say {:?}",
+            student.name,
+            student.says
+        );
+    }
+    // The shadows a student left out are explained where they are, with crops around the
+    // worst pixels, the worst framed.
+    let page = std::fs::read_to_string(report.join("no-shadows.html")).unwrap();
+    for says in [
+        "region 1 of ",
+        "raylab&#39;s eye ray hits ",
+        "shadow ray",
+        "brighter by",
+    ] {
+        assert!(
+            page.contains(says),
+            "the page does not say {says:?}:\n{page}"
+        );
+    }
+    for crop in ["raylab", "image", "difference"] {
+        let file = format!("no-shadows/0-region1-{crop}.png");
+        assert!(page.contains(&file), "no {file} on the page");
+        let (width, height) = image::image_dimensions(report.join(&file)).unwrap();
+        assert_eq!((width, height), (25, 25), "{file}");
+    }
+    assert!(
+        page.contains("class=\"worst\""),
+        "the worst pixel is not framed"
+    );
+    assert_images_in(&report);
+    let out = raylab(
+        &["grade", "assignment.toml", "--student", "class/no-shadows"],
+        dir,
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("\n  likely cause: shadows are missing"),
+        "{text}"
+    );
 }
 
 #[test]

@@ -8,6 +8,7 @@ pub mod instances;
 pub mod kinds;
 pub mod random;
 pub mod run;
+pub mod students;
 
 use glam::Vec3;
 use std::path::Path;
