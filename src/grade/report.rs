@@ -187,7 +187,8 @@ fn head(title: &str) -> String {
          th {{ background: #eee; cursor: pointer; }}\n\
          td.pass {{ background: {PASS_COLOR}; }}\n\
          td.fail {{ background: {FAIL_COLOR}; }}\n\
-         figure {{ display: inline-block; margin: 0 1em 1em 0; }}\n\
+         figure {{ display: inline-block; vertical-align: top; margin: 0 1em 1em 0; }}\n\
+         figcaption {{ max-width: 320px; }}\n\
          img {{ image-rendering: pixelated; width: 320px; }}\n\
          .crop {{ position: relative; }}\n\
          .crop img {{ display: block; }}\n\

@@ -19,7 +19,7 @@ use crate::common::students::mistaken;
 
 const SIZE: (u32, u32) = (80, 60);
 /// A folder name that is HTML (a name cannot hold the `/` of `</script>`).
-const HOSTILE: &str = "<img src=x onerror=alert(1)>";
+pub(crate) const HOSTILE: &str = "<img src=x onerror=alert(1)>";
 
 fn shipped(name: &str) -> String {
     format!("{}/assets/scenes/{name}", env!("CARGO_MANIFEST_DIR"))
@@ -50,7 +50,7 @@ fn save_png(path: &Path, (width, height): (u32, u32), levels: Vec<u8>) {
 }
 
 /// The assignment: two scenes, the first at a set size, the second at the student's.
-fn assignment(dir: &Path) -> String {
+pub(crate) fn assignment(dir: &Path) -> String {
     let text = format!(
         "[assignment]\nname = \"Ray tracer, part 1\"\ntolerance = 8\npass = 0.5\n\n\
          [[scene]]\nfile = \"{}\"\nimage = \"shadows\"\nsize = [{}, {}]\npoints = 10\n\n\
@@ -105,7 +105,7 @@ fn crc32(bytes: &[u8]) -> u32 {
 }
 
 /// Writes the class into `dir/class` and returns its folder.
-fn class(dir: &Path) -> std::path::PathBuf {
+pub(crate) fn class(dir: &Path) -> std::path::PathBuf {
     let class = dir.join("class");
     let student = |id: &str| {
         let folder = class.join(id);
@@ -166,7 +166,7 @@ fn class(dir: &Path) -> std::path::PathBuf {
 }
 
 /// The CSV row of `student`, split at its commas.
-fn row(csv: &str, student: &str) -> Vec<String> {
+pub(crate) fn row(csv: &str, student: &str) -> Vec<String> {
     let line = csv
         .lines()
         .find(|line| line.starts_with(student))

@@ -18,6 +18,7 @@ mod outputs;
 mod overrides;
 mod proportion;
 mod render;
+mod report_in_browser;
 mod sequences;
 mod tone;
 mod user_files;
