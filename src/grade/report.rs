@@ -190,7 +190,7 @@ fn head(title: &str) -> String {
          figure {{ display: inline-block; vertical-align: top; margin: 0 1em 1em 0; }}\n\
          figcaption {{ max-width: 320px; }}\n\
          img {{ image-rendering: pixelated; width: 320px; }}\n\
-         .crop {{ position: relative; }}\n\
+         .crop {{ position: relative; display: inline-block; }}\n\
          .crop img {{ display: block; }}\n\
          .crop .worst {{ position: absolute; box-sizing: border-box; border: 2px solid #00e5ff; }}\n\
          </style>\n</head>\n<body>\n",
@@ -414,7 +414,7 @@ fn findings(
         let title = lines.next().unwrap_or_default();
         let _ = writeln!(
             html,
-            "<div class=\"region\">\n<p>{}</p>\n<ul>",
+            "<div class=\"region\">\n<h4>{}</h4>\n<ul>",
             html_escape(&title)
         );
         for line in lines {

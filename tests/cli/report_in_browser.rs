@@ -15,8 +15,9 @@ use crate::grade::{HOSTILE, assignment, class, row};
 const WINDOW: (u32, u32) = (1400, 1800);
 
 /// What is put at the start of a copy of a page to probe it: any alert is recorded, and once the
-/// page has loaded, its images (whether each loaded and its natural width), the class table's
-/// cells (where each lies) and links, and the alerts are written into a hidden `pre#probe`.
+/// page has loaded, its images (whether each loaded and its natural width), where each crop's
+/// frame around its worst pixel lies on the crop, the class table's cells (where each lies) and
+/// links, and the alerts are written into a hidden `pre#probe`.
 const PROBE: &str = r##"<script>
 window.alerts = [];
 window.alert = message => window.alerts.push(String(message));
@@ -29,6 +30,12 @@ window.addEventListener("load", () => {
     const r = td.getBoundingClientRect();
     lines.push(`cell ${td.parentElement.rowIndex} ${td.cellIndex} ${Math.round(r.left)} ` +
       `${Math.round(r.top)} ${Math.round(r.width)} ${Math.round(r.height)}`);
+  }
+  for (const crop of document.querySelectorAll(".crop")) {
+    const [img, mark] = [crop.querySelector("img"), crop.querySelector(".worst")];
+    const [i, m] = [img.getBoundingClientRect(), mark.getBoundingClientRect()];
+    lines.push(`crop ${img.naturalWidth} ${i.width} ${m.left - i.left} ${m.top - i.top} ` +
+      `${m.width} ${m.height}`);
   }
   for (const a of document.querySelectorAll("#class a")) {
     lines.push(`link ${a.getAttribute("href")} ${a.textContent}`);
@@ -120,6 +127,32 @@ fn assert_loaded_and_inert(lines: &[String], page: &str) {
     }
 }
 
+/// Checks that `page` shows crops, and that each frame covers one pixel of its crop as shown:
+/// as wide as a pixel, and at a whole number of pixels from the crop's corner.
+fn assert_frames_on_pixels(lines: &[String], page: &str) {
+    let crops: Vec<Vec<f64>> = lines
+        .iter()
+        .filter_map(|l| l.strip_prefix("crop "))
+        .map(|l| l.split(' ').map(|n| n.parse().unwrap()).collect())
+        .collect();
+    assert!(!crops.is_empty(), "{page} shows no crops: {lines:?}");
+    for crop in crops {
+        let [pixels, width, left, top, frame_width, frame_height] = crop[..] else {
+            panic!("{page}: {crop:?}");
+        };
+        let pixel = width / pixels;
+        let whole = |v: f64| (v / pixel - (v / pixel).round()).abs() < 0.05;
+        assert!(
+            (frame_width - pixel).abs() < 0.5 && (frame_height - pixel).abs() < 0.5,
+            "{page}: a frame of {frame_width}×{frame_height} on pixels of {pixel}"
+        );
+        assert!(
+            whole(left) && whole(top) && (0.0..width).contains(&left),
+            "{page}: a frame at ({left}, {top}) on pixels of {pixel}"
+        );
+    }
+}
+
 /// The colour `#rrggbb` as levels.
 fn levels(color: &str) -> [u8; 3] {
     let channel = |i: usize| u8::from_str_radix(&color[1 + 2 * i..3 + 2 * i], 16).unwrap();
@@ -159,6 +192,9 @@ fn the_report_loads_in_a_real_browser_and_its_colours_are_the_csvs() {
         let page = page_of(id);
         let lines = probe(&report, &page);
         assert_loaded_and_inert(&lines, &page);
+        if id == "bob" {
+            assert_frames_on_pixels(&lines, &page);
+        }
     }
 
     // The screenshot of the class table: each scene's cell is the pass colour where the CSV
