@@ -10,7 +10,7 @@
 //! ```
 //!
 //! Student `i`'s image of scene `k` has mistake `(i + k) mod 16` of the twelve, or none for
-//! the other four: a quarter of the images are raylab's.
+//! the other four: about a fifth to a quarter of the images are raylab's.
 
 use std::path::Path;
 
