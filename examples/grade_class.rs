@@ -9,7 +9,7 @@
 //! raylab grade /tmp/class/assignment.toml /tmp/class/students -o /tmp/class/report
 //! ```
 //!
-//! Student `i`'s image of scene `k` has mistake `(i + k) mod 16` of the twelve, or none for
+//! Student `i`'s image of scene `k` has mistake `(i + k) mod 21` of the seventeen, or none for
 //! the other four: about a fifth to a quarter of the images are raylab's.
 
 use std::path::Path;

@@ -16,6 +16,7 @@ use raylab::render::assemble;
 
 use crate::common::run::{raylab, stderr};
 use crate::common::students::mistaken;
+use raylab::grade::report::html_escape;
 
 const SIZE: (u32, u32) = (80, 60);
 /// A folder name that is HTML (a name cannot hold the `/` of `</script>`).
@@ -307,7 +308,7 @@ fn each_students_mistake_is_named_on_their_page_with_crops_of_the_worst_pixels()
         assert_eq!(r[1], diff_mean(&reference, &image, dir), "{}", student.name);
         let page = std::fs::read_to_string(report.join(format!("{}.html", student.name))).unwrap();
         assert!(
-            page.contains(student.says),
+            page.contains(&html_escape(student.says)),
             "{}'s page does not say {:?}",
             student.name,
             student.says

@@ -29,7 +29,9 @@ pub fn levels(colors: &[Color]) -> Vec<[u8; 3]> {
 
 /// The lecture's tracer taken literally: the eye ray of pixel (x, y) is `dir_rc` at whole
 /// `c = x` and `r` = the row counted from the bottom, a corner of the pixel, not its centre.
-fn rendered_through_corners(scene: &Scene) -> Vec<Color> {
+/// With `from_top`, the rows are counted from the top: the ray goes through the pixel's
+/// top-left corner.
+fn rendered_through_corners(scene: &Scene, from_top: bool) -> Vec<Color> {
     let bvh = Bvh::build(&scene.geometry);
     let tracer = Tracer::new(scene, &bvh);
     let (width, height) = (scene.settings.width, scene.settings.height);
@@ -37,7 +39,7 @@ fn rendered_through_corners(scene: &Scene) -> Vec<Color> {
     (0..height)
         .flat_map(|y| (0..width).map(move |x| (x, y)))
         .map(|(x, y)| {
-            let r = (height - 1 - y) as f32;
+            let r = (height - y - u32::from(!from_top)) as f32;
             let ray = scene.camera.ray(r, x as f32, height, width);
             tracer.trace_eye(&ray, &mut counts)
         })
@@ -54,6 +56,20 @@ pub fn flipped(pixels: &[[u8; 3]], width: u32) -> Vec<[u8; 3]> {
         .collect()
 }
 
+/// `pixels`, rows of `width`, moved by `(dx, dy)` pixels (right and down), the edge repeated
+/// where the image moved away from it.
+fn shifted(pixels: &[[u8; 3]], width: u32, (dx, dy): (i32, i32)) -> Vec<[u8; 3]> {
+    let height = pixels.len() as i32 / width as i32;
+    let width = width as i32;
+    (0..height)
+        .flat_map(|y| (0..width).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let (sx, sy) = ((x - dx).clamp(0, width - 1), (y - dy).clamp(0, height - 1));
+            pixels[(sy * width + sx) as usize]
+        })
+        .collect()
+}
+
 /// `scene` (a clone) changed by `change`.
 fn changed(scene: &Scene, change: impl FnOnce(&mut Scene)) -> Scene {
     let mut scene = scene.clone();
@@ -61,10 +77,11 @@ fn changed(scene: &Scene, change: impl FnOnce(&mut Scene)) -> Scene {
     scene
 }
 
-/// `scene`'s image with each mistake `check` names as a likely cause: a term of the shading
-/// left out, a wrong index of refraction, eye rays through pixel corners, the image flipped or
-/// shifted, the sRGB curve twice or not at all, no clamping, the colours scaled. The scene
-/// needs shadows, specular highlights, mirrors and glass of index 1.5.
+/// `scene`'s image with each mistake `check` knows, named as the likely cause: a term of the
+/// shading left out, a wrong index of refraction (1, or Snell's ratio turned over), eye rays
+/// through pixel corners (bottom-left or top-left), the image flipped or shifted a pixel each
+/// way, the sRGB curve twice or not at all, no clamping, the colours scaled. The scene needs
+/// shadows, specular highlights, mirrors and glass of index 1.5.
 pub fn mistaken(scene: &Scene) -> Vec<Mistaken> {
     let width = scene.settings.width;
     let colors = rendered(scene);
@@ -92,15 +109,13 @@ pub fn mistaken(scene: &Scene) -> Vec<Mistaken> {
         ((encoded.max(0.0) * 255.0).round() as i64).rem_euclid(256) as u8
     };
     let no_clamping = colors.iter().map(|c| c.to_array().map(wrapped)).collect();
-    // One pixel to the right: column x shows raylab's column x − 1, the first column repeated.
-    let shifted = reference
-        .chunks(width as usize)
-        .flat_map(|row| std::iter::once(row[0]).chain(row[..row.len() - 1].iter().copied()))
-        .collect();
-    let glass_as_air = |s: &mut Scene| {
-        for m in &mut s.materials {
-            if m.ior == 1.5 {
-                m.ior = 1.0;
+    // Glass of index 1.5 given the index `ior`.
+    let glass = |ior: f32| {
+        move |s: &mut Scene| {
+            for m in &mut s.materials {
+                if m.ior == 1.5 {
+                    m.ior = ior;
+                }
             }
         }
     };
@@ -130,13 +145,23 @@ pub fn mistaken(scene: &Scene) -> Vec<Mistaken> {
         ),
         one(
             "ior-1",
-            image(&glass_as_air),
+            image(&glass(1.0)),
             "likely cause: a wrong index of refraction: 1.0",
         ),
         one(
+            "ior-inverted",
+            image(&glass(1.0 / 1.5)),
+            "likely cause: a wrong index of refraction: Snell's ratio turned over",
+        ),
+        one(
             "corners",
-            levels(&rendered_through_corners(scene)),
+            levels(&rendered_through_corners(scene, false)),
             "likely cause: a camera offset: eye rays through pixel corners",
+        ),
+        one(
+            "top-left-corners",
+            levels(&rendered_through_corners(scene, true)),
+            "likely cause: a camera offset: eye rays through the pixels' top-left corners",
         ),
         one(
             "flipped",
@@ -160,9 +185,24 @@ pub fn mistaken(scene: &Scene) -> Vec<Mistaken> {
             "likely cause: every colour is scaled by one factor",
         ),
         one(
-            "shifted",
-            shifted,
+            "shifted-right",
+            shifted(&reference, width, (1, 0)),
             "likely cause: the image is shifted one pixel to the right",
+        ),
+        one(
+            "shifted-left",
+            shifted(&reference, width, (-1, 0)),
+            "likely cause: the image is shifted one pixel to the left",
+        ),
+        one(
+            "shifted-up",
+            shifted(&reference, width, (0, -1)),
+            "likely cause: the image is shifted one pixel up",
+        ),
+        one(
+            "shifted-down",
+            shifted(&reference, width, (0, 1)),
+            "likely cause: the image is shifted one pixel down",
         ),
     ]
 }
