@@ -96,14 +96,20 @@ fn verdicts(assignment: &Assignment, grades: &StudentGrades) -> String {
             "{}: {verdict}, {} of {} points\n",
             scene.image, grade.points, scene.points
         );
-        if let Ok(Measured {
-            check: Some(report),
-            ..
-        }) = &grade.measured
-        {
-            for line in report.findings() {
-                text += &format!("  {line}\n");
+        match &grade.measured {
+            Ok(Measured {
+                check: Some(Ok(report)),
+                ..
+            }) => {
+                for line in report.findings() {
+                    text += &format!("  {line}\n");
+                }
             }
+            Ok(Measured {
+                check: Some(Err(problem)),
+                ..
+            }) => text += &format!("  raylab's check could not look: {problem}\n"),
+            _ => {}
         }
     }
     text += &format!("total: {} of {possible} points\n", grades.total());

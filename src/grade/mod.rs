@@ -12,7 +12,7 @@ pub mod report;
 pub mod submissions;
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
 
@@ -44,8 +44,9 @@ pub struct Measured {
     pub passed: bool,
     /// The figures `raylab diff` prints, at the assignment's tolerance.
     pub difference: Difference,
-    /// Where the image failed, what `raylab check` finds at the assignment's tolerance.
-    pub check: Option<CheckReport>,
+    /// Where the image failed, what `raylab check` finds at the assignment's tolerance, or why
+    /// it could not look.
+    pub check: Option<Result<CheckReport, String>>,
 }
 
 /// One student's grades, a scene at a time in the assignment's order.
@@ -101,7 +102,7 @@ pub fn grade(
         .into_iter()
         .map(|(k, size)| ((k, size), reference(assignment, k, size, share)))
         .collect();
-    let grades = students
+    let mut grades: Vec<StudentGrades> = students
         .par_iter()
         .zip(found.into_par_iter())
         .map(|(student, row)| StudentGrades {
@@ -113,6 +114,20 @@ pub fn grade(
                 .collect(),
         })
         .collect();
+    // The failed images are checked one at a time, each check on all cores, so that the memory
+    // the checks hold is one check's.
+    for student in &mut grades {
+        for (k, scene) in student.scenes.iter_mut().enumerate() {
+            if let (Some(path), Ok(measured)) = (&scene.image, &mut scene.measured)
+                && !measured.passed
+            {
+                let size = (measured.difference.width, measured.difference.height);
+                if let Some(Ok(traces)) = references.get(&(k, size)) {
+                    measured.check = Some(checked(assignment, traces, path));
+                }
+            }
+        }
+    }
     (grades, references)
 }
 
@@ -205,12 +220,11 @@ fn scene_grade(
     }
 }
 
-/// The image at `path` measured against `traces`' reference, of its size, and checked where it
-/// fails.
+/// The image at `path` measured against `traces`' reference, of its size.
 fn measure(
     assignment: &Assignment,
     traces: &Traces,
-    path: &std::path::Path,
+    path: &Path,
     flip: &FlipMeasure,
 ) -> Result<Measured, String> {
     let name = path.file_name().unwrap_or_default().to_string_lossy();
@@ -223,17 +237,19 @@ fn measure(
         Measure::Neighbour => neighbour_mean(reference, &image),
         Measure::Flip => flip(reference, &image),
     };
-    let passed = value <= assignment.pass;
-    let check = match passed {
-        true => None,
-        false => Some(check(traces, &image, assignment.tolerance, &mut |_| {})?),
-    };
     Ok(Measured {
         measure: value,
-        passed,
+        passed: value <= assignment.pass,
         difference: figures,
-        check,
+        check: None,
     })
+}
+
+/// What `raylab check` finds in the image at `path` against `traces`, at the assignment's
+/// tolerance.
+fn checked(assignment: &Assignment, traces: &Traces, path: &Path) -> Result<CheckReport, String> {
+    let image = SrgbImage::read(path)?;
+    check(traces, &image, assignment.tolerance, &mut |_| {})
 }
 
 /// The mean absolute difference, in levels, with each pixel of `image` measured against the

@@ -367,14 +367,24 @@ fn student_page(
              <figcaption>where they differ: {}</figcaption></figure>",
             html_escape(&map.legend().to_text())
         );
-        if let Some(report) = &measured.check {
-            let pictures = Pictures {
-                reference,
-                image: &image,
-                map: &map,
-            };
-            let prefix = format!("{name}/{k}");
-            page += &findings(report, &pictures, &prefix, &id, folder)?;
+        match &measured.check {
+            Some(Ok(report)) => {
+                let pictures = Pictures {
+                    reference,
+                    image: &image,
+                    map: &map,
+                };
+                let prefix = format!("{name}/{k}");
+                page += &findings(report, &pictures, &prefix, &id, folder)?;
+            }
+            Some(Err(problem)) => {
+                let _ = writeln!(
+                    page,
+                    "<p>raylab's check could not look: {}</p>",
+                    html_escape(problem)
+                );
+            }
+            None => {}
         }
     }
     page.push_str("</body>\n</html>\n");

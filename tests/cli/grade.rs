@@ -1,11 +1,11 @@
 //! `raylab grade`: a class made here with the library (not with `grade`'s code): a student
 //! whose images are exact, one without shadows, one who handed in nothing, one with a
 //! truncated PNG, one with an image far too large, one with a 1×1 image, one whose folder is a
-//! symbolic link out of the class, and one whose id is HTML; and a class whose every student
-//! made one of the mistakes `raylab check` names. Each is graded as expected, the CSV's means
-//! are `raylab diff`'s, each mistake is named on its student's page with crops of the worst
-//! pixels, nothing from a name reaches the HTML unescaped, and a wrong assignment or command
-//! line exits 1 or 2.
+//! symbolic link out of the class, one whose id has a space and accents, and one whose id is
+//! HTML; and a class whose every student made one of the mistakes `raylab check` knows. Each is
+//! graded as expected, the CSV's means are `raylab diff`'s, each mistake is named on its
+//! student's page with crops of the worst pixels, nothing from a name reaches the HTML
+//! unescaped, and a wrong assignment or command line exits 1 or 2.
 
 use std::path::Path;
 
@@ -19,6 +19,8 @@ use crate::common::students::mistaken;
 use raylab::grade::report::html_escape;
 
 const SIZE: (u32, u32) = (80, 60);
+/// A folder name with a space and letters beyond ASCII.
+pub(crate) const ACCENTED: &str = "Zoë Ñúñez";
 /// A folder name that is HTML (a name cannot hold the `/` of `</script>`).
 pub(crate) const HOSTILE: &str = "<img src=x onerror=alert(1)>";
 
@@ -149,6 +151,12 @@ pub(crate) fn class(dir: &Path) -> std::path::PathBuf {
     std::fs::write(huge.join("mirrors.png"), header_only_png(16384)).unwrap();
     let tiny = student("frank");
     save_png(&tiny.join("shadows.ppm"), (1, 1), vec![0, 0, 0]);
+    let accented = student(ACCENTED);
+    save_png(
+        &accented.join("shadows.png"),
+        SIZE,
+        rendered("shadows.toml", true),
+    );
     let hostile = student(HOSTILE);
     save_png(
         &hostile.join("shadows.png"),
@@ -213,6 +221,10 @@ fn a_class_is_graded_each_problem_a_zero_that_says_why() {
         printed.contains(&format!("mean absolute difference: {} levels", bob[1])),
         "{printed} against {bob:?}"
     );
+    assert_eq!(
+        row(&csv, ACCENTED),
+        [ACCENTED, "0.0000", "10", "", "0", "10"]
+    );
     for nothing in ["carol", "dave", "erin", "frank", "mallory"] {
         let r = row(&csv, nothing);
         assert_eq!(r.last().map(String::as_str), Some("0"), "{r:?}");
@@ -227,6 +239,7 @@ fn a_class_is_graded_each_problem_a_zero_that_says_why() {
         (&index, "is 1×1; the assignment asks for 80×60"),
         (&index, "symbolic link: not followed"),
         (&index, "&lt;img src=x onerror=alert(1)&gt;"),
+        (&index, ACCENTED),
         (&dave, "shadows.png cannot be read"),
     ] {
         assert!(page.contains(says), "the page does not say {says:?}");

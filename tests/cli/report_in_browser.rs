@@ -1,7 +1,8 @@
 //! The report of `raylab grade` in a real browser: headless Chromium (Debian's `chromium`)
 //! opens the class table and students' pages from the report folder. Every image loads, no
-//! script runs from the student id that is HTML, and a screenshot of the class table shows each
-//! cell in the colour the CSV's points call for.
+//! script runs from the student id that is HTML, the crops frame a pixel, a click on a column's
+//! head sorts the table, and a screenshot of the class table shows each cell in the colour the
+//! CSV's points call for.
 
 use std::path::Path;
 use std::process::{Command, Output};
@@ -16,8 +17,9 @@ const WINDOW: (u32, u32) = (1400, 1800);
 
 /// What is put at the start of a copy of a page to probe it: any alert is recorded, and once the
 /// page has loaded, its images (whether each loaded and its natural width), where each crop's
-/// frame around its worst pixel lies on the crop, the class table's cells (where each lies) and
-/// links, and the alerts are written into a hidden `pre#probe`.
+/// frame around its worst pixel lies on the crop, the class table's cells (where each lies),
+/// links and totals once sorted by a click on the total's head, and the alerts are written into
+/// a hidden `pre#probe`.
 const PROBE: &str = r##"<script>
 window.alerts = [];
 window.alert = message => window.alerts.push(String(message));
@@ -41,6 +43,14 @@ window.addEventListener("load", () => {
     lines.push(`link ${a.getAttribute("href")} ${a.textContent}`);
   }
   lines.push(`handlers ${document.querySelectorAll("[onerror], [onload]").length}`);
+  // A click on the last column's head (the total) sorts the rows by it.
+  const heads = document.querySelectorAll("#class th");
+  if (heads.length > 0) {
+    heads[heads.length - 1].click();
+    const totals = Array.from(document.querySelectorAll("#class tbody tr"), row =>
+      row.cells[row.cells.length - 1].textContent);
+    lines.push(`sorted ${totals.join(" ")}`);
+  }
   lines.push(`alerts ${window.alerts.length}`);
   const out = document.createElement("pre");
   out.id = "probe";
@@ -196,6 +206,22 @@ fn the_report_loads_in_a_real_browser_and_its_colours_are_the_csvs() {
             assert_frames_on_pixels(&lines, &page);
         }
     }
+
+    // Sorted by a click on the total's head: the CSV's totals, smallest first.
+    let sorted: Vec<f64> = index
+        .iter()
+        .find_map(|l| l.strip_prefix("sorted "))
+        .expect("the table was sorted")
+        .split(' ')
+        .map(|t| t.parse().unwrap())
+        .collect();
+    let mut totals: Vec<f64> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap().parse().unwrap())
+        .collect();
+    totals.sort_by(f64::total_cmp);
+    assert_eq!(sorted, totals, "the totals as sorted by a click");
 
     // The screenshot of the class table: each scene's cell is the pass colour where the CSV
     // gives points, else the fail colour.
