@@ -1,11 +1,11 @@
 //! `raylab grade`: a class made here with the library (not with `grade`'s code): a student
-//! whose images are exact, one without shadows, one who handed in nothing, one with a
-//! truncated PNG, one with an image far too large, one with a 1×1 image, one whose folder is a
-//! symbolic link out of the class, one whose id has a space and accents, and one whose id is
-//! HTML; and a class whose every student made one of the mistakes `raylab check` knows. Each is
-//! graded as expected, the CSV's means are `raylab diff`'s, each mistake is named on its
-//! student's page with crops of the worst pixels, nothing from a name reaches the HTML
-//! unescaped, and a wrong assignment or command line exits 1 or 2.
+//! whose images are exact, one without shadows, one who handed in nothing, one whose file names
+//! are in capitals or mistyped, one with a truncated PNG, one with an image far too large, one
+//! with a 1×1 image, one whose folder is a symbolic link out of the class, one whose id has a
+//! space and accents, and one whose id is HTML; and a class whose every student made one of the
+//! mistakes `raylab check` knows. Each is graded as expected, the CSV's means are `raylab
+//! diff`'s, each mistake is named on its student's page with crops of the worst pixels, nothing
+//! from a name reaches the HTML unescaped, and a wrong assignment or command line exits 1 or 2.
 
 use std::path::Path;
 
@@ -151,6 +151,18 @@ pub(crate) fn class(dir: &Path) -> std::path::PathBuf {
     std::fs::write(huge.join("mirrors.png"), header_only_png(16384)).unwrap();
     let tiny = student("frank");
     save_png(&tiny.join("shadows.ppm"), (1, 1), vec![0, 0, 0]);
+    // Handed in with the extension in capitals, and the second image under a mistyped name.
+    let capitals = student("grace");
+    save_png(
+        &capitals.join("Shadows.PNG"),
+        SIZE,
+        rendered("shadows.toml", true),
+    );
+    save_png(
+        &capitals.join("mirror.png"),
+        SIZE,
+        rendered("mirrors.toml", true),
+    );
     let accented = student(ACCENTED);
     save_png(
         &accented.join("shadows.png"),
@@ -238,6 +250,10 @@ fn a_class_is_graded_each_problem_a_zero_that_says_why() {
         (&index, "is 16384×16384; the assignment asks for 80×60"),
         (&index, "is 1×1; the assignment asks for 80×60"),
         (&index, "symbolic link: not followed"),
+        (
+            &index,
+            "mirrors.hdr (the folder holds Shadows.PNG, mirror.png)",
+        ),
         (&index, "&lt;img src=x onerror=alert(1)&gt;"),
         (&index, ACCENTED),
         (&dave, "shadows.png cannot be read"),
