@@ -60,10 +60,15 @@ window.addEventListener("load", () => {
 });
 </script>"##;
 
+/// The longest a run of the browser may take before it is stopped (coreutils' `timeout`), so
+/// that a browser that hangs fails the test rather than holding it up.
+const BROWSER_SECONDS: &str = "120";
+
 /// Runs headless Chromium with `args` after the flags every run takes.
 fn chromium(args: &[&str]) -> Output {
     let window = format!("--window-size={},{}", WINDOW.0, WINDOW.1);
-    Command::new("chromium")
+    let out = Command::new("timeout")
+        .args([BROWSER_SECONDS, "chromium"])
         .args([
             "--headless",
             "--no-sandbox",
@@ -75,13 +80,21 @@ fn chromium(args: &[&str]) -> Output {
         ])
         .args(args)
         .output()
-        .unwrap_or_else(|e| {
-            panic!(
-                "headless Chromium cannot run ({e}): install Debian's chromium with \
-                 `sudo apt-get install -y --no-install-recommends chromium` (scripts/test \
-                 installs it when run as root)"
-            )
-        })
+        .expect("coreutils' timeout runs");
+    match out.status.code() {
+        // `timeout` found no program to run.
+        Some(126 | 127) => panic!(
+            "headless Chromium cannot run ({}): install Debian's chromium with `sudo apt-get \
+             install -y --no-install-recommends chromium` (scripts/test installs it when run as \
+             root)",
+            stderr(&out).trim()
+        ),
+        Some(124) => panic!(
+            "headless Chromium did not finish in {BROWSER_SECONDS} s: {}",
+            stderr(&out)
+        ),
+        _ => out,
+    }
 }
 
 /// The lines the probe writes of `page` (a file of the report folder) once a browser has loaded
