@@ -1,13 +1,14 @@
-//! Wavefront OBJ files (and the MTL materials they name), read with tobj into raylab meshes in
-//! the OBJ's own coordinates. A first look at the lines finds what tobj would reject without
-//! saying where (a face index that is not a number) and what it would drop or guess silently (a
-//! face of one or two vertices, an MTL file it cannot read, a material no MTL file defines), so
-//! that these become errors and warnings at their line.
+//! Wavefront OBJ files (and the MTL materials they name, with their `map_Kd` images), read with
+//! tobj into raylab meshes in the OBJ's own coordinates. A first look at the lines finds what
+//! tobj would reject without saying where (a face index that is not a number) and what it would
+//! drop or guess silently (a face of one or two vertices, an MTL file it cannot read, a material
+//! no MTL file defines), so that these become errors and warnings at their line.
 
 use std::cell::RefCell;
-use std::collections::BTreeSet;
+use std::collections::{BTreeSet, HashMap};
 use std::ops::Range;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
@@ -17,14 +18,19 @@ use super::sniff::{known_format, not_the_format};
 use crate::color::Color;
 use crate::material::Material;
 use crate::mesh::Mesh;
+use crate::srgb_image::SrgbImage;
+use crate::texture::{Texture, Wrap};
 
 /// What an OBJ file holds.
 #[derive(Debug)]
 pub struct ObjContents {
     /// One part per OBJ object or group.
     pub parts: Vec<ObjPart>,
-    /// The MTL materials, or why they could not be loaded.
+    /// The MTL materials, or why they could not be loaded; a material's `texture` is an index
+    /// into `textures`.
     pub materials: Result<Vec<Material>, String>,
+    /// The images the MTL materials' `map_Kd` name, each once.
+    pub textures: Vec<Texture>,
     /// What was accepted but is worth hearing about, as `file:line: message`, in line order.
     pub warnings: Vec<String>,
 }
@@ -72,6 +78,8 @@ pub fn load_obj(path: &Path, files: SceneFiles, uses_mtl: bool) -> Result<ObjCon
     let folder = path.parent().unwrap_or(Path::new(""));
     // What became of each `mtllib`, in file order: the names of its materials, or why not.
     let libraries: RefCell<Vec<Result<Vec<String>, String>>> = RefCell::default();
+    // The MTL file each material was read from, by name: its texture names are relative to it.
+    let mtl_files: RefCell<HashMap<String, PathBuf>> = RefCell::default();
     let (models, materials) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |mtl| {
         let path = folder.join(mtl);
         let loaded = files
@@ -86,6 +94,14 @@ pub fn load_obj(path: &Path, files: SceneFiles, uses_mtl: bool) -> Result<ObjCon
             Ok((materials, _)) => Ok(materials.iter().map(|m| m.name.clone()).collect()),
             Err(message) => Err(message.clone()),
         });
+        if let Ok((materials, _)) = &loaded {
+            let mut mtl_files = mtl_files.borrow_mut();
+            for material in materials {
+                mtl_files
+                    .entry(material.name.clone())
+                    .or_insert(path.clone());
+            }
+        }
         loaded.map_err(|_| tobj::LoadError::OpenFileFailed)
     })
     .map_err(|e| ObjError::Whole(e.to_string()))?;
@@ -128,16 +144,99 @@ pub fn load_obj(path: &Path, files: SceneFiles, uses_mtl: bool) -> Result<ObjCon
         })
         .collect();
     let origin = path.display();
+    let mut warnings: Vec<String> = warnings
+        .into_iter()
+        .map(|(line, message)| format!("{origin}:{line}: {message}"))
+        .collect();
+    let mut textures = DiffuseTextures::default();
+    let materials = match materials {
+        Ok(materials) if uses_mtl => Ok(materials
+            .iter()
+            .map(|mtl| {
+                let mtl_file = mtl_files.borrow().get(&mtl.name).cloned();
+                let mtl_file = mtl_file.unwrap_or_else(|| path.to_path_buf());
+                let texture = mtl.diffuse_texture.as_deref().and_then(|map| {
+                    let found = textures.index(&mtl_file, map, files);
+                    found
+                        .map_err(|e| {
+                            warnings.push(format!(
+                                "{}: material `{}`: `map_Kd {map}`: {e}; the material keeps its \
+                                 `Kd` colour",
+                                mtl_file.display(),
+                                mtl.name
+                            ))
+                        })
+                        .ok()
+                });
+                // The image is the colour, as `Kd` would be: at full strength.
+                let material = mtl_material(mtl);
+                match texture {
+                    Some(_) => Material {
+                        texture,
+                        diffuse: 1.0,
+                        ..material
+                    },
+                    None => material,
+                }
+            })
+            .collect()),
+        Ok(materials) => Ok(materials.iter().map(mtl_material).collect()),
+        Err(e) => Err(e.to_string()),
+    };
     Ok(ObjContents {
         parts,
-        materials: materials
-            .map(|materials| materials.iter().map(mtl_material).collect())
-            .map_err(|e| e.to_string()),
-        warnings: warnings
-            .into_iter()
-            .map(|(line, message)| format!("{origin}:{line}: {message}"))
-            .collect(),
+        materials,
+        textures: textures.textures,
+        warnings,
     })
+}
+
+/// The images the MTL materials' `map_Kd` lines name, each read once.
+#[derive(Default)]
+struct DiffuseTextures {
+    textures: Vec<Texture>,
+    /// The index of each image read, by its path.
+    read: HashMap<PathBuf, u32>,
+}
+
+impl DiffuseTextures {
+    /// The index of the texture `map` (a `map_Kd` line's value: options, then the file name,
+    /// relative to the MTL file `mtl_file`) names, read now if it is new; or why it cannot be.
+    fn index(&mut self, mtl_file: &Path, map: &str, files: SceneFiles) -> Result<u32, String> {
+        let name = texture_file_name(map).ok_or("it names no file")?;
+        let path = mtl_file.parent().unwrap_or(Path::new("")).join(name);
+        if let Some(&index) = self.read.get(&path) {
+            return Ok(index);
+        }
+        let bytes = files.read(&path)?;
+        let image = SrgbImage::decode(&bytes)?;
+        self.textures.push(Texture::Image {
+            image: Arc::new(image),
+            wrap: [Wrap::Repeat; 2],
+            scale: Vec2::ONE,
+            offset: Vec2::ZERO,
+        });
+        let index = self.textures.len() as u32 - 1;
+        self.read.insert(path, index);
+        Ok(index)
+    }
+}
+
+/// The file name of a texture map line's value (`map_Kd -s 2 2 1 -clamp on wood.png`): past the
+/// options, each a `-` word and the numbers or words after it, with Windows' `\` read as `/`.
+fn texture_file_name(map: &str) -> Option<String> {
+    let mut words = map.split_whitespace().peekable();
+    while words.next_if(|w| w.starts_with('-')).is_some() {
+        // An option's arguments: numbers, `on` or `off`, or a channel letter (`-imfchan r`).
+        while words
+            .next_if(|w| {
+                w.parse::<f32>().is_ok() || ["on", "off", "r", "g", "b", "m", "l", "z"].contains(w)
+            })
+            .is_some()
+        {}
+    }
+    let name: Vec<&str> = words.collect();
+    (!name.is_empty()).then(|| name.join(" ").replace('\\', "/"))
 }
 
 /// Refuses, naming the line, what tobj would panic on in an MTL file's text: a colour (`Ka`,
@@ -414,6 +513,22 @@ fn mtl_material(mtl: &tobj::Material) -> Material {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_texture_maps_file_name_is_found_past_its_options() {
+        for (map, name) in [
+            ("wood.png", Some("wood.png")),
+            ("-s 2 2 1 -o 0.5 0.5 wood.png", Some("wood.png")),
+            (
+                "-clamp on -imfchan r -bm 1.5 maps\\old wood.png",
+                Some("maps/old wood.png"),
+            ),
+            ("-blendu off", None),
+            ("", None),
+        ] {
+            assert_eq!(texture_file_name(map).as_deref(), name, "{map:?}");
+        }
+    }
 
     #[test]
     fn mtl_colours_of_fewer_than_three_numbers_are_refused_at_their_line() {

@@ -1,13 +1,16 @@
 //! OBJ files and relative paths: normals, texture coordinates and materials read from OBJ and
-//! MTL files, their odd encodings, their warnings and errors at a line, and every path resolved
-//! against the scene file's folder.
+//! MTL files (with the images their `map_Kd` lines name), their odd encodings, their warnings and
+//! errors at a line, and every path resolved against the scene file's folder.
 
 use std::path::Path;
 
+use raylab::bvh::Bvh;
 use raylab::color::Color;
 use raylab::formats::SceneError;
 use raylab::formats::toml::{DEFAULT_MATERIAL, load_scene, parse_scene};
+use raylab::progressive::render_image;
 use raylab::scene::Scene;
+use raylab::whitted::Tracer;
 
 use crate::harness::{assets, parse, scenes_dir};
 
@@ -246,4 +249,78 @@ fn a_missing_scene_file_is_an_error_naming_it() {
     let error = load_scene(&path).unwrap_err();
     assert_eq!(error.file, path);
     assert!(error.message.contains("cannot read"), "{error}");
+}
+
+/// A 64 × 64 image of four colours: red top left, green top right, blue bottom left, white
+/// bottom right.
+fn quadrants_png() -> Vec<u8> {
+    let image = image::RgbImage::from_fn(64, 64, |x, y| {
+        image::Rgb(match (x < 32, y < 32) {
+            (true, true) => [255, 0, 0],
+            (false, true) => [0, 255, 0],
+            (true, false) => [0, 0, 255],
+            (false, false) => [255, 255, 255],
+        })
+    });
+    let mut png = Vec::new();
+    image
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    png
+}
+
+#[test]
+fn an_mtl_map_kd_image_colours_the_obj_where_its_texture_coordinates_say() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("maps")).unwrap();
+    std::fs::write(dir.path().join("maps/quadrants.png"), quadrants_png()).unwrap();
+    // Texture coordinates as OBJ has them (v up), an option before the file name, and the
+    // folder written with Windows' backslash, as exporters on Windows write it.
+    let obj = "mtllib quad.mtl\nusemtl paint\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n\
+               vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n";
+    let mtl = "newmtl paint\nKd 0.2 0.2 0.2\nmap_Kd -s 1 1 1 maps\\quadrants.png\n";
+    std::fs::write(dir.path().join("quad.obj"), obj).unwrap();
+    std::fs::write(dir.path().join("quad.mtl"), mtl).unwrap();
+    let scene = "[render]\nwidth = 64\nheight = 64\nambient = [0.2, 0.2, 0.2]\n\n\
+                 [camera]\neye = [0.5, 0.5, 2]\nlook_at = [0.5, 0.5, 0]\nup = [0, 1, 0]\n\
+                 view_angle = 20\n\n[[lights]]\ntype = \"point\"\nposition = [0.5, 0.5, 2]\n\
+                 color = [1, 1, 1]\n\n[[objects]]\ntype = \"obj\"\nfile = \"quad.obj\"\n";
+    let scene = parse_scene(scene, Path::new("test.toml"), dir.path()).unwrap();
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let material = &scene.materials[scene.geometry.meshes[0].material as usize];
+    assert!(material.texture.is_some(), "{material:?}");
+    let bvh = Bvh::build(&scene.geometry);
+    let image = render_image(&Tracer::new(&scene, &bvh)).0;
+    let at = |x: usize, y: usize| image[y * 64 + x].to_array();
+    let dominant = |[r, g, b]: [f32; 3], channel: usize| {
+        let c = [r, g, b];
+        (0..3).all(|other| other == channel || c[channel] > 4.0 * c[other])
+    };
+    assert!(dominant(at(16, 16), 0), "top left {:?}", at(16, 16));
+    assert!(dominant(at(48, 16), 1), "top right {:?}", at(48, 16));
+    assert!(dominant(at(16, 48), 2), "bottom left {:?}", at(16, 48));
+    let [r, g, b] = at(48, 48);
+    assert!(
+        r > 0.3 && (r - g).abs() < 0.01 && (r - b).abs() < 0.01,
+        "bottom right {r} {g} {b}"
+    );
+
+    // An image that is not there is a warning; the material keeps its `Kd`.
+    std::fs::write(
+        dir.path().join("quad.mtl"),
+        "newmtl paint\nKd 0.2 0.2 0.2\nmap_Kd gone.png\n",
+    )
+    .unwrap();
+    let scene = "[[objects]]\ntype = \"obj\"\nfile = \"quad.obj\"\n";
+    let scene = parse_scene(scene, Path::new("test.toml"), dir.path()).unwrap();
+    let said = warning(&scene, "map_Kd gone.png");
+    assert!(
+        said.contains("material `paint`") && said.contains("keeps its `Kd` colour"),
+        "{said}"
+    );
+    let material = &scene.materials[scene.geometry.meshes[0].material as usize];
+    assert_eq!(
+        (material.texture, material.color),
+        (None, Color::new(0.2, 0.2, 0.2))
+    );
 }

@@ -223,8 +223,9 @@ impl GeometryBuilder<'_> {
         Ok(())
     }
 
-    /// Reads an OBJ file, each part of it a mesh: in its MTL materials, added to the scene's,
-    /// when `with_materials` asks for them (else the default).
+    /// Reads an OBJ file, each part of it a mesh: in its MTL materials, added to the scene's with
+    /// the images their `map_Kd` lines name, when `with_materials` asks for them (else the
+    /// default).
     fn read_obj(
         &mut self,
         file: &Spanned<String>,
@@ -247,7 +248,12 @@ impl GeometryBuilder<'_> {
             let obj_name = file.get_ref();
             self.names
                 .extend((0..mtl_count).map(|i| format!("{obj_name} MTL #{i}")));
-            self.materials.extend(mtl);
+            let first_texture = self.textures.len() as u32;
+            self.materials.extend(mtl.into_iter().map(|m| Material {
+                texture: m.texture.map(|t| first_texture + t),
+                ..m
+            }));
+            self.textures.extend(contents.textures);
         }
         let meshes = contents.parts.into_iter().map(|part| Mesh {
             material: match part.mtl_material {
