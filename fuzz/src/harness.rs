@@ -79,6 +79,29 @@ pub fn obj(data: &[u8]) -> Result<(), String> {
     Ok(())
 }
 
+/// A square with texture coordinates, in the materials `a` and `b` of its MTL file
+/// `model.mtl`: the model the `mtl` target's input is the materials of.
+const TEXTURED_SQUARE_OBJ: &str = "mtllib model.mtl\nusemtl a\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\n\
+     v -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3\nusemtl b\nf 1/1 3/3 4/4\n";
+
+/// Reads `data` as the MTL file of an OBJ model (a textured square, whose `map_Kd` lines may
+/// name `grid.png`) the way a scene file's `type = "obj"` object loads one, and renders it.
+pub fn mtl(data: &[u8]) -> Result<(), String> {
+    let files = [
+        ("model.obj", TEXTURED_SQUARE_OBJ.as_bytes()),
+        ("model.mtl", data),
+        ("grid.png", GRID_PNG),
+    ];
+    let scene = parse_scene_with(
+        &model_scene("obj"),
+        Path::new("fuzz-mtl.toml"),
+        SceneFiles::Builtin(&files),
+    )
+    .map_err(|e| e.to_string())?;
+    render_tiny(scene);
+    Ok(())
+}
+
 /// Reads `data` as a PLY file: a mesh read must have its faces' vertices and one of each
 /// attribute per vertex (or none); then loads it the way a scene file's `type = "ply"` object
 /// does, and renders it.

@@ -60,6 +60,12 @@ fn the_kept_obj_files_read_or_fail_cleanly() {
 }
 
 #[test]
+fn the_kept_mtl_files_read_or_fail_cleanly_and_the_seeds_read() {
+    replay("mtl", harness::mtl);
+    read_all("fuzz/regressions/mtl", ".mtl", harness::mtl);
+}
+
+#[test]
 fn the_kept_ply_files_read_or_fail_cleanly() {
     replay("ply", harness::ply);
     let seeds = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/regressions/ply");
