@@ -68,13 +68,15 @@ pub fn toml_scene(data: &[u8]) -> Result<(), String> {
 /// Reads `data` as an OBJ file (its MTL file `tetra.mtl` beside it) the way a scene file's
 /// `type = "obj"` object loads one, and renders it.
 pub fn obj(data: &[u8]) -> Result<(), String> {
-    let files = [("model.obj", data), ("tetra.mtl", TETRA_MTL)];
-    let scene = parse_scene_with(
-        &model_scene("obj"),
-        Path::new("fuzz-obj.toml"),
-        SceneFiles::Builtin(&files),
-    )
-    .map_err(|e| e.to_string())?;
+    render_obj_model(&[("model.obj", data), ("tetra.mtl", TETRA_MTL)])
+}
+
+/// Loads `model.obj` of `files` (with the MTL files and images it names) the way a scene file's
+/// `type = "obj"` object loads one, and renders it.
+fn render_obj_model(files: &[(&str, &[u8])]) -> Result<(), String> {
+    let origin = Path::new("fuzz-obj.toml");
+    let scene = parse_scene_with(&model_scene("obj"), origin, SceneFiles::Builtin(files))
+        .map_err(|e| e.to_string())?;
     render_tiny(scene);
     Ok(())
 }
@@ -87,19 +89,11 @@ const TEXTURED_SQUARE_OBJ: &str = "mtllib model.mtl\nusemtl a\nv -1 -1 0\nv 1 -1
 /// Reads `data` as the MTL file of an OBJ model (a textured square, whose `map_Kd` lines may
 /// name `grid.png`) the way a scene file's `type = "obj"` object loads one, and renders it.
 pub fn mtl(data: &[u8]) -> Result<(), String> {
-    let files = [
+    render_obj_model(&[
         ("model.obj", TEXTURED_SQUARE_OBJ.as_bytes()),
         ("model.mtl", data),
         ("grid.png", GRID_PNG),
-    ];
-    let scene = parse_scene_with(
-        &model_scene("obj"),
-        Path::new("fuzz-mtl.toml"),
-        SceneFiles::Builtin(&files),
-    )
-    .map_err(|e| e.to_string())?;
-    render_tiny(scene);
-    Ok(())
+    ])
 }
 
 /// Reads `data` as a PLY file: a mesh read must have its faces' vertices and one of each
