@@ -110,78 +110,51 @@ fn crc32(bytes: &[u8]) -> u32 {
 /// Writes the class into `dir/class` and returns its folder.
 pub(crate) fn class(dir: &Path) -> std::path::PathBuf {
     let class = dir.join("class");
-    let student = |id: &str| {
+    // Each image rendered once, however many students hand it in.
+    let shadows = rendered("shadows.toml", true);
+    let shadowless = rendered("shadows.toml", false);
+    let mirrors = rendered("mirrors.toml", true);
+    // A student's folder, with each (file, image) of `images` in it.
+    let student = |id: &str, images: &[(&str, &Vec<u8>)]| {
         let folder = class.join(id);
         std::fs::create_dir_all(&folder).unwrap();
+        for (file, levels) in images {
+            save_png(&folder.join(file), SIZE, levels.to_vec());
+        }
         folder
     };
-    let exact = student("alice");
-    save_png(
-        &exact.join("shadows.png"),
-        SIZE,
-        rendered("shadows.toml", true),
+    student(
+        "alice",
+        &[("shadows.png", &shadows), ("mirrors.png", &mirrors)],
     );
-    save_png(
-        &exact.join("mirrors.png"),
-        SIZE,
-        rendered("mirrors.toml", true),
+    student(
+        "bob",
+        &[("shadows.png", &shadowless), ("mirrors.png", &mirrors)],
     );
-    let shadowless = student("bob");
-    save_png(
-        &shadowless.join("shadows.png"),
-        SIZE,
-        rendered("shadows.toml", false),
-    );
-    save_png(
-        &shadowless.join("mirrors.png"),
-        SIZE,
-        rendered("mirrors.toml", true),
-    );
-    student("carol");
-    let truncated = student("dave");
+    student("carol", &[]);
+    let truncated = student("dave", &[]);
     let mut png = Vec::new();
-    let image = image::RgbImage::from_raw(SIZE.0, SIZE.1, rendered("shadows.toml", true));
+    let image = image::RgbImage::from_raw(SIZE.0, SIZE.1, shadows.clone());
     image
         .unwrap()
         .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
         .unwrap();
     std::fs::write(truncated.join("shadows.png"), &png[..png.len() / 2]).unwrap();
-    let huge = student("erin");
+    let huge = student("erin", &[]);
     std::fs::write(huge.join("shadows.png"), header_only_png(16384)).unwrap();
     std::fs::write(huge.join("mirrors.png"), header_only_png(16384)).unwrap();
-    let tiny = student("frank");
+    let tiny = student("frank", &[]);
     save_png(&tiny.join("shadows.ppm"), (1, 1), vec![0, 0, 0]);
     // Handed in with the extension in capitals, and the second image under a mistyped name.
-    let capitals = student("grace");
-    save_png(
-        &capitals.join("Shadows.PNG"),
-        SIZE,
-        rendered("shadows.toml", true),
+    student(
+        "grace",
+        &[("Shadows.PNG", &shadows), ("mirror.png", &mirrors)],
     );
-    save_png(
-        &capitals.join("mirror.png"),
-        SIZE,
-        rendered("mirrors.toml", true),
-    );
-    let accented = student(ACCENTED);
-    save_png(
-        &accented.join("shadows.png"),
-        SIZE,
-        rendered("shadows.toml", true),
-    );
-    let hostile = student(HOSTILE);
-    save_png(
-        &hostile.join("shadows.png"),
-        SIZE,
-        rendered("shadows.toml", true),
-    );
+    student(ACCENTED, &[("shadows.png", &shadows)]);
+    student(HOSTILE, &[("shadows.png", &shadows)]);
     let outside = dir.join("outside");
     std::fs::create_dir_all(&outside).unwrap();
-    save_png(
-        &outside.join("shadows.png"),
-        SIZE,
-        rendered("shadows.toml", true),
-    );
+    save_png(&outside.join("shadows.png"), SIZE, shadows);
     std::os::unix::fs::symlink(&outside, class.join("mallory")).unwrap();
     class
 }
